@@ -1,0 +1,80 @@
+#include "app/bench_common.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <ctime>
+#include <thread>
+
+#include "app/build_info.h"
+#include "engine/error.h"
+#include "engine/registry/registry.h"
+
+namespace masav::app {
+
+TimingStats summarize(std::vector<double> s) {
+  TimingStats t;
+  t.reps = int(s.size());
+  if (s.empty()) return t;
+  std::sort(s.begin(), s.end());
+  t.min_ms = s.front();
+  t.max_ms = s.back();
+  t.median_ms = s.size() % 2 ? s[s.size() / 2] : 0.5 * (s[s.size() / 2 - 1] + s[s.size() / 2]);
+  return t;
+}
+
+std::vector<double> time_on_device(Backend& b, int warmup, int reps,
+                                   const std::function<void()>& setup,
+                                   const std::function<void()>& work) {
+  std::vector<double> out;
+  for (int i = 0; i < warmup + reps; ++i) {
+    setup();
+    b.finish();
+    b.reset_timestamps();
+    const TimestampId t0 = b.timestamp();
+    work();
+    const TimestampId t1 = b.timestamp();
+    b.finish();
+    if (i >= warmup) out.push_back((b.timestamp_ns(t1) - b.timestamp_ns(t0)) * 1e-6);
+  }
+  return out;
+}
+
+std::vector<std::unique_ptr<Backend>> open_backends(const BackendChoice& choice) {
+  std::vector<std::unique_ptr<Backend>> out;
+  if (choice.backend != "all") {
+    out.push_back(create_backend(choice.backend, choice.device));
+    return out;
+  }
+  for (const BackendStatus& s : list_backends()) {
+    if (!s.available) {
+      fmt::print("  ({} skipped: {})\n", s.name, s.reason);
+      continue;
+    }
+    out.push_back(create_backend(s.name, s.name == "cpu" ? "" : choice.device));
+  }
+  return out;
+}
+
+void write_record_header(JsonWriter& j, const std::string& benchmark) {
+  const std::time_t now = std::time(nullptr);
+  char date[32];
+  std::strftime(date, sizeof date, "%Y-%m-%dT%H:%M:%SZ", std::gmtime(&now));
+  j.field("benchmark", benchmark).field("date", std::string(date));
+  j.key("masav").begin_object();
+  j.field("version", build_info::version).field("git", build_info::git);
+  j.field("compiler", build_info::compiler).field("build_type", build_info::build_type);
+  j.field("cuda_architectures", build_info::cuda_architectures);
+  j.end_object();
+  j.key("host").begin_object().field("hardware_threads", std::thread::hardware_concurrency());
+  j.end_object();
+}
+
+void write_device(JsonWriter& j, const Backend& b) {
+  const Capabilities& c = b.caps();
+  j.field("backend", c.backend).field("device", c.device_name).field("device_type", c.device_type);
+  j.field("vendor", c.vendor).field("driver", c.driver).field("subgroup_size", c.subgroup_size);
+  if (c.threads > 1) j.field("threads", c.threads);
+}
+
+}  // namespace masav::app

@@ -1,0 +1,176 @@
+#include "compute/vk_backend.h"
+
+#include <fmt/format.h>
+
+#include <cstring>
+
+#include "engine/error.h"
+#include "engine/kernel_checks.h"
+
+namespace masav::vk {
+namespace {
+
+struct Diagnostics {
+  uint32_t max_loop_ticks;
+  uint32_t flags;
+  uint32_t detail;
+  uint32_t reserved;
+};
+constexpr Diagnostics kCleanDiagnostics{0, 0, UINT32_MAX, 0};
+
+struct PhiloxPush {
+  uint32_t seed[2], stream[2], first_block[2];
+  uint32_t count;
+};
+
+}  // namespace
+
+VulkanBackend::VulkanBackend(const BackendOptions& options)
+    : options_(options),
+      ctx_(options.context),
+      pipelines_(ctx_, options.workgroup_size, options.count_loop_ticks),
+      stream_(ctx_, 4096) {
+  if (tile_size() >= 65536)
+    throw_invalid("vulkan", "workgroup_size * items_per_thread", std::to_string(tile_size()),
+                  "below 65536 (the sort packs tile counts in 16 bits)");
+  if (options.workgroup_size > ctx_.caps().max_workgroup_size || options.workgroup_size % 64)
+    throw_invalid("vulkan", "workgroup_size", std::to_string(options.workgroup_size),
+                  fmt::format("a multiple of 64 up to {}", ctx_.caps().max_workgroup_size));
+  diag_ = allocate(ctx_, sizeof(Diagnostics), MemoryUse::readback, "diagnostics");
+  std::memcpy(diag_->mapped, &kCleanDiagnostics, sizeof(Diagnostics));
+}
+
+VulkanBackend::~VulkanBackend() {
+  try {
+    stream_.submit_and_wait();
+  } catch (...) {
+  }
+}
+
+const std::shared_ptr<Allocation>& VulkanBackend::alloc(const BufferImpl& b,
+                                                        std::string_view kernel) const {
+  check_owner(*this, b, kernel);
+  return static_cast<const VulkanBuffer&>(b).alloc();
+}
+
+std::unique_ptr<BufferImpl> VulkanBackend::create_buffer(ElemKind kind, size_t count,
+                                                         std::string_view label) {
+  check_fits(*this, kind, count, "create_buffer", fmt::format("buffer '{}'", label));
+  const size_t bytes = count * elem_bytes(kind, real_bytes());
+  return std::make_unique<VulkanBuffer>(this, kind, count, bytes, std::string(label),
+                                        allocate(ctx_, bytes, MemoryUse::device, std::string(label)));
+}
+
+std::shared_ptr<Allocation> VulkanBackend::scratch(const std::string& slot, size_t bytes) {
+  auto& a = scratch_[slot];
+  if (!a || a->bytes < bytes) {
+    if (ctx_.caps().max_buffer_bytes && bytes > ctx_.caps().max_buffer_bytes)
+      throw Error("vulkan", slot, fmt::format("scratch of {} MiB exceeds the {} MiB per buffer",
+                                              bytes >> 20, ctx_.caps().max_buffer_bytes >> 20),
+                  "use fewer elements");
+    a = allocate(ctx_, bytes, MemoryUse::device, slot);  // the stream keeps the old one alive
+  }
+  return a;
+}
+
+void VulkanBackend::upload_bytes(BufferImpl& dst, const void* src, size_t bytes, size_t offset) {
+  const auto& a = alloc(dst, "upload");
+  if (offset + bytes > dst.bytes())
+    throw Error("vulkan", "upload", fmt::format("{} bytes at {} overrun '{}'", bytes, offset,
+                                                dst.label()), "upload within the buffer");
+  if (bytes == 0) return;
+  if (a->mapped) {
+    stream_.submit_and_wait();  // earlier recorded work may still read the old contents
+    std::memcpy(static_cast<uint8_t*>(a->mapped) + offset, src, bytes);
+    return;
+  }
+  auto staging = allocate(ctx_, bytes, MemoryUse::upload, "upload staging");
+  std::memcpy(staging->mapped, src, bytes);
+  stream_.copy(staging, 0, a, offset, bytes);
+}
+
+void VulkanBackend::download_bytes(const BufferImpl& src, void* dst, size_t bytes, size_t offset) {
+  const auto& a = alloc(src, "download");
+  if (offset + bytes > src.bytes())
+    throw Error("vulkan", "download", fmt::format("{} bytes at {} overrun '{}'", bytes, offset,
+                                                  src.label()), "download within the buffer");
+  if (bytes == 0) return;
+  if (a->mapped) {
+    finish();
+    invalidate_for_host(ctx_, *a);
+    std::memcpy(dst, static_cast<const uint8_t*>(a->mapped) + offset, bytes);
+    return;
+  }
+  auto staging = allocate(ctx_, bytes, MemoryUse::readback, "download staging");
+  stream_.copy(a, offset, staging, 0, bytes);
+  finish();
+  invalidate_for_host(ctx_, *staging);
+  std::memcpy(dst, staging->mapped, bytes);
+}
+
+void VulkanBackend::copy_bytes(const BufferImpl& src, BufferImpl& dst, size_t bytes) {
+  if (bytes > src.bytes() || bytes > dst.bytes())
+    throw Error("vulkan", "copy", fmt::format("{} bytes from '{}' to '{}' overrun a buffer", bytes,
+                                              src.label(), dst.label()),
+                "copy within both buffers");
+  stream_.copy(alloc(src, "copy"), 0, alloc(dst, "copy"), 0, bytes);
+}
+
+void VulkanBackend::fill_u32(BufferImpl& dst, uint32_t value) {
+  stream_.fill(alloc(dst, "fill"), value);
+}
+
+void VulkanBackend::finish() {
+  stream_.submit_and_wait();
+  check_diagnostics();
+}
+
+void VulkanBackend::check_diagnostics() {
+  auto* d = static_cast<Diagnostics*>(diag_->mapped);
+  invalidate_for_host(ctx_, *diag_);
+  if (d->flags == 0) return;
+  const Diagnostics seen = *d;
+  d->flags = 0;
+  d->detail = UINT32_MAX;
+  raise_diagnostics(*this, seen.flags & kDiagNeighborOverflow ? "grid_count_neighbors" : "gather",
+                    seen.flags, seen.detail, pending_neighbor_limit_);
+}
+
+uint32_t VulkanBackend::take_max_loop_ticks() {
+  finish();
+  auto* d = static_cast<Diagnostics*>(diag_->mapped);
+  const uint32_t ticks = d->max_loop_ticks;
+  d->max_loop_ticks = 0;
+  return ticks;
+}
+
+void VulkanBackend::run(const KernelSpec& spec,
+                        std::initializer_list<std::shared_ptr<Allocation>> buffers,
+                        const void* push, uint64_t groups) {
+  stream_.dispatch(pipelines_.get(spec), diag_,
+                   std::span<const std::shared_ptr<Allocation>>(buffers.begin(), buffers.size()),
+                   push, groups);
+}
+
+void VulkanBackend::philox(const PhiloxParams& p, BufferImpl& out, bool uniform) {
+  const auto& a = alloc(out, uniform ? "philox_uniform" : "philox_u32");
+  if (out.count() > UINT32_MAX - 3)
+    throw_invalid("philox", "count", std::to_string(out.count()), "below 2^32 - 3");
+  PhiloxPush push{{uint32_t(p.seed), uint32_t(p.seed >> 32)},
+                  {uint32_t(p.stream), uint32_t(p.stream >> 32)},
+                  {uint32_t(p.first_block), uint32_t(p.first_block >> 32)},
+                  uint32_t(out.count())};
+  const uint64_t blocks = (out.count() + 3) / 4;
+  const uint32_t wg = options_.workgroup_size;
+  run({"philox_fill", 1, sizeof push, {uniform ? 1u : 0u}}, {a}, &push, (blocks + wg - 1) / wg);
+}
+
+void VulkanBackend::philox_u32(const PhiloxParams& p, Buffer<uint32_t>& out) {
+  philox(p, out.impl(), false);
+}
+
+void VulkanBackend::philox_uniform(const PhiloxParams& p, Buffer<float>& out) {
+  philox(p, out.impl(), true);
+}
+
+}  // namespace masav::vk

@@ -1,0 +1,74 @@
+#pragma once
+// The Vulkan compute backend: the kernel set as GLSL compute shaders, on any Vulkan 1.1 device.
+#include <map>
+#include <memory>
+#include <string>
+
+#include "compute/vk_context.h"
+#include "compute/vk_memory.h"
+#include "compute/vk_pipelines.h"
+#include "compute/vk_stream.h"
+#include "engine/backend.h"
+
+namespace masav::vk {
+
+struct BackendOptions {
+  ContextOptions context;
+  bool count_loop_ticks = false;  // instrument every loop (tests of lavapipe's loop limit)
+  uint32_t workgroup_size = 256;
+  uint32_t items_per_thread = 8;  // sort and scan tile = workgroup_size * items_per_thread
+};
+
+class VulkanBackend final : public Backend {
+ public:
+  explicit VulkanBackend(const BackendOptions& options);
+  ~VulkanBackend() override;
+
+  const Capabilities& caps() const override { return ctx_.caps(); }
+  std::unique_ptr<BufferImpl> create_buffer(ElemKind kind, size_t count,
+                                            std::string_view label) override;
+  void upload_bytes(BufferImpl& dst, const void* src, size_t bytes, size_t offset) override;
+  void download_bytes(const BufferImpl& src, void* dst, size_t bytes, size_t offset) override;
+  void copy_bytes(const BufferImpl& src, BufferImpl& dst, size_t bytes) override;
+  void fill_u32(BufferImpl& dst, uint32_t value) override;
+  void finish() override;
+  TimestampId timestamp() override { return stream_.timestamp(); }
+  double timestamp_ns(TimestampId id) override { return stream_.timestamp_ns(id); }
+  void reset_timestamps() override { stream_.reset_timestamps(); }
+
+  void philox_u32(const PhiloxParams& p, Buffer<uint32_t>& out) override;
+  void philox_uniform(const PhiloxParams& p, Buffer<float>& out) override;
+  void radix_sort(const RadixSortParams& p, Buffer<uint32_t>& keys,
+                  Buffer<uint32_t>* values) override;
+  void grid_assign_cells(const GridParams& g, const Buffer<Real4>& positions,
+                         Buffer<uint32_t>& cells, Buffer<uint32_t>& indices) override;
+  void grid_cell_ranges(const GridParams& g, const Buffer<uint32_t>& sorted_cells,
+                        Buffer<uint32_t>& cell_start, Buffer<uint32_t>& cell_end) override;
+  void gather(const Buffer<uint32_t>& order, const BufferImpl& src, BufferImpl& dst) override;
+  void grid_count_neighbors(const NeighborParams& p, const Buffer<Real4>& sorted_positions,
+                            const Buffer<uint32_t>& cell_start, const Buffer<uint32_t>& cell_end,
+                            Buffer<uint32_t>& counts) override;
+
+  // The most loop iterations any invocation ran since the last call (needs count_loop_ticks).
+  uint32_t take_max_loop_ticks();
+  uint32_t tile_size() const { return options_.workgroup_size * options_.items_per_thread; }
+
+ private:
+  const std::shared_ptr<Allocation>& alloc(const BufferImpl& b, std::string_view kernel) const;
+  std::shared_ptr<Allocation> scratch(const std::string& slot, size_t bytes);
+  void run(const KernelSpec& spec, std::initializer_list<std::shared_ptr<Allocation>> buffers,
+           const void* push, uint64_t groups);
+  void philox(const PhiloxParams& p, BufferImpl& out, bool uniform);
+  void exclusive_scan(const std::shared_ptr<Allocation>& data, uint32_t count, uint32_t level);
+  void check_diagnostics();
+
+  BackendOptions options_;
+  Context ctx_;
+  Pipelines pipelines_;
+  Stream stream_;
+  std::shared_ptr<Allocation> diag_;
+  std::map<std::string, std::shared_ptr<Allocation>> scratch_;
+  uint32_t pending_neighbor_limit_ = 0;
+};
+
+}  // namespace masav::vk

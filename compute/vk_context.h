@@ -1,0 +1,69 @@
+#pragma once
+// Instance, physical-device choice and logical device for the Vulkan backend.
+// Devices are ranked discrete > integrated > virtual > other > CPU (lavapipe last); a selector
+// (index as listed by `masav info`, or a case-insensitive part of the name) overrides the rank.
+#include <functional>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "compute/vk_common.h"
+#include "engine/capabilities.h"
+
+namespace masav::vk {
+
+struct DeviceListing {
+  uint32_t index = 0;  // enumeration order
+  std::string name;
+  std::string type;
+  std::string api_version;
+  bool usable = false;
+  std::string reason;  // why not usable
+  int rank = 0;        // lower is preferred
+};
+
+struct ContextOptions {
+  std::string device_selector;  // "" = best ranked
+  bool validation = false;      // VK_LAYER_KHRONOS_validation with a debug messenger
+};
+
+// Called for every validation message; default prints to stderr. Tests install one that fails.
+using ValidationHandler = std::function<void(const std::string&)>;
+void set_validation_handler(ValidationHandler handler);
+uint64_t validation_message_count();
+
+// Options from the environment: MASAV_VK_DEVICE, MASAV_VK_VALIDATION=1.
+ContextOptions options_from_env();
+
+class Context {
+ public:
+  explicit Context(const ContextOptions& options);
+  ~Context();
+
+  // Lists every physical device with whether masav can use it (throws masav::Error when there
+  // is no loader or no driver at all).
+  static std::vector<DeviceListing> list_devices();
+
+  const ::vk::raii::Device& device() const { return *device_; }
+  const ::vk::raii::PhysicalDevice& physical() const { return *physical_; }
+  const ::vk::raii::Queue& queue() const { return *queue_; }
+  uint32_t queue_family() const { return queue_family_; }
+  const Capabilities& caps() const { return caps_; }
+  uint32_t timestamp_valid_bits() const { return timestamp_bits_; }
+  std::array<uint8_t, VK_UUID_SIZE> pipeline_cache_uuid() const { return cache_uuid_; }
+
+ private:
+  std::unique_ptr<::vk::raii::Context> context_;
+  std::unique_ptr<::vk::raii::Instance> instance_;
+  std::unique_ptr<::vk::raii::DebugUtilsMessengerEXT> messenger_;
+  std::unique_ptr<::vk::raii::PhysicalDevice> physical_;
+  std::unique_ptr<::vk::raii::Device> device_;
+  std::unique_ptr<::vk::raii::Queue> queue_;
+  uint32_t queue_family_ = 0;
+  uint32_t timestamp_bits_ = 0;
+  std::array<uint8_t, VK_UUID_SIZE> cache_uuid_{};
+  Capabilities caps_;
+};
+
+}  // namespace masav::vk

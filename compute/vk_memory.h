@@ -1,0 +1,43 @@
+#pragma once
+// Buffers and their memory. One allocation per buffer (the engine allocates few, large buffers).
+// Allocations are shared_ptr so that recorded work keeps them alive until its fence signals.
+#include <memory>
+#include <string>
+
+#include "compute/vk_context.h"
+#include "engine/buffer.h"
+
+namespace masav::vk {
+
+enum class MemoryUse {
+  device,    // kernel data: device-local (and host-mapped on CPU and integrated devices)
+  upload,    // staging for uploads: host-visible, coherent
+  readback,  // staging for downloads and diagnostics: host-visible, cached where possible
+};
+
+struct Allocation {
+  ::vk::raii::Buffer buffer = nullptr;
+  ::vk::raii::DeviceMemory memory = nullptr;
+  ::vk::DeviceSize bytes = 0;
+  void* mapped = nullptr;  // non-null when host-visible
+  bool coherent = true;
+  std::string label;
+};
+
+std::shared_ptr<Allocation> allocate(const Context& ctx, ::vk::DeviceSize bytes, MemoryUse use,
+                                     const std::string& label);
+// Makes device writes to a non-coherent mapped allocation visible to the host.
+void invalidate_for_host(const Context& ctx, const Allocation& a);
+
+class VulkanBuffer final : public BufferImpl {
+ public:
+  VulkanBuffer(const DeviceApi* owner, ElemKind kind, size_t count, size_t bytes, std::string label,
+               std::shared_ptr<Allocation> alloc)
+      : BufferImpl(owner, kind, count, bytes, std::move(label)), alloc_(std::move(alloc)) {}
+  const std::shared_ptr<Allocation>& alloc() const { return alloc_; }
+
+ private:
+  std::shared_ptr<Allocation> alloc_;
+};
+
+}  // namespace masav::vk

@@ -1,0 +1,116 @@
+#include "compute/vk_pipelines.h"
+
+#include <fmt/format.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <unistd.h>
+
+#include "engine/error.h"
+#include "shaders/embedded.h"
+
+namespace masav::vk {
+namespace fs = std::filesystem;
+
+namespace {
+
+std::vector<uint8_t> read_file(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) return {};
+  return std::vector<uint8_t>(std::istreambuf_iterator<char>(in), {});
+}
+
+}  // namespace
+
+std::string Pipelines::cache_path() const {
+  std::string dir;
+  if (const char* d = std::getenv("MASAV_CACHE_DIR")) dir = d;
+  else if (const char* x = std::getenv("XDG_CACHE_HOME")) dir = std::string(x) + "/masav";
+  else if (const char* h = std::getenv("HOME")) dir = std::string(h) + "/.cache/masav";
+  else return "";
+  std::string uuid;
+  for (uint8_t b : ctx_.pipeline_cache_uuid()) uuid += fmt::format("{:02x}", b);
+  return fmt::format("{}/vk_pipelines_{}.bin", dir, uuid);
+}
+
+Pipelines::Pipelines(const Context& ctx, uint32_t workgroup_size, bool count_loop_ticks)
+    : ctx_(ctx), workgroup_size_(workgroup_size), count_loop_ticks_(count_loop_ticks) {
+  // The driver validates the blob's header against its own UUID and ignores a stale one.
+  const std::vector<uint8_t> blob = read_file(cache_path());
+  ::vk::PipelineCacheCreateInfo info({}, blob.size(), blob.empty() ? nullptr : blob.data());
+  try {
+    cache_ = ::vk::raii::PipelineCache(ctx_.device(), info);
+  } catch (const ::vk::SystemError&) {
+    cache_ = ::vk::raii::PipelineCache(ctx_.device(), ::vk::PipelineCacheCreateInfo());
+  }
+}
+
+Pipelines::~Pipelines() {
+  // Best effort: a cache that cannot be written only costs compile time on the next start.
+  try {
+    const std::string path = cache_path();
+    if (path.empty() || kernels_.empty()) return;
+    const std::vector<uint8_t> data = cache_.getData();
+    fs::create_directories(fs::path(path).parent_path());
+    const std::string tmp = fmt::format("{}.tmp{}", path, ::getpid());
+    {
+      std::ofstream out(tmp, std::ios::binary);
+      out.write(reinterpret_cast<const char*>(data.data()), std::streamsize(data.size()));
+      if (!out) return;
+    }
+    fs::rename(tmp, path);
+  } catch (...) {
+  }
+}
+
+const Kernel& Pipelines::get(const KernelSpec& spec) {
+  std::string key = spec.shader;
+  for (uint32_t c : spec.constants) key += fmt::format(":{}", c);
+  if (auto it = kernels_.find(key); it != kernels_.end()) return *it->second;
+
+  const auto words = shaders::find(spec.shader);
+  if (words.empty())
+    throw Error("vulkan", spec.shader, "no embedded SPIR-V for this kernel",
+                "rebuild masav (the shaders are compiled into the binary)");
+
+  auto k = std::make_unique<Kernel>();
+  k->name = spec.shader;
+  k->buffers = spec.buffers;
+  k->push_bytes = spec.push_bytes;
+  std::vector<::vk::DescriptorSetLayoutBinding> bindings;
+  for (uint32_t b = 0; b <= spec.buffers; ++b)
+    bindings.emplace_back(b, ::vk::DescriptorType::eStorageBuffer, 1,
+                          ::vk::ShaderStageFlagBits::eCompute);
+  k->set_layout = ::vk::raii::DescriptorSetLayout(ctx_.device(),
+                                                  ::vk::DescriptorSetLayoutCreateInfo({}, bindings));
+  ::vk::PushConstantRange range(::vk::ShaderStageFlagBits::eCompute, 0, spec.push_bytes);
+  ::vk::DescriptorSetLayout set_layout = *k->set_layout;
+  ::vk::PipelineLayoutCreateInfo linfo({}, set_layout);
+  if (spec.push_bytes) linfo.setPushConstantRanges(range);
+  k->layout = ::vk::raii::PipelineLayout(ctx_.device(), linfo);
+
+  ::vk::ShaderModuleCreateInfo minfo({}, words.size_bytes(), words.data());
+  ::vk::raii::ShaderModule module(ctx_.device(), minfo);
+
+  // Constants 0..2 are common to every kernel (shaders/common/kernel_base.glsl).
+  std::vector<uint32_t> values = {workgroup_size_, ctx_.caps().min_subgroup_size,
+                                  count_loop_ticks_ ? 1u : 0u};
+  values.insert(values.end(), spec.constants.begin(), spec.constants.end());
+  std::vector<::vk::SpecializationMapEntry> entries;
+  for (uint32_t i = 0; i < values.size(); ++i) entries.emplace_back(i, 4 * i, 4);
+  ::vk::SpecializationInfo sinfo(entries, ::vk::ArrayProxyNoTemporaries<const uint32_t>(values));
+  ::vk::PipelineShaderStageCreateInfo stage({}, ::vk::ShaderStageFlagBits::eCompute, *module, "main",
+                                            &sinfo);
+  ::vk::ComputePipelineCreateInfo cinfo({}, stage, *k->layout);
+  try {
+    k->pipeline = ::vk::raii::Pipeline(ctx_.device(), cache_, cinfo);
+  } catch (const ::vk::SystemError& e) {
+    throw Error("vulkan", spec.shader, fmt::format("pipeline creation failed: {}", e.what()),
+                "update the Vulkan driver; if it persists, report the device and driver");
+  }
+  return *kernels_.emplace(key, std::move(k)).first->second;
+}
+
+}  // namespace masav::vk

@@ -1,0 +1,71 @@
+// Portable LSD radix sort on Vulkan: per 8-bit pass, histogram -> exclusive scan -> scatter
+// (reduce-then-scan; no workgroup ever waits on another, which lavapipe and mobile GPUs need).
+#include <fmt/format.h>
+
+#include "compute/vk_backend.h"
+#include "engine/error.h"
+#include "engine/kernel_checks.h"
+#include "engine/physics/radix.h"
+
+namespace masav::vk {
+namespace {
+
+struct PassPush {
+  uint32_t n, shift, bits, num_tiles;
+};
+struct ScanPush {
+  uint32_t n, num_tiles;
+};
+
+}  // namespace
+
+// In-place exclusive prefix sum of data[0..count): scan each tile, scan the tile totals
+// (recursively, one level per factor of the tile size), add them back.
+void VulkanBackend::exclusive_scan(const std::shared_ptr<Allocation>& data, uint32_t count,
+                                   uint32_t level) {
+  const uint32_t tile = tile_size(), items = options_.items_per_thread;
+  const uint32_t tiles = (count + tile - 1) / tile;
+  auto sums = scratch(fmt::format("radix_sort scan level {}", level), size_t(tiles) * 4);
+  ScanPush push{count, tiles};
+  run({"scan_tiles", 2, sizeof push, {items}}, {data, sums}, &push, tiles);
+  if (tiles > 1) {
+    exclusive_scan(sums, tiles, level + 1);
+    run({"scan_add", 2, sizeof push, {items}}, {data, sums}, &push, tiles);
+  }
+}
+
+void VulkanBackend::radix_sort(const RadixSortParams& p, Buffer<uint32_t>& keys,
+                               Buffer<uint32_t>* values) {
+  check_sort(*this, p, keys, values);
+  if (p.n <= 1) return;
+  const uint32_t tile = tile_size(), items = options_.items_per_thread;
+  const uint32_t num_tiles = (p.n + tile - 1) / tile;
+  const uint64_t hist_entries = uint64_t(radix::kRadix) * num_tiles;
+  check_fits(*this, ElemKind::u32, hist_entries, "radix_sort", "the digit histogram");
+  const bool has_values = values != nullptr;
+
+  std::shared_ptr<Allocation> k_src = alloc(keys.impl(), "radix_sort");
+  std::shared_ptr<Allocation> v_src = has_values ? alloc(values->impl(), "radix_sort") : k_src;
+  std::shared_ptr<Allocation> k_dst = scratch("radix_sort keys", size_t(p.n) * 4);
+  std::shared_ptr<Allocation> v_dst = has_values ? scratch("radix_sort values", size_t(p.n) * 4)
+                                                 : k_dst;
+  auto hist = scratch("radix_sort histogram", hist_entries * 4);
+
+  const uint32_t passes = radix::pass_count(p.key_bits);
+  for (uint32_t pass = 0; pass < passes; ++pass) {
+    const uint32_t bits = radix::pass_bits(p.key_bits, pass);
+    PassPush push{p.n, pass * radix::kDigitBits, bits, num_tiles};
+    run({"radix_histogram", 2, sizeof push, {items}}, {k_src, hist}, &push, num_tiles);
+    exclusive_scan(hist, (1u << bits) * num_tiles, 0);
+    run({"radix_scatter", 5, sizeof push, {items, has_values ? 1u : 0u}},
+        {k_src, v_src, k_dst, v_dst, hist}, &push, num_tiles);
+    std::swap(k_src, k_dst);
+    std::swap(v_src, v_dst);
+  }
+  if (passes % 2 == 1) {  // the result sits in scratch: copy it home
+    stream_.copy(k_src, 0, k_dst, 0, size_t(p.n) * 4);
+    if (has_values) stream_.copy(v_src, 0, v_dst, 0, size_t(p.n) * 4);
+  }
+}
+
+}  // namespace masav::vk

@@ -1,0 +1,177 @@
+#include "compute/vk_stream.h"
+
+#include <fmt/format.h>
+
+#include "engine/error.h"
+
+namespace masav::vk {
+namespace {
+
+constexpr uint32_t kSetsPerPool = 256;
+constexpr uint32_t kBuffersPerSet = 16;
+
+}  // namespace
+
+Stream::Stream(const Context& ctx, uint32_t max_timestamps)
+    : ctx_(ctx), max_timestamps_(max_timestamps) {
+  pool_ = ::vk::raii::CommandPool(
+      ctx_.device(), ::vk::CommandPoolCreateInfo(::vk::CommandPoolCreateFlagBits::eResetCommandBuffer,
+                                                 ctx_.queue_family()));
+  ::vk::raii::CommandBuffers bufs(ctx_.device(), ::vk::CommandBufferAllocateInfo(
+                                                     *pool_, ::vk::CommandBufferLevel::ePrimary, 1));
+  cmd_ = std::move(bufs.front());
+  fence_ = ::vk::raii::Fence(ctx_.device(), ::vk::FenceCreateInfo());
+  queries_ = ::vk::raii::QueryPool(
+      ctx_.device(), ::vk::QueryPoolCreateInfo({}, ::vk::QueryType::eTimestamp, max_timestamps_));
+}
+
+void Stream::begin() {
+  if (recording_) return;
+  cmd_.begin(::vk::CommandBufferBeginInfo(::vk::CommandBufferUsageFlagBits::eOneTimeSubmit));
+  recording_ = true;
+  commands_recorded_ = false;
+  if (queries_need_reset_) {
+    cmd_.resetQueryPool(*queries_, 0, max_timestamps_);
+    queries_need_reset_ = false;
+  }
+}
+
+void Stream::barrier() {
+  begin();
+  if (!commands_recorded_) {
+    commands_recorded_ = true;
+    return;
+  }
+  using S = ::vk::PipelineStageFlagBits;
+  using A = ::vk::AccessFlagBits;
+  ::vk::MemoryBarrier mb(A::eShaderWrite | A::eTransferWrite,
+                         A::eShaderRead | A::eShaderWrite | A::eTransferRead | A::eTransferWrite);
+  cmd_.pipelineBarrier(S::eComputeShader | S::eTransfer, S::eComputeShader | S::eTransfer, {}, mb,
+                       {}, {});
+}
+
+::vk::DescriptorSet Stream::allocate_set(const Kernel& k) {
+  if (descriptor_pools_.empty() || sets_in_last_pool_ == kSetsPerPool) {
+    ::vk::DescriptorPoolSize size(::vk::DescriptorType::eStorageBuffer,
+                                  kSetsPerPool * kBuffersPerSet);
+    descriptor_pools_.emplace_back(ctx_.device(),
+                                   ::vk::DescriptorPoolCreateInfo({}, kSetsPerPool, size));
+    sets_in_last_pool_ = 0;
+  }
+  ++sets_in_last_pool_;
+  ::vk::DescriptorSetLayout layout = *k.set_layout;
+  ::vk::DescriptorSetAllocateInfo info(*descriptor_pools_.back(), layout);
+  // Plain handles: the pool is reset wholesale after the fence, which frees every set at once.
+  return (*ctx_.device()).allocateDescriptorSets(info, *ctx_.device().getDispatcher()).front();
+}
+
+void Stream::dispatch(const Kernel& k, const std::shared_ptr<Allocation>& diag,
+                      std::span<const std::shared_ptr<Allocation>> buffers, const void* push,
+                      uint64_t groups) {
+  if (buffers.size() != k.buffers)
+    throw Error("vulkan", k.name, fmt::format("{} buffers bound, kernel takes {}", buffers.size(),
+                                              k.buffers), "internal error: report it");
+  if (k.buffers + 1 > kBuffersPerSet)
+    throw Error("vulkan", k.name, "too many buffers for one descriptor set", "internal error");
+  if (groups == 0) return;
+  const uint64_t max_x = ctx_.caps().max_workgroups_x;
+  const uint32_t gx = uint32_t(std::min<uint64_t>(groups, max_x));
+  const uint64_t gy = (groups + gx - 1) / gx;
+  if (gy > 65535)
+    throw Error("vulkan", k.name, fmt::format("{} workgroups exceed this device's grid", groups),
+                "use fewer elements");
+  barrier();
+  const ::vk::DescriptorSet set = allocate_set(k);
+  std::vector<::vk::DescriptorBufferInfo> infos;
+  infos.reserve(buffers.size() + 1);
+  infos.emplace_back(*diag->buffer, 0, VK_WHOLE_SIZE);
+  keep(diag);
+  for (const auto& b : buffers) {
+    infos.emplace_back(*b->buffer, 0, VK_WHOLE_SIZE);
+    keep(b);
+  }
+  std::vector<::vk::WriteDescriptorSet> writes;
+  for (uint32_t i = 0; i < infos.size(); ++i)
+    writes.emplace_back(set, i, 0, 1, ::vk::DescriptorType::eStorageBuffer, nullptr, &infos[i]);
+  ctx_.device().updateDescriptorSets(writes, {});
+  cmd_.bindPipeline(::vk::PipelineBindPoint::eCompute, *k.pipeline);
+  cmd_.bindDescriptorSets(::vk::PipelineBindPoint::eCompute, *k.layout, 0, set, {});
+  if (k.push_bytes)
+    cmd_.pushConstants<uint8_t>(*k.layout, ::vk::ShaderStageFlagBits::eCompute, 0,
+                                ::vk::ArrayProxy<const uint8_t>(k.push_bytes,
+                                                                static_cast<const uint8_t*>(push)));
+  cmd_.dispatch(gx, uint32_t(gy), 1);
+}
+
+void Stream::copy(const std::shared_ptr<Allocation>& src, ::vk::DeviceSize src_offset,
+                  const std::shared_ptr<Allocation>& dst, ::vk::DeviceSize dst_offset,
+                  ::vk::DeviceSize bytes) {
+  if (bytes == 0) return;
+  barrier();
+  cmd_.copyBuffer(*src->buffer, *dst->buffer, ::vk::BufferCopy(src_offset, dst_offset, bytes));
+  keep(src);
+  keep(dst);
+}
+
+void Stream::fill(const std::shared_ptr<Allocation>& dst, uint32_t value) {
+  barrier();
+  cmd_.fillBuffer(*dst->buffer, 0, VK_WHOLE_SIZE, value);
+  keep(dst);
+}
+
+uint32_t Stream::timestamp() {
+  if (timestamps_used_ >= max_timestamps_)
+    throw Error("vulkan", "timestamp", fmt::format("more than {} timestamps", max_timestamps_),
+                "call reset_timestamps() between measurements");
+  barrier();
+  cmd_.writeTimestamp(::vk::PipelineStageFlagBits::eBottomOfPipe, *queries_, timestamps_used_);
+  return timestamps_used_++;
+}
+
+void Stream::reset_timestamps() {
+  timestamps_used_ = 0;
+  queries_need_reset_ = true;
+}
+
+void Stream::submit_and_wait() {
+  if (!recording_) return;
+  // Make device writes visible to the host's mapped reads after the fence.
+  ::vk::MemoryBarrier to_host(::vk::AccessFlagBits::eShaderWrite | ::vk::AccessFlagBits::eTransferWrite,
+                              ::vk::AccessFlagBits::eHostRead);
+  cmd_.pipelineBarrier(::vk::PipelineStageFlagBits::eComputeShader |
+                           ::vk::PipelineStageFlagBits::eTransfer,
+                       ::vk::PipelineStageFlagBits::eHost, {}, to_host, {}, {});
+  cmd_.end();
+  recording_ = false;
+  ::vk::CommandBuffer raw = *cmd_;
+  ::vk::SubmitInfo submit({}, {}, raw);
+  try {
+    ctx_.queue().submit(submit, *fence_);
+    while (ctx_.device().waitForFences(*fence_, VK_TRUE, UINT64_MAX) == ::vk::Result::eTimeout) {
+    }
+  } catch (const ::vk::DeviceLostError&) {
+    throw Error("vulkan", "submit", fmt::format("device lost on {}", ctx_.caps().device_name),
+                "the GPU reset or a kernel faulted; restart masav, and report the scene");
+  }
+  ctx_.device().resetFences(*fence_);
+  cmd_.reset();
+  for (auto& p : descriptor_pools_) p.reset();
+  if (descriptor_pools_.size() > 1)
+    descriptor_pools_.erase(descriptor_pools_.begin() + 1, descriptor_pools_.end());
+  sets_in_last_pool_ = 0;
+  alive_.clear();
+}
+
+double Stream::timestamp_ns(uint32_t id) {
+  if (id >= timestamps_used_)
+    throw Error("vulkan", "timestamp", fmt::format("no timestamp {}", id),
+                "use an id returned by timestamp() since the last reset");
+  const auto [result, ticks] = queries_.getResult<uint64_t>(
+      id, 1, sizeof(uint64_t), ::vk::QueryResultFlagBits::e64 | ::vk::QueryResultFlagBits::eWait);
+  (void)result;
+  const uint32_t bits = ctx_.timestamp_valid_bits();
+  const uint64_t mask = bits >= 64 ? ~0ull : ((1ull << bits) - 1);
+  return double(ticks & mask) * ctx_.caps().timestamp_period_ns;
+}
+
+}  // namespace masav::vk

@@ -1,0 +1,56 @@
+#pragma once
+// Records dispatches, copies, fills and timestamps into one command buffer, with a memory
+// barrier between consecutive commands, and submits it on finish. Every allocation a recorded
+// command touches is kept alive until the fence signals.
+#include <memory>
+#include <span>
+#include <vector>
+
+#include "compute/vk_memory.h"
+#include "compute/vk_pipelines.h"
+
+namespace masav::vk {
+
+class Stream {
+ public:
+  Stream(const Context& ctx, uint32_t max_timestamps);
+
+  // Binds `diag` at binding 0 and `buffers` at 1..n; groups beyond maxComputeWorkGroupCount[0]
+  // spill into y (kernels flatten them with flat_group_id()).
+  void dispatch(const Kernel& k, const std::shared_ptr<Allocation>& diag,
+                std::span<const std::shared_ptr<Allocation>> buffers, const void* push,
+                uint64_t groups);
+  void copy(const std::shared_ptr<Allocation>& src, ::vk::DeviceSize src_offset,
+            const std::shared_ptr<Allocation>& dst, ::vk::DeviceSize dst_offset,
+            ::vk::DeviceSize bytes);
+  void fill(const std::shared_ptr<Allocation>& dst, uint32_t value);
+  uint32_t timestamp();
+  void reset_timestamps();
+
+  bool has_work() const { return recording_; }
+  void submit_and_wait();
+  // Device time of timestamp `id` in nanoseconds (after submit_and_wait).
+  double timestamp_ns(uint32_t id);
+
+ private:
+  void begin();
+  void barrier();
+  void keep(const std::shared_ptr<Allocation>& a) { alive_.push_back(a); }
+  ::vk::DescriptorSet allocate_set(const Kernel& k);
+
+  const Context& ctx_;
+  ::vk::raii::CommandPool pool_ = nullptr;
+  ::vk::raii::CommandBuffer cmd_ = nullptr;
+  ::vk::raii::Fence fence_ = nullptr;
+  ::vk::raii::QueryPool queries_ = nullptr;
+  std::vector<::vk::raii::DescriptorPool> descriptor_pools_;
+  uint32_t sets_in_last_pool_ = 0;
+  uint32_t max_timestamps_;
+  uint32_t timestamps_used_ = 0;
+  bool queries_need_reset_ = true;
+  bool recording_ = false;
+  bool commands_recorded_ = false;
+  std::vector<std::shared_ptr<Allocation>> alive_;
+};
+
+}  // namespace masav::vk

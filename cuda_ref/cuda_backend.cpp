@@ -1,0 +1,205 @@
+// CUDA backend, host side: device set-up, buffers, ordering, timestamps, diagnostics, Philox.
+#include "cuda_ref/cuda_backend.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+
+#include "cuda_ref/cuda_check.h"
+#include "cuda_ref/cuda_launch.h"
+#include "engine/error.h"
+#include "engine/kernel_checks.h"
+
+namespace masav::cuda {
+namespace {
+constexpr uint32_t kMaxTimestamps = 4096;
+constexpr uint32_t kCleanDiagnostics[4] = {0, 0, UINT32_MAX, 0};
+}  // namespace
+
+CudaBuffer::~CudaBuffer() {
+  if (ptr_) cudaFree(ptr_);
+}
+
+DeviceScratch::~DeviceScratch() {
+  if (ptr) cudaFree(ptr);
+}
+
+void* DeviceScratch::reserve(size_t want, const char* kernel) {
+  if (want <= bytes) return ptr;
+  if (ptr) check(cudaFree(ptr), kernel, "cudaFree(scratch)");  // synchronises the device
+  ptr = nullptr;
+  bytes = 0;
+  check(cudaMalloc(&ptr, std::max<size_t>(want, 16)), kernel, "cudaMalloc(scratch)");
+  bytes = want;
+  return ptr;
+}
+
+CudaBackend::CudaBackend(int device) : device_(device) {
+  check(cudaSetDevice(device), "init", "cudaSetDevice");
+  cudaDeviceProp prop{};
+  check(cudaGetDeviceProperties(&prop, device), "init", "cudaGetDeviceProperties");
+  int runtime = 0, driver = 0;
+  cudaRuntimeGetVersion(&runtime);
+  cudaDriverGetVersion(&driver);
+  caps_.backend = "cuda";
+  caps_.device_name = prop.name;
+  caps_.vendor = "NVIDIA";
+  caps_.device_type = prop.integrated ? "integrated" : "discrete";
+  caps_.driver = fmt::format("CUDA runtime {}.{}, driver {}.{}, sm_{}{}", runtime / 1000,
+                             (runtime % 1000) / 10, driver / 1000, (driver % 1000) / 10,
+                             prop.major, prop.minor);
+  caps_.subgroup_size = caps_.min_subgroup_size = uint32_t(prop.warpSize);
+  caps_.max_workgroup_size = uint32_t(prop.maxThreadsPerBlock);
+  caps_.max_workgroups_x = uint32_t(prop.maxGridSize[0]);
+  caps_.shared_memory_bytes = prop.sharedMemPerBlock;
+  caps_.max_buffer_bytes = prop.totalGlobalMem;
+  caps_.device_memory_bytes = prop.totalGlobalMem;
+  caps_.timestamp_period_ns = 500.0;  // cudaEventElapsedTime resolves about 0.5 us
+  caps_.real_is_double = false;
+  check(cudaStreamCreateWithFlags(&stream_, cudaStreamNonBlocking), "init", "cudaStreamCreate");
+  check(cudaMalloc(reinterpret_cast<void**>(&diag_), sizeof kCleanDiagnostics), "init", "cudaMalloc(diagnostics)");
+  check(cudaMemcpy(diag_, kCleanDiagnostics, sizeof kCleanDiagnostics, cudaMemcpyHostToDevice),
+        "init", "cudaMemcpy(diagnostics)");
+}
+
+CudaBackend::~CudaBackend() {
+  if (stream_) cudaStreamSynchronize(stream_);
+  scratch_.clear();
+  for (cudaEvent_t e : events_) cudaEventDestroy(e);
+  if (diag_) cudaFree(diag_);
+  if (stream_) cudaStreamDestroy(stream_);
+}
+
+void* CudaBackend::ptr(const BufferImpl& b, const char* kernel) const {
+  check_owner(*this, b, kernel);
+  return static_cast<const CudaBuffer&>(b).ptr();
+}
+
+dim3 CudaBackend::grid_for(uint64_t blocks, const char* kernel) const {
+  blocks = std::max<uint64_t>(blocks, 1);
+  const uint64_t gx = std::min<uint64_t>(blocks, caps_.max_workgroups_x);
+  const uint64_t gy = (blocks + gx - 1) / gx;
+  if (gy > 65535)
+    throw Error("cuda", kernel, fmt::format("{} blocks exceed the launch grid", blocks),
+                "use fewer elements");
+  return dim3(uint32_t(gx), uint32_t(gy), 1);
+}
+
+dim3 CudaBackend::grid_for_items(uint64_t items, const char* kernel) const {
+  return grid_for((items + launch::kBlock - 1) / launch::kBlock, kernel);
+}
+
+std::unique_ptr<BufferImpl> CudaBackend::create_buffer(ElemKind kind, size_t count,
+                                                       std::string_view label) {
+  check_fits(*this, kind, count, "create_buffer", fmt::format("buffer '{}'", label));
+  const size_t bytes = count * elem_bytes(kind, real_bytes());
+  void* p = nullptr;
+  const cudaError_t st = cudaMalloc(&p, std::max<size_t>(bytes, 16));
+  if (st == cudaErrorMemoryAllocation) {
+    (void)cudaGetLastError();
+    size_t free_b = 0, total_b = 0;
+    cudaMemGetInfo(&free_b, &total_b);
+    throw Error("cuda", "create_buffer",
+                fmt::format("out of device memory for '{}' ({} MiB; {} MiB free)", label,
+                            bytes >> 20, free_b >> 20),
+                "use fewer elements");
+  }
+  check(st, "create_buffer", "cudaMalloc");
+  return std::make_unique<CudaBuffer>(this, kind, count, bytes, std::string(label), p);
+}
+
+void CudaBackend::upload_bytes(BufferImpl& dst, const void* src, size_t bytes, size_t offset) {
+  if (offset + bytes > dst.bytes())
+    throw Error("cuda", "upload", fmt::format("{} bytes at {} overrun '{}'", bytes, offset,
+                                              dst.label()), "upload within the buffer");
+  if (!bytes) return;
+  // Ordered on the stream; from pageable memory the call returns once `src` has been staged.
+  check(cudaMemcpyAsync(static_cast<char*>(ptr(dst, "upload")) + offset, src, bytes,
+                        cudaMemcpyHostToDevice, stream_), "upload", "cudaMemcpyAsync");
+}
+
+void CudaBackend::download_bytes(const BufferImpl& src, void* dst, size_t bytes, size_t offset) {
+  if (offset + bytes > src.bytes())
+    throw Error("cuda", "download", fmt::format("{} bytes at {} overrun '{}'", bytes, offset,
+                                                src.label()), "download within the buffer");
+  if (!bytes) return;
+  check(cudaMemcpyAsync(dst, static_cast<const char*>(ptr(src, "download")) + offset, bytes,
+                        cudaMemcpyDeviceToHost, stream_), "download", "cudaMemcpyAsync");
+  finish();
+}
+
+void CudaBackend::copy_bytes(const BufferImpl& src, BufferImpl& dst, size_t bytes) {
+  if (bytes > src.bytes() || bytes > dst.bytes())
+    throw Error("cuda", "copy", fmt::format("{} bytes from '{}' to '{}' overrun a buffer", bytes,
+                                            src.label(), dst.label()), "copy within both buffers");
+  if (!bytes) return;
+  check(cudaMemcpyAsync(ptr(dst, "copy"), ptr(src, "copy"), bytes, cudaMemcpyDeviceToDevice,
+                        stream_), "copy", "cudaMemcpyAsync");
+}
+
+void CudaBackend::fill_u32(BufferImpl& dst, uint32_t value) {
+  const size_t words = dst.bytes() / 4;
+  if (!words) return;
+  check(launch::fill_u32(stream_, grid_for_items(words, "fill"),
+                         static_cast<uint32_t*>(ptr(dst, "fill")), words, value),
+        "fill", "launch");
+}
+
+void CudaBackend::finish() {
+  check(cudaStreamSynchronize(stream_), "finish", "cudaStreamSynchronize");
+  uint32_t d[4];
+  check(cudaMemcpy(d, diag_, sizeof d, cudaMemcpyDeviceToHost), "finish", "cudaMemcpy(diagnostics)");
+  if (d[1] == 0) return;
+  check(cudaMemcpy(diag_, kCleanDiagnostics, sizeof kCleanDiagnostics, cudaMemcpyHostToDevice),
+        "finish", "cudaMemcpy(diagnostics)");
+  raise_diagnostics(*this, d[1] & kDiagNeighborOverflow ? "grid_count_neighbors" : "gather", d[1],
+                    d[2], pending_neighbor_limit_);
+}
+
+TimestampId CudaBackend::timestamp() {
+  if (events_used_ >= kMaxTimestamps)
+    throw Error("cuda", "timestamp", fmt::format("more than {} timestamps", kMaxTimestamps),
+                "call reset_timestamps() between measurements");
+  if (events_used_ == events_.size()) {
+    cudaEvent_t e;
+    check(cudaEventCreate(&e), "timestamp", "cudaEventCreate");
+    events_.push_back(e);
+  }
+  check(cudaEventRecord(events_[events_used_], stream_), "timestamp", "cudaEventRecord");
+  return events_used_++;
+}
+
+double CudaBackend::timestamp_ns(TimestampId id) {
+  if (id >= events_used_)
+    throw Error("cuda", "timestamp", fmt::format("no timestamp {}", id),
+                "use an id returned by timestamp() since the last reset");
+  float ms = 0;
+  check(cudaEventElapsedTime(&ms, events_[0], events_[id]), "timestamp", "cudaEventElapsedTime");
+  return double(ms) * 1e6;
+}
+
+void CudaBackend::reset_timestamps() { events_used_ = 0; }
+
+void CudaBackend::philox_u32(const PhiloxParams& p, Buffer<uint32_t>& out) {
+  if (out.size() > UINT32_MAX - 3)
+    throw_invalid("philox_u32", "count", std::to_string(out.size()), "below 2^32 - 3");
+  const uint64_t blocks = (out.size() + 3) / 4;
+  if (!blocks) return;
+  check(launch::philox(stream_, grid_for_items(blocks, "philox_u32"), p.seed, p.stream,
+                       p.first_block, uint32_t(out.size()), false,
+                       static_cast<uint32_t*>(ptr(out.impl(), "philox_u32"))),
+        "philox_u32", "launch");
+}
+
+void CudaBackend::philox_uniform(const PhiloxParams& p, Buffer<float>& out) {
+  if (out.size() > UINT32_MAX - 3)
+    throw_invalid("philox_uniform", "count", std::to_string(out.size()), "below 2^32 - 3");
+  const uint64_t blocks = (out.size() + 3) / 4;
+  if (!blocks) return;
+  check(launch::philox(stream_, grid_for_items(blocks, "philox_uniform"), p.seed, p.stream,
+                       p.first_block, uint32_t(out.size()), true,
+                       static_cast<uint32_t*>(ptr(out.impl(), "philox_uniform"))),
+        "philox_uniform", "launch");
+}
+
+}  // namespace masav::cuda

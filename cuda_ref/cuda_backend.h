@@ -1,0 +1,86 @@
+#pragma once
+// The CUDA backend (host side, plain C++): memory, stream, events and checks. The kernels live
+// in *_kernels.cu and call the shared MASAV_HD math (the code the CPU reference runs). Work is
+// queued on one stream; finish() synchronises it and reads the kernels' diagnostics.
+#include <cuda_runtime_api.h>
+
+#include <map>
+#include <memory>
+#include <vector>
+
+#include "engine/backend.h"
+
+namespace masav::cuda {
+
+class CudaBuffer final : public BufferImpl {
+ public:
+  CudaBuffer(const DeviceApi* owner, ElemKind kind, size_t count, size_t bytes, std::string label,
+             void* ptr)
+      : BufferImpl(owner, kind, count, bytes, std::move(label)), ptr_(ptr) {}
+  ~CudaBuffer() override;
+  void* ptr() const { return ptr_; }
+
+ private:
+  void* ptr_;
+};
+
+// Device scratch memory that grows and is freed on destruction.
+struct DeviceScratch {
+  void* ptr = nullptr;
+  size_t bytes = 0;
+  ~DeviceScratch();
+  void* reserve(size_t want, const char* kernel);
+};
+
+class CudaBackend final : public Backend {
+ public:
+  explicit CudaBackend(int device);
+  ~CudaBackend() override;
+
+  const Capabilities& caps() const override { return caps_; }
+  std::unique_ptr<BufferImpl> create_buffer(ElemKind kind, size_t count,
+                                            std::string_view label) override;
+  void upload_bytes(BufferImpl& dst, const void* src, size_t bytes, size_t offset) override;
+  void download_bytes(const BufferImpl& src, void* dst, size_t bytes, size_t offset) override;
+  void copy_bytes(const BufferImpl& src, BufferImpl& dst, size_t bytes) override;
+  void fill_u32(BufferImpl& dst, uint32_t value) override;
+  void finish() override;
+  TimestampId timestamp() override;
+  double timestamp_ns(TimestampId id) override;
+  void reset_timestamps() override;
+
+  void philox_u32(const PhiloxParams& p, Buffer<uint32_t>& out) override;
+  void philox_uniform(const PhiloxParams& p, Buffer<float>& out) override;
+  void radix_sort(const RadixSortParams& p, Buffer<uint32_t>& keys,
+                  Buffer<uint32_t>* values) override;
+  void grid_assign_cells(const GridParams& g, const Buffer<Real4>& positions,
+                         Buffer<uint32_t>& cells, Buffer<uint32_t>& indices) override;
+  void grid_cell_ranges(const GridParams& g, const Buffer<uint32_t>& sorted_cells,
+                        Buffer<uint32_t>& cell_start, Buffer<uint32_t>& cell_end) override;
+  void gather(const Buffer<uint32_t>& order, const BufferImpl& src, BufferImpl& dst) override;
+  void grid_count_neighbors(const NeighborParams& p, const Buffer<Real4>& sorted_positions,
+                            const Buffer<uint32_t>& cell_start, const Buffer<uint32_t>& cell_end,
+                            Buffer<uint32_t>& counts) override;
+
+  cudaStream_t stream() const { return stream_; }
+  uint32_t* diagnostics() const { return diag_; }  // {max_loop_ticks, flags, detail, reserved}
+  dim3 grid_for(uint64_t blocks, const char* kernel) const;
+  dim3 grid_for_items(uint64_t items, const char* kernel) const;
+
+ private:
+  void* ptr(const BufferImpl& b, const char* kernel) const;
+  void sort_portable(uint32_t n, uint32_t key_bits, uint32_t* keys, uint32_t* values);
+  void sort_cub(uint32_t n, uint32_t key_bits, uint32_t* keys, uint32_t* values);
+  void exclusive_scan(uint32_t* data, uint32_t count, uint32_t level);
+
+  int device_;
+  Capabilities caps_;
+  cudaStream_t stream_ = nullptr;
+  uint32_t* diag_ = nullptr;
+  std::vector<cudaEvent_t> events_;
+  uint32_t events_used_ = 0;
+  uint32_t pending_neighbor_limit_ = 0;
+  std::map<std::string, DeviceScratch> scratch_;
+};
+
+}  // namespace masav::cuda

@@ -1,0 +1,16 @@
+#pragma once
+// Entry points the registry uses; plain C++ (no CUDA headers), so any TU can include it.
+#include <memory>
+#include <string_view>
+
+#include "engine/backend.h"
+#include "engine/backend_status.h"
+
+namespace masav::cuda {
+
+// Unavailable, with the reason, when there is no driver or no device.
+BackendStatus backend_status();
+// device: index or part of the name ("" = device 0).
+std::unique_ptr<Backend> create_backend(std::string_view device);
+
+}  // namespace masav::cuda

@@ -1,0 +1,146 @@
+#include "engine/cpu/cpu_backend.h"
+
+#include <fmt/format.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cstring>
+#include <fstream>
+#include <string>
+
+#include "engine/error.h"
+#include "engine/kernel_checks.h"
+#include "engine/physics/philox.h"
+
+namespace masav::cpu {
+namespace {
+
+std::string cpuinfo_field(const std::string& key) {
+  std::ifstream in("/proc/cpuinfo");
+  std::string line;
+  while (std::getline(in, line)) {
+    if (line.rfind(key, 0) == 0) {
+      auto colon = line.find(':');
+      if (colon != std::string::npos) {
+        auto v = line.substr(colon + 1);
+        v.erase(0, v.find_first_not_of(" \t"));
+        return v;
+      }
+    }
+  }
+  return "unknown";
+}
+
+}  // namespace
+
+CpuBuffer::CpuBuffer(const DeviceApi* owner, ElemKind kind, size_t count, size_t bytes,
+                     std::string label)
+    : BufferImpl(owner, kind, count, bytes, std::move(label)), storage_((bytes + 7) / 8) {}
+
+CpuBackend::CpuBackend(unsigned threads) : pool_(threads) {
+  caps_.backend = "cpu";
+  caps_.device_name = cpuinfo_field("model name");
+  caps_.vendor = cpuinfo_field("vendor_id");
+  caps_.device_type = "cpu";
+  caps_.driver = "masav CPU reference (fp64)";
+  caps_.subgroup_size = caps_.min_subgroup_size = 1;
+  caps_.max_workgroup_size = 1;
+  caps_.max_workgroups_x = UINT32_MAX;
+  caps_.max_buffer_bytes = 0;  // bounded by host memory only
+  caps_.device_memory_bytes = uint64_t(sysconf(_SC_PHYS_PAGES)) * uint64_t(sysconf(_SC_PAGE_SIZE));
+  caps_.real_is_double = true;
+  caps_.threads = pool_.size();
+}
+
+CpuBuffer& CpuBackend::own(BufferImpl& b, std::string_view kernel) {
+  check_owner(*this, b, kernel);
+  return static_cast<CpuBuffer&>(b);
+}
+const CpuBuffer& CpuBackend::own(const BufferImpl& b, std::string_view kernel) const {
+  check_owner(*this, b, kernel);
+  return static_cast<const CpuBuffer&>(b);
+}
+
+std::unique_ptr<BufferImpl> CpuBackend::create_buffer(ElemKind kind, size_t count,
+                                                      std::string_view label) {
+  const size_t bytes = count * elem_bytes(kind, real_bytes());
+  try {
+    return std::make_unique<CpuBuffer>(this, kind, count, bytes, std::string(label));
+  } catch (const std::bad_alloc&) {
+    throw Error("cpu", "create_buffer",
+                fmt::format("out of host memory for '{}' ({} MiB)", label, bytes >> 20),
+                "use fewer elements");
+  }
+}
+
+void CpuBackend::upload_bytes(BufferImpl& dst, const void* src, size_t bytes, size_t offset) {
+  auto& d = own(dst, "upload");
+  if (offset + bytes > d.bytes())
+    throw Error("cpu", "upload", fmt::format("{} bytes at {} overrun '{}'", bytes, offset,
+                                             d.label()), "upload within the buffer");
+  if (bytes) std::memcpy(d.data() + offset, src, bytes);
+}
+
+void CpuBackend::download_bytes(const BufferImpl& src, void* dst, size_t bytes, size_t offset) {
+  const auto& s = own(src, "download");
+  if (offset + bytes > s.bytes())
+    throw Error("cpu", "download", fmt::format("{} bytes at {} overrun '{}'", bytes, offset,
+                                               s.label()), "download within the buffer");
+  if (bytes) std::memcpy(dst, s.data() + offset, bytes);
+}
+
+void CpuBackend::copy_bytes(const BufferImpl& src, BufferImpl& dst, size_t bytes) {
+  const auto& s = own(src, "copy");
+  auto& d = own(dst, "copy");
+  if (bytes > s.bytes() || bytes > d.bytes())
+    throw Error("cpu", "copy", fmt::format("{} bytes from '{}' to '{}' overrun a buffer", bytes,
+                                           s.label(), d.label()), "copy within both buffers");
+  if (bytes) std::memcpy(d.data(), s.data(), bytes);
+}
+
+void CpuBackend::fill_u32(BufferImpl& dst, uint32_t value) {
+  auto& d = own(dst, "fill");
+  std::fill_n(d.as<uint32_t>(), d.bytes() / 4, value);
+}
+
+TimestampId CpuBackend::timestamp() {
+  stamps_.push_back(std::chrono::steady_clock::now());
+  return TimestampId(stamps_.size() - 1);
+}
+
+double CpuBackend::timestamp_ns(TimestampId id) {
+  if (id >= stamps_.size())
+    throw Error("cpu", "timestamp", fmt::format("no timestamp {}", id), "use an id from timestamp()");
+  return std::chrono::duration<double, std::nano>(stamps_[id] - epoch_).count();
+}
+
+void CpuBackend::philox_u32(const PhiloxParams& p, Buffer<uint32_t>& out) {
+  auto* o = own(out.impl(), "philox_u32").as<uint32_t>();
+  const size_t n = out.size(), blocks = (n + 3) / 4;
+  pool_.parallel_for(blocks, 4096, [&](size_t b, size_t e) {
+    for (size_t blk = b; blk < e; ++blk) {
+      const philox::Block r = philox::stream_block(p.seed, p.stream, p.first_block + blk);
+      for (size_t j = 0; j < 4 && 4 * blk + j < n; ++j) o[4 * blk + j] = r.w[j];
+    }
+  });
+}
+
+void CpuBackend::philox_uniform(const PhiloxParams& p, Buffer<float>& out) {
+  auto* o = own(out.impl(), "philox_uniform").as<float>();
+  const size_t n = out.size(), blocks = (n + 3) / 4;
+  pool_.parallel_for(blocks, 4096, [&](size_t b, size_t e) {
+    for (size_t blk = b; blk < e; ++blk) {
+      const philox::Block r = philox::stream_block(p.seed, p.stream, p.first_block + blk);
+      for (size_t j = 0; j < 4 && 4 * blk + j < n; ++j) o[4 * blk + j] = philox::u01(r.w[j]);
+    }
+  });
+}
+
+void CpuBackend::radix_sort(const RadixSortParams& p, Buffer<uint32_t>& keys,
+                            Buffer<uint32_t>* values) {
+  check_sort(*this, p, keys, values);
+  radix_sort_host(pool_, p.n, p.key_bits, own(keys.impl(), "radix_sort").as<uint32_t>(),
+                  values ? own(values->impl(), "radix_sort").as<uint32_t>() : nullptr);
+}
+
+}  // namespace masav::cpu

@@ -1,0 +1,117 @@
+#include "engine/device_api.h"
+
+#include <fmt/format.h>
+
+#include <cstring>
+
+#include "engine/error.h"
+
+namespace masav {
+
+void DeviceApi::check_upload(const BufferImpl& dst, size_t count) const {
+  if (dst.owner() != this)
+    throw Error(name(), "upload", fmt::format("buffer '{}' belongs to another backend", dst.label()),
+                "create the buffer with the backend that uses it");
+  if (count > dst.count())
+    throw Error(name(), "upload",
+                fmt::format("{} elements do not fit buffer '{}' of {}", count, dst.label(),
+                            dst.count()),
+                "create a larger buffer");
+}
+
+void DeviceApi::upload_reals(BufferImpl& dst, const double* src, size_t scalars) {
+  if (real_bytes() == 8) {
+    upload_bytes(dst, src, scalars * 8, 0);
+    return;
+  }
+  std::vector<float> narrow(src, src + scalars);  // GPU backends hold fp32
+  upload_bytes(dst, narrow.data(), scalars * 4, 0);
+}
+
+void DeviceApi::upload_reals(BufferImpl& dst, const float* src, size_t scalars) {
+  if (real_bytes() == 4) {
+    upload_bytes(dst, src, scalars * 4, 0);
+    return;
+  }
+  std::vector<double> wide(src, src + scalars);
+  upload_bytes(dst, wide.data(), scalars * 8, 0);
+}
+
+std::vector<double> DeviceApi::download_reals(const BufferImpl& src, size_t scalars) {
+  std::vector<double> out(scalars);
+  if (real_bytes() == 8) {
+    download_bytes(src, out.data(), scalars * 8, 0);
+  } else {
+    std::vector<float> narrow(scalars);
+    download_bytes(src, narrow.data(), scalars * 4, 0);
+    std::copy(narrow.begin(), narrow.end(), out.begin());
+  }
+  return out;
+}
+
+void DeviceApi::upload(Buffer<uint32_t>& b, std::span<const uint32_t> v) {
+  check_upload(b.impl(), v.size());
+  upload_bytes(b.impl(), v.data(), v.size_bytes(), 0);
+}
+void DeviceApi::upload(Buffer<int32_t>& b, std::span<const int32_t> v) {
+  check_upload(b.impl(), v.size());
+  upload_bytes(b.impl(), v.data(), v.size_bytes(), 0);
+}
+void DeviceApi::upload(Buffer<float>& b, std::span<const float> v) {
+  check_upload(b.impl(), v.size());
+  upload_bytes(b.impl(), v.data(), v.size_bytes(), 0);
+}
+void DeviceApi::upload(Buffer<Real>& b, std::span<const double> v) {
+  check_upload(b.impl(), v.size());
+  upload_reals(b.impl(), v.data(), v.size());
+}
+void DeviceApi::upload(Buffer<Real>& b, std::span<const float> v) {
+  check_upload(b.impl(), v.size());
+  upload_reals(b.impl(), v.data(), v.size());
+}
+void DeviceApi::upload(Buffer<Real4>& b, std::span<const Vec4d> v) {
+  static_assert(sizeof(Vec4d) == 4 * sizeof(double));
+  check_upload(b.impl(), v.size());
+  upload_reals(b.impl(), &v.data()->x, 4 * v.size());
+}
+void DeviceApi::upload(Buffer<Real4>& b, std::span<const Vec4f> v) {
+  static_assert(sizeof(Vec4f) == 4 * sizeof(float));
+  check_upload(b.impl(), v.size());
+  upload_reals(b.impl(), &v.data()->x, 4 * v.size());
+}
+
+std::vector<uint32_t> DeviceApi::download(const Buffer<uint32_t>& b) {
+  std::vector<uint32_t> out(b.size());
+  download_bytes(b.impl(), out.data(), out.size() * 4, 0);
+  return out;
+}
+std::vector<int32_t> DeviceApi::download(const Buffer<int32_t>& b) {
+  std::vector<int32_t> out(b.size());
+  download_bytes(b.impl(), out.data(), out.size() * 4, 0);
+  return out;
+}
+std::vector<float> DeviceApi::download(const Buffer<float>& b) {
+  std::vector<float> out(b.size());
+  download_bytes(b.impl(), out.data(), out.size() * 4, 0);
+  return out;
+}
+std::vector<double> DeviceApi::download(const Buffer<Real>& b) {
+  return download_reals(b.impl(), b.size());
+}
+std::vector<Vec4d> DeviceApi::download(const Buffer<Real4>& b) {
+  std::vector<double> flat = download_reals(b.impl(), 4 * b.size());
+  std::vector<Vec4d> out(b.size());
+  for (size_t i = 0; i < b.size(); ++i)
+    out[i] = {flat[4 * i], flat[4 * i + 1], flat[4 * i + 2], flat[4 * i + 3]};
+  return out;
+}
+std::vector<Vec4f> DeviceApi::download_f32(const Buffer<Real4>& b) {
+  std::vector<double> flat = download_reals(b.impl(), 4 * b.size());
+  std::vector<Vec4f> out(b.size());
+  for (size_t i = 0; i < b.size(); ++i)
+    out[i] = {float(flat[4 * i]), float(flat[4 * i + 1]), float(flat[4 * i + 2]),
+              float(flat[4 * i + 3])};
+  return out;
+}
+
+}  // namespace masav

@@ -1,0 +1,74 @@
+#pragma once
+// Buffers, ordering and device timestamps: what every backend provides besides its kernels
+// (the kernels are listed in backend.h). Work is recorded in order; downloads wait for it.
+#include <cstdint>
+#include <span>
+#include <string_view>
+#include <vector>
+
+#include "engine/buffer.h"
+#include "engine/capabilities.h"
+
+namespace masav {
+
+using TimestampId = uint32_t;
+
+class DeviceApi {
+ public:
+  virtual ~DeviceApi() = default;
+
+  virtual const Capabilities& caps() const = 0;
+  const std::string& name() const { return caps().backend; }
+  size_t real_bytes() const { return caps().real_is_double ? 8 : 4; }
+
+  // ---- buffers (ordered with the kernels recorded before them)
+  template <class T>
+  Buffer<T> create(size_t count, std::string_view label) {
+    return Buffer<T>(create_buffer(ElemTraits<T>::kind, count, label));
+  }
+  virtual std::unique_ptr<BufferImpl> create_buffer(ElemKind kind, size_t count,
+                                                    std::string_view label) = 0;
+  virtual void upload_bytes(BufferImpl& dst, const void* src, size_t bytes, size_t offset) = 0;
+  virtual void download_bytes(const BufferImpl& src, void* dst, size_t bytes, size_t offset) = 0;
+  virtual void copy_bytes(const BufferImpl& src, BufferImpl& dst, size_t bytes) = 0;
+  virtual void fill_u32(BufferImpl& dst, uint32_t value) = 0;
+
+  // ---- ordering and timing
+  virtual void finish() = 0;  // submit what is recorded and wait for it
+  virtual TimestampId timestamp() = 0;  // records a device timestamp after the work so far
+  virtual double timestamp_ns(TimestampId id) = 0;  // valid after finish()
+  virtual void reset_timestamps() = 0;
+
+  // ---- typed helpers (convert Real/Real4 to the backend's precision)
+  void upload(Buffer<uint32_t>& b, std::span<const uint32_t> v);
+  void upload(Buffer<int32_t>& b, std::span<const int32_t> v);
+  void upload(Buffer<float>& b, std::span<const float> v);
+  void upload(Buffer<Real>& b, std::span<const double> v);
+  void upload(Buffer<Real>& b, std::span<const float> v);
+  void upload(Buffer<Real4>& b, std::span<const Vec4d> v);
+  void upload(Buffer<Real4>& b, std::span<const Vec4f> v);
+  std::vector<uint32_t> download(const Buffer<uint32_t>& b);
+  std::vector<int32_t> download(const Buffer<int32_t>& b);
+  std::vector<float> download(const Buffer<float>& b);
+  std::vector<double> download(const Buffer<Real>& b);
+  std::vector<Vec4d> download(const Buffer<Real4>& b);
+  // Positions exactly as a GPU backend stores them (rounded to fp32 on the CPU reference).
+  std::vector<Vec4f> download_f32(const Buffer<Real4>& b);
+
+  template <class T>
+  void copy(const Buffer<T>& src, Buffer<T>& dst) {
+    copy_bytes(src.impl(), dst.impl(), src.impl().bytes());
+  }
+  template <class T>
+  void fill(Buffer<T>& dst, uint32_t word) {
+    fill_u32(dst.impl(), word);
+  }
+
+ protected:
+  void check_upload(const BufferImpl& dst, size_t count) const;
+  void upload_reals(BufferImpl& dst, const double* src, size_t scalars);
+  void upload_reals(BufferImpl& dst, const float* src, size_t scalars);
+  std::vector<double> download_reals(const BufferImpl& src, size_t scalars);
+};
+
+}  // namespace masav

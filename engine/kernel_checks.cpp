@@ -1,0 +1,150 @@
+#include "engine/kernel_checks.h"
+
+#include <fmt/format.h>
+
+#include <cmath>
+
+#include "engine/error.h"
+
+namespace masav {
+
+void check_owner(const DeviceApi& dev, const BufferImpl& b, std::string_view kernel) {
+  if (b.owner() != &dev)
+    throw Error(dev.name(), std::string(kernel),
+                fmt::format("buffer '{}' was created by another backend", b.label()),
+                "create every buffer a kernel uses with the backend that runs it");
+}
+
+void check_fits(const DeviceApi& dev, ElemKind kind, size_t count, std::string_view kernel,
+                std::string_view what) {
+  const size_t eb = elem_bytes(kind, dev.real_bytes());
+  const uint64_t limit = dev.caps().max_buffer_bytes;
+  if (limit != 0 && uint64_t(count) * eb > limit)
+    throw Error(dev.name(), std::string(kernel),
+                fmt::format("{} needs {} elements of {} bytes ({} MiB), over this device's "
+                            "{} MiB per buffer ({})",
+                            what, count, eb, (uint64_t(count) * eb) >> 20, limit >> 20,
+                            dev.caps().device_name),
+                fmt::format("use at most {} elements here, or a device with larger buffers",
+                            limit / eb));
+}
+
+void check_sort(const DeviceApi& dev, const RadixSortParams& p, const Buffer<uint32_t>& keys,
+                const Buffer<uint32_t>* values) {
+  check_owner(dev, keys.impl(), "radix_sort");
+  if (p.key_bits < 1 || p.key_bits > 32)
+    throw_invalid("radix_sort", "key_bits", std::to_string(p.key_bits), "in [1, 32]");
+  if (p.n > keys.size())
+    throw_invalid("radix_sort", "n", std::to_string(p.n),
+                  fmt::format("at most the key buffer's size {}", keys.size()));
+  if (values) {
+    check_owner(dev, values->impl(), "radix_sort");
+    if (p.n > values->size())
+      throw_invalid("radix_sort", "n", std::to_string(p.n),
+                    fmt::format("at most the value buffer's size {}", values->size()));
+  }
+}
+
+void check_grid(const GridParams& g, std::string_view kernel) {
+  const std::string where(kernel);
+  auto finite = [](float v) { return std::isfinite(v); };
+  if (!finite(g.origin.x) || !finite(g.origin.y) || !finite(g.origin.z))
+    throw_invalid(where, "origin", fmt::format("({}, {}, {})", g.origin.x, g.origin.y, g.origin.z),
+                  "finite");
+  if (!finite(g.cell_size) || !(g.cell_size > 0))
+    throw_invalid(where, "cell_size", fmt::format("{}", g.cell_size), "finite and > 0");
+  if (g.inv_cell != 1.0f / g.cell_size)
+    throw_invalid(where, "inv_cell", fmt::format("{}", g.inv_cell),
+                  "1/cell_size in fp32 (use make_grid_params)");
+  constexpr uint32_t kMaxDim = 1u << 20;  // float(dim - 1) stays exact, ids fit in 31 bits
+  for (uint32_t d : {g.dims.x, g.dims.y, g.dims.z})
+    if (d < 1 || d > kMaxDim)
+      throw_invalid(where, "dims", fmt::format("({}, {}, {})", g.dims.x, g.dims.y, g.dims.z),
+                    fmt::format("each in [1, {}]", kMaxDim));
+  if (grid_cell_count(g) > (uint64_t(1) << 31))
+    throw_invalid(where, "dims", fmt::format("({}, {}, {})", g.dims.x, g.dims.y, g.dims.z),
+                  "at most 2^31 cells in all; use a larger cell_size");
+}
+
+void check_assign_cells(const DeviceApi& dev, const GridParams& g, const Buffer<Real4>& positions,
+                        const Buffer<uint32_t>& cells, const Buffer<uint32_t>& indices) {
+  check_grid(g, "grid_assign_cells");
+  for (const BufferImpl* b : {&positions.impl(), &cells.impl(), &indices.impl()})
+    check_owner(dev, *b, "grid_assign_cells");
+  if (g.n > positions.size() || g.n > cells.size() || g.n > indices.size())
+    throw_invalid("grid_assign_cells", "n", std::to_string(g.n),
+                  fmt::format("at most the buffers' sizes (positions {}, cells {}, indices {})",
+                              positions.size(), cells.size(), indices.size()));
+}
+
+void check_cell_ranges(const DeviceApi& dev, const GridParams& g, const Buffer<uint32_t>& cells,
+                       const Buffer<uint32_t>& start, const Buffer<uint32_t>& end) {
+  check_grid(g, "grid_cell_ranges");
+  for (const BufferImpl* b : {&cells.impl(), &start.impl(), &end.impl()})
+    check_owner(dev, *b, "grid_cell_ranges");
+  const uint64_t ncells = grid_cell_count(g);
+  if (start.size() < ncells || end.size() < ncells)
+    throw_invalid("grid_cell_ranges", "cell_start/cell_end size",
+                  fmt::format("{}/{}", start.size(), end.size()),
+                  fmt::format("at least the cell count {}", ncells));
+  if (g.n > cells.size())
+    throw_invalid("grid_cell_ranges", "n", std::to_string(g.n),
+                  fmt::format("at most the cell buffer's size {}", cells.size()));
+}
+
+void check_gather(const DeviceApi& dev, const Buffer<uint32_t>& order, const BufferImpl& src,
+                  const BufferImpl& dst) {
+  for (const BufferImpl* b : {&order.impl(), &src, &dst}) check_owner(dev, *b, "gather");
+  if (src.kind() != dst.kind())
+    throw Error(dev.name(), "gather",
+                fmt::format("source '{}' holds {} but destination '{}' holds {}", src.label(),
+                            elem_kind_name(src.kind()), dst.label(), elem_kind_name(dst.kind())),
+                "gather between buffers of the same element type");
+  if (order.size() > dst.count())
+    throw_invalid("gather", "order size", std::to_string(order.size()),
+                  fmt::format("at most the destination's size {}", dst.count()));
+}
+
+void check_neighbors(const DeviceApi& dev, const NeighborParams& p, const Buffer<Real4>& pos,
+                     const Buffer<uint32_t>& start, const Buffer<uint32_t>& end,
+                     const Buffer<uint32_t>& counts) {
+  check_grid(p.grid, "grid_count_neighbors");
+  for (const BufferImpl* b : {&pos.impl(), &start.impl(), &end.impl(), &counts.impl()})
+    check_owner(dev, *b, "grid_count_neighbors");
+  if (!std::isfinite(p.radius) || !(p.radius > 0) || p.radius > p.grid.cell_size)
+    throw_invalid("grid_count_neighbors", "radius", fmt::format("{}", p.radius),
+                  fmt::format("in (0, cell_size = {}] so that 27 cells cover the search",
+                              p.grid.cell_size));
+  if (p.radius2 != p.radius * p.radius)
+    throw_invalid("grid_count_neighbors", "radius2", fmt::format("{}", p.radius2),
+                  "radius*radius in fp32 (use make_neighbor_params)");
+  if (p.max_candidates < 1 || p.max_candidates > 65000)
+    throw_invalid("grid_count_neighbors", "max_candidates", std::to_string(p.max_candidates),
+                  "in [1, 65000] (lavapipe stops a shader invocation after 65,535 loop "
+                  "iterations)");
+  const uint64_t ncells = grid_cell_count(p.grid);
+  if (start.size() < ncells || end.size() < ncells)
+    throw_invalid("grid_count_neighbors", "cell_start/cell_end size",
+                  fmt::format("{}/{}", start.size(), end.size()),
+                  fmt::format("at least the cell count {}", ncells));
+  if (p.grid.n > pos.size() || p.grid.n > counts.size())
+    throw_invalid("grid_count_neighbors", "n", std::to_string(p.grid.n),
+                  fmt::format("at most the buffers' sizes (positions {}, counts {})", pos.size(),
+                              counts.size()));
+}
+
+void raise_diagnostics(const DeviceApi& dev, std::string_view kernel, uint32_t flags,
+                       uint32_t detail, uint32_t limit) {
+  if (flags & kDiagGatherIndexOutOfRange)
+    throw Error(dev.name(), std::string(kernel),
+                fmt::format("order[{}] points past the source buffer", detail),
+                "pass indices below the source buffer's size");
+  if (flags & kDiagNeighborOverflow)
+    throw Error(dev.name(), std::string(kernel),
+                fmt::format("sorted point {} has more than {} candidates in its 27 cells", detail,
+                            limit),
+                "use smaller cells (or fewer points per cell): a GPU invocation must stay under "
+                "lavapipe's 65,535-iteration loop limit");
+}
+
+}  // namespace masav

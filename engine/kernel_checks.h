@@ -1,0 +1,35 @@
+#pragma once
+// Validation shared by every backend, run before a kernel allocates or dispatches, so each
+// backend rejects the same inputs with the same message.
+#include <string_view>
+
+#include "engine/backend.h"
+
+namespace masav {
+
+void check_owner(const DeviceApi& dev, const BufferImpl& b, std::string_view kernel);
+void check_fits(const DeviceApi& dev, ElemKind kind, size_t count, std::string_view kernel,
+                std::string_view what);
+void check_sort(const DeviceApi& dev, const RadixSortParams& p, const Buffer<uint32_t>& keys,
+                const Buffer<uint32_t>* values);
+void check_grid(const GridParams& g, std::string_view kernel);
+void check_assign_cells(const DeviceApi& dev, const GridParams& g, const Buffer<Real4>& positions,
+                        const Buffer<uint32_t>& cells, const Buffer<uint32_t>& indices);
+void check_cell_ranges(const DeviceApi& dev, const GridParams& g, const Buffer<uint32_t>& cells,
+                       const Buffer<uint32_t>& start, const Buffer<uint32_t>& end);
+void check_gather(const DeviceApi& dev, const Buffer<uint32_t>& order, const BufferImpl& src,
+                  const BufferImpl& dst);
+void check_neighbors(const DeviceApi& dev, const NeighborParams& p, const Buffer<Real4>& pos,
+                     const Buffer<uint32_t>& start, const Buffer<uint32_t>& end,
+                     const Buffer<uint32_t>& counts);
+
+// Diagnostics a kernel reports through its flags word (the same bits on every backend).
+enum DiagFlag : uint32_t {
+  kDiagGatherIndexOutOfRange = 1u << 0,
+  kDiagNeighborOverflow = 1u << 1,
+};
+// Throws the kernel's error for a non-zero flags word; `detail` is the first offending index.
+void raise_diagnostics(const DeviceApi& dev, std::string_view kernel, uint32_t flags,
+                       uint32_t detail, uint32_t limit);
+
+}  // namespace masav

@@ -1,0 +1,35 @@
+#pragma once
+// MASAV_HD marks math that the CPU reference and the CUDA kernels share: the CPU tests then run
+// the very code the CUDA kernels call. The *_rn helpers pin each fp32 operation to one rounding
+// (no FMA contraction), matching GLSL `precise`, for results that must agree bit for bit.
+#if defined(__CUDACC__)
+#define MASAV_HD __host__ __device__
+#else
+#define MASAV_HD
+#endif
+
+namespace masav::hd {
+
+MASAV_HD inline float add_rn(float a, float b) {
+#if defined(__CUDA_ARCH__)
+  return __fadd_rn(a, b);
+#else
+  return a + b;
+#endif
+}
+MASAV_HD inline float sub_rn(float a, float b) {
+#if defined(__CUDA_ARCH__)
+  return __fsub_rn(a, b);
+#else
+  return a - b;
+#endif
+}
+MASAV_HD inline float mul_rn(float a, float b) {
+#if defined(__CUDA_ARCH__)
+  return __fmul_rn(a, b);
+#else
+  return a * b;
+#endif
+}
+
+}  // namespace masav::hd

@@ -1,0 +1,99 @@
+#include "engine/registry/registry.h"
+
+#include <fmt/format.h>
+
+#include "engine/cpu/cpu_backend.h"
+#include "engine/error.h"
+#if MASAV_HAVE_VULKAN
+#include "compute/vk_factory.h"
+#endif
+#if MASAV_HAVE_CUDA
+#include "cuda_ref/cuda_factory.h"
+#endif
+
+namespace masav {
+namespace {
+
+[[maybe_unused]] BackendStatus not_built(const std::string& name, const std::string& how) {
+  BackendStatus s;
+  s.name = name;
+  s.reason = fmt::format("not built into this binary ({})", how);
+  return s;
+}
+
+BackendStatus cpu_status() {
+  BackendStatus s;
+  s.name = "cpu";
+  s.built = s.available = true;
+  cpu::CpuBackend probe(1);
+  DeviceStatus d;
+  d.name = probe.caps().device_name;
+  d.type = "cpu";
+  d.detail = fmt::format("{} threads, fp64 reference", cpu::default_cpu_threads());
+  d.usable = true;
+  s.devices.push_back(d);
+  return s;
+}
+
+BackendStatus status_of(const std::string& name) {
+  if (name == "cpu") return cpu_status();
+  if (name == "vulkan") {
+#if MASAV_HAVE_VULKAN
+    return vk::backend_status();
+#else
+    return not_built("vulkan", "configure with -DMASAV_WITH_VULKAN=ON and libvulkan-dev");
+#endif
+  }
+#if MASAV_HAVE_CUDA
+  return cuda::backend_status();
+#else
+  return not_built("cuda", "configure with -DMASAV_WITH_CUDA=ON on a machine with nvcc");
+#endif
+}
+
+}  // namespace
+
+const std::vector<std::string>& backend_names() {
+  static const std::vector<std::string> names = {"vulkan", "cuda", "cpu"};
+  return names;
+}
+
+std::vector<BackendStatus> list_backends() {
+  std::vector<BackendStatus> out;
+  for (const auto& n : backend_names()) out.push_back(status_of(n));
+  return out;
+}
+
+std::string auto_backend_name() {
+  if (status_of("cuda").available) return "cuda";
+  if (status_of("vulkan").available) return "vulkan";
+  return "cpu";
+}
+
+std::unique_ptr<Backend> create_backend(std::string_view name_in, std::string_view device) {
+  const std::string name = name_in == "auto" ? auto_backend_name() : std::string(name_in);
+  if (name == "cpu") {
+    if (!device.empty() && device != "0")
+      throw_invalid("cpu backend", "device", std::string(device),
+                    "empty or 0 (the CPU backend has one device; set MASAV_CPU_THREADS for threads)");
+    return std::make_unique<cpu::CpuBackend>();
+  }
+  if (name == "vulkan") {
+#if MASAV_HAVE_VULKAN
+    return vk::create_backend(device);
+#else
+    throw Error("vulkan", "", status_of("vulkan").reason, "use --backend cpu, or rebuild");
+#endif
+  }
+  if (name == "cuda") {
+#if MASAV_HAVE_CUDA
+    return cuda::create_backend(device);
+#else
+    throw Error("cuda", "", status_of("cuda").reason, "use --backend vulkan or cpu, or rebuild");
+#endif
+  }
+  throw_invalid("backend selection", "backend", std::string(name_in),
+                "one of vulkan, cuda, cpu, auto");
+}
+
+}  // namespace masav

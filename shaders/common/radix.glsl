@@ -1,0 +1,2 @@
+// Digit of a key for one LSD radix pass (engine/physics/radix.h).
+uint radix_digit(uint key, uint shift, uint bits) { return (key >> shift) & ((1u << bits) - 1u); }

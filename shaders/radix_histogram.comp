@@ -1,0 +1,49 @@
+#version 450
+#extension GL_GOOGLE_include_directive : require
+// Radix sort pass, step 1 of 3: per-tile digit counts, written digit-major
+// (hist[digit * num_tiles + tile]) so that one exclusive scan of hist gives every tile's output
+// offset for every digit (reduce-then-scan: no workgroup waits on another).
+#include "kernel_base.glsl"
+#include "radix.glsl"
+
+layout(constant_id = 3) const uint ITEMS = 8u;
+const uint TILE = WG_SIZE * ITEMS;
+
+layout(std430, binding = 1) readonly buffer Keys { uint keys[]; };
+layout(std430, binding = 2) writeonly buffer Hist { uint hist[]; };
+layout(push_constant) uniform Push {
+  uint n;
+  uint shift;
+  uint bits;
+  uint num_tiles;
+} pc;
+
+shared uint s_hist[256];
+
+void run() {
+  const uint tile = flat_group_id();
+  if (tile >= pc.num_tiles) return;  // whole workgroup leaves together
+  const uint lid = gl_LocalInvocationID.x;
+  const uint radix = 1u << pc.bits;
+  for (uint d = lid; d < radix; d += WG_SIZE) {
+    LOOP_TICK();
+    s_hist[d] = 0u;
+  }
+  barrier();
+  const uint base = tile * TILE;
+  for (uint i = 0u; i < ITEMS; ++i) {
+    LOOP_TICK();
+    const uint idx = base + i * WG_SIZE + lid;
+    if (idx < pc.n) atomicAdd(s_hist[radix_digit(keys[idx], pc.shift, pc.bits)], 1u);
+  }
+  barrier();
+  for (uint d = lid; d < radix; d += WG_SIZE) {
+    LOOP_TICK();
+    hist[d * pc.num_tiles + tile] = s_hist[d];
+  }
+}
+
+void main() {
+  run();
+  report_loop_ticks();
+}

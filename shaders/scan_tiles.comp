@@ -1,0 +1,59 @@
+#version 450
+#extension GL_GOOGLE_include_directive : require
+// Exclusive prefix sum, level step: each workgroup scans one tile in place and writes the
+// tile's total to sums[tile]; the host scans the sums (recursively) and scan_add adds them back.
+#include "kernel_base.glsl"
+#include "workgroup_scan.glsl"
+
+layout(constant_id = 3) const uint ITEMS = 8u;
+const uint TILE = WG_SIZE * ITEMS;
+
+layout(std430, binding = 1) buffer Data { uint data[]; };
+layout(std430, binding = 2) writeonly buffer Sums { uint sums[]; };
+layout(push_constant) uniform Push {
+  uint n;
+  uint num_tiles;
+} pc;
+
+shared uint s_data[TILE];
+
+void run() {
+  const uint tile = flat_group_id();
+  if (tile >= pc.num_tiles) return;
+  const uint lid = gl_LocalInvocationID.x;
+  const uint base = tile * TILE;
+  const uint valid = min(TILE, pc.n - base);
+  const uint rank = wg_rank();
+  for (uint i = 0u; i < ITEMS; ++i) {
+    LOOP_TICK();
+    const uint p = i * WG_SIZE + lid;
+    s_data[p] = p < valid ? data[base + p] : 0u;
+  }
+  barrier();
+  uint x[ITEMS];
+  uint sum = 0u;
+  for (uint i = 0u; i < ITEMS; ++i) {
+    LOOP_TICK();
+    x[i] = s_data[rank * ITEMS + i];
+    sum += x[i];
+  }
+  uint total;
+  uint prefix = wg_exclusive_scan(sum, total);  // ends with a barrier
+  for (uint i = 0u; i < ITEMS; ++i) {
+    LOOP_TICK();
+    s_data[rank * ITEMS + i] = prefix;
+    prefix += x[i];
+  }
+  barrier();
+  for (uint i = 0u; i < ITEMS; ++i) {
+    LOOP_TICK();
+    const uint p = i * WG_SIZE + lid;
+    if (p < valid) data[base + p] = s_data[p];
+  }
+  if (lid == 0u) sums[tile] = total;
+}
+
+void main() {
+  run();
+  report_loop_ticks();
+}

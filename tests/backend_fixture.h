@@ -1,0 +1,15 @@
+#pragma once
+// The backend a kernel-test binary runs against (chosen with --backend=NAME) and the CPU
+// reference it is compared with. Test bodies never know which backend they run on.
+#include <string>
+
+#include "engine/backend.h"
+
+namespace masav::test {
+
+Backend& backend();    // the backend under test
+Backend& reference();  // the CPU reference (a separate instance)
+const std::string& backend_name();
+bool is_lavapipe();    // Vulkan on Mesa's CPU driver
+
+}  // namespace masav::test

@@ -1,0 +1,143 @@
+// Backend-independent pieces: the shared math headers (what the CPU reference and CUDA call),
+// errors, the registry's answers to bad names, the thread pool, JSON and atomic files.
+#define DOCTEST_CONFIG_IMPLEMENT_WITH_MAIN
+#include <doctest/doctest.h>
+
+#include <atomic>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <limits>
+
+#include "engine/cpu/thread_pool.h"
+#include "engine/error.h"
+#include "engine/kernel_params.h"
+#include "engine/physics/grid_cell.h"
+#include "engine/physics/philox.h"
+#include "engine/physics/radix.h"
+#include "engine/registry/registry.h"
+#include "engine/util/json_writer.h"
+
+using namespace masav;
+
+TEST_CASE("philox header reproduces the Random123 known answers") {
+  auto a = philox::philox4x32_10({{0, 0, 0, 0}}, 0, 0);
+  CHECK(a.w[0] == 0x6627e8d5u);
+  CHECK(a.w[3] == 0x9b00dbd8u);
+  auto b = philox::philox4x32_10({{~0u, ~0u, ~0u, ~0u}}, ~0u, ~0u);
+  CHECK(b.w[0] == 0x408f276du);
+  CHECK(b.w[1] == 0x41c83b0eu);
+  CHECK(b.w[2] == 0xa20bc7c6u);
+  CHECK(b.w[3] == 0x6d5451fdu);
+  auto c = philox::philox4x32_10({{0x243f6a88u, 0x85a308d3u, 0x13198a2eu, 0x03707344u}},
+                                 0xa4093822u, 0x299f31d0u);
+  CHECK(c.w[0] == 0xd16cfe09u);
+  CHECK(c.w[1] == 0x94fdccebu);
+  CHECK(c.w[2] == 0x5001e420u);
+  CHECK(c.w[3] == 0x24126ea1u);
+}
+
+TEST_CASE("uniform floats are exact shifts into [0, 1)") {
+  CHECK(philox::u01(0) == 0.0f);
+  CHECK(philox::u01(~0u) == 1.0f - 1.0f / 16777216.0f);
+  CHECK(philox::u01(0x80000000u) == 0.5f);
+}
+
+TEST_CASE("grid cell math clamps, handles faces and NaN") {
+  CHECK(grid::axis_cell(0.0f, 0.0f, 10.0f, 5) == 0);
+  CHECK(grid::axis_cell(0.1f, 0.0f, 10.0f, 5) == 1);  // 0.1f * 10 rounds to exactly 1
+  CHECK(grid::axis_cell(-3.0f, 0.0f, 10.0f, 5) == 0);
+  CHECK(grid::axis_cell(99.0f, 0.0f, 10.0f, 5) == 4);
+  CHECK(grid::axis_cell(std::numeric_limits<float>::quiet_NaN(), 0.0f, 10.0f, 5) == 0);
+  CHECK(grid::axis_cell(std::numeric_limits<float>::infinity(), 0.0f, 10.0f, 5) == 4);
+  CHECK(grid::cell_id(1, 2, 3, 10, 100) == (1 * 10 + 2) * 100 + 3);
+  const GridParams g = make_grid_params({0, 0, 0}, 0.5f, {1000, 3, 1}, 0);
+  CHECK(grid_cell_count(g) == 3000);
+  CHECK(grid_key_bits(g) == 12);
+  CHECK(grid_key_bits(make_grid_params({0, 0, 0}, 1, {1, 1, 1}, 0)) == 1);
+}
+
+TEST_CASE("neighbour walk visits the 27 cells in x-major order, clipped to the grid") {
+  const uint32_t dims[3] = {3, 3, 3};
+  uint32_t start[27], end[27];
+  for (uint32_t i = 0; i < 27; ++i) start[i] = i, end[i] = i + 1;
+  std::vector<uint32_t> seen;
+  grid::for_each_neighbor_cell({1, 1, 1}, dims, start, end,
+                               [&](uint32_t a, uint32_t) { seen.push_back(a); });
+  REQUIRE(seen.size() == 27);
+  for (uint32_t i = 0; i < 27; ++i) CHECK(seen[i] == i);
+  seen.clear();
+  grid::for_each_neighbor_cell({0, 0, 0}, dims, start, end,
+                               [&](uint32_t a, uint32_t) { seen.push_back(a); });
+  CHECK(seen == std::vector<uint32_t>{0, 1, 3, 4, 9, 10, 12, 13});
+}
+
+TEST_CASE("radix pass arithmetic") {
+  CHECK(radix::pass_count(32) == 4);
+  CHECK(radix::pass_count(17) == 3);
+  CHECK(radix::pass_bits(17, 2) == 1);
+  CHECK(radix::pass_count(1) == 1);
+  CHECK(radix::digit(0xABCD1234u, 8, 8) == 0x12u);
+  CHECK(radix::digit(0xABCD1234u, 16, 4) == 0xDu);
+}
+
+TEST_CASE("errors name the place, the problem and the remedy") {
+  const Error e("vulkan", "radix_sort", "too big", "use fewer");
+  CHECK(std::string(e.what()) == "vulkan/radix_sort: too big (remedy: use fewer)");
+  CHECK_THROWS_WITH_AS(throw_invalid("bench", "--n", "0", "in [1, 2^28]"),
+                       "bench: invalid --n = 0 (remedy: --n must be in [1, 2^28])", Error);
+}
+
+TEST_CASE("registry rejects unknown backends and lists all three") {
+  CHECK_THROWS_WITH_AS(create_backend("metal"), doctest::Contains("one of vulkan, cuda, cpu, auto"),
+                       Error);
+  const auto all = list_backends();
+  REQUIRE(all.size() == 3);
+  bool cpu_ok = false;
+  for (const auto& s : all) {
+    if (!s.available) CHECK(!s.reason.empty());  // every unavailable backend says why
+    if (s.name == "cpu") cpu_ok = s.available;
+  }
+  CHECK(cpu_ok);
+  CHECK_THROWS_WITH_AS(create_backend("cpu", "3"), doctest::Contains("device"), Error);
+}
+
+TEST_CASE("thread pool runs chunks in order of position and propagates exceptions") {
+  cpu::ThreadPool pool(4);
+  std::vector<int> owner(1000, -1);
+  pool.run_chunks(1000, 7, [&](size_t c, size_t b, size_t e) {
+    for (size_t i = b; i < e; ++i) owner[i] = int(c);
+  });
+  for (size_t i = 1; i < owner.size(); ++i) CHECK(owner[i] >= owner[i - 1]);
+  CHECK(owner.front() == 0);
+  CHECK(owner.back() == 6);
+  std::atomic<size_t> sum{0};
+  pool.parallel_for(100000, 100, [&](size_t b, size_t e) { sum += e - b; });
+  CHECK(sum == 100000);
+  CHECK_THROWS_AS(pool.parallel_for(100, 1, [](size_t b, size_t) {
+    if (b == 0) throw std::runtime_error("boom");
+  }),
+                  std::runtime_error);
+}
+
+TEST_CASE("JSON writer nests and escapes; files are written atomically") {
+  JsonWriter j;
+  j.begin_object().field("name", "a\"b").field("n", 3).key("list").begin_array();
+  j.value(1.5).value(true).end_array().key("empty").begin_object().end_object().end_object();
+  CHECK(j.str() ==
+        "{\n  \"name\": \"a\\\"b\",\n  \"n\": 3,\n  \"list\": [\n    1.5,\n    true\n  ],\n"
+        "  \"empty\": {}\n}");
+  namespace fs = std::filesystem;
+  const fs::path dir = fs::temp_directory_path() / "masav_test_atomic";
+  fs::remove_all(dir);
+  write_file_atomic((dir / "sub" / "x.json").string(), j.str());
+  std::ifstream in(dir / "sub" / "x.json");
+  std::string text((std::istreambuf_iterator<char>(in)), {});
+  CHECK(text == j.str());
+  size_t files = 0;
+  for (const auto& e : fs::directory_iterator(dir / "sub")) (void)e, ++files;
+  CHECK(files == 1);  // no temporary left behind
+  CHECK_THROWS_WITH_AS(write_file_atomic("/proc/masav/forbidden.json", "x"),
+                       doctest::Contains("cannot write"), Error);
+  fs::remove_all(dir);
+}

@@ -1,0 +1,112 @@
+// Entry point of the per-backend kernel tests. `--backend=NAME` picks the backend. A backend
+// that is not built or has no device exits 77 (ctest: skipped, never passed) after printing why;
+// MASAV_REQUIRE_BACKENDS=a,b turns such a skip into a failure (CI requires vulkan and cpu).
+// Under Vulkan, every validation-layer message fails the test that caused it.
+#define DOCTEST_CONFIG_IMPLEMENT
+#include <doctest/doctest.h>
+#include <fmt/format.h>
+
+#include <cstdlib>
+#include <memory>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "engine/cpu/cpu_backend.h"
+#include "engine/error.h"
+#include "engine/registry/registry.h"
+#include "tests/backend_fixture.h"
+#if MASAV_HAVE_VULKAN
+#include "compute/vk_context.h"
+#endif
+
+namespace masav::test {
+namespace {
+std::unique_ptr<Backend> g_backend;
+std::unique_ptr<Backend> g_reference;
+std::string g_name;
+std::vector<std::string> g_stray_validation;  // messages outside any test case
+}  // namespace
+
+Backend& backend() { return *g_backend; }
+Backend& reference() { return *g_reference; }
+const std::string& backend_name() { return g_name; }
+bool is_lavapipe() {
+  return g_name == "vulkan" && g_backend->caps().device_type == "cpu";
+}
+
+}  // namespace masav::test
+
+namespace {
+
+bool required(const std::string& name) {
+  const char* req = std::getenv("MASAV_REQUIRE_BACKENDS");
+  if (!req) return false;
+  std::stringstream ss(req);
+  std::string item;
+  while (std::getline(ss, item, ','))
+    if (item == name) return true;
+  return false;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  using namespace masav;
+  std::string name = "cpu";
+  std::vector<char*> rest;
+  for (int i = 0; i < argc; ++i) {
+    std::string a = argv[i];
+    if (a.rfind("--backend=", 0) == 0) name = a.substr(10);
+    else rest.push_back(argv[i]);
+  }
+  test::g_name = name;
+
+#if MASAV_HAVE_VULKAN
+  masav::vk::set_validation_handler([](const std::string& msg) {
+    if (doctest::is_running_in_test) FAIL_CHECK(msg);
+    else test::g_stray_validation.push_back(msg);
+  });
+#endif
+
+  BackendStatus status;
+  for (const auto& s : list_backends())
+    if (s.name == name) status = s;
+  if (status.name.empty()) {
+    fmt::print(stderr, "unknown backend '{}' (vulkan, cuda, cpu)\n", name);
+    return 2;
+  }
+  if (!status.available) {
+    fmt::print("SKIPPED: backend '{}' is not available here: {}\n", name, status.reason);
+    if (required(name)) {
+      fmt::print(stderr, "FAILED: MASAV_REQUIRE_BACKENDS requires '{}'\n", name);
+      return 1;
+    }
+    return 77;
+  }
+  try {
+    test::g_backend = create_backend(name);
+  } catch (const Error& e) {
+    // The backend reports a device, so failing to create it is a bug, not a skip.
+    fmt::print(stderr, "FAILED: backend '{}' lists a usable device but could not be created: {}\n",
+               name, e.what());
+    return 1;
+  }
+  test::g_reference = std::make_unique<cpu::CpuBackend>();
+  const auto& c = test::g_backend->caps();
+  fmt::print("backend {}: {} ({}, {}), subgroup {}, max buffer {} MiB\n", name, c.device_name,
+             c.device_type, c.driver, c.subgroup_size, c.max_buffer_bytes >> 20);
+
+  doctest::Context ctx;
+  ctx.applyCommandLine(int(rest.size()), rest.data());
+  int rc = ctx.run();
+  test::g_backend.reset();
+  test::g_reference.reset();
+  if (!test::g_stray_validation.empty()) {
+    for (const auto& m : test::g_stray_validation) fmt::print(stderr, "{}\n", m);
+    fmt::print(stderr, "FAILED: {} validation message(s) outside test cases\n",
+               test::g_stray_validation.size());
+    rc = rc ? rc : 1;
+  }
+  return rc;
+}
