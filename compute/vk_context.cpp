@@ -7,6 +7,7 @@
 #include <cctype>
 #include <cstdlib>
 #include <cstring>
+#include <dlfcn.h>
 
 #include "engine/error.h"
 
@@ -40,14 +41,25 @@ const char* kNoDriverRemedy =
     "install mesa-vulkan-drivers (lavapipe, any CPU) or your GPU vendor's Vulkan driver; on an "
     "NVIDIA machine without a display, point VK_DRIVER_FILES at nvidia_icd.json";
 
+// Opened with dlopen (never linked), once per process: MASAV_VULKAN_LOADER overrides the name,
+// which is also how the tests simulate a machine without the loader.
 std::unique_ptr<raii::Context> open_loader() {
-  try {
-    return std::make_unique<raii::Context>();
-  } catch (const std::exception& e) {
-    throw Error("vulkan", "", fmt::format("the Vulkan loader could not be opened ({})", e.what()),
+  static void* handle = nullptr;
+  static std::string error;
+  if (!handle && error.empty()) {
+    const char* name = std::getenv("MASAV_VULKAN_LOADER");
+    handle = dlopen(name && *name ? name : "libvulkan.so.1", RTLD_NOW | RTLD_LOCAL);
+    if (!handle) error = dlerror();
+  }
+  auto gipa = handle ? reinterpret_cast<PFN_vkGetInstanceProcAddr>(
+                           dlsym(handle, "vkGetInstanceProcAddr"))
+                     : nullptr;
+  if (!gipa)
+    throw Error("vulkan", "", fmt::format("the Vulkan loader could not be opened ({})",
+                                          error.empty() ? "no vkGetInstanceProcAddr" : error),
                 "install the Debian package libvulkan1, plus mesa-vulkan-drivers for the CPU "
                 "driver lavapipe or your GPU vendor's driver");
-  }
+  return std::make_unique<raii::Context>(gipa);
 }
 
 bool has_layer(const raii::Context& ctx, const char* name) {
@@ -74,6 +86,9 @@ std::unique_ptr<raii::Instance> make_instance(const raii::Context& ctx, bool val
   ::vk::InstanceCreateInfo info({}, &app, layers, extensions);
   try {
     return std::make_unique<raii::Instance>(ctx, info);
+  } catch (const ::vk::IncompatibleDriverError&) {
+    throw Error("vulkan", "", "no Vulkan driver is installed (the loader found no ICD)",
+                kNoDriverRemedy);
   } catch (const ::vk::SystemError& e) {
     throw Error("vulkan", "", fmt::format("vkCreateInstance failed: {}", e.what()), kNoDriverRemedy);
   }
