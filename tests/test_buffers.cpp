@@ -1,0 +1,102 @@
+// Buffers and ordering on every backend: round trips of each element kind, offsets, copy, fill,
+// empty buffers, Real precision, device timestamps, and sizes over the device's limit.
+#include <doctest/doctest.h>
+
+#include <fmt/format.h>
+
+#include <numeric>
+#include <vector>
+
+#include "engine/error.h"
+#include "tests/backend_fixture.h"
+
+using namespace masav;
+
+TEST_CASE("buffers round-trip every element kind") {
+  Backend& b = test::backend();
+  std::vector<uint32_t> u(1001);
+  std::iota(u.begin(), u.end(), 7u);
+  auto bu = b.create<uint32_t>(u.size(), "u32");
+  b.upload(bu, u);
+  CHECK(b.download(bu) == u);
+
+  std::vector<int32_t> i = {-5, 0, 5, INT32_MIN, INT32_MAX};
+  auto bi = b.create<int32_t>(i.size(), "i32");
+  b.upload(bi, i);
+  CHECK(b.download(bi) == i);
+
+  std::vector<float> f = {0.5f, -1e-30f, 3.25e30f, 1.0f / 3.0f};
+  auto bf = b.create<float>(f.size(), "f32");
+  b.upload(bf, f);
+  CHECK(b.download(bf) == f);
+
+  // Reals: exact for values representable in fp32; fp64 kept only by the CPU reference.
+  std::vector<double> r = {0.1, 1.0 / 3.0, -2.5};
+  auto br = b.create<Real>(r.size(), "real");
+  b.upload(br, r);
+  const auto back = b.download(br);
+  for (size_t k = 0; k < r.size(); ++k)
+    CHECK(back[k] == (b.caps().real_is_double ? r[k] : double(float(r[k]))));
+
+  std::vector<Vec4f> p = {{1, 2, 3, 4}, {-0.5f, 0.25f, 1e-3f, 0}};
+  auto bp = b.create<Real4>(p.size(), "real4");
+  b.upload(bp, p);
+  const auto pf = b.download_f32(bp);
+  for (size_t k = 0; k < p.size(); ++k) {
+    CHECK(pf[k].x == p[k].x);
+    CHECK(pf[k].w == p[k].w);
+  }
+}
+
+TEST_CASE("copy, fill, partial upload and empty buffers keep their order") {
+  Backend& b = test::backend();
+  std::vector<uint32_t> a(5000), z(5000, 0);
+  std::iota(a.begin(), a.end(), 1u);
+  auto x = b.create<uint32_t>(a.size(), "x");
+  auto y = b.create<uint32_t>(a.size(), "y");
+  b.upload(x, a);
+  b.fill(y, 0xABCDEF01u);
+  CHECK(b.download(y) == std::vector<uint32_t>(a.size(), 0xABCDEF01u));
+  b.copy(x, y);
+  b.fill(x, 0u);  // recorded after the copy: the copy must still see the old contents
+  CHECK(b.download(y) == a);
+  CHECK(b.download(x) == z);
+  const uint32_t patch[3] = {9, 9, 9};
+  b.upload_bytes(y.impl(), patch, sizeof patch, 40);
+  const auto yy = b.download(y);
+  CHECK(yy[9] == 10);
+  CHECK(yy[10] == 9);
+  CHECK(yy[12] == 9);
+  CHECK(yy[13] == 14);
+
+  auto empty = b.create<uint32_t>(0, "empty");
+  CHECK(empty.size() == 0);
+  CHECK(b.download(empty).empty());
+  b.radix_sort({0, 32}, empty, nullptr);
+  CHECK_THROWS_WITH_AS(b.upload(empty, a), doctest::Contains("do not fit"), Error);
+}
+
+TEST_CASE("device timestamps are ordered") {
+  Backend& b = test::backend();
+  auto x = b.create<uint32_t>(1 << 18, "x");
+  b.finish();
+  b.reset_timestamps();
+  const TimestampId t0 = b.timestamp();
+  b.philox_u32({1, 1, 0}, x);
+  const TimestampId t1 = b.timestamp();
+  b.finish();
+  CHECK(b.timestamp_ns(t1) >= b.timestamp_ns(t0));
+  CHECK_THROWS_AS(b.timestamp_ns(t1 + 1), Error);
+}
+
+TEST_CASE("a buffer over the device's limit is refused with the largest size that fits") {
+  Backend& b = test::backend();
+  const uint64_t limit = b.caps().max_buffer_bytes;
+  if (limit == 0) {
+    MESSAGE("backend " << b.name() << " has no per-buffer limit; nothing to refuse");
+    return;
+  }
+  const std::string expected = fmt::format("use at most {} elements", limit / 4);
+  CHECK_THROWS_WITH_AS(b.create<uint32_t>(size_t(limit / 4 + 1), "too big"),
+                       doctest::Contains(expected.c_str()), Error);
+}
