@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <cstdlib>
 #include <cstring>
 
 #include "engine/error.h"
@@ -25,6 +26,28 @@ struct PhiloxPush {
 
 }  // namespace
 
+SortScatter VulkanBackend::choose_sort_scatter(SortScatter wanted) const {
+  if (wanted == SortScatter::automatic) {
+    if (const char* env = std::getenv("MASAV_VK_SORT")) {
+      const std::string v = env;
+      if (v == "tiled") wanted = SortScatter::tiled;
+      else if (v == "subgroup") wanted = SortScatter::subgroup;
+      else if (!v.empty() && v != "auto")
+        throw_invalid("vulkan", "MASAV_VK_SORT", v, "auto, tiled or subgroup");
+    }
+  }
+  // The subgroup scatter needs one fixed-size subgroup per workgroup and ballots.
+  const bool fixed = ctx_.caps().min_subgroup_size == ctx_.caps().subgroup_size;
+  const bool ballot = ctx_.subgroup_ballot();
+  if (wanted == SortScatter::subgroup && !(fixed && ballot))
+    throw Error("vulkan", "radix_sort", "the subgroup scatter needs a fixed subgroup size and "
+                "subgroup ballots, which this device lacks", "use MASAV_VK_SORT=tiled");
+  if (wanted == SortScatter::automatic)
+    wanted = ctx_.caps().device_type == "cpu" && fixed && ballot ? SortScatter::subgroup
+                                                                  : SortScatter::tiled;
+  return wanted;
+}
+
 VulkanBackend::VulkanBackend(const BackendOptions& options)
     : options_(options),
       ctx_(options.context),
@@ -36,6 +59,7 @@ VulkanBackend::VulkanBackend(const BackendOptions& options)
   if (options.workgroup_size > ctx_.caps().max_workgroup_size || options.workgroup_size % 64)
     throw_invalid("vulkan", "workgroup_size", std::to_string(options.workgroup_size),
                   fmt::format("a multiple of 64 up to {}", ctx_.caps().max_workgroup_size));
+  scatter_ = choose_sort_scatter(options.sort_scatter);
   diag_ = allocate(ctx_, sizeof(Diagnostics), MemoryUse::readback, "diagnostics");
   std::memcpy(diag_->mapped, &kCleanDiagnostics, sizeof(Diagnostics));
 }

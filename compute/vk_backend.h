@@ -12,8 +12,16 @@
 
 namespace masav::vk {
 
+// How radix_sort scatters each pass (both portable: no workgroup waits on another).
+enum class SortScatter : uint8_t {
+  automatic,  // subgroup on CPU devices (lavapipe), tiled elsewhere; MASAV_VK_SORT overrides
+  tiled,      // workgroup sorts its tile in shared memory, then writes runs (GPUs)
+  subgroup,   // one subgroup per workgroup ranks keys with ballots (CPU devices)
+};
+
 struct BackendOptions {
   ContextOptions context;
+  SortScatter sort_scatter = SortScatter::automatic;
   bool count_loop_ticks = false;  // instrument every loop (tests of lavapipe's loop limit)
   uint32_t workgroup_size = 256;
   uint32_t items_per_thread = 8;  // sort and scan tile = workgroup_size * items_per_thread
@@ -52,6 +60,7 @@ class VulkanBackend final : public Backend {
   // The most loop iterations any invocation ran since the last call (needs count_loop_ticks).
   uint32_t take_max_loop_ticks();
   uint32_t tile_size() const { return options_.workgroup_size * options_.items_per_thread; }
+  SortScatter sort_scatter() const { return scatter_; }
 
  private:
   const std::shared_ptr<Allocation>& alloc(const BufferImpl& b, std::string_view kernel) const;
@@ -61,6 +70,7 @@ class VulkanBackend final : public Backend {
   void philox(const PhiloxParams& p, BufferImpl& out, bool uniform);
   void exclusive_scan(const std::shared_ptr<Allocation>& data, uint32_t count, uint32_t level);
   void check_diagnostics();
+  SortScatter choose_sort_scatter(SortScatter wanted) const;
 
   BackendOptions options_;
   Context ctx_;
@@ -69,6 +79,7 @@ class VulkanBackend final : public Backend {
   std::shared_ptr<Allocation> diag_;
   std::map<std::string, std::shared_ptr<Allocation>> scratch_;
   uint32_t pending_neighbor_limit_ = 0;
+  SortScatter scatter_ = SortScatter::tiled;
 };
 
 }  // namespace masav::vk

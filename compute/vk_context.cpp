@@ -293,6 +293,7 @@ Context::Context(const ContextOptions& options) {
   caps_.driver = fmt::format("Vulkan {}, driver 0x{:x}", version_string(props.apiVersion),
                              props.driverVersion);
   caps_.subgroup_size = sg.subgroupSize;
+  subgroup_ballot_ = bool(sg.supportedOperations & ::vk::SubgroupFeatureFlagBits::eBallot);
   caps_.min_subgroup_size = sg.subgroupSize;
   if (props.apiVersion >= VK_API_VERSION_1_3) {
     const auto c13 = physical_->getProperties2<::vk::PhysicalDeviceProperties2,

@@ -52,6 +52,7 @@ class Context {
   const Capabilities& caps() const { return caps_; }
   uint32_t timestamp_valid_bits() const { return timestamp_bits_; }
   std::array<uint8_t, VK_UUID_SIZE> pipeline_cache_uuid() const { return cache_uuid_; }
+  bool subgroup_ballot() const { return subgroup_ballot_; }
 
  private:
   std::unique_ptr<::vk::raii::Context> context_;
@@ -62,6 +63,7 @@ class Context {
   std::unique_ptr<::vk::raii::Queue> queue_;
   uint32_t queue_family_ = 0;
   uint32_t timestamp_bits_ = 0;
+  bool subgroup_ballot_ = false;
   std::array<uint8_t, VK_UUID_SIZE> cache_uuid_{};
   Capabilities caps_;
 };

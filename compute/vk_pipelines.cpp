@@ -66,7 +66,8 @@ Pipelines::~Pipelines() {
 }
 
 const Kernel& Pipelines::get(const KernelSpec& spec) {
-  std::string key = spec.shader;
+  const uint32_t wg = spec.workgroup_size ? spec.workgroup_size : workgroup_size_;
+  std::string key = fmt::format("{}/{}", spec.shader, wg);
   for (uint32_t c : spec.constants) key += fmt::format(":{}", c);
   if (auto it = kernels_.find(key); it != kernels_.end()) return *it->second;
 
@@ -95,7 +96,7 @@ const Kernel& Pipelines::get(const KernelSpec& spec) {
   ::vk::raii::ShaderModule module(ctx_.device(), minfo);
 
   // Constants 0..2 are common to every kernel (shaders/common/kernel_base.glsl).
-  std::vector<uint32_t> values = {workgroup_size_, ctx_.caps().min_subgroup_size,
+  std::vector<uint32_t> values = {wg, ctx_.caps().min_subgroup_size,
                                   count_loop_ticks_ ? 1u : 0u};
   values.insert(values.end(), spec.constants.begin(), spec.constants.end());
   std::vector<::vk::SpecializationMapEntry> entries;

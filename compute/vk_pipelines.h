@@ -25,6 +25,7 @@ struct KernelSpec {
   uint32_t buffers;
   uint32_t push_bytes;
   std::vector<uint32_t> constants;  // specialization constants 3, 4, ...
+  uint32_t workgroup_size = 0;      // 0: the backend's default
 };
 
 class Pipelines {

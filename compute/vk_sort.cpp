@@ -1,5 +1,8 @@
 // Portable LSD radix sort on Vulkan: per 8-bit pass, histogram -> exclusive scan -> scatter
 // (reduce-then-scan; no workgroup ever waits on another, which lavapipe and mobile GPUs need).
+// Two scatters: `tiled` sorts each tile in shared memory so writes go out in runs (GPUs);
+// `subgroup` ranks keys with ballots and touches shared memory once per key (CPU devices,
+// where every divergent shared access runs lane by lane).
 #include <fmt/format.h>
 
 #include "compute/vk_backend.h"
@@ -16,6 +19,8 @@ struct PassPush {
 struct ScanPush {
   uint32_t n, num_tiles;
 };
+// Rounds of one subgroup per tile in the subgroup scatter: 2048 keys per tile at subgroup 8.
+constexpr uint32_t kSubgroupRounds = 256;
 
 }  // namespace
 
@@ -38,7 +43,11 @@ void VulkanBackend::radix_sort(const RadixSortParams& p, Buffer<uint32_t>& keys,
                                Buffer<uint32_t>* values) {
   check_sort(*this, p, keys, values);
   if (p.n <= 1) return;
-  const uint32_t tile = tile_size(), items = options_.items_per_thread;
+  // Tile geometry of the scatter variant; the histogram must use the same tiles.
+  const bool by_subgroup = scatter_ == SortScatter::subgroup;
+  const uint32_t wg = by_subgroup ? ctx_.caps().subgroup_size : options_.workgroup_size;
+  const uint32_t items = by_subgroup ? kSubgroupRounds : options_.items_per_thread;
+  const uint32_t tile = wg * items;
   const uint32_t num_tiles = (p.n + tile - 1) / tile;
   const uint64_t hist_entries = uint64_t(radix::kRadix) * num_tiles;
   check_fits(*this, ElemKind::u32, hist_entries, "radix_sort", "the digit histogram");
@@ -55,9 +64,10 @@ void VulkanBackend::radix_sort(const RadixSortParams& p, Buffer<uint32_t>& keys,
   for (uint32_t pass = 0; pass < passes; ++pass) {
     const uint32_t bits = radix::pass_bits(p.key_bits, pass);
     PassPush push{p.n, pass * radix::kDigitBits, bits, num_tiles};
-    run({"radix_histogram", 2, sizeof push, {items}}, {k_src, hist}, &push, num_tiles);
+    run({"radix_histogram", 2, sizeof push, {items}, wg}, {k_src, hist}, &push, num_tiles);
     exclusive_scan(hist, (1u << bits) * num_tiles, 0);
-    run({"radix_scatter", 5, sizeof push, {items, has_values ? 1u : 0u}},
+    run({by_subgroup ? "radix_scatter_subgroup" : "radix_scatter", 5, sizeof push,
+         {items, has_values ? 1u : 0u}, wg},
         {k_src, v_src, k_dst, v_dst, hist}, &push, num_tiles);
     std::swap(k_src, k_dst);
     std::swap(v_src, v_dst);

@@ -54,7 +54,9 @@ TEST_CASE("radix sort and its scans stay far below the loop limit at 2^20 keys")
   const uint32_t ticks = b.take_max_loop_ticks();
   MESSAGE("radix_sort worst invocation: " << ticks << " loop iterations");
   CHECK(ticks > 0);
-  CHECK(ticks < 2000);  // independent of n: a few loops over the tile and the subgroups
+  // Independent of n. Tiled scatter: a few loops over the tile and the subgroups (~300).
+  // Subgroup scatter: the digit table (256 / subgroup) plus 256 rounds of 1 + 8 ballot steps.
+  CHECK(ticks <= 256 / 4 + 256 * 9);
 }
 
 TEST_CASE("neighbour count: loop ticks = 27 cells + candidates, capped below the limit") {
