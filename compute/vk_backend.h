@@ -57,6 +57,10 @@ class VulkanBackend final : public Backend {
                             const Buffer<uint32_t>& cell_start, const Buffer<uint32_t>& cell_end,
                             Buffer<uint32_t>& counts) override;
 
+  // ---- SPH fluid
+
+  // ---- electron cloud, nebula lighting, volume
+
   // The most loop iterations any invocation ran since the last call (needs count_loop_ticks).
   uint32_t take_max_loop_ticks();
   uint32_t tile_size() const { return options_.workgroup_size * options_.items_per_thread; }

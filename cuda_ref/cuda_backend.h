@@ -62,6 +62,10 @@ class CudaBackend final : public Backend {
                             const Buffer<uint32_t>& cell_start, const Buffer<uint32_t>& cell_end,
                             Buffer<uint32_t>& counts) override;
 
+  // ---- SPH fluid
+
+  // ---- electron cloud, nebula lighting, volume
+
   cudaStream_t stream() const { return stream_; }
   uint32_t* diagnostics() const { return diag_; }  // {max_loop_ticks, flags, detail, reserved}
   dim3 grid_for(uint64_t blocks, const char* kernel) const;

@@ -8,11 +8,13 @@ namespace masav {
 
 class Backend : public DeviceApi {
  public:
+  // ---- random numbers -------------------------------------------------------------------
   // Philox4x32-10 words (see PhiloxParams), out.size() of them.
   virtual void philox_u32(const PhiloxParams& p, Buffer<uint32_t>& out) = 0;
   // The same words as uniform floats in [0, 1): float(word >> 8) * 2^-24, exact everywhere.
   virtual void philox_uniform(const PhiloxParams& p, Buffer<float>& out) = 0;
 
+  // ---- sorting and the hash grid --------------------------------------------------------
   // Stable LSD key-value sort in place; `values` may be null for a key-only sort.
   virtual void radix_sort(const RadixSortParams& p, Buffer<uint32_t>& keys,
                           Buffer<uint32_t>* values) = 0;
@@ -31,6 +33,10 @@ class Backend : public DeviceApi {
                                     const Buffer<uint32_t>& cell_start,
                                     const Buffer<uint32_t>& cell_end,
                                     Buffer<uint32_t>& counts) = 0;
+
+  // ---- SPH fluid (engine/sph/) ----------------------------------------------------------
+
+  // ---- electron cloud, nebula lighting, volume (engine/atom/) ----------------------------
 };
 
 }  // namespace masav

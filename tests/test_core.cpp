@@ -11,11 +11,14 @@
 
 #include "engine/cpu/thread_pool.h"
 #include "engine/error.h"
+#include "engine/io/csv_writer.h"
+#include "engine/io/vtk_writer.h"
 #include "engine/kernel_params.h"
 #include "engine/physics/grid_cell.h"
 #include "engine/physics/philox.h"
 #include "engine/physics/radix.h"
 #include "engine/registry/registry.h"
+#include "engine/util/error_metrics.h"
 #include "engine/util/json_writer.h"
 
 using namespace masav;
@@ -140,4 +143,43 @@ TEST_CASE("JSON writer nests and escapes; files are written atomically") {
   CHECK_THROWS_WITH_AS(write_file_atomic("/proc/masav/forbidden.json", "x"),
                        doctest::Contains("cannot write"), Error);
   fs::remove_all(dir);
+}
+
+TEST_CASE("error metrics: max abs, max rel with a floor, relative L2") {
+  const std::vector<double> want = {1.0, 2.0, 0.0, -4.0};
+  const std::vector<double> got = {1.0, 2.2, 1e-9, -4.0};
+  const ErrorStats e = compare(std::span<const double>(got), std::span<const double>(want), 1e-6);
+  CHECK(e.max_abs == doctest::Approx(0.2));
+  CHECK(e.max_rel == doctest::Approx(0.1));
+  CHECK(e.worst == 1);
+  CHECK(e.rel_l2 == doctest::Approx(0.2 / std::sqrt(21.0)).epsilon(1e-6));
+  const std::vector<double> bad = {NAN, 2.0, 0.0, -4.0};
+  CHECK(compare(std::span<const double>(bad), std::span<const double>(want), 1e-6).non_finite == 1);
+}
+
+TEST_CASE("VTK writer: base64 and well-formed PolyData / ImageData") {
+  CHECK(base64("Man", 3) == "TWFu");
+  CHECK(base64("Ma", 2) == "TWE=");
+  CHECK(base64("M", 1) == "TQ==");
+  namespace fs = std::filesystem;
+  const fs::path dir = fs::temp_directory_path() / "masav_test_vtk";
+  fs::remove_all(dir);
+  write_vtp((dir / "p.vtp").string(), {0, 0, 0, 1, 2, 3}, {{"density", 1, {1000.f, 998.f}}});
+  std::ifstream in(dir / "p.vtp");
+  std::string text((std::istreambuf_iterator<char>(in)), {});
+  CHECK(text.find("NumberOfPoints=\"2\"") != std::string::npos);
+  CHECK(text.find("Name=\"density\"") != std::string::npos);
+  const uint32_t dims[3] = {2, 2, 1};
+  const double origin[3] = {0, 0, 0}, spacing[3] = {1, 1, 1};
+  write_vti((dir / "v.vti").string(), dims, origin, spacing, {{"p", 1, {0.f, 1.f, 2.f, 3.f}}});
+  CHECK(fs::exists(dir / "v.vti"));
+  CHECK_THROWS_AS(write_vtp((dir / "bad.vtp").string(), {0, 0, 0}, {{"x", 1, {1.f, 2.f}}}), Error);
+  fs::remove_all(dir);
+}
+
+TEST_CASE("CSV rows quote text and refuse ragged rows") {
+  CsvWriter csv({"t", "label"});
+  csv.row_text({"0.5", "a,b"});
+  CHECK(csv.str() == "t,label\n0.5,\"a,b\"\n");
+  CHECK_THROWS_AS(csv.row({1.0}), Error);
 }

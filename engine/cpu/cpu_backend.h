@@ -58,6 +58,10 @@ class CpuBackend final : public Backend {
                             const Buffer<uint32_t>& cell_start, const Buffer<uint32_t>& cell_end,
                             Buffer<uint32_t>& counts) override;
 
+  // ---- SPH fluid
+
+  // ---- electron cloud, nebula lighting, volume
+
   ThreadPool& pool() { return pool_; }
 
  private:

@@ -1,0 +1,21 @@
+#pragma once
+// CSV tables (header + rows of numbers or text), written atomically.
+#include <string>
+#include <vector>
+
+namespace masav {
+
+class CsvWriter {
+ public:
+  explicit CsvWriter(std::vector<std::string> columns);
+  CsvWriter& row(const std::vector<double>& values);
+  CsvWriter& row_text(const std::vector<std::string>& cells);
+  const std::string& str() const { return out_; }
+  void write(const std::string& path) const;
+
+ private:
+  size_t columns_;
+  std::string out_;
+};
+
+}  // namespace masav
