@@ -15,14 +15,15 @@ struct SphCoefsPush {
   float h2, inv_h, inv_h2, density;
   float pressure, viscosity, rest_density, inv_rest_density;
   float eos, gx, gy, gz;
-  uint32_t model, clamp_negative, max_candidates, pad;
+  uint32_t model, clamp_negative, max_candidates, walls;
+  float lo[4], hi[4];
 };
 struct SphStepPush {
   float origin_inv_cell[4];
   uint32_t dims_n[4];
   SphCoefsPush c;
 };
-static_assert(sizeof(SphStepPush) == 96, "matches the GLSL push block");
+static_assert(sizeof(SphStepPush) == 128, "matches the GLSL push block (the guaranteed size)");
 
 struct SphIntegratePush {
   float lo_dt[4];
@@ -37,9 +38,24 @@ SphStepPush step_push(const SphStepParams& p) {
   const GridParams& g = p.grid;
   return SphStepPush{{g.origin.x, g.origin.y, g.origin.z, g.inv_cell},
                      {g.dims.x, g.dims.y, g.dims.z, p.n},
-                     {f.h2, f.inv_h, f.inv_h2, f.density, f.pressure, f.viscosity, f.rest_density,
-                      f.inv_rest_density, f.eos, f.gravity[0], f.gravity[1], f.gravity[2], f.model,
-                      f.clamp_negative_pressure, p.max_candidates, 0}};
+                     {f.h2,
+                      f.inv_h,
+                      f.inv_h2,
+                      f.density,
+                      f.pressure,
+                      f.viscosity,
+                      f.rest_density,
+                      f.inv_rest_density,
+                      f.eos,
+                      f.gravity[0],
+                      f.gravity[1],
+                      f.gravity[2],
+                      f.model,
+                      f.clamp_negative_pressure,
+                      p.max_candidates,
+                      f.walls,
+                      {f.lo[0], f.lo[1], f.lo[2], 0.0f},
+                      {f.hi[0], f.hi[1], f.hi[2], 0.0f}}};
 }
 
 uint64_t groups_for(uint64_t items, uint32_t wg) {

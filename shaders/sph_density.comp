@@ -57,7 +57,11 @@ void main() {
         }
       }
     }
-    const float rho = pc.c.density * sum;
+    float rho = pc.c.density * sum;
+    if (pc.c.walls != 0u) {
+      vec3 unused;
+      rho += pc.c.rest_density * sph_wall_density(p, pc.c, unused);
+    }
     const float pr = sph_pressure_of(rho, pc.c);
     density[i] = rho;
     pressure[i] = pr;

@@ -52,6 +52,13 @@ inline SphCase make_sph_case(uint32_t side, SphPressureModel model, uint64_t see
   return c;
 }
 
+// Semi-analytic box walls through the particles (every particle within h of a wall feels it).
+inline void with_walls(SphCase& c, bool on) {
+  c.params.walls = on;
+  c.params.box_min = {0.06, 0.055, 0.065};
+  c.params.box_max = {0.17, 0.16, 0.165};
+}
+
 // The case's buffers on one backend, sorted into cell order.
 struct SphBuffers {
   HashGrid grid;

@@ -144,6 +144,7 @@ void CpuBackend::sph_density(const SphStepParams& p, const SphDensityIO& io) {
             density_row(&xyz.x[f], &xyz.y[f], &xyz.z[f], l - f, px, py, pz, c.inv_h2, sum, within);
           });
       rho[i] = c.density * sum;
+      if (c.walls) rho[i] += c.rest_density * sph::wall_density(V{px, py, pz}, c, (V*)nullptr);
       pr[i] = sph::pressure_of(rho[i], c);
       s.max_candidates = std::max(s.max_candidates, candidates);
       s.max_neighbors = std::max(s.max_neighbors, within);
@@ -199,6 +200,7 @@ void CpuBackend::sph_forces(const SphStepParams& p, const SphForcesIO& io) {
         const V d = me.x - load3(pos, j);
         acc = acc + sph::pair_accel(me, pi_over_rho2, fetch(j), d, sph::dot(d, d), c);
       }
+      if (c.walls) acc = acc + sph::wall_accel(me, pi_over_rho2, c);
       const double inv_mass = pos[4 * i + 3];
       const V a = sph::total_accel(acc, inv_mass, c);
       store3(acc_out, i, a, double(count));

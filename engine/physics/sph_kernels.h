@@ -53,8 +53,10 @@ struct Coefficients {
   T rest_density, inv_rest_density;
   T eos;  // wcsph: Tait B = rho0 c0^2 / 7 (Pa); thesis: c^2 of the reported pressure
   T gravity[3];
+  T lo[3], hi[3];  // box walls (semi-analytic, wcsph only)
   uint32_t model;
   uint32_t clamp_negative_pressure;
+  uint32_t walls;
 };
 
 // Pressure from density. wcsph: Tait, p = B ((rho/rho0)^7 - 1), clamped at 0 when asked (free
@@ -67,6 +69,50 @@ MASAV_HD inline T pressure_of(T rho, const Coefficients<T>& c) {
   T p = c.eos * (x2 * x2 * x2 * x - T(1));
   if (c.clamp_negative_pressure && p < T(0)) p = T(0);
   return p;
+}
+
+// Semi-analytic box walls (wcsph): the fluid beyond each wall is a continuum at rest density, so
+// a particle at distance d = q h < h from a wall gets the density that continuum adds,
+// rho0 int_{z > d} W_poly6 = rho0 (1/2 - 315/256 F(q)), F(q) = int_0^q (1 - u^2)^4 du, and the
+// symmetric pressure force of that continuum (mirror particles at i's own pressure),
+// -2 p_i / rho_i^2 grad rho_wall = 2 p_i / rho_i^2 rho0 315/256 (1 - q^2)^4 / h along the
+// inward normal. Without them, particles near a wall miss up to half their neighbours, sink
+// into it and pile up (Kulasegaram et al. 2004; Ferrand et al. 2013).
+template <class T>
+MASAV_HD inline T wall_density_fraction(T q) {
+  const T q2 = q * q;
+  const T f = q * (T(1) + q2 * (T(-4.0 / 3.0) +
+                                q2 * (T(6.0 / 5.0) + q2 * (T(-4.0 / 7.0) + q2 * T(1.0 / 9.0)))));
+  return T(0.5) - T(315.0 / 256.0) * f;
+}
+template <class T>
+MASAV_HD inline T wall_density_slope(T q) {  // -d(fraction)/dq
+  const T u = T(1) - q * q;
+  return T(315.0 / 256.0) * (u * u) * (u * u);
+}
+
+// Sum of the wall density fractions of the walls within h of x, and their summed slope along
+// the inward normals (the direction the wall pushes).
+template <class T>
+MASAV_HD inline T wall_density(V3<T> x, const Coefficients<T>& c, V3<T>* push) {
+  const T xs[3] = {x.x, x.y, x.z};
+  T frac = T(0);
+  T g[3] = {T(0), T(0), T(0)};
+  for (int a = 0; a < 3; ++a) {
+    const T d_lo = xs[a] - c.lo[a], d_hi = c.hi[a] - xs[a];
+    const T q_lo = (d_lo > T(0) ? d_lo : T(0)) * c.inv_h;
+    const T q_hi = (d_hi > T(0) ? d_hi : T(0)) * c.inv_h;
+    if (q_lo < T(1)) {
+      frac += wall_density_fraction(q_lo);
+      g[a] += wall_density_slope(q_lo);
+    }
+    if (q_hi < T(1)) {
+      frac += wall_density_fraction(q_hi);
+      g[a] -= wall_density_slope(q_hi);
+    }
+  }
+  if (push) *push = V3<T>{g[0], g[1], g[2]};
+  return frac;
 }
 
 // Cell coordinates of a cell id (thesis Eq. 4.2 inverted).
@@ -163,7 +209,9 @@ MASAV_HD inline DensityResult<T> density_at(V3<T> xi, uint32_t cell, const uint3
         sum += density_term(r2, c);
         neighbors += r2 < c.h2 ? 1u : 0u;
       });
-  return {c.density * sum, neighbors, candidates, overflow};
+  T rho = c.density * sum;
+  if (c.walls) rho += c.rest_density * wall_density(xi, c, (V3<T>*)nullptr);
+  return {rho, neighbors, candidates, overflow};
 }
 
 // What the force walk reads of a neighbour.
@@ -192,6 +240,14 @@ MASAV_HD inline V3<T> pair_accel(const Neighbor<T>& me, T pi_over_rho2, const Ne
   }
   const T w = thesis ? c.viscosity * u / o.rho : c.viscosity * u * (T(2) / (me.rho + o.rho));
   return a + w * (o.v - me.v);
+}
+
+// The walls' pressure force on a particle (wcsph with walls; see wall_density).
+template <class T>
+MASAV_HD inline V3<T> wall_accel(const Neighbor<T>& me, T pi_over_rho2, const Coefficients<T>& c) {
+  V3<T> n{T(0), T(0), T(0)};
+  wall_density(me.x, c, &n);
+  return (T(2) * pi_over_rho2 * c.rest_density * c.inv_h) * n;
 }
 
 template <class T>
@@ -230,6 +286,7 @@ MASAV_HD inline ForceResult<T> force_at(uint32_t self, const Neighbor<T>& me, ui
         ++neighbors;
         acc = acc + pair_accel(me, pi_over_rho2, fetch(j), d, r2, c);
       });
+  if (c.walls) acc = acc + wall_accel(me, pi_over_rho2, c);
   return {acc, neighbors, candidates, overflow};
 }
 

@@ -50,6 +50,7 @@ void check_sph_step(const DeviceApi& dev, const SphStepParams& p, const char* ke
                               p.h));
   finite_positive(kernel, "mass", p.mass, false);
   finite_positive(kernel, "rest_density", p.rest_density, false);
+  finite_positive(kernel, "gradient_correction", p.gradient_correction, false);
   finite_positive(kernel, "viscosity", p.viscosity, true);
   if (p.model == SphPressureModel::wcsph)
     finite_positive(kernel, "sound_speed", p.sound_speed, false);
@@ -59,6 +60,14 @@ void check_sph_step(const DeviceApi& dev, const SphStepParams& p, const char* ke
     if (!std::isfinite(g))
       throw_invalid(kernel, "gravity",
                     fmt::format("({}, {}, {})", p.gravity.x, p.gravity.y, p.gravity.z), "finite");
+  if (p.walls) {
+    const double lo[3] = {p.box_min.x, p.box_min.y, p.box_min.z};
+    const double hi[3] = {p.box_max.x, p.box_max.y, p.box_max.z};
+    for (int a = 0; a < 3; ++a)
+      if (!std::isfinite(lo[a]) || !std::isfinite(hi[a]) || !(lo[a] < hi[a]))
+        throw_invalid(kernel, "box", fmt::format("[{}, {}] on axis {}", lo[a], hi[a], a),
+                      "finite with min < max on every axis");
+  }
   if (p.max_candidates < 1 || p.max_candidates > 65000)
     throw_invalid(kernel, "max_candidates", std::to_string(p.max_candidates),
                   "in [1, 65000] (lavapipe stops a shader invocation after 65,535 loop "

@@ -14,8 +14,8 @@ sph::Coefficients<double> make_coefficients(const SphStepParams& p) {
   c.inv_h2 = 1.0 / (h * h);
   c.density = p.mass * 315.0 / (64.0 * pi * h * h * h);
   const bool thesis = p.model == SphPressureModel::thesis;
-  c.pressure =
-      thesis ? p.kp * p.mass * 45.0 / (pi * h * h * h) / 2.0 : p.mass * 45.0 / (pi * h * h * h * h);
+  c.pressure = thesis ? p.kp * p.mass * 45.0 / (pi * h * h * h) / 2.0
+                      : p.gradient_correction * p.mass * 45.0 / (pi * h * h * h * h);
   c.viscosity = p.viscosity * p.mass * 45.0 / (pi * std::pow(h, 5));
   c.rest_density = p.rest_density;
   c.inv_rest_density = 1.0 / p.rest_density;
@@ -24,6 +24,13 @@ sph::Coefficients<double> make_coefficients(const SphStepParams& p) {
   c.gravity[0] = p.gravity.x;
   c.gravity[1] = p.gravity.y;
   c.gravity[2] = p.gravity.z;
+  c.lo[0] = p.box_min.x;
+  c.lo[1] = p.box_min.y;
+  c.lo[2] = p.box_min.z;
+  c.hi[0] = p.box_max.x;
+  c.hi[1] = p.box_max.y;
+  c.hi[2] = p.box_max.z;
+  c.walls = p.walls && !thesis ? 1u : 0u;
   c.model = thesis ? sph::kModelThesis : sph::kModelWcsph;
   c.clamp_negative_pressure = p.clamp_negative_pressure ? 1u : 0u;
   return c;
@@ -40,7 +47,12 @@ sph::Coefficients<float> to_float(const sph::Coefficients<double>& c) {
   f.rest_density = float(c.rest_density);
   f.inv_rest_density = float(c.inv_rest_density);
   f.eos = float(c.eos);
-  for (int a = 0; a < 3; ++a) f.gravity[a] = float(c.gravity[a]);
+  for (int a = 0; a < 3; ++a) {
+    f.gravity[a] = float(c.gravity[a]);
+    f.lo[a] = float(c.lo[a]);
+    f.hi[a] = float(c.hi[a]);
+  }
+  f.walls = c.walls;
   f.model = c.model;
   f.clamp_negative_pressure = c.clamp_negative_pressure;
   return f;

@@ -27,9 +27,17 @@ struct SphStepParams {
   double rest_density = 1000.0;  // rho0 (kg/m^3)
   double sound_speed = 20.0;     // c0 (m/s): Tait B = rho0 c0^2 / 7 (wcsph)
   bool clamp_negative_pressure = true;
+  // wcsph: the pressure force's scale 1/kappa, kappa = -1/3 sum_j (m/rho0) r_j W'(r_j) over the
+  // rest lattice (1 for a continuum; 0.947 for the spiky kernel at h = 2 dx): a linear pressure
+  // field then gives exactly its gradient on the lattice, so a column at rest balances gravity.
+  double gradient_correction = 1.0;
   double kp = 0.0;                 // thesis pressure constant (m^4 kg^-1 s^-2)
   double viscosity = 0.0;          // nu (m^2/s)
   Vec3d gravity{0.0, -9.81, 0.0};  // m/s^2
+  // Box walls as a continuum of fluid beyond them (wcsph only): adds their density and pressure
+  // force to particles within h of a wall (see engine/physics/sph_kernels.h, wall_density).
+  bool walls = false;
+  Vec3d box_min, box_max{1, 1, 1};
 };
 
 // The sorted hash grid the SPH kernels walk.

@@ -39,6 +39,9 @@ struct SphBlock {
   Vec3d min, max;              // extent as placed (m)
   Vec3d velocity;              // initial velocity (m/s)
   double density_ratio = 1.0;  // initial / rest density: > 1 starts compressed (explosion)
+  // Start in hydrostatic equilibrium (wcsph, gravity along -y): each layer compressed by the
+  // weight above it (Tait), so a resting fluid does not start with a compression wave.
+  bool hydrostatic = false;
 };
 
 // Heavy obstacle particles (thesis §4.5.1): the fluid's SPH properties, a huge inertial mass.

@@ -25,6 +25,21 @@ double lattice_mass(double rho0, double dx, double h) {
   return rho0 / (315.0 / (64.0 * std::numbers::pi * h * h * h) * sum);
 }
 
+double spiky_gradient_moment(double dx, double h) {
+  const int reach = int(std::ceil(h / dx));
+  double poly6 = 0, moment = 0;
+  for (int i = -reach; i <= reach; ++i)
+    for (int j = -reach; j <= reach; ++j)
+      for (int k = -reach; k <= reach; ++k) {
+        const double r = std::sqrt(double(i) * i + double(j) * j + double(k) * k) * dx;
+        if (r >= h) continue;
+        const double u = 1.0 - (r * r) / (h * h);
+        poly6 += 315.0 / (64.0 * std::numbers::pi * h * h * h) * u * u * u;
+        moment += r * 45.0 / (std::numbers::pi * std::pow(h, 6)) * (h - r) * (h - r) / 3.0;
+      }
+  return moment / poly6;  // m / rho0 = 1 / poly6 for the lattice-normalised mass
+}
+
 SphParticles build_particles(const SphScene& s) {
   validate(s);
   SphParticles out;
@@ -43,13 +58,38 @@ SphParticles build_particles(const SphScene& s) {
   out.dx = sp * std::cbrt(s.block.density_ratio);
   out.h = s.smoothing_radius ? *s.smoothing_radius : s.h_over_dx * out.dx;
   out.mass = lattice_mass(s.rest_density, out.dx, out.h);
+  out.gradient_correction = 1.0 / spiky_gradient_moment(out.dx, out.h);
+
+  // Layer heights: uniform, or (hydrostatic) each layer's spacing shrunk by the Tait density
+  // under the weight of the layers above it (spacing ~ 1 / density in a box whose walls hold the
+  // fluid laterally).
+  std::vector<double> layer_y(ny);
+  const double g = -s.gravity.y;
+  if (s.block.hydrostatic && s.model == SphPressureModel::wcsph && g > 0) {
+    const double b = s.rest_density * s.sound_speed * s.sound_speed / 7.0;
+    double depth = 0.0;  // below the top particle's upper face
+    std::vector<double> dy(ny);
+    for (uint32_t k = ny; k-- > 0;) {
+      const double rho =
+          s.rest_density * std::pow(1.0 + s.rest_density * g * (depth + 0.5 * sp) / b, 1.0 / 7.0);
+      dy[k] = sp * s.rest_density / rho;
+      depth += dy[k];
+    }
+    double y = lo.y;
+    for (uint32_t k = 0; k < ny; ++k) {
+      layer_y[k] = y + 0.5 * dy[k];
+      y += dy[k];
+    }
+  } else {
+    for (uint32_t k = 0; k < ny; ++k) layer_y[k] = lo.y + (k + 0.5) * sp;
+  }
 
   const uint64_t key = s.seed;
   out.positions.reserve(s.particles);
   for (uint32_t i = 0; i < s.particles; ++i) {
     const uint32_t layer = i / (nx * nz), rem = i % (nx * nz);
     const uint32_t iz = rem / nx, ix = rem % nx;
-    Vec4d p{lo.x + (ix + 0.5) * sp, lo.y + (layer + 0.5) * sp, lo.z + (iz + 0.5) * sp, 1.0};
+    Vec4d p{lo.x + (ix + 0.5) * sp, layer_y[layer], lo.z + (iz + 0.5) * sp, 1.0};
     if (s.jitter > 0) {
       const philox::Block r = philox::stream_block(key, 1, i);
       p.x += (2.0 * philox::u01(r.w[0]) - 1.0) * s.jitter * sp;

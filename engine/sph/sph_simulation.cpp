@@ -22,6 +22,31 @@ float bits_to_float(uint32_t w) {
   return std::bit_cast<float>(w);
 }
 
+// Device memory the simulation needs per particle: 10 Real4 arrays, 2 Real, 2 ids, the grid's 2.
+uint64_t bytes_per_particle(const Backend& b) {
+  return 10 * 4 * b.real_bytes() + 2 * b.real_bytes() + 4 * 4;
+}
+
+// Refuses, before anything is allocated, a particle count the device cannot hold.
+void check_capacity(const Backend& b, const SphScene& s) {
+  const Capabilities& caps = b.caps();
+  const uint64_t n = s.particles;  // the obstacle is checked once its size is known
+  const uint64_t real4 = 4 * b.real_bytes();
+  if (caps.max_buffer_bytes && n * real4 > caps.max_buffer_bytes)
+    throw_invalid(
+        "sph scene", "particles", std::to_string(n),
+        fmt::format("at most {} on {} (one buffer of positions holds at most {} MiB); "
+                    "use fewer particles or a device with larger buffers",
+                    caps.max_buffer_bytes / real4, caps.device_name, caps.max_buffer_bytes >> 20));
+  const uint64_t need = n * bytes_per_particle(b);
+  if (caps.device_memory_bytes && need > caps.device_memory_bytes / 2)
+    throw_invalid(
+        "sph scene", "particles", std::to_string(n),
+        fmt::format("at most {} on {} ({} bytes per particle, {} MiB of memory)",
+                    caps.device_memory_bytes / 2 / bytes_per_particle(b), caps.device_name,
+                    bytes_per_particle(b), caps.device_memory_bytes >> 20));
+}
+
 }  // namespace
 
 const char* to_string(SphStage s) {
@@ -41,7 +66,9 @@ const char* to_string(SphStage s) {
 
 SphSimulation::SphSimulation(Backend& backend, const SphScene& scene)
     : backend_(backend), scene_(scene) {
-  layout_ = build_particles(scene_);  // validates the scene
+  validate(scene_);
+  check_capacity(backend_, scene_);
+  layout_ = build_particles(scene_);
   n_ = layout_.total();
   const Capabilities& caps = backend_.caps();
   const uint64_t real4_bytes = 4 * backend_.real_bytes();
@@ -86,12 +113,16 @@ SphSimulation::SphSimulation(Backend& backend, const SphScene& scene)
   step_params_.model = scene_.model;
   step_params_.h = h;
   step_params_.mass = layout_.mass;
+  step_params_.gradient_correction = layout_.gradient_correction;
   step_params_.rest_density = scene_.rest_density;
   step_params_.sound_speed = scene_.sound_speed;
   step_params_.clamp_negative_pressure = scene_.clamp_negative_pressure;
   step_params_.kp = scene_.kp;
   step_params_.viscosity = scene_.viscosity;
   step_params_.gravity = scene_.gravity;
+  step_params_.walls = scene_.walls;
+  step_params_.box_min = scene_.box_min;
+  step_params_.box_max = scene_.box_max;
 
   grid_ = make_hash_grid(backend_, gp, n_);
   auto real4 = [&](const char* label) { return backend_.create<Real4>(n_, label); };
@@ -433,15 +464,18 @@ void SphSimulation::run(uint64_t steps) {
   for (uint64_t i = 0; i < steps; ++i) step();
 }
 
-void SphSimulation::set_velocity(uint32_t id, Vec4d v) {
-  if (id >= n_)
-    throw_invalid("sph", "particle id", std::to_string(id), fmt::format("below {}", n_));
+void SphSimulation::set_velocities(const std::vector<Vec4d>& by_id) {
+  if (by_id.size() != n_)
+    throw_invalid("sph", "velocities", std::to_string(by_id.size()),
+                  fmt::format("one per particle ({})", n_));
   const std::vector<uint32_t> ids = backend_.download(ids_);
-  std::vector<Vec4d> vel = backend_.download(vel_);
-  for (uint32_t i = 0; i < n_; ++i)
-    if (ids[i] == id) vel[i] = v;
+  std::vector<Vec4d> vel(n_);
+  for (uint32_t i = 0; i < n_; ++i) vel[i] = by_id[ids[i]];
   backend_.upload(vel_, vel);
   accel_valid_ = false;
+  double vmax = 0;
+  for (const auto& v : by_id) vmax = std::max(vmax, std::hypot(v.x, v.y, v.z));
+  if (std::isfinite(vmax)) stats_.max_speed = std::max(stats_.max_speed, vmax);
 }
 
 SphState SphSimulation::download() {

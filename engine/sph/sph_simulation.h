@@ -82,8 +82,8 @@ class SphSimulation {
 
   // Current state, in particle-id order, with density and pressure at these positions.
   SphState download();
-  // Replaces one particle's velocity (tests of the NaN guard and of perturbations).
-  void set_velocity(uint32_t id, Vec4d v);
+  // Replaces the velocities (indexed by particle id), e.g. to start from a velocity field.
+  void set_velocities(const std::vector<Vec4d>& by_id);
 
   // Device time per stage, summed since the last reset (recorded when profiling is on).
   void set_profiling(bool on) { profiling_ = on; }

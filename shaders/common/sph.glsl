@@ -29,7 +29,9 @@ struct SphCoefs {
   float h2, inv_h, inv_h2, density;
   float pressure, viscosity, rest_density, inv_rest_density;
   float eos, gx, gy, gz;
-  uint model, clamp_negative, max_candidates, pad;
+  uint model, clamp_negative, max_candidates, walls;
+  vec4 lo;  // box walls (semi-analytic, wcsph only)
+  vec4 hi;
 };
 
 float sph_pressure_of(float rho, SphCoefs c) {
@@ -44,6 +46,36 @@ float sph_pressure_of(float rho, SphCoefs c) {
 ivec3 sph_cell_coords(uint id, uvec3 dims) {
   const uint yz = dims.y * dims.z;
   return ivec3(int(id / yz), int((id % yz) / dims.z), int(id % dims.z));
+}
+
+// Semi-analytic box walls (sph::wall_density in engine/physics/sph_kernels.h).
+float sph_wall_density_fraction(float q) {
+  const float q2 = q * q;
+  const float f =
+      q * (1.0 + q2 * (-4.0 / 3.0 + q2 * (6.0 / 5.0 + q2 * (-4.0 / 7.0 + q2 * (1.0 / 9.0)))));
+  return 0.5 - (315.0 / 256.0) * f;
+}
+float sph_wall_density_slope(float q) {
+  const float u = 1.0 - q * q;
+  return (315.0 / 256.0) * (u * u) * (u * u);
+}
+float sph_wall_density(vec3 x, SphCoefs c, out vec3 push) {
+  float frac = 0.0;
+  push = vec3(0.0);
+  for (int a = 0; a < 3; ++a) {
+    LOOP_TICK();
+    const float q_lo = max(x[a] - c.lo[a], 0.0) * c.inv_h;
+    const float q_hi = max(c.hi[a] - x[a], 0.0) * c.inv_h;
+    if (q_lo < 1.0) {
+      frac += sph_wall_density_fraction(q_lo);
+      push[a] += sph_wall_density_slope(q_lo);
+    }
+    if (q_hi < 1.0) {
+      frac += sph_wall_density_fraction(q_hi);
+      push[a] -= sph_wall_density_slope(q_hi);
+    }
+  }
+  return frac;
 }
 
 float sph_density_term(float r2, SphCoefs c) {
