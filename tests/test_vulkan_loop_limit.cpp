@@ -14,6 +14,7 @@
 #include "compute/vk_factory.h"
 #include "engine/error.h"
 #include "engine/hash_grid.h"
+#include "engine/sph/sph_particles.h"
 
 using namespace masav;
 namespace mvk = masav::vk;
@@ -98,6 +99,56 @@ TEST_CASE("grid assignment, ranges and gather do not loop") {
   CHECK(b.take_max_loop_ticks() == 0);
 }
 
+TEST_CASE("sph kernels: loop ticks = rows + cells + candidates, capped below the limit") {
+  auto& b = *g_vk;
+  const uint32_t n = 3000;
+  const float h = 0.05f;
+  // One crowded cell: every particle is every particle's candidate.
+  SphStepParams p;
+  p.grid = make_grid_params({0, 0, 0}, h, {1, 1, 1}, n);
+  p.n = n;
+  p.h = h;
+  p.mass = lattice_mass(1000.0, 0.025, h);
+  p.max_candidates = n;
+  p.walls = true;  // the wall loops tick too (3 axes)
+  p.box_min = {0, 0, 0};
+  p.box_max = {h, h, h};
+  auto pos = b.create<Real4>(n, "pos");
+  auto vel = b.create<Real4>(n, "vel");
+  std::vector<Vec4f> pts = cluster(n, h, 12);
+  for (auto& q : pts) q.w = 1.0f;
+  b.upload(pos, pts);
+  b.upload(vel, std::vector<Vec4f>(n));
+  HashGrid g = make_hash_grid(b, p.grid, n);
+  build_hash_grid(b, g, pos);
+  auto rho = b.create<Real>(n, "rho"), pr = b.create<Real>(n, "p");
+  auto acc = b.create<Real4>(n, "acc");
+  auto stats = b.create<uint32_t>(kSphStatWords, "stats");
+  b.fill(stats, 0u);
+  (void)b.take_max_loop_ticks();
+  const SphGridView view{&g.sorted_cells, &g.cell_start, &g.cell_end};
+  b.sph_density(p, {&pos, view, &rho, &pr, &stats});
+  // x loop 3 + y loop 3 (one x in the grid) + 1 cell in the row + n candidates + 3 wall axes.
+  CHECK(b.take_max_loop_ticks() == 3 + 3 + 1 + n + 3);
+  b.sph_forces(p, {&pos, &vel, &rho, &pr, view, &acc, &stats});
+  CHECK(b.take_max_loop_ticks() == 3 + 3 + 1 + n + 3);
+  // The worst any SPH kernel can do: 3 + 9 row loops, 27 cells, the validated maximum of
+  // candidates (65000) and 3 wall axes stay under lavapipe's limit; one more is refused.
+  CHECK(3 + 9 + 27 + 65000 + 3 < kLavapipeLoopLimit);
+  p.max_candidates = 65001;
+  CHECK_THROWS_AS(b.sph_density(p, {&pos, view, &rho, &pr, &stats}), Error);
+
+  // The integrator's only loops are the walls' (at most 3 + 3).
+  SphIntegrateParams ip;
+  ip.n = n;
+  ip.op = SphStageOp::euler;
+  ip.tangential_damping = 0.1;
+  ip.box_max = {0.5 * h, 0.5 * h, 0.5 * h};
+  auto xo = b.create<Real4>(n, "xo"), vo = b.create<Real4>(n, "vo");
+  b.sph_integrate(ip, {&pos, &vel, nullptr, &acc, &xo, &vo, nullptr, nullptr, &stats});
+  CHECK(b.take_max_loop_ticks() <= 6);
+}
+
 int main(int argc, char** argv) {
   const BackendStatus s = mvk::backend_status();
   if (!s.available) {
@@ -105,8 +156,10 @@ int main(int argc, char** argv) {
     return 77;
   }
   mvk::set_validation_handler([](const std::string& msg) {
-    if (doctest::is_running_in_test) FAIL_CHECK(msg);
-    else fmt::print(stderr, "{}\n", msg);
+    if (doctest::is_running_in_test)
+      FAIL_CHECK(msg);
+    else
+      fmt::print(stderr, "{}\n", msg);
   });
   mvk::BackendOptions o;
   o.context = mvk::options_from_env();

@@ -164,6 +164,7 @@ SphSimulation::SphSimulation(Backend& backend, const SphScene& scene)
   for (const auto& v : layout_.velocities) vmax = std::max(vmax, std::hypot(v.x, v.y, v.z));
   stats_.max_speed = vmax;
   accel_valid_ = true;
+  fields_current_ = true;
   adaptive_dt_ = std::min(scene_.dt_max, dt_limit());
 }
 
@@ -343,6 +344,7 @@ SphSimulation::Attempt SphSimulation::attempt(double dt) {
           courant, scene_.cfl_velocity, s.max_speed);
     }
   }
+  fields_current_ = false;
   if (!a.ok) {
     if (scene_.integrator == SphIntegrator::leapfrog) accel_valid_ = false;
     return a;
@@ -353,6 +355,7 @@ SphSimulation::Attempt SphSimulation::attempt(double dt) {
     std::swap(vel_, tb_);
     std::swap(ids_, ids_t_);
     accel_valid_ = true;
+    fields_current_ = true;  // the force pass ran at the new positions
   } else {
     std::swap(pos_, xs_);
     std::swap(vel_, vs_);
@@ -473,27 +476,37 @@ void SphSimulation::set_velocities(const std::vector<Vec4d>& by_id) {
   for (uint32_t i = 0; i < n_; ++i) vel[i] = by_id[ids[i]];
   backend_.upload(vel_, vel);
   accel_valid_ = false;
+  fields_current_ = false;
   double vmax = 0;
   for (const auto& v : by_id) vmax = std::max(vmax, std::hypot(v.x, v.y, v.z));
   if (std::isfinite(vmax)) stats_.max_speed = std::max(stats_.max_speed, vmax);
 }
 
 SphState SphSimulation::download() {
-  // Density at the current positions without touching the committed state: sort copies of the
-  // positions and ids into a fresh grid (scratch buffers), evaluate density there, map back.
-  rebuild_grid(pos_);
-  reorder(backend_, grid_, pos_.impl(), ta_.impl());
-  reorder(backend_, grid_, vel_.impl(), tb_.impl());
-  reorder(backend_, grid_, ids_.impl(), ids_t_.impl());
-  backend_.fill(stats_buf_, 0u);
-  const SphGridView view{&grid_.sorted_cells, &grid_.cell_start, &grid_.cell_end};
-  backend_.sph_density(step_params_, SphDensityIO{&ta_, view, &density_, &pressure_, &stats_buf_});
-  backend_.sph_forces(step_params_,
-                      SphForcesIO{&ta_, &tb_, &density_, &pressure_, view, &accel_, &stats_buf_});
-  accel_valid_ = false;
-  const auto pos = backend_.download(ta_);
-  const auto vel = backend_.download(tb_);
-  const auto ids = backend_.download(ids_t_);
+  const Buffer<Real4>* px = &pos_;
+  const Buffer<Real4>* pv = &vel_;
+  const Buffer<uint32_t>* pid = &ids_;
+  if (!fields_current_) {
+    // Density at the current positions without touching the committed state: sort copies of
+    // the positions, velocities and ids into a fresh grid (scratch buffers), evaluate there.
+    rebuild_grid(pos_);
+    reorder(backend_, grid_, pos_.impl(), ta_.impl());
+    reorder(backend_, grid_, vel_.impl(), tb_.impl());
+    reorder(backend_, grid_, ids_.impl(), ids_t_.impl());
+    backend_.fill(stats_buf_, 0u);
+    const SphGridView view{&grid_.sorted_cells, &grid_.cell_start, &grid_.cell_end};
+    backend_.sph_density(step_params_,
+                         SphDensityIO{&ta_, view, &density_, &pressure_, &stats_buf_});
+    backend_.sph_forces(step_params_,
+                        SphForcesIO{&ta_, &tb_, &density_, &pressure_, view, &accel_, &stats_buf_});
+    accel_valid_ = false;
+    px = &ta_;
+    pv = &tb_;
+    pid = &ids_t_;
+  }
+  const auto pos = backend_.download(*px);
+  const auto vel = backend_.download(*pv);
+  const auto ids = backend_.download(*pid);
   const auto rho = backend_.download(density_);
   const auto pr = backend_.download(pressure_);
   const auto acc = backend_.download(accel_);

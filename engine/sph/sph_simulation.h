@@ -127,6 +127,7 @@ class SphSimulation {
   Buffer<uint32_t> ids_, ids_t_, stats_buf_;
   Buffer<Real> density_, pressure_;
   bool accel_valid_ = false;  // leapfrog: accel_ holds a(pos_) in pos_'s order
+  bool fields_current_ = false;  // density_, pressure_, accel_ belong to pos_ (pos_'s order)
 
   double time_ = 0, last_dt_ = 0, adaptive_dt_ = 0;
   uint64_t steps_ = 0, substeps_ = 0, retries_ = 0;
