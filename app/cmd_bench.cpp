@@ -5,12 +5,16 @@ namespace masav::app {
 
 void add_sort_bench(CLI::App& bench);
 void add_grid_bench(CLI::App& bench);
+void add_sph_bench(CLI::App& bench);
+void add_dambreak_bench(CLI::App& bench);
 
 void add_bench_command(CLI::App& app) {
   auto* bench = app.add_subcommand("bench", "time kernels on each backend (device timestamps)");
   bench->require_subcommand(1);
   add_sort_bench(*bench);
   add_grid_bench(*bench);
+  add_sph_bench(*bench);
+  add_dambreak_bench(*bench);
 }
 
 }  // namespace masav::app

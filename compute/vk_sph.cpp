@@ -54,8 +54,8 @@ SphStepPush step_push(const SphStepParams& p) {
                       f.clamp_negative_pressure,
                       p.max_candidates,
                       f.walls,
-                      {f.lo[0], f.lo[1], f.lo[2], 0.0f},
-                      {f.hi[0], f.hi[1], f.hi[2], 0.0f}}};
+                      {f.lo[0], f.lo[1], f.lo[2], f.wall_viscosity},
+                      {f.hi[0], f.hi[1], f.hi[2], f.wall_offset}}};
 }
 
 uint64_t groups_for(uint64_t items, uint32_t wg) {

@@ -71,7 +71,9 @@ void main() {
     if (pc.c.walls != 0u) {
       vec3 n;
       sph_wall_density(p, pc.c, n);
-      acc += (2.0 * pi_over_rho2 * pc.c.rest_density * pc.c.inv_h) * n;
+      const float damp = pc.c.lo.w * (2.0 * pc.c.rest_density / (rho + pc.c.rest_density)) *
+                         sph_wall_viscous_weight(p, pc.c);
+      acc += (2.0 * pi_over_rho2 * pc.c.rest_density * pc.c.inv_h) * n - damp * v;
     }
     const vec3 a = sph_total_accel(acc, pw.w, pc.c);
     accel[i] = vec4(a, float(neighbors));

@@ -110,7 +110,7 @@ TEST_CASE("sph kernels: loop ticks = rows + cells + candidates, capped below the
   p.h = h;
   p.mass = lattice_mass(1000.0, 0.025, h);
   p.max_candidates = n;
-  p.walls = true;  // the wall loops tick too (3 axes)
+  p.walls = true;  // the wall loops tick too: 6 walls, then 6 x (1 + 6) for their gradient
   p.box_min = {0, 0, 0};
   p.box_max = {h, h, h};
   auto pos = b.create<Real4>(n, "pos");
@@ -128,13 +128,14 @@ TEST_CASE("sph kernels: loop ticks = rows + cells + candidates, capped below the
   (void)b.take_max_loop_ticks();
   const SphGridView view{&g.sorted_cells, &g.cell_start, &g.cell_end};
   b.sph_density(p, {&pos, view, &rho, &pr, &stats});
-  // x loop 3 + y loop 3 (one x in the grid) + 1 cell in the row + n candidates + 3 wall axes.
-  CHECK(b.take_max_loop_ticks() == 3 + 3 + 1 + n + 3);
+  // x loop 3 + y loop 3 (one x in the grid) + 1 cell in the row + n candidates + 48 wall ticks.
+  const uint32_t walls = 6 + 6 * 7;
+  CHECK(b.take_max_loop_ticks() == 3 + 3 + 1 + n + walls);
   b.sph_forces(p, {&pos, &vel, &rho, &pr, view, &acc, &stats});
-  CHECK(b.take_max_loop_ticks() == 3 + 3 + 1 + n + 3);
+  CHECK(b.take_max_loop_ticks() == 3 + 3 + 1 + n + walls + 6);  // + the no-slip weight
   // The worst any SPH kernel can do: 3 + 9 row loops, 27 cells, the validated maximum of
-  // candidates (65000) and 3 wall axes stay under lavapipe's limit; one more is refused.
-  CHECK(3 + 9 + 27 + 65000 + 3 < kLavapipeLoopLimit);
+  // candidates (65000) and the walls' 48 stay under lavapipe's limit; one more is refused.
+  CHECK(3 + 9 + 27 + 65000 + walls + 6 < kLavapipeLoopLimit);
   p.max_candidates = 65001;
   CHECK_THROWS_AS(b.sph_density(p, {&pos, view, &rho, &pr, &stats}), Error);
 

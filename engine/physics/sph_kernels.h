@@ -53,7 +53,9 @@ struct Coefficients {
   T rest_density, inv_rest_density;
   T eos;  // wcsph: Tait B = rho0 c0^2 / 7 (Pa); thesis: c^2 of the reported pressure
   T gravity[3];
-  T lo[3], hi[3];  // box walls (semi-analytic, wcsph only)
+  T lo[3], hi[3];    // box walls (semi-analytic, wcsph only)
+  T wall_viscosity;  // nu * 7.5 / h^2: no-slip walls (see wall_accel)
+  T wall_offset;     // m: the continuum starts this far behind each wall (lattice calibration)
   uint32_t model;
   uint32_t clamp_negative_pressure;
   uint32_t walls;
@@ -91,28 +93,35 @@ MASAV_HD inline T wall_density_slope(T q) {  // -d(fraction)/dq
   return T(315.0 / 256.0) * (u * u) * (u * u);
 }
 
-// Sum of the wall density fractions of the walls within h of x, and their summed slope along
-// the inward normals (the direction the wall pushes).
+// The walls' density fraction at x and its gradient along the inward normals (the direction the
+// walls push). Several walls near an edge or a corner overlap: the fluid beyond at least one of
+// them is 1 - prod_k (1 - f_k) (exact for a separable kernel; 7/8 in a corner, where a plain
+// sum would count 3/2 and blow the corner apart).
 template <class T>
 MASAV_HD inline T wall_density(V3<T> x, const Coefficients<T>& c, V3<T>* push) {
   const T xs[3] = {x.x, x.y, x.z};
-  T frac = T(0);
-  T g[3] = {T(0), T(0), T(0)};
-  for (int a = 0; a < 3; ++a) {
-    const T d_lo = xs[a] - c.lo[a], d_hi = c.hi[a] - xs[a];
-    const T q_lo = (d_lo > T(0) ? d_lo : T(0)) * c.inv_h;
-    const T q_hi = (d_hi > T(0) ? d_hi : T(0)) * c.inv_h;
-    if (q_lo < T(1)) {
-      frac += wall_density_fraction(q_lo);
-      g[a] += wall_density_slope(q_lo);
-    }
-    if (q_hi < T(1)) {
-      frac += wall_density_fraction(q_hi);
-      g[a] -= wall_density_slope(q_hi);
-    }
+  T f[6], slope[6];
+  T keep = T(1);  // prod_k (1 - f_k)
+  for (int k = 0; k < 6; ++k) {
+    const int a = k >> 1;
+    const T d = (k & 1) ? c.hi[a] - xs[a] : xs[a] - c.lo[a];
+    const T q = ((d > T(0) ? d : T(0)) + c.wall_offset) * c.inv_h;
+    f[k] = q < T(1) ? wall_density_fraction(q) : T(0);
+    slope[k] = q < T(1) ? wall_density_slope(q) : T(0);
+    keep *= T(1) - f[k];
   }
-  if (push) *push = V3<T>{g[0], g[1], g[2]};
-  return frac;
+  if (push) {
+    T g[3] = {T(0), T(0), T(0)};
+    for (int k = 0; k < 6; ++k) {
+      // d(1 - keep)/dq_k = slope_k prod_{j != k} (1 - f_j); lo walls push +, hi walls push -.
+      T others = T(1);
+      for (int m = 0; m < 6; ++m)
+        if (m != k) others *= T(1) - f[m];
+      g[k >> 1] += ((k & 1) ? -slope[k] : slope[k]) * others;
+    }
+    *push = V3<T>{g[0], g[1], g[2]};
+  }
+  return T(1) - keep;
 }
 
 // Cell coordinates of a cell id (thesis Eq. 4.2 inverted).
@@ -243,11 +252,32 @@ MASAV_HD inline V3<T> pair_accel(const Neighbor<T>& me, T pi_over_rho2, const Ne
 }
 
 // The walls' pressure force on a particle (wcsph with walls; see wall_density).
+// The walls also hold their continuum at rest, so the viscosity term sees it as fluid with zero
+// velocity (no-slip walls): -nu v_i 2 rho0/(rho_i + rho0) int_beyond lap W, and for the
+// viscosity kernel int_{z > d} lap W = 7.5/h^2 (1 - q)^3 (1 + q) per wall.
+template <class T>
+MASAV_HD inline T wall_viscous_weight(V3<T> x, const Coefficients<T>& c) {
+  const T xs[3] = {x.x, x.y, x.z};
+  T w = T(0);
+  for (int k = 0; k < 6; ++k) {
+    const int a = k >> 1;
+    const T d = (k & 1) ? c.hi[a] - xs[a] : xs[a] - c.lo[a];
+    const T q = ((d > T(0) ? d : T(0)) + c.wall_offset) * c.inv_h;
+    if (q < T(1)) {
+      const T u = T(1) - q;
+      w += u * u * u * (T(1) + q);
+    }
+  }
+  return w;
+}
+
 template <class T>
 MASAV_HD inline V3<T> wall_accel(const Neighbor<T>& me, T pi_over_rho2, const Coefficients<T>& c) {
   V3<T> n{T(0), T(0), T(0)};
   wall_density(me.x, c, &n);
-  return (T(2) * pi_over_rho2 * c.rest_density * c.inv_h) * n;
+  const T damp = c.wall_viscosity * (T(2) * c.rest_density / (me.rho + c.rest_density)) *
+                 wall_viscous_weight(me.x, c);
+  return (T(2) * pi_over_rho2 * c.rest_density * c.inv_h) * n - damp * me.v;
 }
 
 template <class T>

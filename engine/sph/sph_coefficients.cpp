@@ -31,6 +31,8 @@ sph::Coefficients<double> make_coefficients(const SphStepParams& p) {
   c.hi[1] = p.box_max.y;
   c.hi[2] = p.box_max.z;
   c.walls = p.walls && !thesis ? 1u : 0u;
+  c.wall_viscosity = p.viscosity * 7.5 / (h * h);
+  c.wall_offset = p.wall_offset;
   c.model = thesis ? sph::kModelThesis : sph::kModelWcsph;
   c.clamp_negative_pressure = p.clamp_negative_pressure ? 1u : 0u;
   return c;
@@ -53,6 +55,8 @@ sph::Coefficients<float> to_float(const sph::Coefficients<double>& c) {
     f.hi[a] = float(c.hi[a]);
   }
   f.walls = c.walls;
+  f.wall_viscosity = float(c.wall_viscosity);
+  f.wall_offset = float(c.wall_offset);
   f.model = c.model;
   f.clamp_negative_pressure = c.clamp_negative_pressure;
   return f;

@@ -38,6 +38,9 @@ struct SphStepParams {
   // force to particles within h of a wall (see engine/physics/sph_kernels.h, wall_density).
   bool walls = false;
   Vec3d box_min, box_max{1, 1, 1};
+  // m: the wall continuum starts this far behind each wall, so that the first lattice layer
+  // (dx/2 from the wall) has exactly rest density; see wall_offset_for_lattice.
+  double wall_offset = 0.0;
 };
 
 // The sorted hash grid the SPH kernels walk.

@@ -88,6 +88,7 @@ SphScene make_preset(std::string_view name, uint32_t n) {
     s.particles = n;
     s.block.min = {0.0, 0.0, 0.0};
     s.block.max = {a, 2 * a, 4 * a};
+    s.block.hydrostatic = true;  // the gate opens on a column at rest under its own weight
     s.box_min = {0.0, 0.0, 0.0};
     s.box_max = {5 * a, 3 * a, 4 * a};
     s.sound_speed = 25.0;  // 10 x sqrt(2 g 2a)

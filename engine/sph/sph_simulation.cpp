@@ -114,6 +114,7 @@ SphSimulation::SphSimulation(Backend& backend, const SphScene& scene)
   step_params_.h = h;
   step_params_.mass = layout_.mass;
   step_params_.gradient_correction = layout_.gradient_correction;
+  step_params_.wall_offset = layout_.wall_offset;
   step_params_.rest_density = scene_.rest_density;
   step_params_.sound_speed = scene_.sound_speed;
   step_params_.clamp_negative_pressure = scene_.clamp_negative_pressure;

@@ -126,7 +126,7 @@ class SphSimulation {
   Buffer<Real4> pos_, vel_, xs_, vs_, sum_x_, sum_v_, ta_, tb_, tc_, accel_;
   Buffer<uint32_t> ids_, ids_t_, stats_buf_;
   Buffer<Real> density_, pressure_;
-  bool accel_valid_ = false;  // leapfrog: accel_ holds a(pos_) in pos_'s order
+  bool accel_valid_ = false;     // leapfrog: accel_ holds a(pos_) in pos_'s order
   bool fields_current_ = false;  // density_, pressure_, accel_ belong to pos_ (pos_'s order)
 
   double time_ = 0, last_dt_ = 0, adaptive_dt_ = 0;

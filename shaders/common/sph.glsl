@@ -30,8 +30,8 @@ struct SphCoefs {
   float pressure, viscosity, rest_density, inv_rest_density;
   float eos, gx, gy, gz;
   uint model, clamp_negative, max_candidates, walls;
-  vec4 lo;  // box walls (semi-analytic, wcsph only)
-  vec4 hi;
+  vec4 lo;  // box walls (semi-analytic, wcsph only); w: wall viscosity nu 7.5 / h^2
+  vec4 hi;  // w: wall offset (m), the continuum starts that far behind each wall
 };
 
 float sph_pressure_of(float rho, SphCoefs c) {
@@ -60,22 +60,44 @@ float sph_wall_density_slope(float q) {
   return (315.0 / 256.0) * (u * u) * (u * u);
 }
 float sph_wall_density(vec3 x, SphCoefs c, out vec3 push) {
-  float frac = 0.0;
-  push = vec3(0.0);
-  for (int a = 0; a < 3; ++a) {
+  float f[6], slope[6];
+  float keep = 1.0;
+  for (int k = 0; k < 6; ++k) {
     LOOP_TICK();
-    const float q_lo = max(x[a] - c.lo[a], 0.0) * c.inv_h;
-    const float q_hi = max(c.hi[a] - x[a], 0.0) * c.inv_h;
-    if (q_lo < 1.0) {
-      frac += sph_wall_density_fraction(q_lo);
-      push[a] += sph_wall_density_slope(q_lo);
+    const int a = k >> 1;
+    const float d = (k & 1) != 0 ? c.hi[a] - x[a] : x[a] - c.lo[a];
+    const float q = (max(d, 0.0) + c.hi.w) * c.inv_h;
+    f[k] = q < 1.0 ? sph_wall_density_fraction(q) : 0.0;
+    slope[k] = q < 1.0 ? sph_wall_density_slope(q) : 0.0;
+    keep *= 1.0 - f[k];
+  }
+  push = vec3(0.0);
+  for (int k = 0; k < 6; ++k) {
+    LOOP_TICK();
+    float others = 1.0;
+    for (int m = 0; m < 6; ++m) {
+      LOOP_TICK();
+      if (m != k) others *= 1.0 - f[m];
     }
-    if (q_hi < 1.0) {
-      frac += sph_wall_density_fraction(q_hi);
-      push[a] -= sph_wall_density_slope(q_hi);
+    push[k >> 1] += ((k & 1) != 0 ? -slope[k] : slope[k]) * others;
+  }
+  return 1.0 - keep;
+}
+
+// No-slip walls (sph::wall_viscous_weight).
+float sph_wall_viscous_weight(vec3 x, SphCoefs c) {
+  float w = 0.0;
+  for (int k = 0; k < 6; ++k) {
+    LOOP_TICK();
+    const int a = k >> 1;
+    const float d = (k & 1) != 0 ? c.hi[a] - x[a] : x[a] - c.lo[a];
+    const float q = (max(d, 0.0) + c.hi.w) * c.inv_h;
+    if (q < 1.0) {
+      const float u = 1.0 - q;
+      w += u * u * u * (1.0 + q);
     }
   }
-  return frac;
+  return w;
 }
 
 float sph_density_term(float r2, SphCoefs c) {
