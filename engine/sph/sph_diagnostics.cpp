@@ -12,6 +12,7 @@ SphDiagnostics compute_diagnostics(const SphState& s, const SphSimulation& sim) 
   const SphParticles& lay = sim.layout();
   const SphStepParams sp = sim.step_params();
   const double m = lay.mass;
+  const double thesis_c2 = signal_speed(sp) * signal_speed(sp);
   SphDiagnostics d;
   double fluid_mass = 0;
   d.surge_front = -1e300;
@@ -24,8 +25,12 @@ SphDiagnostics compute_diagnostics(const SphState& s, const SphSimulation& sim) 
     if (x.x < sc.box_min.x || x.y < sc.box_min.y || x.z < sc.box_min.z || x.x > sc.box_max.x ||
         x.y > sc.box_max.y || x.z > sc.box_max.z)
       ++d.outside;
-    if (sc.model == SphPressureModel::wcsph)
+    if (sc.model == SphPressureModel::wcsph) {
       d.internal += m * tait_internal_energy(s.density[i], sp);
+    } else if (s.density[i] > 0) {
+      // The thesis force is an isothermal gas's (signal_speed): e = c^2 ln(rho / rho0).
+      d.internal += m * thesis_c2 * std::log(s.density[i] / sc.rest_density);
+    }
     if (x.w > 0) {
       const double big_m = m / x.w;
       const double v2 = v.x * v.x + v.y * v.y + v.z * v.z;
