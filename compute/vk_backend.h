@@ -35,9 +35,6 @@ class VulkanBackend final : public Backend {
   const Capabilities& caps() const override { return ctx_.caps(); }
   std::unique_ptr<BufferImpl> create_buffer(ElemKind kind, size_t count,
                                             std::string_view label) override;
-  void upload_bytes(BufferImpl& dst, const void* src, size_t bytes, size_t offset) override;
-  void download_bytes(const BufferImpl& src, void* dst, size_t bytes, size_t offset) override;
-  void copy_bytes(const BufferImpl& src, BufferImpl& dst, size_t bytes) override;
   void fill_u32(BufferImpl& dst, uint32_t value) override;
   void finish() override;
   TimestampId timestamp() override { return stream_.timestamp(); }
@@ -65,6 +62,11 @@ class VulkanBackend final : public Backend {
   uint32_t take_max_loop_ticks();
   uint32_t tile_size() const { return options_.workgroup_size * options_.items_per_thread; }
   SortScatter sort_scatter() const { return scatter_; }
+
+ protected:
+  void write_bytes(BufferImpl& dst, const void* src, size_t bytes, size_t offset) override;
+  void read_bytes(const BufferImpl& src, void* dst, size_t bytes, size_t offset) override;
+  void copy_buffer(const BufferImpl& src, BufferImpl& dst, size_t bytes) override;
 
  private:
   const std::shared_ptr<Allocation>& alloc(const BufferImpl& b, std::string_view kernel) const;

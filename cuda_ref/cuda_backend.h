@@ -40,9 +40,6 @@ class CudaBackend final : public Backend {
   const Capabilities& caps() const override { return caps_; }
   std::unique_ptr<BufferImpl> create_buffer(ElemKind kind, size_t count,
                                             std::string_view label) override;
-  void upload_bytes(BufferImpl& dst, const void* src, size_t bytes, size_t offset) override;
-  void download_bytes(const BufferImpl& src, void* dst, size_t bytes, size_t offset) override;
-  void copy_bytes(const BufferImpl& src, BufferImpl& dst, size_t bytes) override;
   void fill_u32(BufferImpl& dst, uint32_t value) override;
   void finish() override;
   TimestampId timestamp() override;
@@ -70,6 +67,11 @@ class CudaBackend final : public Backend {
   uint32_t* diagnostics() const { return diag_; }  // {max_loop_ticks, flags, detail, reserved}
   dim3 grid_for(uint64_t blocks, const char* kernel) const;
   dim3 grid_for_items(uint64_t items, const char* kernel) const;
+
+ protected:
+  void write_bytes(BufferImpl& dst, const void* src, size_t bytes, size_t offset) override;
+  void read_bytes(const BufferImpl& src, void* dst, size_t bytes, size_t offset) override;
+  void copy_buffer(const BufferImpl& src, BufferImpl& dst, size_t bytes) override;
 
  private:
   void* ptr(const BufferImpl& b, const char* kernel) const;

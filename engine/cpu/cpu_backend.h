@@ -36,9 +36,6 @@ class CpuBackend final : public Backend {
   const Capabilities& caps() const override { return caps_; }
   std::unique_ptr<BufferImpl> create_buffer(ElemKind kind, size_t count,
                                             std::string_view label) override;
-  void upload_bytes(BufferImpl& dst, const void* src, size_t bytes, size_t offset) override;
-  void download_bytes(const BufferImpl& src, void* dst, size_t bytes, size_t offset) override;
-  void copy_bytes(const BufferImpl& src, BufferImpl& dst, size_t bytes) override;
   void fill_u32(BufferImpl& dst, uint32_t value) override;
   void finish() override {}
   TimestampId timestamp() override;
@@ -63,6 +60,11 @@ class CpuBackend final : public Backend {
   // ---- electron cloud, nebula lighting, volume
 
   ThreadPool& pool() { return pool_; }
+
+ protected:
+  void write_bytes(BufferImpl& dst, const void* src, size_t bytes, size_t offset) override;
+  void read_bytes(const BufferImpl& src, void* dst, size_t bytes, size_t offset) override;
+  void copy_buffer(const BufferImpl& src, BufferImpl& dst, size_t bytes) override;
 
  private:
   CpuBuffer& own(BufferImpl& b, std::string_view kernel);
