@@ -281,7 +281,9 @@ void check_raymarch(const DeviceApi& dev, const RaymarchParams& p, const Buffer<
   in_range(k, "tf_size", p.tf_size, 2, 4096);
   if (p.mode != Compositing::front_to_back && p.mode != Compositing::lerp)
     throw_invalid(k, "mode", std::to_string(uint32_t(p.mode)), "front_to_back or lerp");
-  const uint64_t segs = max_ray_segments(p);
+  // Loop iterations of the worst ray: its segments, plus a slab test (3) per skipped brick.
+  const UVec3 nb = brick_dims(p.volume, p.brick);
+  const uint64_t segs = max_ray_segments(p) + 3ull * (uint64_t(nb.x) + nb.y + nb.z) + 16;
   if (segs > kMaxRaySteps)
     throw_invalid(k, "step", fmt::format("{}", p.step),
                   fmt::format("large enough for at most {} samples across the box ({} now): "
@@ -289,8 +291,7 @@ void check_raymarch(const DeviceApi& dev, const RaymarchParams& p, const Buffer<
                               kMaxRaySteps, segs));
   at_least(k, "transfer function", tf.size(), p.tf_size);
   at_least(k, "volume", volume.size(), uint64_t(p.volume.dims.x) * p.volume.dims.y * p.volume.dims.z);
-  const UVec3 b = brick_dims(p.volume, p.brick);
-  at_least(k, "bricks", bricks.size(), uint64_t(b.x) * b.y * b.z);
+  at_least(k, "bricks", bricks.size(), uint64_t(nb.x) * nb.y * nb.z);
   at_least(k, "image", image.size(), uint64_t(p.width) * p.height);
 }
 
