@@ -63,11 +63,10 @@ void check_orbital_sample(const DeviceApi& dev, const OrbitalSampleParams& p,
                                                    p.azimuth_bins),
                   "in [1, 2^24]");
   positive(k, "radial_max_a0", p.radial_max_a0);
-  if (p.azimuth_periods < 2 && p.azimuth_bins && p.placement == OrbitalPlacement::exact)
-    throw_invalid(k, "azimuth_periods", std::to_string(p.azimuth_periods), "2|m| >= 2");
-  if (p.azimuth_periods > 256 || p.azimuth_periods % 2)
+  if (p.placement == OrbitalPlacement::exact && p.azimuth_bins &&
+      (p.azimuth_periods < 2 || p.azimuth_periods > 256 || p.azimuth_periods % 2))
     throw_invalid(k, "azimuth_periods", std::to_string(p.azimuth_periods),
-                  "an even number up to 256");
+                  "2|m|: an even number in [2, 256]");
   at_least(k, "tables", tables.size(), orbital_table_size(p));
 }
 

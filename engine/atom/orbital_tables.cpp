@@ -120,24 +120,21 @@ OrbitalTables shell_tables(const OrbitalState& s, uint32_t count, const TableOpt
   const double tr = std::accumulate(pr.begin(), pr.end(), 0.0);
   const double tt = std::accumulate(pt.begin(), pt.end(), 0.0);
   const size_t sites = size_t(o.shells) * o.shell_polar * o.shell_azimuth;
-  // Largest remainders: floor of each expected count, then one more for the largest fractions.
+  // Systematic rounding: site k gets round(S_k) - round(S_{k-1}) particles, S_k the running sum
+  // of expected counts. Every site gets the floor or the ceiling of its expectation, the total
+  // is exactly `count`, and a run of faint sites holding one particle's worth of probability
+  // still gets about one particle (rounding each site alone would empty the tails).
   std::vector<uint32_t> counts(sites);
-  std::vector<std::pair<double, uint32_t>> rest;
-  uint64_t placed = 0;
+  double run = 0;
+  uint64_t prev = 0;
   for (size_t i = 0; i < sites; ++i) {
     const size_t ir = i / (size_t(o.shell_polar) * o.shell_azimuth);
     const size_t it = (i / o.shell_azimuth) % o.shell_polar, ip = i % o.shell_azimuth;
-    const double want = double(count) * pr[ir] / tr * pt[it] / tt * pp[ip];
-    counts[i] = uint32_t(want);
-    placed += counts[i];
-    if (want - counts[i] > 0) rest.emplace_back(want - counts[i], uint32_t(i));
+    run += double(count) * pr[ir] / tr * pt[it] / tt * pp[ip];
+    const uint64_t upto = i + 1 == sites ? count : std::min<uint64_t>(count, std::llround(run));
+    counts[i] = uint32_t(upto > prev ? upto - prev : 0);
+    prev = std::max(prev, upto);
   }
-  const size_t extra = size_t(count - placed);
-  std::partial_sort(rest.begin(), rest.begin() + std::min(extra, rest.size()), rest.end(),
-                    [](const auto& a, const auto& b) {
-                      return a.first != b.first ? a.first > b.first : a.second < b.second;
-                    });
-  for (size_t k = 0; k < extra && k < rest.size(); ++k) ++counts[rest[k].second];
   OrbitalTables t;
   t.cdf.assign(sites + 1, 0);
   for (size_t i = 0; i < sites; ++i) t.cdf[i + 1] = t.cdf[i] + counts[i];

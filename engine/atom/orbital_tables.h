@@ -16,8 +16,9 @@
 // None is visible against the sampling noise of fewer than 10^9 particles.
 //
 // Shell placement (thesis Algorithm 2.1, `placement = shells`): sites on shells of width dr, cells
-// uniform in cos theta and phi; each site gets round(count * probability of its cell) particles
-// (largest remainders, so the total is exactly `count`), jittered uniformly in the cell's volume.
+// uniform in cos theta and phi; each site gets its expected count count * P(cell), rounded
+// systematically (running sums rounded, so the total is exactly `count`), jittered uniformly in
+// the cell's volume.
 // A stratified, piecewise-constant approximation of |psi|^2: its error is that of the site grid.
 #include <cstdint>
 #include <vector>
