@@ -54,7 +54,8 @@ class Backend : public DeviceApi {
   virtual void nebula_illuminate(const NebulaLightParams& p, const Buffer<Real4>& positions,
                                  const Buffer<Real>& density, Buffer<Real>& illumination) = 0;
   // Eq. 2.5-2.6 per particle: scattered toward the viewer and attenuated on the way (the only
-  // step a change of viewpoint reruns; a change of Phi only rescales).
+  // step a change of viewpoint reruns; a change of Phi only rescales). `table`: rows x bins of
+  // make_phase_table() (engine/atom/scatter_cache.h).
   virtual void nebula_view(const NebulaLightParams& p, const Buffer<Real4>& positions,
                            const Buffer<Real>& density, const Buffer<Real>& table,
                            const Buffer<Real>& illumination, Buffer<Real>& light) = 0;

@@ -5,10 +5,13 @@
 #include <doctest/doctest.h>
 
 #include <algorithm>
+#include <filesystem>
+#include <fstream>
 #include <cmath>
 #include <vector>
 
 #include "engine/atom/quadrature.h"
+#include "engine/atom/scatter_cache.h"
 #include "engine/error.h"
 #include "tests/backend_fixture.h"
 
@@ -256,4 +259,36 @@ TEST_CASE("scatter_table rejects bad input, naming the field") {
   p.rows = 1;
   p.albedo = 1.5f;
   CHECK_THROWS_WITH_AS(b.scatter_table(p, table, hits), doctest::Contains("albedo"), Error);
+}
+
+TEST_CASE("scatter tables are cached on disk, keyed by every parameter") {
+  const std::string dir = "scatter_cache_test_" + test::backend_name();
+  ScatterTableParams p;
+  p.rows = 3;
+  p.photons_per_row = 256;
+  std::filesystem::remove_all(dir);
+  bool hit = true;
+  const auto first = atom::scatter_table_cached(test::backend(), p, dir, &hit);
+  CHECK_FALSE(hit);
+  const auto again = atom::scatter_table_cached(test::backend(), p, dir, &hit);
+  CHECK(hit);
+  CHECK(again.hits == first.hits);
+  CHECK(again.weight == first.weight);
+  ScatterTableParams other = p;
+  other.g = 0.5f;  // any parameter changes the key
+  CHECK(atom::scatter_cache_path(other, dir) != atom::scatter_cache_path(p, dir));
+  atom::scatter_table_cached(test::backend(), other, dir, &hit);
+  CHECK_FALSE(hit);
+  {  // a damaged file is ignored and rewritten
+    std::ofstream(atom::scatter_cache_path(p, dir), std::ios::trunc) << "junk";
+  }
+  atom::scatter_table_cached(test::backend(), p, dir, &hit);
+  CHECK_FALSE(hit);
+  CHECK(atom::load_scatter_cache(p, dir).has_value());
+  // The phase table drops the unscattered photons from the forward bin.
+  const auto phase = atom::make_phase_table(first);
+  const uint32_t s = p.bins + kScatterExtras;
+  CHECK(phase[0 * p.bins + p.bins - 1] == doctest::Approx(0.0));
+  CHECK(phase[2 * p.bins + 10] == first.weight[2 * s + 10]);
+  std::filesystem::remove_all(dir);
 }

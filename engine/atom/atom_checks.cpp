@@ -155,7 +155,7 @@ void check_nebula_view(const DeviceApi& dev, const NebulaLightParams& p, const B
   in_range(k, "table_rows", p.table_rows, 1, 1u << 20);
   in_range(k, "table_bins", p.table_bins, 2, 1024);
   positive(k, "table_tau_step", p.table_tau_step);
-  at_least(k, "table", table.size(), uint64_t(p.table_rows) * (p.table_bins + kScatterExtras));
+  at_least(k, "table", table.size(), uint64_t(p.table_rows) * p.table_bins);
   at_least(k, "illumination", illumination.size(), p.grid.n);
 }
 

@@ -96,7 +96,7 @@ struct NebulaLightParams {
   Vec3f viewer{0, 0, 60};
   OpticalPath path = OpticalPath::exact;
   float step_a0 = 0.1f;  // midpoint path only
-  // Geometry of the scattering table (scatter_table's layout: rows x (bins + kScatterExtras)).
+  // Geometry of the phase table (rows x bins, from make_phase_table() of a scatter_table).
   uint32_t table_rows = 1000;
   uint32_t table_bins = 72;
   float table_tau_step = 0.01f;

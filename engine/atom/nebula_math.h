@@ -99,26 +99,22 @@ MASAV_HD inline T path_integral(const Grid<T>& g, hd::V3<T> a, hd::V3<T> b, Opti
   return sum;
 }
 
-// Scattered fraction per steradian P(tau, cos theta) from a scatter_table row layout (bins +
-// kScatterExtras per row): bilinear in tau (rows tau_step apart, clamped) and in cos theta
-// (between bin centres, clamped). The unscattered photons (which the thesis's table keeps in
-// the forward bin) are taken out: they are the star seen through the cell, not dust light.
+// Scattered fraction per steradian P(tau, cos theta) from a phase table (rows x bins, the
+// scattered part of each scatter_table bin: make_phase_table() takes the unscattered photons,
+// which the thesis's table keeps in the forward bin, out in double precision -- they are the
+// star seen through the cell, not dust light). Bilinear in tau (rows tau_step apart, clamped)
+// and in cos theta (between bin centres, clamped).
 template <class T, class Table>
 MASAV_HD inline T phase(const NebulaLightParams& p, T tau, T mu, Table&& table) {
-  const uint32_t rows = p.table_rows, bins = p.table_bins, stride = bins + kScatterExtras;
+  const uint32_t rows = p.table_rows, bins = p.table_bins;
   const T fr = hd::clamp_t(tau / T(p.table_tau_step), T(0), T(rows - 1u));
   const uint32_t r0 = uint32_t(fr), r1 = r0 + 1u < rows ? r0 + 1u : r0;
   const T wr = fr - T(r0);
   const T fb = hd::clamp_t((mu + T(1)) * T(bins) * T(0.5) - T(0.5), T(0), T(bins - 1u));
   const uint32_t b0 = uint32_t(fb), b1 = b0 + 1u < bins ? b0 + 1u : b0;
   const T wb = fb - T(b0);
-  auto at = [&](uint32_t r, uint32_t b) {
-    T v = table(r * stride + b);
-    if (b == bins - 1u) v -= table(r * stride + bins + kScatterUnscattered);
-    return hd::max_t(v, T(0));
-  };
-  const T v0 = at(r0, b0) * (T(1) - wb) + at(r0, b1) * wb;
-  const T v1 = at(r1, b0) * (T(1) - wb) + at(r1, b1) * wb;
+  const T v0 = table(r0 * bins + b0) * (T(1) - wb) + table(r0 * bins + b1) * wb;
+  const T v1 = table(r1 * bins + b0) * (T(1) - wb) + table(r1 * bins + b1) * wb;
   const T per_bin = v0 * (T(1) - wr) + v1 * wr;
   return per_bin / (T(2) * T(kPi) * (T(2) / T(bins)));
 }

@@ -74,13 +74,6 @@ float path_integral(NebulaGrid g, vec3 a, vec3 b, uint mode, float step_len) {
 }
 
 #ifdef NEBULA_TABLE
-float nebula_table_at(uint r, uint b, uint bins) {
-  const uint stride = bins + 3u;
-  float v = table_data[r * stride + b];
-  if (b == bins - 1u) v -= table_data[r * stride + bins + 2u];  // unscattered photons
-  return max(v, 0.0);
-}
-
 float nebula_phase(uint rows, uint bins, float tau_step, float tau, float mu) {
   const float fr = clamp(tau / tau_step, 0.0, float(rows - 1u));
   const uint r0 = uint(fr), r1 = r0 + 1u < rows ? r0 + 1u : r0;
@@ -88,8 +81,8 @@ float nebula_phase(uint rows, uint bins, float tau_step, float tau, float mu) {
   const float fb = clamp((mu + 1.0) * float(bins) * 0.5 - 0.5, 0.0, float(bins - 1u));
   const uint b0 = uint(fb), b1 = b0 + 1u < bins ? b0 + 1u : b0;
   const float wb = fb - float(b0);
-  const float v0 = nebula_table_at(r0, b0, bins) * (1.0 - wb) + nebula_table_at(r0, b1, bins) * wb;
-  const float v1 = nebula_table_at(r1, b0, bins) * (1.0 - wb) + nebula_table_at(r1, b1, bins) * wb;
+  const float v0 = table_data[r0 * bins + b0] * (1.0 - wb) + table_data[r0 * bins + b1] * wb;
+  const float v1 = table_data[r1 * bins + b0] * (1.0 - wb) + table_data[r1 * bins + b1] * wb;
   return (v0 * (1.0 - wr) + v1 * wr) / (2.0 * NEBULA_PI * (2.0 / float(bins)));
 }
 #endif
