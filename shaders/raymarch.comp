@@ -46,8 +46,11 @@ vec4 march(uint px, uint py) {
   const uvec3 dims = pc.dims_tf.xyz;
   const vec3 spacing = (hi - lo) / vec3(dims);
   const uvec3 nb = (dims + brick - 1u) / brick;
+  // No loop may nest in this one (see slab.glsl): lavapipe would count each sample twice.
   uint i = 0u;
-  for (uint it = 0u; it < n && i < n; ++it) {
+  bool done = false;
+  for (uint it = 0u; it < n; ++it) {
+    if (i >= n || done) break;
     LOOP_TICK();
     const uint seg = lerp_mode ? n - 1u - i : i;
     const float s0 = tn + float(seg) * step_len;
@@ -55,8 +58,8 @@ vec4 march(uint px, uint py) {
     const float tm = 0.5 * (s0 + s1);
     const vec3 pos = eye + dir * tm;
     const vec3 u = (pos - lo) / spacing - 0.5;
+    bool skipped = false;
     if (skip) {
-      // No loops here: lavapipe counts every loop iteration against its limit.
       const uvec3 bi = uvec3(clamp(floor(u / float(brick)), vec3(0.0), vec3(nb - 1u)));
       if (bricks[(bi.z * nb.y + bi.y) * nb.x + bi.x].z <= 0.0) {
         vec3 blo, bhi;
@@ -70,23 +73,25 @@ vec4 march(uint px, uint py) {
           if (first > float(next)) next = first >= float(n) ? n : uint(first);
         }
         i = next;
-        continue;
+        skipped = true;
       }
     }
-    const float v = trilinear(u, dims);
-    const vec4 col = transfer((v - pc.up_vmin.w) * pc.box_min_vscale.w, pc.dims_tf.w);
-    if (lerp_mode) {
-      acc.rgb += (col.rgb - acc.rgb) * col.a;
-      acc.a += (1.0 - acc.a) * col.a;
-    } else {
-      const float h = s1 - s0;
-      const float alpha = 1.0 - pow(max(0.0, 1.0 - col.a), h / pc.forward_ref.w);
-      const float w = (1.0 - acc.a) * alpha;
-      acc.rgb += w * col.rgb;
-      acc.a += w;
-      if (acc.a >= pc.right_term.w) break;
+    if (!skipped) {
+      const float v = trilinear(u, dims);
+      const vec4 col = transfer((v - pc.up_vmin.w) * pc.box_min_vscale.w, pc.dims_tf.w);
+      if (lerp_mode) {
+        acc.rgb += (col.rgb - acc.rgb) * col.a;
+        acc.a += (1.0 - acc.a) * col.a;
+      } else {
+        const float h = s1 - s0;
+        const float alpha = 1.0 - pow(max(0.0, 1.0 - col.a), h / pc.forward_ref.w);
+        const float w = (1.0 - acc.a) * alpha;
+        acc.rgb += w * col.rgb;
+        acc.a += w;
+        done = acc.a >= pc.right_term.w;
+      }
+      ++i;
     }
-    ++i;
   }
   return acc;
 }
