@@ -13,7 +13,8 @@ struct AccumulatePush {
   uint32_t cells;
 };
 struct FinalizePush {
-  uint32_t cells, particles;
+  uint32_t dims_cells[4];
+  uint32_t particles;
   float s, t;
 };
 struct BrickPush {
@@ -53,7 +54,7 @@ void VulkanBackend::voxelize(const VoxelizeParams& p, const Buffer<Real4>& posit
   run({"voxelize_accumulate", 3, sizeof acc, {}},
       {alloc(positions.impl(), k), alloc(light.impl(), k), tallies}, &acc,
       groups_for(g.n, options_.workgroup_size));
-  const FinalizePush fin{uint32_t(cells), g.n, p.s, p.t};
+  const FinalizePush fin{{g.dims.x, g.dims.y, g.dims.z, uint32_t(cells)}, g.n, p.s, p.t};
   run({"voxelize_finalize", 4, sizeof fin, {}},
       {tallies, alloc(probability.impl(), k), alloc(mean_light.impl(), k),
        alloc(sample.impl(), k)},

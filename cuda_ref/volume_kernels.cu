@@ -31,14 +31,17 @@ __global__ void accumulate_kernel(VoxelizeParams p, const float4* pos, const flo
 __global__ void finalize_kernel(VoxelizeParams p, const uint32_t* counts,
                                 const unsigned long long* sums, float* prob, float* mean,
                                 float* sample) {
-  const uint64_t c = flat_thread();
-  const uint32_t cells = p.grid.dims.x * p.grid.dims.y * p.grid.dims.z;
-  if (c >= cells) return;
+  const uint64_t o = flat_thread();  // output x fastest; the grid's cell id is z fastest
+  const uint32_t dx = p.grid.dims.x, dy = p.grid.dims.y, dz = p.grid.dims.z;
+  const uint32_t cells = dx * dy * dz;
+  if (o >= cells) return;
+  const uint32_t x = uint32_t(o % dx), y = uint32_t(o / dx % dy), z = uint32_t(o / (dx * dy));
+  const uint32_t c = (x * dy + y) * dz + z;
   const uint32_t n = counts[c];
   const float g = n ? float(double(sums[c]) / 16777216.0) / float(n) : 0.0f;
-  prob[c] = float(n) / float(p.grid.n);
-  mean[c] = g;
-  sample[c] = p.s * g + p.t * float(n) / float(counts[cells]);
+  prob[o] = float(n) / float(p.grid.n);
+  mean[o] = g;
+  sample[o] = p.s * g + p.t * float(n) / float(counts[cells]);
 }
 
 __global__ void bricks_kernel(VolumeBrickParams p, const float* vol, const float4* tf,

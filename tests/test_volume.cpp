@@ -117,12 +117,13 @@ TEST_CASE("voxelize: exact counts, sum p = 1, g the mean light, sample = s g + t
   const double max_count = *std::max_element(count.begin(), count.end());
   double total = 0;
   size_t count_mismatch = 0;
-  for (size_t c = 0; c < cells; ++c) {
-    count_mismatch += std::llround(got.p[c] * n) != std::llround(count[c]);
-    total += got.p[c];
+  for (size_t o = 0; o < cells; ++o) {  // outputs x fastest, grid cell ids z fastest
+    const size_t c = (o % 24 * 24 + o / 24 % 24) * 24 + o / 576;
+    count_mismatch += std::llround(got.p[o] * n) != std::llround(count[c]);
+    total += got.p[o];
     const double g = count[c] ? sum[c] / count[c] : 0.0;
-    CHECK(std::abs(got.g[c] - g) <= 2e-6);
-    CHECK(std::abs(got.sample[c] - (vp.s * g + vp.t * count[c] / max_count)) <= 3e-6);
+    CHECK(std::abs(got.g[o] - g) <= 2e-6);
+    CHECK(std::abs(got.sample[o] - (vp.s * g + vp.t * count[c] / max_count)) <= 3e-6);
   }
   CHECK(count_mismatch == 0);
   CHECK(total == doctest::Approx(1.0).epsilon(1e-5));

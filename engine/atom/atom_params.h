@@ -107,6 +107,8 @@ constexpr uint32_t kMaxPathSteps = 60000;  // lavapipe's loop limit, with margin
 // Thesis §3.3.2 on an N^3 grid: p(i) = particles in cell i / particles (clamped into the grid, so
 // sum p = 1), g(i) = mean over those particles of min(1, light * light_to_unit), and
 // sample(i) = s * g(i) + t * p(i) / max_i p(i) (p normalised so that t weighs on [0, 1] too).
+// Cells are the hash grid's (same fp32 rule); the outputs are stored x fastest, index
+// (z * dims.y + y) * dims.x + x, like volume files, so raymarch reads them directly.
 struct VoxelizeParams {
   GridParams grid;  // grid.n = particles
   float s = 0.7f;

@@ -33,10 +33,12 @@ void CpuBackend::voxelize(const VoxelizeParams& p, const Buffer<Real4>& position
   }
   const uint32_t max_count = *std::max_element(count.begin(), count.end());
   const double inv_n = 1.0 / double(p.grid.n);
-  for (size_t c = 0; c < cells; ++c) {
-    prob[c] = double(count[c]) * inv_n;
-    mean[c] = count[c] ? sum[c] / double(count[c]) : 0.0;
-    smp[c] = double(p.s) * mean[c] + double(p.t) * double(count[c]) / double(max_count);
+  for (size_t o = 0; o < cells; ++o) {  // output o is x fastest; the grid's cell id z fastest
+    const size_t x = o % dims[0], y = o / dims[0] % dims[1], z = o / (size_t(dims[0]) * dims[1]);
+    const size_t c = (x * dims[1] + y) * dims[2] + z;
+    prob[o] = double(count[c]) * inv_n;
+    mean[o] = count[c] ? sum[c] / double(count[c]) : 0.0;
+    smp[o] = double(p.s) * mean[o] + double(p.t) * double(count[c]) / double(max_count);
   }
 }
 
