@@ -177,7 +177,7 @@ RaymarchParams default_raymarch(const VolumeDesc& d, ViewPreset view, uint32_t w
   const float ex = d.box_max.x - d.box_min.x, ey = d.box_max.y - d.box_min.y,
               ez = d.box_max.z - d.box_min.z;
   const float half_diag = 0.5f * std::sqrt(ex * ex + ey * ey + ez * ez);
-  const Vec3f e = view_eye(view, 2.6f * half_diag);
+  const Vec3f e = view_eye(view, 1.9f * half_diag);
   rp.eye = {c.x + e.x, c.y + e.y, c.z + e.z};
   rp.target = c;
   rp.up = view_up(view);

@@ -33,11 +33,11 @@ struct AtomSceneOptions {
   bool use_cache = true;
   float source_power_lm = 250000.0f;
   Vec3f viewer{0, 0, 0};           // (0, 0, 0) = in front, at 2.5 box half-widths
-  float tau_peak = 2.0f;  // scattering depth of one cell at the state's peak density
+  float tau_peak = 0.5f;  // scattering depth of one cell at the state's peak density
   OpticalPath path = OpticalPath::exact;
   float step_a0 = 0.0f;          // midpoint path step; 0 = half a cell
   uint32_t volume_dims = 60;     // voxelize: N^3
-  float s = 0.7f, t = 0.3f;      // sample = s g + t p
+  float s = 0.6f, t = 0.4f;      // sample = s g + t p (the thesis: s > t)
   float exposure = 0.0f;         // light -> [0, 1] green; 0 = automatic (see view())
 };
 
@@ -93,7 +93,7 @@ class AtomScene {
 // returns the float RGBA image (premultiplied, top row first).
 std::vector<Vec4d> render_volume(Backend& b, const VolumeDesc& desc, const Buffer<Real>& volume,
                                  const std::vector<Vec4d>& tf, RaymarchParams rp);
-// A camera for `desc`: eye from the preset at ~2.6 half-diagonals, step half a voxel.
+// A camera for `desc`: eye from the preset at 1.9 half-diagonals, step half a voxel.
 RaymarchParams default_raymarch(const VolumeDesc& desc, ViewPreset view, uint32_t width,
                                 uint32_t height);
 
