@@ -12,6 +12,7 @@
 
 #include "engine/atom/quadrature.h"
 #include "engine/atom/scatter_cache.h"
+#include "engine/atom/scatter_reference.h"
 #include "engine/error.h"
 #include "tests/backend_fixture.h"
 
@@ -39,28 +40,6 @@ Table run_table(Backend& b, const ScatterTableParams& p) {
 double hg_cdf(double g, double x) {  // P(cos theta <= x) of Henyey-Greenstein
   if (std::abs(g) < 1e-9) return 0.5 * (x + 1);
   return (1 - g * g) / (2 * g) * (1 / std::sqrt(1 + g * g - 2 * g * x) - 1 / (1 + g));
-}
-
-double hg_pdf(double g, double mu) {
-  return 0.5 * (1 - g * g) / std::pow(1 + g * g - 2 * g * mu, 1.5);
-}
-
-// Photons entering at z = -1 along +z, scattering once at depth s, then escaping unscattered
-// into bin j: int_0^2 tau e^{-tau s} int_bin p_HG(mu) e^{-tau L(s, mu)} dmu ds, L the distance
-// from (0, 0, s - 1) along mu to the unit sphere. Independent of the kernel's code.
-std::vector<double> single_scattering(double tau, double g, uint32_t bins) {
-  std::vector<double> out(bins);
-  for (uint32_t j = 0; j < bins; ++j) {
-    const double lo = -1 + 2.0 * j / bins, hi = -1 + 2.0 * (j + 1) / bins;
-    out[j] = atom::integrate([&](double s) {
-      const double z = s - 1;
-      return tau * std::exp(-tau * s) * atom::integrate([&](double mu) {
-        const double L = -z * mu + std::sqrt(std::max(0.0, 1 - z * z * (1 - mu * mu)));
-        return hg_pdf(g, mu) * std::exp(-tau * L);
-      }, lo, hi, 2);
-    }, 0, 2, 48);
-  }
-  return out;
 }
 
 double chi_critical(int dof) {  // p = 1e-4, Wilson-Hilferty
@@ -167,7 +146,7 @@ TEST_CASE("scatter_table: single scattering equals an independent quadrature") {
     p.photons_per_row = 1u << 16;
     const Table t = run_table(test::backend(), p);
     const double tf = double(float(tau));
-    const auto ps = single_scattering(tf, p.g, p.bins);
+    const auto ps = atom::single_scattering(tf, p.g, p.bins);
     const double n = p.photons_per_row, unscattered = std::exp(-2 * tf);
     std::vector<double> obs, expect;
     double p_single = 0;
@@ -198,7 +177,7 @@ TEST_CASE("scatter_table: single scattering equals an independent quadrature") {
   p.photons_per_row = 1u << 16;
   const Table t = run_table(test::backend(), p);
   const double tau = double(p.tau_step);
-  const auto ps = single_scattering(tau, p.g, p.bins);
+  const auto ps = atom::single_scattering(tau, p.g, p.bins);
   double w = -t.w(0, p.bins + kScatterUnscattered), w1 = 0;
   for (uint32_t b = 0; b < p.bins; ++b) w += t.w(0, b), w1 += p.albedo * ps[b];
   const double sigma = p.albedo * std::sqrt(w1 / p.albedo / p.photons_per_row);
