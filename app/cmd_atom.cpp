@@ -139,6 +139,10 @@ int run_atom(const AtomCliOptions& o) {
 }
 
 int run_volume(const VolumeCliOptions& o) {
+  const std::vector<Vec4d> tf = transfer(o.tf);  // every input is checked before any work
+  const atom::ViewPreset view = atom::parse_view(o.view);
+  if (o.mode != "front-to-back" && o.mode != "lerp")
+    throw_invalid("masav volume", "--mode", o.mode, "front-to-back or lerp");
   atom::ScalarVolume vol;
   const std::string ext = std::filesystem::path(o.file).extension().string();
   if (ext == ".nrrd" || ext == ".nhdr") {
@@ -161,12 +165,10 @@ int run_volume(const VolumeCliOptions& o) {
   auto backend = create_backend(o.choice.backend, o.choice.device);
   auto buf = backend->create<Real>(vol.values.size(), "volume");
   backend->upload(buf, std::span<const float>(vol.values));
-  RaymarchParams rp = atom::default_raymarch(desc, atom::parse_view(o.view), o.width, o.height);
+  RaymarchParams rp = atom::default_raymarch(desc, view, o.width, o.height);
   rp.step *= 2.0f * o.step_voxels;
-  if (o.mode != "front-to-back" && o.mode != "lerp")
-    throw_invalid("masav volume", "--mode", o.mode, "front-to-back or lerp");
   rp.mode = o.mode == "lerp" ? Compositing::lerp : Compositing::front_to_back;
-  const auto img = atom::render_volume(*backend, desc, buf, transfer(o.tf), rp);
+  const auto img = atom::render_volume(*backend, desc, buf, tf, rp);
   atom::write_image_png(img, o.width, o.height, o.out);
   fmt::print("volume: {}x{}x{} values in [{}, {}] raymarched on {} to {}\n", desc.dims.x,
              desc.dims.y, desc.dims.z, vol.min, vol.max, backend->name(), o.out);
