@@ -1,14 +1,13 @@
 #!/usr/bin/python3
 """Plots of the electron-cloud benchmarks (masav bench atom|scatter|light|raymarch).
 
-usage: tools/plot_atom_bench.py PREFIX
-  reads PREFIX_atom.json, PREFIX_scatter.json, PREFIX_light.json, PREFIX_raymarch.json (those
-  present) and writes PREFIX_table23.png (our times beside the thesis's Table 2.3 and its 32-37 ms
-  raymarch) and PREFIX_error.png (run time against error for each accuracy knob).
+usage: tools/plot_atom_bench.py OUT_PREFIX RECORD.json...
+  reads the records (each names its benchmark: atom, scatter, light, raymarch) and writes
+  OUT_PREFIX_table23.png (our times beside the thesis's Table 2.3 and its 32-37 ms raymarch)
+  and OUT_PREFIX_error.png (run time against error for each accuracy knob).
 Needs python3-matplotlib (tools/setup --plots).
 """
 import json
-import os
 import sys
 
 import matplotlib
@@ -17,12 +16,13 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
 
-def load(prefix, name):
-    path = f"{prefix}_{name}.json"
-    if not os.path.exists(path):
-        return None
-    with open(path) as f:
-        return json.load(f)
+def load(paths):
+    records = {}
+    for path in paths:
+        with open(path) as f:
+            record = json.load(f)
+        records[record["benchmark"]] = record
+    return records
 
 
 def label(row):
@@ -127,14 +127,15 @@ def plot_errors(prefix, atom, scatter, light, ray):
 
 
 def main():
-    if len(sys.argv) != 2:
+    if len(sys.argv) < 3:
         print(__doc__)
         return 2
     prefix = sys.argv[1]
-    atom, scatter = load(prefix, "atom"), load(prefix, "scatter")
-    light, ray = load(prefix, "light"), load(prefix, "raymarch")
+    records = load(sys.argv[2:])
+    atom, scatter = records.get("atom"), records.get("scatter")
+    light, ray = records.get("light"), records.get("raymarch")
     if not any((atom, scatter, light, ray)):
-        print(f"no {prefix}_{{atom,scatter,light,raymarch}}.json found")
+        print("no atom, scatter, light or raymarch record among the files")
         return 1
     plot_tables(prefix, atom, light, ray)
     plot_errors(prefix, atom, scatter, light, ray)
