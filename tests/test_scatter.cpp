@@ -4,6 +4,8 @@
 // matched by a chi-square test, and bad input.
 #include <doctest/doctest.h>
 
+#include <unistd.h>
+
 #include <algorithm>
 #include <filesystem>
 #include <fstream>
@@ -241,7 +243,11 @@ TEST_CASE("scatter_table rejects bad input, naming the field") {
 }
 
 TEST_CASE("scatter tables are cached on disk, keyed by every parameter") {
-  const std::string dir = "scatter_cache_test_" + test::backend_name();
+  // Unique per process: the Vulkan variants of this binary may run at the same time.
+  const std::string dir = (std::filesystem::temp_directory_path() /
+                           ("masav_scatter_cache_" + test::backend_name() + "_" +
+                            std::to_string(::getpid())))
+                              .string();
   ScatterTableParams p;
   p.rows = 3;
   p.photons_per_row = 256;
