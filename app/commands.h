@@ -7,6 +7,7 @@ namespace masav::app {
 void add_info_command(CLI::App& app);
 void add_check_command(CLI::App& app);
 void add_bench_command(CLI::App& app);
+void add_atom_command(CLI::App& app);  // also `masav volume`
 
 // Shared --backend / --device options.
 struct BackendChoice {

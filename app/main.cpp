@@ -15,6 +15,7 @@ int main(int argc, char** argv) {
   masav::app::add_info_command(app);
   masav::app::add_check_command(app);
   masav::app::add_bench_command(app);
+  masav::app::add_atom_command(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

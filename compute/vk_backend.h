@@ -57,6 +57,24 @@ class VulkanBackend final : public Backend {
   // ---- SPH fluid
 
   // ---- electron cloud, nebula lighting, volume
+  void orbital_sample(const OrbitalSampleParams& p, const Buffer<uint32_t>& tables,
+                      Buffer<Real4>& positions) override;
+  void cloud_density(const CloudDensityParams& p, const Buffer<uint32_t>& cell_start,
+                     const Buffer<uint32_t>& cell_end, Buffer<Real>& density) override;
+  void scatter_table(const ScatterTableParams& p, Buffer<Real>& table,
+                     Buffer<uint32_t>& hits) override;
+  void nebula_illuminate(const NebulaLightParams& p, const Buffer<Real4>& positions,
+                         const Buffer<Real>& density, Buffer<Real>& illumination) override;
+  void nebula_view(const NebulaLightParams& p, const Buffer<Real4>& positions,
+                   const Buffer<Real>& density, const Buffer<Real>& table,
+                   const Buffer<Real>& illumination, Buffer<Real>& light) override;
+  void voxelize(const VoxelizeParams& p, const Buffer<Real4>& positions, const Buffer<Real>& light,
+                Buffer<Real>& probability, Buffer<Real>& mean_light,
+                Buffer<Real>& sample) override;
+  void volume_bricks(const VolumeBrickParams& p, const Buffer<Real>& volume,
+                     const Buffer<Real4>& tf, Buffer<Real4>& bricks) override;
+  void raymarch(const RaymarchParams& p, const Buffer<Real>& volume, const Buffer<Real4>& tf,
+                const Buffer<Real4>& bricks, Buffer<Real4>& image) override;
 
   // The most loop iterations any invocation ran since the last call (needs count_loop_ticks).
   uint32_t take_max_loop_ticks();
