@@ -296,25 +296,27 @@ TEST_CASE("demo screenshots" * doctest::skip(std::getenv("MASAV_DEMO_SHOTS") == 
   };
   const Frame a = load("a.png"), b = load("b.png"), c = load("c.png"), d = load("d.png"),
               e = load("e.png");
-  // The scene area: left of the panel, below the overlay.
+  // The scene area: left of the panel, below the overlay (the bottom-left quarter).
   auto region_mean = [](const Frame& f) {
     double s = 0;
     size_t n = 0;
-    for (uint32_t y = f.h / 3; y < f.h; ++y)
+    for (uint32_t y = f.h / 2; y < f.h; ++y)
       for (uint32_t x = 0; x < f.w / 2; ++x, ++n) {
         const Rgb c = f.at(int(x), int(y));
         s += c.r + c.g + c.b;
       }
     return s / double(n);
   };
-  auto warm_fraction = [](const Frame& f) {  // red-dominated lit pixels among lit ones
+  // Red-dominated lit pixels among lit ones: inferno's middle (never viridis, whose yellow has
+  // nearly as much green as red).
+  auto warm_fraction = [](const Frame& f) {
     size_t warm = 0, lit_px = 0;
-    for (uint32_t y = f.h / 3; y < f.h; ++y)
+    for (uint32_t y = f.h / 2; y < f.h; ++y)
       for (uint32_t x = 0; x < f.w / 2; ++x) {
         const Rgb c = f.at(int(x), int(y));
         if (!lit(c)) continue;
         ++lit_px;
-        warm += c.r > c.b + 40;
+        warm += c.r > c.b + 40 && c.r > c.g + 40;
       }
     return lit_px ? double(warm) / double(lit_px) : 0.0;
   };
