@@ -13,7 +13,7 @@
 #include "app/scene_options.h"
 #include "engine/error.h"
 #include "engine/util/json_writer.h"
-#include "render/png.h"
+#include "render/png_queue.h"
 #include "render/scene_player.h"
 
 namespace masav::app {
@@ -95,23 +95,36 @@ int run(const RunOptions& o) {
   const double fps = p.get_real("run.fps");
   const double start = p.get_real("run.start_time_s");
   Progress progress("frames", uint64_t(frames));
+  render::PngQueue pngs;
   const auto t0 = std::chrono::steady_clock::now();
   int written = 0;
   uint64_t ran = 0, skipped = 0;
+  double update_s = 0, draw_s = 0, png_s = 0;  // wall time of each part of a frame
+  auto lap = [](std::chrono::steady_clock::time_point& t) {
+    const auto now = std::chrono::steady_clock::now();
+    const double s = std::chrono::duration<double>(now - t).count();
+    t = now;
+    return s;
+  };
   for (int i = 0; i < frames && !interrupted(); ++i) {
     player.clock().frame = uint64_t(i);
     player.clock().time_s = start + double(i) / fps;
+    auto t = std::chrono::steady_clock::now();
     const scene::UpdateReport u = player.update();
+    update_s += lap(t);
     ran += u.ran.size();
     skipped += u.skipped.size();
     render::FrameRequest req;
     req.readback = true;
     player.draw(req);
-    render::write_png(o.out + "/" + frame_name(i), player.renderer().width(),
-                      player.renderer().height(), player.renderer().pixels());
+    draw_s += lap(t);
+    pngs.push(o.out + "/" + frame_name(i), player.renderer().width(), player.renderer().height(),
+              player.renderer().pixels());
+    png_s += lap(t);  // waiting for the encoder (it works while the next frame is drawn)
     ++written;
     progress.update(uint64_t(written));
   }
+  pngs.finish();
   progress.finish();
   const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   fmt::print("wrote {} frames ({}x{}) to {}/ in {:.2f} s ({:.1f} ms per frame)\n", written,
@@ -119,6 +132,10 @@ int run(const RunOptions& o) {
              written ? 1e3 * s / written : 0.0);
   if (o.stats) {
     fmt::print("stages over {} frames: {} runs, {} skipped\n", written, ran, skipped);
+    if (written)
+      fmt::print("per frame: stages {:.1f} ms, drawing and readback {:.1f} ms, waiting for the "
+                 "PNG encoder {:.1f} ms (wall time)\n",
+                 1e3 * update_s / written, 1e3 * draw_s / written, 1e3 * png_s / written);
     fmt::print("{}", scene::format_stage_stats(player.scene().graph().counters()));
     fmt::print("bytes copied to the renderer: {}\n", player.renderer().bridge().bytes_copied());
   }

@@ -16,6 +16,7 @@
 #include "engine/scene/common_tables.h"
 #include "engine/scene/scene.h"
 #include "engine/scene/scene_file.h"
+#include "engine/scene/stage_cache.h"
 #include "engine/util/chi_square.h"
 #include "engine/verify/cross_check.h"
 
@@ -175,6 +176,63 @@ TEST_CASE("the stage graph runs a stage only when an input changed") {
   g.add_stage("loop2", {"loop1"}, stage("l"));
   const std::vector<std::string> loop = {"loop1"};
   CHECK(error_of([&] { g.update(loop); }).find("depends on itself") != std::string::npos);
+}
+
+TEST_CASE("a cached stage computes once, then loads from disk until its parameters change") {
+  namespace fs = std::filesystem;
+  const fs::path dir = fs::temp_directory_path() / "masav_stage_cache_test";
+  fs::remove_all(dir);
+  const StageCache cache(dir.string());
+  ParamSet p = default_params(find_scene_type("particles"));
+  int computed = 0;
+  std::vector<uint8_t> restored;
+  const std::vector<std::string> keyed = {"particles.seed", "particles.count"};
+  auto make_graph = [&](StageGraph& g) {
+    g.add_input("particles.seed");
+    g.add_stage("table", {"particles.seed"}, [&] {
+      return std::make_unique<CachedStage>(
+          cache, [&] { return StageCache::key("table", 1, p, keyed); },
+          [&] {
+            ++computed;
+            return std::vector<uint8_t>{1, 2, 3, uint8_t(p.get_int("particles.seed"))};
+          },
+          [&](std::span<const uint8_t> b) { restored.assign(b.begin(), b.end()); });
+    });
+  };
+  const std::vector<std::string> targets = {"table"};
+  {
+    StageGraph g;  // first run: computes and stores
+    make_graph(g);
+    CHECK(g.update(targets).cached.empty());
+    CHECK(computed == 1);
+  }
+  {
+    StageGraph g;  // "the next run of masav": loads
+    make_graph(g);
+    CHECK(g.update(targets).cached == std::vector<std::string>{"table"});
+    CHECK(computed == 1);
+    CHECK(restored == std::vector<uint8_t>{1, 2, 3, 1});
+    CHECK(g.counters("table").cache_hits == 1);
+    // Another seed is another key: computed (and stored), then that one loads too.
+    p.set("particles.seed", int64_t(9));
+    g.touch("particles.seed");
+    CHECK(g.update(targets).cached.empty());
+    CHECK(computed == 2);
+  }
+  // A damaged file is a miss, never an error.
+  const std::string k = StageCache::key("table", 1, p, keyed);
+  {
+    std::ofstream out(cache.path_of(k), std::ios::binary | std::ios::trunc);
+    out << "MASAVSC1 truncated";
+  }
+  CHECK_FALSE(cache.load(k).has_value());
+  CHECK(cache.store(k, std::vector<uint8_t>{7}));
+  CHECK(cache.load(k) == std::vector<uint8_t>{7});
+  CHECK_FALSE(cache.load(k + " other").has_value());
+  std::string why;
+  CHECK_FALSE(StageCache("/proc/masav").store(k, std::vector<uint8_t>{1}, &why));
+  CHECK(why.find("cannot write") != std::string::npos);
+  fs::remove_all(dir);
 }
 
 TEST_CASE("the particle scene reruns only what a change needs and never creates the rest") {

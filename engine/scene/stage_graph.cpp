@@ -114,6 +114,10 @@ UpdateReport StageGraph::update(std::span<const std::string> targets, Backend* t
     n->version = ++clock_;
     ++n->counters.runs;
     report.ran.push_back(n->name);
+    if (n->stage->loaded_from_cache()) {
+      ++n->counters.cache_hits;
+      report.cached.push_back(n->name);
+    }
   }
   if (timing) {
     timing->finish();
@@ -142,17 +146,17 @@ const StageCounters& StageGraph::counters(std::string_view stage) const {
 
 void StageGraph::reset_counters() {
   for (auto& n : nodes_) {
-    n->counters.runs = n->counters.skips = 0;
+    n->counters.runs = n->counters.skips = n->counters.cache_hits = 0;
     n->counters.total_ms = 0;
   }
 }
 
 std::string format_stage_stats(const std::vector<StageCounters>& counters) {
-  std::string out = fmt::format("  {:<24} {:>8} {:>6} {:>8} {:>10} {:>10}\n", "stage", "created",
-                                "runs", "skipped", "last ms", "mean ms");
+  std::string out = fmt::format("  {:<24} {:>8} {:>6} {:>8} {:>7} {:>10} {:>10}\n", "stage",
+                                "created", "runs", "skipped", "cached", "last ms", "mean ms");
   for (const auto& c : counters)
-    out += fmt::format("  {:<24} {:>8} {:>6} {:>8} {:>10.3f} {:>10.3f}\n", c.name,
-                       c.created ? "yes" : "never", c.runs, c.skips, c.last_ms,
+    out += fmt::format("  {:<24} {:>8} {:>6} {:>8} {:>7} {:>10.3f} {:>10.3f}\n", c.name,
+                       c.created ? "yes" : "never", c.runs, c.skips, c.cache_hits, c.last_ms,
                        c.runs ? c.total_ms / double(c.runs) : 0.0);
   return out;
 }

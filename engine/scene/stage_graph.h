@@ -29,6 +29,9 @@ class Stage {
  public:
   virtual ~Stage() = default;
   virtual void run() = 0;
+  // Whether the last run() restored the output from the disk cache (stage_cache.h) instead of
+  // computing it.
+  virtual bool loaded_from_cache() const { return false; }
 };
 
 // A stage made from a lambda, for stages whose state lives in the scene.
@@ -46,13 +49,14 @@ struct StageCounters {
   bool created = false;
   uint64_t runs = 0;   // times it ran
   uint64_t skips = 0;  // updates that reached it while it was up to date
+  uint64_t cache_hits = 0;  // runs that loaded the output from the disk cache
   double last_ms = 0;  // device time of its last run
   double total_ms = 0;
 };
 
 // What one update() did.
 struct UpdateReport {
-  std::vector<std::string> ran, skipped, created;
+  std::vector<std::string> ran, skipped, created, cached;
 };
 
 class StageGraph {
