@@ -88,8 +88,9 @@ int run_export(const ExportOptions& o) {
 
 void add_export_command(CLI::App& app) {
   static ExportOptions o;
-  auto* cmd = app.add_subcommand("export", "write a scene's particles (.vtp), resolved scene "
-                                           "(.toml) and stage counters (.csv) at a frame");
+  auto* cmd = app.add_subcommand("export",
+                                 "write a scene's particles (.vtp), resolved scene "
+                                 "(.toml) and stage counters (.csv) at a frame");
   add_scene_options(*cmd, o.scene, false);
   add_backend_options(*cmd, o.choice, false);
   cmd->add_option("--frame", o.frame, "frame to export")

@@ -29,7 +29,9 @@ struct RunOptions {
   bool no_video = false;
 };
 
-std::string frame_name(int i) { return fmt::format("frame_{:05d}.png", i); }
+std::string frame_name(int i) {
+  return fmt::format("frame_{:05d}.png", i);
+}
 
 // Encodes the frames with ffmpeg into a temporary file, renamed when complete.
 void write_video(const std::string& ffmpeg, const std::string& dir, const std::string& name,
@@ -45,8 +47,10 @@ void write_video(const std::string& ffmpeg, const std::string& dir, const std::s
   std::error_code ec;
   if (rc != 0) {
     std::filesystem::remove(tmp, ec);
-    fmt::print(stderr, "masav: warning: ffmpeg could not encode the video (exit {}); the PNG "
-                       "frames are complete\n", rc);
+    fmt::print(stderr,
+               "masav: warning: ffmpeg could not encode the video (exit {}); the PNG "
+               "frames are complete\n",
+               rc);
     return;
   }
   std::filesystem::rename(tmp, out, ec);
@@ -133,15 +137,18 @@ int run(const RunOptions& o) {
   if (o.stats) {
     fmt::print("stages over {} frames: {} runs, {} skipped\n", written, ran, skipped);
     if (written)
-      fmt::print("per frame: stages {:.1f} ms, drawing and readback {:.1f} ms, waiting for the "
-                 "PNG encoder {:.1f} ms (wall time)\n",
-                 1e3 * update_s / written, 1e3 * draw_s / written, 1e3 * png_s / written);
+      fmt::print(
+          "per frame: stages {:.1f} ms, drawing and readback {:.1f} ms, waiting for the "
+          "PNG encoder {:.1f} ms (wall time)\n",
+          1e3 * update_s / written, 1e3 * draw_s / written, 1e3 * png_s / written);
     fmt::print("{}", scene::format_stage_stats(player.scene().graph().counters()));
     fmt::print("bytes copied to the renderer: {}\n", player.renderer().bridge().bytes_copied());
   }
   if (interrupted()) {
-    fmt::print(stderr, "masav: interrupted after {} of {} frames; every file written is "
-                       "complete\n", written, frames);
+    fmt::print(stderr,
+               "masav: interrupted after {} of {} frames; every file written is "
+               "complete\n",
+               written, frames);
     return 130;
   }
   if (o.no_video) return 0;
@@ -157,8 +164,9 @@ int run(const RunOptions& o) {
 
 void add_run_command(CLI::App& app) {
   static RunOptions o;
-  auto* cmd = app.add_subcommand("run", "render a scene headless to PNG frames (and an MP4), "
-                                        "after the cross-check");
+  auto* cmd = app.add_subcommand("run",
+                                 "render a scene headless to PNG frames (and an MP4), "
+                                 "after the cross-check");
   add_scene_options(*cmd, o.scene, false);
   add_backend_options(*cmd, o.choice, false);
   cmd->add_option("--frames,-n", o.frames, "frames to render (default: the scene's run.frames)")

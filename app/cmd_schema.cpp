@@ -10,8 +10,9 @@ namespace masav::app {
 
 void add_schema_command(CLI::App& app) {
   static std::string type = "particles";
-  auto* cmd = app.add_subcommand("schema", "print every scene parameter with its default, "
-                                           "help and allowed range (a scene-file template)");
+  auto* cmd = app.add_subcommand("schema",
+                                 "print every scene parameter with its default, "
+                                 "help and allowed range (a scene-file template)");
   cmd->add_option("type", type, "scene type")
       ->check(CLI::IsMember(scene::scene_type_names()))
       ->capture_default_str();

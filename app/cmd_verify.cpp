@@ -31,8 +31,7 @@ int run_verify(const VerifyOptions& o) {
     write_file_atomic(o.json, verify::report_json(r));
     fmt::print("wrote {}\n", o.json);
   }
-  if (!r.pass())
-    fmt::print(stderr, "masav: cross-check failed: {}\n", verify::failure_summary(r));
+  if (!r.pass()) fmt::print(stderr, "masav: cross-check failed: {}\n", verify::failure_summary(r));
   return r.pass() ? 0 : 1;
 }
 
@@ -40,8 +39,9 @@ int run_verify(const VerifyOptions& o) {
 
 void add_verify_command(CLI::App& app) {
   static VerifyOptions o;
-  auto* cmd = app.add_subcommand("verify", "cross-check every kernel a scene uses against a "
-                                           "second backend (report printed and saved as JSON)");
+  auto* cmd = app.add_subcommand("verify",
+                                 "cross-check every kernel a scene uses against a "
+                                 "second backend (report printed and saved as JSON)");
   add_scene_options(*cmd, o.scene, false);
   add_backend_options(*cmd, o.choice, false);
   cmd->add_option("--reference,-r", o.reference,

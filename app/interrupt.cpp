@@ -1,8 +1,9 @@
 #include "app/interrupt.h"
 
+#include <unistd.h>
+
 #include <csignal>
 #include <cstdlib>
-#include <unistd.h>
 
 namespace masav::app {
 namespace {
@@ -21,6 +22,8 @@ void install_interrupt_handler() {
   std::signal(SIGTERM, on_signal);
 }
 
-bool interrupted() { return g_interrupts > 0; }
+bool interrupted() {
+  return g_interrupts > 0;
+}
 
 }  // namespace masav::app

@@ -39,8 +39,9 @@ void ensure_writable_dir(const std::string& dir, const std::string& option) {
   std::error_code ec;
   fs::create_directories(dir, ec);
   if (ec || !fs::is_directory(dir, ec))
-    throw Error("", option, fmt::format("cannot create the output directory '{}'{}", dir,
-                                        ec ? ": " + ec.message() : ""),
+    throw Error("", option,
+                fmt::format("cannot create the output directory '{}'{}", dir,
+                            ec ? ": " + ec.message() : ""),
                 fmt::format("choose a writable directory with {}", option));
   const std::string probe = fmt::format("{}/.masav_probe_{}", dir, ::getpid());
   try {

@@ -1,18 +1,17 @@
 #pragma once
 // Options shared by the scene commands (run, verify, export, demo): the scene file and
 // `--set table.key=value` overrides, validated like the file itself.
+#include <CLI/CLI.hpp>
 #include <string>
 #include <vector>
-
-#include <CLI/CLI.hpp>
 
 #include "engine/scene/scene_file.h"
 
 namespace masav::app {
 
 struct SceneChoice {
-  std::string path;                // empty: the default scene type at its defaults
-  std::vector<std::string> sets;   // "table.key=value"
+  std::string path;               // empty: the default scene type at its defaults
+  std::vector<std::string> sets;  // "table.key=value"
 };
 
 void add_scene_options(CLI::App& cmd, SceneChoice& choice, bool path_required);

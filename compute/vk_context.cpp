@@ -303,8 +303,8 @@ Context::Context(const ContextOptions& options) {
     if (!chosen) {
       std::string reasons;
       for (size_t i = 0; i < devices.size(); ++i)
-        reasons += fmt::format("{}{}: {}", i ? "; " : "", devices[i].getProperties().deviceName.data(),
-                               why_not(devices[i]));
+        reasons += fmt::format("{}{}: {}", i ? "; " : "",
+                               devices[i].getProperties().deviceName.data(), why_not(devices[i]));
       throw Error("vulkan", "", fmt::format("no usable Vulkan device ({})", reasons),
                   options.graphics
                       ? "masav renders with Vulkan 1.1 on a queue that computes and draws; "
@@ -316,8 +316,8 @@ Context::Context(const ContextOptions& options) {
   physical_ = std::make_unique<raii::PhysicalDevice>(std::move(devices[*chosen]));
 
   const auto props = physical_->getProperties();
-  queue_family_ = *pick_queue_family(*physical_, options.graphics, options.present_support,
-                                     raw_instance);
+  queue_family_ =
+      *pick_queue_family(*physical_, options.graphics, options.present_support, raw_instance);
   timestamp_bits_ = physical_->getQueueFamilyProperties()[queue_family_].timestampValidBits;
   std::memcpy(cache_uuid_.data(), props.pipelineCacheUUID.data(), VK_UUID_SIZE);
 

@@ -12,7 +12,9 @@ void CudaBackend::drift_points(const DriftParams& p, const Buffer<float>& start,
   if (!p.n) return;
   const launch::DriftArgs a{{p.box_lo.x, p.box_lo.y, p.box_lo.z},
                             {p.box_extent.x, p.box_extent.y, p.box_extent.z},
-                            p.speed, p.time_s, p.n};
+                            p.speed,
+                            p.time_s,
+                            p.n};
   check(launch::drift_points(stream_, grid_for_items(p.n, "drift_points"), a,
                              static_cast<const float4*>(ptr(start.impl(), "drift_points")),
                              static_cast<const float4*>(ptr(direction.impl(), "drift_points")),

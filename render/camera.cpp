@@ -1,14 +1,15 @@
 #include "render/camera.h"
 
-#include <glm/gtc/matrix_transform.hpp>
-
 #include <cmath>
+#include <glm/gtc/matrix_transform.hpp>
 
 namespace masav::render {
 namespace {
 
 // The views are defined for a z-up world; a y-up world maps (x, y, z) -> (x, z, -y).
-glm::vec3 to_world(glm::vec3 v, bool y_up) { return y_up ? glm::vec3(v.x, v.z, -v.y) : v; }
+glm::vec3 to_world(glm::vec3 v, bool y_up) {
+  return y_up ? glm::vec3(v.x, v.z, -v.y) : v;
+}
 
 }  // namespace
 
@@ -27,8 +28,8 @@ Camera make_camera(const scene::ParamSet& p, const scene::Box& box, float aspect
   } else if (view == "left") {
     dir = {-1, 0, 0};
   } else if (view == "orbit") {
-    const double yaw = glm::radians(p.get_real("camera.yaw_deg") +
-                                    p.get_real("camera.orbit_speed_deg") * time_s);
+    const double yaw =
+        glm::radians(p.get_real("camera.yaw_deg") + p.get_real("camera.orbit_speed_deg") * time_s);
     const double pitch = glm::radians(p.get_real("camera.pitch_deg"));
     dir = glm::vec3(float(std::sin(yaw) * std::cos(pitch)), float(-std::cos(yaw) * std::cos(pitch)),
                     float(std::sin(pitch)));

@@ -37,7 +37,8 @@ ColormapTable colormap_table(std::string_view name) {
                         hex(0xE35933), hex(0xF98C0A), hex(0xF9C932), hex(0xFCFFA4)});
   if (name == "thesis") return interpolate({hex(0x0000FF), hex(0x00FF00), hex(0xFF0000)});
   if (name == "grey") return interpolate({hex(0x202020), hex(0xFFFFFF)});
-  throw_invalid("render", "render.colormap", std::string(name), "one of viridis, inferno, thesis, grey");
+  throw_invalid("render", "render.colormap", std::string(name),
+                "one of viridis, inferno, thesis, grey");
 }
 
 }  // namespace masav::render

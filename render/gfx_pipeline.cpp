@@ -15,8 +15,8 @@ namespace {
   if (words.empty())
     throw Error("render", name, "no embedded SPIR-V for this shader",
                 "rebuild masav (the shaders are compiled into the binary)");
-  return ::vk::raii::ShaderModule(ctx.device(),
-                                  ::vk::ShaderModuleCreateInfo({}, words.size_bytes(), words.data()));
+  return ::vk::raii::ShaderModule(
+      ctx.device(), ::vk::ShaderModuleCreateInfo({}, words.size_bytes(), words.data()));
 }
 
 }  // namespace
@@ -42,8 +42,8 @@ std::unique_ptr<GraphicsPipeline> make_graphics_pipeline(const vk::Context& ctx,
 
   const auto vert = module(ctx, spec.vert);
   const auto frag = module(ctx, spec.frag);
-  const ::vk::PipelineShaderStageCreateInfo stages[2] = {
-      {{}, Stage::eVertex, *vert, "main"}, {{}, Stage::eFragment, *frag, "main"}};
+  const ::vk::PipelineShaderStageCreateInfo stages[2] = {{{}, Stage::eVertex, *vert, "main"},
+                                                         {{}, Stage::eFragment, *frag, "main"}};
   const ::vk::PipelineVertexInputStateCreateInfo vertex_input;
   const ::vk::PipelineInputAssemblyStateCreateInfo assembly({}, spec.topology);
   const ::vk::PipelineViewportStateCreateInfo viewport({}, 1, nullptr, 1, nullptr);

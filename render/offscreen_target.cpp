@@ -15,13 +15,24 @@ constexpr ::vk::Format kDepthFormat = ::vk::Format::eD32Sfloat;
 
 ::vk::raii::RenderPass make_render_pass(const vk::Context& ctx) {
   using L = ::vk::ImageLayout;
-  const ::vk::AttachmentDescription attachments[2] = {
-      {{}, kColorFormat, ::vk::SampleCountFlagBits::e1, ::vk::AttachmentLoadOp::eClear,
-       ::vk::AttachmentStoreOp::eStore, ::vk::AttachmentLoadOp::eDontCare,
-       ::vk::AttachmentStoreOp::eDontCare, L::eUndefined, L::eTransferSrcOptimal},
-      {{}, kDepthFormat, ::vk::SampleCountFlagBits::e1, ::vk::AttachmentLoadOp::eClear,
-       ::vk::AttachmentStoreOp::eDontCare, ::vk::AttachmentLoadOp::eDontCare,
-       ::vk::AttachmentStoreOp::eDontCare, L::eUndefined, L::eDepthStencilAttachmentOptimal}};
+  const ::vk::AttachmentDescription attachments[2] = {{{},
+                                                       kColorFormat,
+                                                       ::vk::SampleCountFlagBits::e1,
+                                                       ::vk::AttachmentLoadOp::eClear,
+                                                       ::vk::AttachmentStoreOp::eStore,
+                                                       ::vk::AttachmentLoadOp::eDontCare,
+                                                       ::vk::AttachmentStoreOp::eDontCare,
+                                                       L::eUndefined,
+                                                       L::eTransferSrcOptimal},
+                                                      {{},
+                                                       kDepthFormat,
+                                                       ::vk::SampleCountFlagBits::e1,
+                                                       ::vk::AttachmentLoadOp::eClear,
+                                                       ::vk::AttachmentStoreOp::eDontCare,
+                                                       ::vk::AttachmentLoadOp::eDontCare,
+                                                       ::vk::AttachmentStoreOp::eDontCare,
+                                                       L::eUndefined,
+                                                       L::eDepthStencilAttachmentOptimal}};
   const ::vk::AttachmentReference color_ref(0, L::eColorAttachmentOptimal);
   const ::vk::AttachmentReference depth_ref(1, L::eDepthStencilAttachmentOptimal);
   ::vk::SubpassDescription subpass({}, ::vk::PipelineBindPoint::eGraphics, {}, color_ref, {},

@@ -8,13 +8,13 @@ namespace masav::render {
 void draw_overlay(const OverlayInfo& info) {
   std::vector<std::string> lines;
   lines.push_back(info.title.empty() ? "masav" : info.title);
-  lines.push_back(fmt::format("frame {}  t = {:.2f} s{}", info.frame, info.time_s,
-                              info.fps > 0 ? fmt::format("  {:.1f} fps ({:.1f} ms)", info.fps,
-                                                         info.frame_ms)
-                                           : ""));
+  lines.push_back(fmt::format(
+      "frame {}  t = {:.2f} s{}", info.frame, info.time_s,
+      info.fps > 0 ? fmt::format("  {:.1f} fps ({:.1f} ms)", info.fps, info.frame_ms) : ""));
   lines.push_back(fmt::format("compute: {} ({})", info.backend, info.device));
-  lines.push_back(info.render_device.empty() ? "render: same device, no copies"
-                                             : fmt::format("render: {} (copies)", info.render_device));
+  lines.push_back(info.render_device.empty()
+                      ? "render: same device, no copies"
+                      : fmt::format("render: {} (copies)", info.render_device));
   if (!info.verify.empty()) lines.push_back(info.verify);
   if (!info.legend.empty()) lines.push_back(info.legend);
   for (const auto& s : info.stages)

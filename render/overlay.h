@@ -15,10 +15,10 @@ struct OverlayInfo {
   std::string render_device;  // "" when the renderer shares the compute device
   uint64_t frame = 0;
   double time_s = 0;
-  double fps = 0;        // frames per wall-clock second (0: not measured, e.g. headless)
-  double frame_ms = 0;   // wall time of the last frame
-  std::string verify;    // cross-check status line
-  std::string legend;    // colour-map legend: scalar name and range
+  double fps = 0;       // frames per wall-clock second (0: not measured, e.g. headless)
+  double frame_ms = 0;  // wall time of the last frame
+  std::string verify;   // cross-check status line
+  std::string legend;   // colour-map legend: scalar name and range
   std::vector<scene::StageCounters> stages;
 };
 

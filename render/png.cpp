@@ -12,8 +12,9 @@ namespace masav::render {
 void write_png(const std::string& path, uint32_t width, uint32_t height,
                const std::vector<uint8_t>& rgba) {
   if (rgba.size() != size_t(width) * height * 4)
-    throw Error("", "png", fmt::format("{} bytes for a {}x{} RGBA image", rgba.size(), width,
-                                       height), "internal error");
+    throw Error("", "png",
+                fmt::format("{} bytes for a {}x{} RGBA image", rgba.size(), width, height),
+                "internal error");
   std::string encoded;
   const auto sink = [](void* ctx, void* data, int size) {
     static_cast<std::string*>(ctx)->append(static_cast<const char*>(data), size_t(size));

@@ -39,8 +39,8 @@ RenderDevice::RenderDevice(Backend& compute, const vk::ContextOptions& options)
     try {
       owned_ = std::make_unique<vk::Context>(options);
     } catch (const Error& e) {
-      throw Error("render", "", fmt::format("masav draws with Vulkan, which is not usable here: {}",
-                                            e.problem()),
+      throw Error("render", "",
+                  fmt::format("masav draws with Vulkan, which is not usable here: {}", e.problem()),
                   e.remedy().empty() ? "install libvulkan1 and mesa-vulkan-drivers" : e.remedy());
     }
     ctx_ = owned_.get();
@@ -105,8 +105,7 @@ ImageMemory make_image(const vk::Context& ctx, const ::vk::ImageCreateInfo& info
         type = i;
     for (uint32_t i = 0; i < mem.memoryTypeCount && !type; ++i)
       if (req.memoryTypeBits & (1u << i)) type = i;
-    if (!type)
-      throw Error("render", label, "no memory type for the image", "report this device");
+    if (!type) throw Error("render", label, "no memory type for the image", "report this device");
     m.memory = ::vk::raii::DeviceMemory(ctx.device(), ::vk::MemoryAllocateInfo(req.size, *type));
     m.image.bindMemory(*m.memory, 0);
     m.view = ::vk::raii::ImageView(

@@ -1,10 +1,9 @@
 #include "render/renderer.h"
 
 #include <fmt/format.h>
-
-#include <algorithm>
 #include <imgui.h>
 
+#include <algorithm>
 #include <cstring>
 
 #include "engine/error.h"
@@ -48,29 +47,26 @@ Renderer::Renderer(RenderDevice& dev, const UiContext& ui, uint32_t width, uint3
   pass_ = make_render_pass(ctx);
   target_ = std::make_unique<OffscreenTarget>(ctx, *pass_, width, height);
   using T = ::vk::PrimitiveTopology;
-  GraphicsSpec points{"render/points.vert", "render/points.frag", 3, sizeof(PointsPush),
-                      T::ePointList, true, true, Blend::none};
+  GraphicsSpec points{
+      "render/points.vert", "render/points.frag", 3, sizeof(PointsPush), T::ePointList, true, true,
+      Blend::none};
   points_opaque_ = make_graphics_pipeline(ctx, *pass_, points);
   points.depth_write = false;
   points.blend = Blend::additive;
   points_additive_ = make_graphics_pipeline(ctx, *pass_, points);
-  lines_ = make_graphics_pipeline(
-      ctx, *pass_,
-      {"render/lines.vert", "render/lines.frag", 1, sizeof(glm::mat4), T::eLineList, true, true,
-       Blend::alpha});
+  lines_ = make_graphics_pipeline(ctx, *pass_,
+                                  {"render/lines.vert", "render/lines.frag", 1, sizeof(glm::mat4),
+                                   T::eLineList, true, true, Blend::alpha});
   // The axes are drawn over the particles so that the orientation always shows.
-  axes_ = make_graphics_pipeline(
-      ctx, *pass_,
-      {"render/lines.vert", "render/lines.frag", 1, sizeof(glm::mat4), T::eLineList, false, false,
-       Blend::alpha});
-  image_ = make_graphics_pipeline(
-      ctx, *pass_,
-      {"render/image.vert", "render/image.frag", 1, sizeof(ImagePush), T::eTriangleList, false,
-       false, Blend::none});
-  ui_pipe_ = make_graphics_pipeline(
-      ctx, *pass_,
-      {"render/ui.vert", "render/ui.frag", 3, sizeof(UiPush), T::eTriangleList, false, false,
-       Blend::alpha});
+  axes_ = make_graphics_pipeline(ctx, *pass_,
+                                 {"render/lines.vert", "render/lines.frag", 1, sizeof(glm::mat4),
+                                  T::eLineList, false, false, Blend::alpha});
+  image_ = make_graphics_pipeline(ctx, *pass_,
+                                  {"render/image.vert", "render/image.frag", 1, sizeof(ImagePush),
+                                   T::eTriangleList, false, false, Blend::none});
+  ui_pipe_ = make_graphics_pipeline(ctx, *pass_,
+                                    {"render/ui.vert", "render/ui.frag", 3, sizeof(UiPush),
+                                     T::eTriangleList, false, false, Blend::alpha});
   const ::vk::DescriptorPoolSize size(::vk::DescriptorType::eStorageBuffer, 4 * kSetsPerFrame);
   pool_ = ::vk::raii::DescriptorPool(ctx.device(),
                                      ::vk::DescriptorPoolCreateInfo({}, kSetsPerFrame, size));
@@ -120,23 +116,23 @@ void Renderer::draw_background(const ::vk::raii::CommandBuffer& cmd, const scene
   if (!img.pixels || img.width == 0 || img.height == 0) return;
   const size_t per_pixel = img.format == scene::ImageLayer::Format::rgba8 ? 1 : 4;
   if (img.pixels->count() < size_t(img.width) * img.height * per_pixel)
-    throw Error("render", "background", fmt::format("image buffer '{}' holds {} values, {}x{} "
-                                                    "pixels need {}",
-                                                    img.pixels->label(), img.pixels->count(),
-                                                    img.width, img.height,
-                                                    size_t(img.width) * img.height * per_pixel),
+    throw Error("render", "background",
+                fmt::format("image buffer '{}' holds {} values, {}x{} "
+                            "pixels need {}",
+                            img.pixels->label(), img.pixels->count(), img.width, img.height,
+                            size_t(img.width) * img.height * per_pixel),
                 "internal error: the scene's image layer does not match its buffer");
   const auto pixels = bridge_.words("background", *img.pixels, img.version);
   const ::vk::DescriptorSet set = bind(*image_, {pixels});
-  const ImagePush push{{img.width, img.height,
-                        img.format == scene::ImageLayer::Format::rgba8 ? 0u : 1u,
-                        img.mono ? 1u : 0u},
-                       {img.gain, img.gamma, 0, 0}};
+  const ImagePush push{
+      {img.width, img.height, img.format == scene::ImageLayer::Format::rgba8 ? 0u : 1u,
+       img.mono ? 1u : 0u},
+      {img.gain, img.gamma, 0, 0}};
   cmd.bindPipeline(::vk::PipelineBindPoint::eGraphics, *image_->pipeline);
   cmd.bindDescriptorSets(::vk::PipelineBindPoint::eGraphics, *image_->layout, 0, set, {});
-  cmd.pushConstants<ImagePush>(*image_->layout,
-                               ::vk::ShaderStageFlagBits::eVertex | ::vk::ShaderStageFlagBits::eFragment,
-                               0, push);
+  cmd.pushConstants<ImagePush>(
+      *image_->layout, ::vk::ShaderStageFlagBits::eVertex | ::vk::ShaderStageFlagBits::eFragment, 0,
+      push);
   cmd.draw(3, 1, 0, 0);
 }
 
@@ -179,9 +175,9 @@ void Renderer::draw_lines(const ::vk::raii::CommandBuffer& cmd, const scene::Box
   const ::vk::DescriptorSet set = bind(pipe, {buf});
   cmd.bindPipeline(::vk::PipelineBindPoint::eGraphics, *pipe.pipeline);
   cmd.bindDescriptorSets(::vk::PipelineBindPoint::eGraphics, *pipe.layout, 0, set, {});
-  cmd.pushConstants<glm::mat4>(*pipe.layout,
-                               ::vk::ShaderStageFlagBits::eVertex | ::vk::ShaderStageFlagBits::eFragment,
-                               0, camera_.view_proj);
+  cmd.pushConstants<glm::mat4>(
+      *pipe.layout, ::vk::ShaderStageFlagBits::eVertex | ::vk::ShaderStageFlagBits::eFragment, 0,
+      camera_.view_proj);
   cmd.draw(uint32_t(v.size()), 1, 0, 0);
 }
 
@@ -189,9 +185,10 @@ void Renderer::draw_points(const ::vk::raii::CommandBuffer& cmd, const scene::Po
                            const scene::ParamSet& p) {
   if (!pts.positions || pts.count == 0) return;
   if (pts.positions->size() < pts.count)
-    throw Error("render", "points", fmt::format("{} points drawn from a buffer of {}", pts.count,
-                                                pts.positions->size()),
-                "internal error: the scene's point layer does not match its buffer");
+    throw Error(
+        "render", "points",
+        fmt::format("{} points drawn from a buffer of {}", pts.count, pts.positions->size()),
+        "internal error: the scene's point layer does not match its buffer");
   const std::string& map = p.get_text("render.colormap");
   if (map != colormap_name_) {
     const ColormapTable table = colormap_table(map);
@@ -226,9 +223,9 @@ void Renderer::draw_points(const ::vk::raii::CommandBuffer& cmd, const scene::Po
                         {mode, 0, 0, 0}};
   cmd.bindPipeline(::vk::PipelineBindPoint::eGraphics, *pipe.pipeline);
   cmd.bindDescriptorSets(::vk::PipelineBindPoint::eGraphics, *pipe.layout, 0, set, {});
-  cmd.pushConstants<PointsPush>(*pipe.layout,
-                                ::vk::ShaderStageFlagBits::eVertex | ::vk::ShaderStageFlagBits::eFragment,
-                                0, push);
+  cmd.pushConstants<PointsPush>(
+      *pipe.layout, ::vk::ShaderStageFlagBits::eVertex | ::vk::ShaderStageFlagBits::eFragment, 0,
+      push);
   cmd.draw(pts.count, 1, 0, 0);
 }
 
@@ -264,14 +261,14 @@ void Renderer::draw_ui(const ::vk::raii::CommandBuffer& cmd, ImDrawData* data) {
       const float x1 = std::clamp(c.ClipRect.z - data->DisplayPos.x, 0.0f, w);
       const float y1 = std::clamp(c.ClipRect.w - data->DisplayPos.y, 0.0f, h);
       if (x1 <= x0 || y1 <= y0) continue;
-      cmd.setScissor(0, ::vk::Rect2D({int32_t(x0), int32_t(y0)},
-                                     {uint32_t(x1 - float(int32_t(x0))),
-                                      uint32_t(y1 - float(int32_t(y0)))}));
+      cmd.setScissor(
+          0, ::vk::Rect2D({int32_t(x0), int32_t(y0)},
+                          {uint32_t(x1 - float(int32_t(x0))), uint32_t(y1 - float(int32_t(y0)))}));
       push.offsets[0] = idx_base + c.IdxOffset;
       push.offsets[1] = vtx_base + c.VtxOffset;
-      cmd.pushConstants<UiPush>(*ui_pipe_->layout,
-                                ::vk::ShaderStageFlagBits::eVertex | ::vk::ShaderStageFlagBits::eFragment,
-                                0, push);
+      cmd.pushConstants<UiPush>(
+          *ui_pipe_->layout,
+          ::vk::ShaderStageFlagBits::eVertex | ::vk::ShaderStageFlagBits::eFragment, 0, push);
       cmd.draw(c.ElemCount, 1, 0, 0);
     }
     vtx_base += uint32_t(list->VtxBuffer.Size);
@@ -290,17 +287,18 @@ void Renderer::render(const FrameRequest& f) {
 
   const auto& cmd = dev_.begin();
   // Compute writes (same queue, earlier submissions) become visible to the draws.
-  const ::vk::MemoryBarrier from_compute(
-      ::vk::AccessFlagBits::eShaderWrite | ::vk::AccessFlagBits::eTransferWrite |
-          ::vk::AccessFlagBits::eHostWrite,
-      ::vk::AccessFlagBits::eShaderRead);
-  cmd.pipelineBarrier(::vk::PipelineStageFlagBits::eComputeShader |
-                          ::vk::PipelineStageFlagBits::eTransfer | ::vk::PipelineStageFlagBits::eHost,
-                      ::vk::PipelineStageFlagBits::eVertexShader |
-                          ::vk::PipelineStageFlagBits::eFragmentShader,
-                      {}, from_compute, {}, {});
-  const ::vk::ClearValue clears[2] = {::vk::ClearColorValue(std::array<float, 4>{0.02f, 0.02f, 0.04f, 1.0f}),
-                                      ::vk::ClearDepthStencilValue(1.0f, 0)};
+  const ::vk::MemoryBarrier from_compute(::vk::AccessFlagBits::eShaderWrite |
+                                             ::vk::AccessFlagBits::eTransferWrite |
+                                             ::vk::AccessFlagBits::eHostWrite,
+                                         ::vk::AccessFlagBits::eShaderRead);
+  cmd.pipelineBarrier(
+      ::vk::PipelineStageFlagBits::eComputeShader | ::vk::PipelineStageFlagBits::eTransfer |
+          ::vk::PipelineStageFlagBits::eHost,
+      ::vk::PipelineStageFlagBits::eVertexShader | ::vk::PipelineStageFlagBits::eFragmentShader, {},
+      from_compute, {}, {});
+  const ::vk::ClearValue clears[2] = {
+      ::vk::ClearColorValue(std::array<float, 4>{0.02f, 0.02f, 0.04f, 1.0f}),
+      ::vk::ClearDepthStencilValue(1.0f, 0)};
   cmd.beginRenderPass(::vk::RenderPassBeginInfo(*pass_, target_->framebuffer(),
                                                 {{0, 0}, {width(), height()}}, clears),
                       ::vk::SubpassContents::eInline);

@@ -23,11 +23,11 @@ struct ImDrawData;
 namespace masav::render {
 
 struct FrameRequest {
-  const scene::SceneView* view = nullptr;    // null: only the UI
-  const scene::ParamSet* params = nullptr;   // [render] and [camera]
+  const scene::SceneView* view = nullptr;   // null: only the UI
+  const scene::ParamSet* params = nullptr;  // [render] and [camera]
   double time_s = 0;
-  ImDrawData* ui = nullptr;                  // ImGui draw data (after ImGui::Render()), or null
-  bool readback = false;                     // keep the pixels for pixels()
+  ImDrawData* ui = nullptr;  // ImGui draw data (after ImGui::Render()), or null
+  bool readback = false;     // keep the pixels for pixels()
   // Commands recorded after the frame is drawn (the demo's blit to the swapchain) and the
   // semaphores of that submission.
   std::function<void(const ::vk::raii::CommandBuffer&, ::vk::Image color)> after;
@@ -61,8 +61,8 @@ class Renderer {
   void draw_points(const ::vk::raii::CommandBuffer& cmd, const scene::PointLayer& pts,
                    const scene::ParamSet& p);
   void draw_ui(const ::vk::raii::CommandBuffer& cmd, ImDrawData* data);
-  std::shared_ptr<vk::Allocation> host_buffer(std::shared_ptr<vk::Allocation>& slot,
-                                              size_t bytes, const char* label);
+  std::shared_ptr<vk::Allocation> host_buffer(std::shared_ptr<vk::Allocation>& slot, size_t bytes,
+                                              const char* label);
 
   RenderDevice& dev_;
   const UiContext& ui_;
@@ -72,8 +72,8 @@ class Renderer {
   std::unique_ptr<GraphicsPipeline> points_opaque_, points_additive_, lines_, axes_, image_,
       ui_pipe_;
   ::vk::raii::DescriptorPool pool_ = nullptr;
-  std::shared_ptr<vk::Allocation> colormap_, line_vertices_, axis_vertices_, ui_vertices_, ui_indices_, atlas_,
-      dummy_;
+  std::shared_ptr<vk::Allocation> colormap_, line_vertices_, axis_vertices_, ui_vertices_,
+      ui_indices_, atlas_, dummy_;
   std::string colormap_name_;
   std::vector<std::shared_ptr<vk::Allocation>> frame_buffers_;  // alive until the frame ends
   Camera camera_;

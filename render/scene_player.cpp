@@ -1,19 +1,22 @@
 #include "render/scene_player.h"
 
 #include <fmt/format.h>
+#include <imgui.h>
 
 #include <algorithm>
-#include <imgui.h>
 
 #include "engine/error.h"
 
 namespace masav::render {
 
-uint32_t frame_width(const scene::ParamSet& p) { return uint32_t(p.get_int("render.width")); }
-uint32_t frame_height(const scene::ParamSet& p) { return uint32_t(p.get_int("render.height")); }
+uint32_t frame_width(const scene::ParamSet& p) {
+  return uint32_t(p.get_int("render.width"));
+}
+uint32_t frame_height(const scene::ParamSet& p) {
+  return uint32_t(p.get_int("render.height"));
+}
 
-ScenePlayer::ScenePlayer(scene::SceneFile file, const PlayerOptions& options)
-    : options_(options) {
+ScenePlayer::ScenePlayer(scene::SceneFile file, const PlayerOptions& options) : options_(options) {
   backend_ = open_compute_backend(options.backend, options.device, options.graphics);
   make_scene(std::move(file));
   render_device_ = std::make_unique<RenderDevice>(*backend_, options.graphics);
@@ -49,18 +52,22 @@ void ScenePlayer::load_scene(scene::SceneFile file) {
   if (renderer_) renderer_->resize(frame_width(file_.params), frame_height(file_.params));
 }
 
-void ScenePlayer::reset() { load_scene(file_); }
+void ScenePlayer::reset() {
+  load_scene(file_);
+}
 
 verify::CrossCheckReport ScenePlayer::verify() {
   auto reference = verify::open_reference(*backend_, scene_->params().get_text("verify.reference"));
   verify::CrossCheckReport r = verify::cross_check_scene(*backend_, *reference, scene_->params());
-  verify_status_ = r.pass() ? fmt::format("cross-check: {} kernels agree with {}", r.rows.size(),
-                                          r.reference)
-                            : fmt::format("cross-check FAILED: {}", verify::failure_summary(r));
+  verify_status_ =
+      r.pass() ? fmt::format("cross-check: {} kernels agree with {}", r.rows.size(), r.reference)
+               : fmt::format("cross-check FAILED: {}", verify::failure_summary(r));
   return r;
 }
 
-scene::UpdateReport ScenePlayer::update() { return scene_->update(clock_, true); }
+scene::UpdateReport ScenePlayer::update() {
+  return scene_->update(clock_, true);
+}
 
 OverlayInfo ScenePlayer::overlay(double fps, double frame_ms) const {
   OverlayInfo o;

@@ -8,12 +8,11 @@
 
 namespace masav::render {
 
-Swapchain::Swapchain(const vk::Context& ctx, VkSurfaceKHR surface, uint32_t width,
-                     uint32_t height)
+Swapchain::Swapchain(const vk::Context& ctx, VkSurfaceKHR surface, uint32_t width, uint32_t height)
     : ctx_(ctx), surface_(ctx.instance(), surface) {
   if (!ctx.physical().getSurfaceSupportKHR(ctx.queue_family(), *surface_))
-    throw Error("render", "window", fmt::format("{} cannot present to this window",
-                                                ctx.caps().device_name),
+    throw Error("render", "window",
+                fmt::format("{} cannot present to this window", ctx.caps().device_name),
                 "choose another device (--device), or render headless with `masav run`");
   available_ = ::vk::raii::Semaphore(ctx.device(), ::vk::SemaphoreCreateInfo());
   finished_ = ::vk::raii::Semaphore(ctx.device(), ::vk::SemaphoreCreateInfo());
@@ -44,9 +43,9 @@ void Swapchain::build(uint32_t width, uint32_t height) {
   format_ = chosen.format;
   extent_ = caps.currentExtent.width != UINT32_MAX
                 ? caps.currentExtent
-                : ::vk::Extent2D{std::clamp(width, caps.minImageExtent.width, caps.maxImageExtent.width),
-                                 std::clamp(height, caps.minImageExtent.height,
-                                            caps.maxImageExtent.height)};
+                : ::vk::Extent2D{
+                      std::clamp(width, caps.minImageExtent.width, caps.maxImageExtent.width),
+                      std::clamp(height, caps.minImageExtent.height, caps.maxImageExtent.height)};
   uint32_t count = caps.minImageCount + 1;
   if (caps.maxImageCount) count = std::min(count, caps.maxImageCount);
   ::vk::SwapchainCreateInfoKHR info({}, *surface_, count, chosen.format, chosen.colorSpace, extent_,
@@ -88,13 +87,13 @@ void Swapchain::record_blit(const ::vk::raii::CommandBuffer& cmd, ::vk::Image sr
   const ::vk::ImageSubresourceLayers layers(::vk::ImageAspectFlagBits::eColor, 0, 0, 1);
   const ::vk::ImageBlit blit(
       layers, {::vk::Offset3D{0, 0, 0}, ::vk::Offset3D{int32_t(src_w), int32_t(src_h), 1}}, layers,
-      {::vk::Offset3D{0, 0, 0}, ::vk::Offset3D{int32_t(extent_.width), int32_t(extent_.height), 1}});
+      {::vk::Offset3D{0, 0, 0},
+       ::vk::Offset3D{int32_t(extent_.width), int32_t(extent_.height), 1}});
   cmd.blitImage(src, L::eTransferSrcOptimal, images_[index_], L::eTransferDstOptimal, blit,
                 ::vk::Filter::eLinear);
-  const ::vk::ImageMemoryBarrier to_present(::vk::AccessFlagBits::eTransferWrite, {},
-                                            L::eTransferDstOptimal, L::ePresentSrcKHR,
-                                            VK_QUEUE_FAMILY_IGNORED, VK_QUEUE_FAMILY_IGNORED,
-                                            images_[index_], range);
+  const ::vk::ImageMemoryBarrier to_present(
+      ::vk::AccessFlagBits::eTransferWrite, {}, L::eTransferDstOptimal, L::ePresentSrcKHR,
+      VK_QUEUE_FAMILY_IGNORED, VK_QUEUE_FAMILY_IGNORED, images_[index_], range);
   cmd.pipelineBarrier(::vk::PipelineStageFlagBits::eTransfer,
                       ::vk::PipelineStageFlagBits::eBottomOfPipe, {}, {}, {}, to_present);
 }

@@ -25,8 +25,12 @@ UiContext::UiContext(float scale) {
   io.Fonts->SetTexID(ImTextureID(1));
 }
 
-UiContext::~UiContext() { ImGui::DestroyContext(ctx_); }
+UiContext::~UiContext() {
+  ImGui::DestroyContext(ctx_);
+}
 
-void UiContext::make_current() const { ImGui::SetCurrentContext(ctx_); }
+void UiContext::make_current() const {
+  ImGui::SetCurrentContext(ctx_);
+}
 
 }  // namespace masav::render

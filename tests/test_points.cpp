@@ -46,9 +46,9 @@ DriftParams params(uint32_t n, float speed, float time_s) {
 }  // namespace
 
 TEST_CASE("drift_points equals the CPU reference within its stated tolerance") {
-  for (const DriftParams& p : {params(0, 0.1f, 1.0f), params(1, 0.1f, 1.0f),
-                               params(100003, 0.07f, 0.0f), params(100003, 0.07f, 12.5f),
-                               params(4097, 3.0f, 1000.0f)}) {
+  for (const DriftParams& p :
+       {params(0, 0.1f, 1.0f), params(1, 0.1f, 1.0f), params(100003, 0.07f, 0.0f),
+        params(100003, 0.07f, 12.5f), params(4097, 3.0f, 1000.0f)}) {
     CAPTURE(p.n);
     CAPTURE(p.time_s);
     const auto got = drift_on(test::backend(), p, 9);

@@ -65,7 +65,9 @@ double fraction_differing(const Frame& a, const Frame& b, int tol = 24) {
 }
 
 // Not the clear colour (5, 5, 10) nor a faint star.
-bool lit(const Rgb& c) { return c.r + c.g + c.b > 90; }
+bool lit(const Rgb& c) {
+  return c.r + c.g + c.b > 90;
+}
 
 scene::ParamSet plain_params(uint32_t w, uint32_t h) {
   scene::ParamSet p = scene::default_params(scene::find_scene_type("particles"));
@@ -119,8 +121,8 @@ struct Points {
 };
 
 Points make_points(Backend& b, const std::vector<Vec4f>& p, const std::vector<float>& s) {
-  Points pts{b.create<Real4>(p.size(), "test points"), b.create<float>(s.size(), "test scalars"),
-             {}};
+  Points pts{
+      b.create<Real4>(p.size(), "test points"), b.create<float>(s.size(), "test scalars"), {}};
   b.upload(pts.pos, p);
   b.upload(pts.scalar, s);
   scene::PointLayer pl;
@@ -142,7 +144,8 @@ TEST_CASE("points land where the camera projects them, in the colour map's colou
   scene::ParamSet p = plain_params(W, H);
   p.set("render.blend", std::string("additive"));  // the sprite's centre is the map colour
   p.set("render.point_size", 9.0);
-  const std::vector<Vec4f> pos = {{0.2f, 0.5f, 0.25f, 0}, {0.5f, 0.5f, 0.5f, 0}, {0.8f, 0.5f, 0.75f, 0}};
+  const std::vector<Vec4f> pos = {
+      {0.2f, 0.5f, 0.25f, 0}, {0.5f, 0.5f, 0.5f, 0}, {0.8f, 0.5f, 0.75f, 0}};
   const std::vector<float> scalar = {0.0f, 0.5f, 1.0f};
   const Rgb expected[3] = {{0, 0, 255}, {0, 255, 0}, {255, 0, 0}};
   std::vector<Frame> frames;
@@ -180,7 +183,8 @@ TEST_CASE("opaque sprites are depth-tested: the nearer of two overlapping points
   scene::ParamSet p = plain_params(80, 80);
   p.set("render.point_size", 12.0);
   // Front view looks along +y: y = 0.3 is nearer. The far point is drawn second.
-  Points pts = make_points(*rig.backend, {{0.5f, 0.3f, 0.5f, 0}, {0.5f, 0.7f, 0.5f, 0}}, {0.0f, 1.0f});
+  Points pts =
+      make_points(*rig.backend, {{0.5f, 0.3f, 0.5f, 0}, {0.5f, 0.7f, 0.5f, 0}}, {0.0f, 1.0f});
   const Frame f = rig.draw(pts.view, p);
   const auto [x, y] = project(rig.renderer->camera(), 0.5f, 0.5f, 0.5f, 80, 80);
   const Rgb c = f.at(x, y);
@@ -200,8 +204,8 @@ TEST_CASE("a kernel's image fills the background and the box is drawn over it") 
   scene::ParamSet p = plain_params(W, H);
   // A 2x2 RGBA8 image: red, green / blue, white (row 0 at the top).
   auto img = rig.backend->create<uint32_t>(4, "test image");
-  rig.backend->upload(img, std::vector<uint32_t>{0xFF0000FFu, 0xFF00FF00u, 0xFFFF0000u,
-                                                 0xFFFFFFFFu});
+  rig.backend->upload(img,
+                      std::vector<uint32_t>{0xFF0000FFu, 0xFF00FF00u, 0xFFFF0000u, 0xFFFFFFFFu});
   scene::SceneView v;
   scene::ImageLayer il;
   il.pixels = &img.impl();
@@ -322,10 +326,10 @@ TEST_CASE("demo screenshots" * doctest::skip(std::getenv("MASAV_DEMO_SHOTS") == 
   };
   for (const Frame* f : {&a, &b, &c, &d, &e}) CHECK(f->mean() > 5.0);
   CHECK(region_mean(b) > 1.3 * region_mean(a));  // brighter after `set render.brightness`
-  CHECK(fraction_differing(b, c) > 0.05);         // another viewpoint
-  CHECK(warm_fraction(a) < 0.2);                  // viridis neighbour counts
-  CHECK(warm_fraction(d) > 0.5);                  // inferno speeds after `scene`
-  CHECK(warm_fraction(e) > 0.5);                  // the same scene computed on the CPU
+  CHECK(fraction_differing(b, c) > 0.05);        // another viewpoint
+  CHECK(warm_fraction(a) < 0.2);                 // viridis neighbour counts
+  CHECK(warm_fraction(d) > 0.5);                 // inferno speeds after `scene`
+  CHECK(warm_fraction(e) > 0.5);                 // the same scene computed on the CPU
   // The panel (an ImGui window) covers the right side: dark grey with light text.
   size_t panel_text = 0;
   for (uint32_t y = 20; y < a.h / 2; ++y)
@@ -343,8 +347,10 @@ int main(int argc, char** argv) {
     return 77;
   }
   masav::vk::set_validation_handler([](const std::string& msg) {
-    if (doctest::is_running_in_test) FAIL_CHECK(msg);
-    else fmt::print(stderr, "{}\n", msg);
+    if (doctest::is_running_in_test)
+      FAIL_CHECK(msg);
+    else
+      fmt::print(stderr, "{}\n", msg);
   });
   doctest::Context ctx(argc, argv);
   return ctx.run();

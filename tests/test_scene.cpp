@@ -5,11 +5,11 @@
 #include <doctest/doctest.h>
 
 #include <cmath>
-#include <functional>
-#include <map>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <functional>
+#include <map>
 
 #include "engine/cpu/cpu_backend.h"
 #include "engine/error.h"
@@ -34,7 +34,9 @@ std::string error_of(const std::function<void()>& fn) {
   return "(no error)";
 }
 
-SceneFile parse(const std::string& text) { return parse_scene(text, "test.toml"); }
+SceneFile parse(const std::string& text) {
+  return parse_scene(text, "test.toml");
+}
 
 }  // namespace
 
@@ -132,10 +134,12 @@ TEST_CASE("parameters set at run time are validated, versioned and reported") {
   CHECK(p.get_real("render.brightness") == 2.5);
   CHECK(p.set_from_string("render.show_box", "off"));
   CHECK_FALSE(p.get_flag("render.show_box"));
-  CHECK(error_of([&] { p.set_from_string("render.brightness", "bright"); })
-            .find("render.brightness = bright") != std::string::npos);
-  CHECK(error_of([&] { p.set_from_string("render.brightness", "17"); })
-            .find("a number in [0.0, 16.0]") != std::string::npos);
+  CHECK(error_of([&] {
+          p.set_from_string("render.brightness", "bright");
+        }).find("render.brightness = bright") != std::string::npos);
+  CHECK(error_of([&] {
+          p.set_from_string("render.brightness", "17");
+        }).find("a number in [0.0, 16.0]") != std::string::npos);
   CHECK(error_of([&] { p.set("nothing.here", true); }).find("table = nothing") !=
         std::string::npos);
   CHECK(p.changed_since(v0).size() == 3);
@@ -147,9 +151,7 @@ TEST_CASE("the stage graph runs a stage only when an input changed") {
   g.add_input("b");
   std::map<std::string, int> runs;
   auto stage = [&](const char* name) {
-    return [&runs, name] {
-      return std::make_unique<LambdaStage>([&runs, name] { ++runs[name]; });
-    };
+    return [&runs, name] { return std::make_unique<LambdaStage>([&runs, name] { ++runs[name]; }); };
   };
   g.add_stage("x", {"a"}, stage("x"));
   g.add_stage("y", {"x", "b"}, stage("y"));
@@ -254,8 +256,8 @@ TEST_CASE("the particle scene reruns only what a change needs and never creates 
   // Time moves: the drift and everything downstream, not the sampling or the stars.
   clock.time_s = 0.5;
   r = s->update(clock);
-  CHECK(r.ran == std::vector<std::string>{"drift_points", "hash_grid", "reorder",
-                                          "neighbor_counts"});
+  CHECK(r.ran ==
+        std::vector<std::string>{"drift_points", "hash_grid", "reorder", "neighbor_counts"});
   // The view and the look of the frame are not inputs of any stage.
   s->set("camera.view", std::string("top"));
   s->set("camera.yaw_deg", 80.0);
@@ -360,8 +362,8 @@ TEST_CASE("the cross-check passes on agreeing backends and catches every kind of
   CHECK(verify::failure_summary(bad).find("exact_kernel, float_kernel") != std::string::npos);
 
   // The same checks pass when the backends agree (the checks themselves are sound).
-  const verify::CrossCheckReport fine = verify::cross_check(
-      b, b, {"exact_kernel", "float_kernel", "statistical_kernel"}, in, broken);
+  const verify::CrossCheckReport fine =
+      verify::cross_check(b, b, {"exact_kernel", "float_kernel", "statistical_kernel"}, in, broken);
   CHECK(fine.pass());
 }
 
@@ -383,7 +385,8 @@ TEST_CASE("chi-square p-values match closed forms") {
   // Q(1, x) = exp(-x); with 2 degrees of freedom p = exp(-chi2 / 2).
   for (double x : {0.1, 1.0, 3.0, 12.0}) CHECK(gamma_q(1.0, x) == doctest::Approx(std::exp(-x)));
   // Q(1/2, x) = erfc(sqrt(x)).
-  for (double x : {0.2, 2.0, 8.0}) CHECK(gamma_q(0.5, x) == doctest::Approx(std::erfc(std::sqrt(x))));
+  for (double x : {0.2, 2.0, 8.0})
+    CHECK(gamma_q(0.5, x) == doctest::Approx(std::erfc(std::sqrt(x))));
   const std::vector<double> a = {10, 20, 30}, b = {10, 20, 30};
   const ChiSquare same = chi_square_two_sample(a, b);
   CHECK(same.statistic == 0);

@@ -29,8 +29,8 @@ TEST_CASE("the particle scene's stages run the same on every backend and cross-c
   CHECK(s->graph().counters("stars").runs == 1);
   CHECK(s->graph().counters("stars").skips == 3);
 
-  const verify::CrossCheckReport report = verify::cross_check_scene(test::backend(),
-                                                                    test::reference(), p);
+  const verify::CrossCheckReport report =
+      verify::cross_check_scene(test::backend(), test::reference(), p);
   INFO(verify::format_report(report));
   CHECK(report.pass());
   CHECK(report.rows.size() == 7);

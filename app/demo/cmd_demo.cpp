@@ -3,9 +3,9 @@
 // user (the tests run it under xvfb-run and inspect its screenshots).
 #define GLFW_INCLUDE_NONE
 #include <GLFW/glfw3.h>
+#include <backends/imgui_impl_glfw.h>
 #include <fmt/format.h>
 #include <imgui.h>
-#include <backends/imgui_impl_glfw.h>
 
 #include <chrono>
 #include <filesystem>
@@ -72,8 +72,8 @@ class Demo {
       if (!frame()) continue;
       const auto now = std::chrono::steady_clock::now();
       state_.frame_ms = std::chrono::duration<double, std::milli>(now - last).count();
-      state_.fps = state_.fps == 0 ? 1e3 / state_.frame_ms
-                                   : 0.9 * state_.fps + 0.1 * 1e3 / state_.frame_ms;
+      state_.fps =
+          state_.fps == 0 ? 1e3 / state_.frame_ms : 0.9 * state_.fps + 0.1 * 1e3 / state_.frame_ms;
       last = now;
     }
     return failed_ ? 1 : 0;
@@ -98,12 +98,15 @@ class Demo {
     ImGui_ImplGlfw_InitForVulkan(window_.handle(), true);
     player_->set_platform_frame([] { ImGui_ImplGlfw_NewFrame(); });
     window_.set_title(fmt::format("masav demo: {} on {} ({})", player_->file().type,
-                                  player_->backend().name(), player_->backend().caps().device_name));
+                                  player_->backend().name(),
+                                  player_->backend().caps().device_name));
     fmt::print("demo: '{}' on {} ({}), drawn on {}\n", player_->file().source,
                player_->backend().name(), player_->backend().caps().device_name,
                player_->render_device().ctx().caps().device_name);
-    if (!options_.no_verify && player_->scene().params().get_flag("verify.enabled")) verify(true);
-    else player_->set_verify_status("cross-check skipped (--no-verify)");
+    if (!options_.no_verify && player_->scene().params().get_flag("verify.enabled"))
+      verify(true);
+    else
+      player_->set_verify_status("cross-check skipped (--no-verify)");
   }
 
   void stop() {
@@ -118,8 +121,7 @@ class Demo {
     const verify::CrossCheckReport r = player_->verify();
     fmt::print("{}", verify::format_report(r));
     if (!r.pass() && stop_on_failure)
-      throw Error("", "cross-check",
-                  fmt::format("{}; the demo stops", verify::failure_summary(r)),
+      throw Error("", "cross-check", fmt::format("{}; the demo stops", verify::failure_summary(r)),
                   "report the device and driver; --no-verify shows the scene anyway");
   }
 
@@ -243,9 +245,11 @@ class Demo {
     req.wait_stage = ::vk::PipelineStageFlagBits::eTransfer;
     req.signal = swapchain_->render_finished();
     req.after = [this](const ::vk::raii::CommandBuffer& cmd, ::vk::Image color) {
-      swapchain_->record_blit(cmd, color, player_->renderer().width(), player_->renderer().height());
+      swapchain_->record_blit(cmd, color, player_->renderer().width(),
+                              player_->renderer().height());
     };
-    player_->draw(req, [this] { draw_panel(*player_, state_); }, state_.fps, state_.frame_ms);
+    player_->draw(
+        req, [this] { draw_panel(*player_, state_); }, state_.fps, state_.frame_ms);
     if (!swapchain_->present()) swapchain_->recreate(w, h);
     if (!screenshot_.empty()) {
       render::write_png(screenshot_, player_->renderer().width(), player_->renderer().height(),
@@ -281,8 +285,9 @@ int run_demo(const DemoOptions& o) {
 
 void add_demo_command(CLI::App& app) {
   static DemoOptions o;
-  auto* cmd = app.add_subcommand("demo", "the desktop demo: the scene in a window with a control "
-                                         "panel (needs a display; `masav run` renders headless)");
+  auto* cmd = app.add_subcommand("demo",
+                                 "the desktop demo: the scene in a window with a control "
+                                 "panel (needs a display; `masav run` renders headless)");
   add_scene_options(*cmd, o.scene, false);
   add_backend_options(*cmd, o.choice, false);
   cmd->add_option("--script", o.script,

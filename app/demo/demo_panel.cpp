@@ -1,10 +1,9 @@
 #include "app/demo/demo_panel.h"
 
 #include <fmt/format.h>
-
-#include <algorithm>
 #include <imgui.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 
@@ -65,15 +64,15 @@ void mouse_camera(render::ScenePlayer& player, DemoState& st) {
       (io.MouseDelta.x != 0 || io.MouseDelta.y != 0)) {
     double yaw = p.get_real("camera.yaw_deg") - 0.4 * io.MouseDelta.x;
     yaw = std::remainder(yaw, 360.0);
-    const double pitch = std::clamp(p.get_real("camera.pitch_deg") + 0.4 * io.MouseDelta.y, -89.0,
-                                    89.0);
+    const double pitch =
+        std::clamp(p.get_real("camera.pitch_deg") + 0.4 * io.MouseDelta.y, -89.0, 89.0);
     set_param(player, st, "camera.view", std::string("orbit"));
     set_param(player, st, "camera.yaw_deg", yaw);
     set_param(player, st, "camera.pitch_deg", pitch);
   }
   if (io.MouseWheel != 0) {
-    const double d = std::clamp(p.get_real("camera.distance") * std::pow(0.9, io.MouseWheel), 0.1,
-                                100.0);
+    const double d =
+        std::clamp(p.get_real("camera.distance") * std::pow(0.9, io.MouseWheel), 0.1, 100.0);
     set_param(player, st, "camera.distance", d);
   }
 }
@@ -123,7 +122,8 @@ void draw_panel(render::ScenePlayer& player, DemoState& st) {
   {
     const scene::ParamSpec& fps = p.spec("run.fps");
     scene::ParamValue next;
-    if (param_widget(fps, "run.fps", p.get("run.fps"), next)) set_param(player, st, "run.fps", next);
+    if (param_widget(fps, "run.fps", p.get("run.fps"), next))
+      set_param(player, st, "run.fps", next);
     ImGui::SameLine();
     ImGui::TextDisabled("dt %.4g s", 1.0 / p.get_real("run.fps"));
   }
@@ -140,7 +140,8 @@ void draw_panel(render::ScenePlayer& player, DemoState& st) {
   // Backend and the cross-check.
   if (ImGui::BeginCombo("backend", player.backend().name().c_str())) {
     for (const auto& b : st.backends)
-      if (ImGui::Selectable(b.c_str(), b == player.backend().name()) && b != player.backend().name())
+      if (ImGui::Selectable(b.c_str(), b == player.backend().name()) &&
+          b != player.backend().name())
         st.requests.backend = b;
     ImGui::EndCombo();
   }

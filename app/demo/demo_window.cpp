@@ -69,18 +69,22 @@ vk::ContextOptions DemoWindow::graphics_options(const std::string& device) const
 
 VkSurfaceKHR DemoWindow::create_surface(const vk::Context& ctx) const {
   VkSurfaceKHR surface = VK_NULL_HANDLE;
-  const VkResult r = glfwCreateWindowSurface(static_cast<VkInstance>(*ctx.instance()), window_,
-                                             nullptr, &surface);
+  const VkResult r =
+      glfwCreateWindowSurface(static_cast<VkInstance>(*ctx.instance()), window_, nullptr, &surface);
   if (r != VK_SUCCESS)
-    throw Error("demo", "", fmt::format("the window surface could not be created (VkResult {})",
-                                        int(r)),
+    throw Error("demo", "",
+                fmt::format("the window surface could not be created (VkResult {})", int(r)),
                 kHeadless);
   return surface;
 }
 
-bool DemoWindow::should_close() const { return glfwWindowShouldClose(window_); }
+bool DemoWindow::should_close() const {
+  return glfwWindowShouldClose(window_);
+}
 
-void DemoWindow::set_title(const std::string& title) { glfwSetWindowTitle(window_, title.c_str()); }
+void DemoWindow::set_title(const std::string& title) {
+  glfwSetWindowTitle(window_, title.c_str());
+}
 
 void DemoWindow::framebuffer_size(uint32_t& width, uint32_t& height) const {
   int w = 0, h = 0;

@@ -8,12 +8,24 @@
 
 namespace masav::drift {
 
-MASAV_HD inline float mul(float a, float b) { return hd::mul_rn(a, b); }
-MASAV_HD inline float add(float a, float b) { return hd::add_rn(a, b); }
-MASAV_HD inline float sub(float a, float b) { return hd::sub_rn(a, b); }
-MASAV_HD inline double mul(double a, double b) { return a * b; }
-MASAV_HD inline double add(double a, double b) { return a + b; }
-MASAV_HD inline double sub(double a, double b) { return a - b; }
+MASAV_HD inline float mul(float a, float b) {
+  return hd::mul_rn(a, b);
+}
+MASAV_HD inline float add(float a, float b) {
+  return hd::add_rn(a, b);
+}
+MASAV_HD inline float sub(float a, float b) {
+  return hd::sub_rn(a, b);
+}
+MASAV_HD inline double mul(double a, double b) {
+  return a * b;
+}
+MASAV_HD inline double add(double a, double b) {
+  return a + b;
+}
+MASAV_HD inline double sub(double a, double b) {
+  return a - b;
+}
 
 // Fraction of the box along one axis at displacement `speed_t` = speed * time: in [0, 1).
 template <class F>

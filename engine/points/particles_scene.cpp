@@ -129,7 +129,8 @@ class ParticlesScene final : public scene::SceneInstance {
     // The neighbour walk stops at 65,000 candidates (lavapipe's loop limit); keep the mean far
     // below so that dense spots do not reach it.
     if (p.get_text("particles.color_by") == "neighbors" && c > 8000.0) {
-      const double cells = std::ceil(std::cbrt(27.0 * double(p.get_int("particles.count")) / 8000.0));
+      const double cells =
+          std::ceil(std::cbrt(27.0 * double(p.get_int("particles.count")) / 8000.0));
       throw Error("", "particles scene",
                   fmt::format("particles.count = {} in {}^3 cells puts ~{:.0f} candidates in "
                               "each 27-cell neighbour walk (at most 8000 keeps every walk under "

@@ -31,7 +31,8 @@ std::vector<double> flatten(const std::vector<Vec4d>& v) {
 
 std::vector<Vec4d> unflatten(const std::vector<double>& v) {
   std::vector<Vec4d> out(v.size() / 4);
-  for (size_t i = 0; i < out.size(); ++i) out[i] = {v[4 * i], v[4 * i + 1], v[4 * i + 2], v[4 * i + 3]};
+  for (size_t i = 0; i < out.size(); ++i)
+    out[i] = {v[4 * i], v[4 * i + 1], v[4 * i + 2], v[4 * i + 3]};
   return out;
 }
 
@@ -72,8 +73,10 @@ std::vector<KernelCheck> points_checks() {
                             e.non_finite ? fmt::format(", {} non-finite", e.non_finite) : "");
     v.tolerance = fmt::format("position within {:.3g}, speed within {:.3g} rel (fp32 rounding)",
                               tol.position_abs, tol.speed_rel);
-    v.numbers = {{"max_position_abs", e.max_position_abs}, {"max_speed_rel", e.max_speed_rel},
-                 {"tol_position_abs", tol.position_abs}, {"tol_speed_rel", tol.speed_rel},
+    v.numbers = {{"max_position_abs", e.max_position_abs},
+                 {"max_speed_rel", e.max_speed_rel},
+                 {"tol_position_abs", tol.position_abs},
+                 {"tol_speed_rel", tol.speed_rel},
                  {"non_finite", double(e.non_finite)}};
     return v;
   };

@@ -27,11 +27,16 @@ std::string number(double v) {
 
 const char* param_type_name(ParamType t) {
   switch (t) {
-    case ParamType::flag: return "boolean";
-    case ParamType::integer: return "integer";
-    case ParamType::real: return "number";
-    case ParamType::choice: return "choice";
-    case ParamType::text: return "string";
+    case ParamType::flag:
+      return "boolean";
+    case ParamType::integer:
+      return "integer";
+    case ParamType::real:
+      return "number";
+    case ParamType::choice:
+      return "choice";
+    case ParamType::text:
+      return "string";
   }
   return "?";
 }
@@ -49,12 +54,16 @@ std::string format_value(const ParamValue& v) {
 std::string ParamSpec::allowed() const {
   const std::string u = unit.empty() ? "" : " " + unit;
   switch (type) {
-    case ParamType::flag: return "true or false";
-    case ParamType::integer: return fmt::format("an integer in [{}, {}]{}", int_min, int_max, u);
-    case ParamType::real: return fmt::format("a number in [{}, {}]{}", number(real_min),
-                                             number(real_max), u);
-    case ParamType::choice: return "one of " + join(choices);
-    case ParamType::text: return "a string";
+    case ParamType::flag:
+      return "true or false";
+    case ParamType::integer:
+      return fmt::format("an integer in [{}, {}]{}", int_min, int_max, u);
+    case ParamType::real:
+      return fmt::format("a number in [{}, {}]{}", number(real_min), number(real_max), u);
+    case ParamType::choice:
+      return "one of " + join(choices);
+    case ParamType::text:
+      return "a string";
   }
   return "?";
 }
@@ -67,19 +76,24 @@ ParamValue ParamSpec::validate(std::string_view path, const ParamValue& v) const
       return v;
     case ParamType::integer: {
       int64_t i = 0;
-      if (const auto* p = std::get_if<int64_t>(&v)) i = *p;
-      else if (const auto* d = std::get_if<double>(&v); d && std::isfinite(*d) && *d == std::floor(*d) &&
-                                                        std::abs(*d) < 9.0e15)
+      if (const auto* p = std::get_if<int64_t>(&v))
+        i = *p;
+      else if (const auto* d = std::get_if<double>(&v);
+               d && std::isfinite(*d) && *d == std::floor(*d) && std::abs(*d) < 9.0e15)
         i = int64_t(*d);
-      else bad();
+      else
+        bad();
       if (i < int_min || i > int_max) bad();
       return i;
     }
     case ParamType::real: {
       double d = 0;
-      if (const auto* p = std::get_if<double>(&v)) d = *p;
-      else if (const auto* i = std::get_if<int64_t>(&v)) d = double(*i);
-      else bad();
+      if (const auto* p = std::get_if<double>(&v))
+        d = *p;
+      else if (const auto* i = std::get_if<int64_t>(&v))
+        d = double(*i);
+      else
+        bad();
       if (!std::isfinite(d) || d < real_min || d > real_max) bad();
       return d;
     }
@@ -121,14 +135,14 @@ TableSchema& TableSchema::integer(std::string key, int64_t def, int64_t lo, int6
   p.def = def, p.int_min = lo, p.int_max = hi, p.unit = std::move(unit);
   return *this;
 }
-TableSchema& TableSchema::real(std::string key, double def, double lo, double hi,
-                               std::string help, std::string unit) {
+TableSchema& TableSchema::real(std::string key, double def, double lo, double hi, std::string help,
+                               std::string unit) {
   ParamSpec& p = add(std::move(key), ParamType::real, std::move(help));
   p.def = def, p.real_min = lo, p.real_max = hi, p.unit = std::move(unit);
   return *this;
 }
-TableSchema& TableSchema::choice(std::string key, std::string def,
-                                 std::vector<std::string> choices, std::string help) {
+TableSchema& TableSchema::choice(std::string key, std::string def, std::vector<std::string> choices,
+                                 std::string help) {
   ParamSpec& p = add(std::move(key), ParamType::choice, std::move(help));
   p.def = std::move(def), p.choices = std::move(choices);
   return *this;
@@ -191,15 +205,27 @@ ParamSet::Entry& ParamSet::entry(std::string_view path) {
   return const_cast<Entry&>(static_cast<const ParamSet*>(this)->entry(path));
 }
 
-const ParamSpec& ParamSet::spec(std::string_view path) const { return *entry(path).spec; }
-const ParamValue& ParamSet::get(std::string_view path) const { return entry(path).value; }
-bool ParamSet::get_flag(std::string_view path) const { return std::get<bool>(get(path)); }
-int64_t ParamSet::get_int(std::string_view path) const { return std::get<int64_t>(get(path)); }
-double ParamSet::get_real(std::string_view path) const { return std::get<double>(get(path)); }
+const ParamSpec& ParamSet::spec(std::string_view path) const {
+  return *entry(path).spec;
+}
+const ParamValue& ParamSet::get(std::string_view path) const {
+  return entry(path).value;
+}
+bool ParamSet::get_flag(std::string_view path) const {
+  return std::get<bool>(get(path));
+}
+int64_t ParamSet::get_int(std::string_view path) const {
+  return std::get<int64_t>(get(path));
+}
+double ParamSet::get_real(std::string_view path) const {
+  return std::get<double>(get(path));
+}
 const std::string& ParamSet::get_text(std::string_view path) const {
   return std::get<std::string>(get(path));
 }
-uint64_t ParamSet::version(std::string_view path) const { return entry(path).version; }
+uint64_t ParamSet::version(std::string_view path) const {
+  return entry(path).version;
+}
 
 bool ParamSet::set(std::string_view path, const ParamValue& v) {
   Entry& e = entry(path);

@@ -1,11 +1,11 @@
 #include "engine/scene/scene_file.h"
 
 #include <fmt/format.h>
+#include <toml++/toml.h>
 
 #include <filesystem>
 #include <fstream>
 #include <sstream>
-#include <toml++/toml.h>
 
 #include "engine/error.h"
 #include "engine/scene/scene.h"
@@ -139,8 +139,8 @@ std::string scene_to_toml(const ParamSet& params, bool with_help) {
     out += fmt::format("[{}]\n", t->name());
     for (const ParamSpec& p : t->params()) {
       const std::string path = t->name() + "." + p.key;
-      if (with_help) out += fmt::format("# {} ({}; default {})\n", p.help, p.allowed(),
-                                        format_value(p.def));
+      if (with_help)
+        out += fmt::format("# {} ({}; default {})\n", p.help, p.allowed(), format_value(p.def));
       out += fmt::format("{} = {}\n", p.key, format_value(params.get(path)));
     }
     out += "\n";

@@ -22,7 +22,9 @@ uint64_t fnv1a(const void* data, size_t n, uint64_t h = 0xcbf29ce484222325ull) {
   return h;
 }
 
-void put_u64(std::string& out, uint64_t v) { out.append(reinterpret_cast<const char*>(&v), 8); }
+void put_u64(std::string& out, uint64_t v) {
+  out.append(reinterpret_cast<const char*>(&v), 8);
+}
 
 bool get_u64(const std::vector<uint8_t>& in, size_t& at, uint64_t& v) {
   if (at + 8 > in.size()) return false;
@@ -33,7 +35,8 @@ bool get_u64(const std::vector<uint8_t>& in, size_t& at, uint64_t& v) {
 
 std::string default_dir() {
   if (const char* d = std::getenv("MASAV_CACHE_DIR"); d && *d) return std::string(d) + "/stages";
-  if (const char* x = std::getenv("XDG_CACHE_HOME"); x && *x) return std::string(x) + "/masav/stages";
+  if (const char* x = std::getenv("XDG_CACHE_HOME"); x && *x)
+    return std::string(x) + "/masav/stages";
   if (const char* h = std::getenv("HOME"); h && *h) return std::string(h) + "/.cache/masav/stages";
   return "";
 }
@@ -98,7 +101,9 @@ bool StageCache::store(const std::string& key, std::span<const uint8_t> bytes,
 CachedStage::CachedStage(const StageCache& cache, std::function<std::string()> key,
                          std::function<std::vector<uint8_t>()> compute,
                          std::function<void(std::span<const uint8_t>)> restore)
-    : cache_(cache), key_(std::move(key)), compute_(std::move(compute)),
+    : cache_(cache),
+      key_(std::move(key)),
+      compute_(std::move(compute)),
       restore_(std::move(restore)) {}
 
 void CachedStage::run() {

@@ -27,7 +27,8 @@ class StageCache {
 
   std::optional<std::vector<uint8_t>> load(const std::string& key) const;
   // False (with the reason in `why`) when the cache cannot be written: the run goes on.
-  bool store(const std::string& key, std::span<const uint8_t> bytes, std::string* why = nullptr) const;
+  bool store(const std::string& key, std::span<const uint8_t> bytes,
+             std::string* why = nullptr) const;
   std::string path_of(const std::string& key) const;
   const std::string& dir() const { return dir_; }
 

@@ -130,8 +130,12 @@ UpdateReport StageGraph::update(std::span<const std::string> targets, Backend* t
   return report;
 }
 
-uint64_t StageGraph::version(std::string_view name) const { return node(name).version; }
-bool StageGraph::created(std::string_view name) const { return node(name).stage != nullptr; }
+uint64_t StageGraph::version(std::string_view name) const {
+  return node(name).version;
+}
+bool StageGraph::created(std::string_view name) const {
+  return node(name).stage != nullptr;
+}
 
 std::vector<StageCounters> StageGraph::counters() const {
   std::vector<StageCounters> out;

@@ -47,10 +47,10 @@ class LambdaStage final : public Stage {
 struct StageCounters {
   std::string name;
   bool created = false;
-  uint64_t runs = 0;   // times it ran
-  uint64_t skips = 0;  // updates that reached it while it was up to date
+  uint64_t runs = 0;        // times it ran
+  uint64_t skips = 0;       // updates that reached it while it was up to date
   uint64_t cache_hits = 0;  // runs that loaded the output from the disk cache
-  double last_ms = 0;  // device time of its last run
+  double last_ms = 0;       // device time of its last run
   double total_ms = 0;
 };
 

@@ -40,8 +40,7 @@ double gamma_q_fraction(double s, double x) {
 }  // namespace
 
 double gamma_q(double s, double x) {
-  if (!(s > 0) || !(x >= 0))
-    throw Error("", "gamma_q", "needs s > 0 and x >= 0", "internal error");
+  if (!(s > 0) || !(x >= 0)) throw Error("", "gamma_q", "needs s > 0 and x >= 0", "internal error");
   if (x == 0) return 1.0;
   return x < s + 1.0 ? 1.0 - gamma_p_series(s, x) : gamma_q_fraction(s, x);
 }

@@ -35,7 +35,9 @@ void inject_fault(CheckOutputs& outs) {
 
 }  // namespace
 
-bool CrossCheckReport::pass() const { return failures() == 0; }
+bool CrossCheckReport::pass() const {
+  return failures() == 0;
+}
 size_t CrossCheckReport::failures() const {
   size_t f = 0;
   for (const auto& r : rows) f += !r.pass;
@@ -127,14 +129,16 @@ std::unique_ptr<Backend> open_reference(const Backend& chosen, const std::string
 }
 
 std::string format_report(const CrossCheckReport& r) {
-  std::string out = fmt::format(
-      "cross-check of the '{}' scene: {} ({}) against {} ({}), {} points, seed {}\n", r.scene,
-      r.backend, r.device, r.reference, r.reference_device, r.points, r.seed);
+  std::string out =
+      fmt::format("cross-check of the '{}' scene: {} ({}) against {} ({}), {} points, seed {}\n",
+                  r.scene, r.backend, r.device, r.reference, r.reference_device, r.points, r.seed);
   for (const auto& row : r.rows) {
     out += fmt::format("  {:<22} {:<11} {}  ", row.kernel, check_kind_name(row.kind),
                        row.pass ? "PASS" : "FAIL");
-    if (!row.error.empty()) out += "error: " + row.error + "\n";
-    else out += fmt::format("{}; allowed: {}\n", row.metrics, row.tolerance);
+    if (!row.error.empty())
+      out += "error: " + row.error + "\n";
+    else
+      out += fmt::format("{}; allowed: {}\n", row.metrics, row.tolerance);
   }
   out += fmt::format("cross-check {}: {} of {} kernels agree\n", r.pass() ? "passed" : "FAILED",
                      r.rows.size() - r.failures(), r.rows.size());

@@ -21,9 +21,12 @@ const CheckOutput* find(const CheckOutputs& outs, const std::string& name) {
 
 const char* check_kind_name(CheckKind k) {
   switch (k) {
-    case CheckKind::exact: return "exact";
-    case CheckKind::tolerance: return "tolerance";
-    case CheckKind::statistical: return "statistical";
+    case CheckKind::exact:
+      return "exact";
+    case CheckKind::tolerance:
+      return "tolerance";
+    case CheckKind::statistical:
+      return "statistical";
   }
   return "?";
 }
@@ -46,9 +49,9 @@ Verdict compare_exact(const CheckOutputs& got, const CheckOutputs& want) {
     if (!g || g->words.size() != n) {
       v.pass = false;
       differ += n;
-      first = first.empty() ? fmt::format("{}: {} words against {}", w.name,
-                                          g ? g->words.size() : 0, n)
-                            : first;
+      first = first.empty()
+                  ? fmt::format("{}: {} words against {}", w.name, g ? g->words.size() : 0, n)
+                  : first;
       continue;
     }
     for (size_t i = 0; i < n; ++i)
@@ -65,8 +68,7 @@ Verdict compare_exact(const CheckOutputs& got, const CheckOutputs& want) {
   return v;
 }
 
-Verdict compare_tolerance(const CheckOutputs& got, const CheckOutputs& want,
-                          const Tolerance& tol) {
+Verdict compare_tolerance(const CheckOutputs& got, const CheckOutputs& want, const Tolerance& tol) {
   Verdict v;
   v.pass = true;
   v.tolerance = tol.describe();
@@ -76,24 +78,24 @@ Verdict compare_tolerance(const CheckOutputs& got, const CheckOutputs& want,
     const CheckOutput* g = find(got, w.name);
     if (!g || g->reals.size() != w.reals.size()) {
       v.pass = false;
-      v.metrics = fmt::format("{}: {} values against {}", w.name, g ? g->reals.size() : 0,
-                              w.reals.size());
+      v.metrics =
+          fmt::format("{}: {} values against {}", w.name, g ? g->reals.size() : 0, w.reals.size());
       return v;
     }
-    const ErrorStats e = compare(std::span<const double>(g->reals),
-                                 std::span<const double>(w.reals), tol.rel_floor);
+    const ErrorStats e =
+        compare(std::span<const double>(g->reals), std::span<const double>(w.reals), tol.rel_floor);
     rel_l2 = std::max(rel_l2, e.rel_l2);
     max_abs = std::max(max_abs, e.max_abs);
     max_rel = std::max(max_rel, e.max_rel);
     non_finite += e.non_finite;
   }
-  v.pass = non_finite == 0 && rel_l2 <= tol.rel_l2 &&
-           (max_abs <= tol.max_abs || max_rel <= tol.max_rel);
+  v.pass =
+      non_finite == 0 && rel_l2 <= tol.rel_l2 && (max_abs <= tol.max_abs || max_rel <= tol.max_rel);
   v.metrics = fmt::format("rel L2 {:.3g}, max abs {:.3g}, max rel {:.3g}{}", rel_l2, max_abs,
                           max_rel, non_finite ? fmt::format(", {} non-finite", non_finite) : "");
-  v.numbers = {{"rel_l2", rel_l2},        {"max_abs", max_abs},
-               {"max_rel", max_rel},      {"non_finite", double(non_finite)},
-               {"tol_rel_l2", tol.rel_l2}, {"tol_max_abs", tol.max_abs},
+  v.numbers = {{"rel_l2", rel_l2},          {"max_abs", max_abs},
+               {"max_rel", max_rel},        {"non_finite", double(non_finite)},
+               {"tol_rel_l2", tol.rel_l2},  {"tol_max_abs", tol.max_abs},
                {"tol_max_rel", tol.max_rel}};
   return v;
 }

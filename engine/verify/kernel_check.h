@@ -43,8 +43,8 @@ struct Tolerance {
 // The outcome of comparing one kernel's outputs.
 struct Verdict {
   bool pass = false;
-  std::string metrics;    // what was measured, e.g. "0 of 65536 words differ"
-  std::string tolerance;  // what was allowed, e.g. "bit for bit"
+  std::string metrics;                    // what was measured, e.g. "0 of 65536 words differ"
+  std::string tolerance;                  // what was allowed, e.g. "bit for bit"
   std::map<std::string, double> numbers;  // the same, for the JSON report
 };
 
