@@ -311,8 +311,8 @@ TEST_CASE("demo screenshots" * doctest::skip(std::getenv("MASAV_DEMO_SHOTS") == 
       }
     return s / double(n);
   };
-  // Red-dominated lit pixels among lit ones: inferno's middle (never viridis, whose yellow has
-  // nearly as much green as red).
+  // Red-dominated pixels among lit ones: inferno's dark reds and oranges, never viridis (whose
+  // yellow has nearly as much green as red).
   auto warm_fraction = [](const Frame& f) {
     size_t warm = 0, lit_px = 0;
     for (uint32_t y = f.h / 2; y < f.h; ++y)
@@ -320,16 +320,19 @@ TEST_CASE("demo screenshots" * doctest::skip(std::getenv("MASAV_DEMO_SHOTS") == 
         const Rgb c = f.at(int(x), int(y));
         if (!lit(c)) continue;
         ++lit_px;
-        warm += c.r > c.b + 40 && c.r > c.g + 40;
+        warm += c.r > 1.4 * std::max(c.g, c.b) + 8;
       }
     return lit_px ? double(warm) / double(lit_px) : 0.0;
   };
   for (const Frame* f : {&a, &b, &c, &d, &e}) CHECK(f->mean() > 5.0);
+  MESSAGE("scene-area mean a " << region_mean(a) << ", b " << region_mean(b) << "; warm a "
+                               << warm_fraction(a) << ", d " << warm_fraction(d) << ", e "
+                               << warm_fraction(e) << "; b/c differ " << fraction_differing(b, c));
   CHECK(region_mean(b) > 1.3 * region_mean(a));  // brighter after `set render.brightness`
   CHECK(fraction_differing(b, c) > 0.05);        // another viewpoint
-  CHECK(warm_fraction(a) < 0.2);                 // viridis neighbour counts
-  CHECK(warm_fraction(d) > 0.5);                 // inferno speeds after `scene`
-  CHECK(warm_fraction(e) > 0.5);                 // the same scene computed on the CPU
+  CHECK(warm_fraction(a) < 0.05);                // viridis neighbour counts
+  CHECK(warm_fraction(d) > 0.2);                 // inferno speeds after `scene`
+  CHECK(warm_fraction(e) > 0.2);                 // the same scene computed on the CPU
   // The panel (an ImGui window) covers the right side: dark grey with light text.
   size_t panel_text = 0;
   for (uint32_t y = 20; y < a.h / 2; ++y)

@@ -223,6 +223,14 @@ class Demo {
       swapchain_->recreate(w, h);
       player_->renderer().resize(swapchain_->width(), swapchain_->height());
     }
+    // render.width/height (panel, script or a new scene) size the window.
+    const scene::ParamSet& p = player_->scene().params();
+    const int want_w = int(p.get_int("render.width")), want_h = int(p.get_int("render.height"));
+    if (want_w != window_w_ || want_h != window_h_) {
+      if (window_w_ != 0) glfwSetWindowSize(window_.handle(), want_w, want_h);
+      window_w_ = want_w;
+      window_h_ = want_h;
+    }
     scene::FrameClock& clock = player_->clock();
     if (!state_.paused || state_.step) {
       clock.time_s += 1.0 / player_->scene().params().get_real("run.fps");
@@ -268,6 +276,7 @@ class Demo {
   std::vector<ScriptCommand> script_;
   size_t next_ = 0;
   int wait_frames_ = 0;
+  int window_w_ = 0, window_h_ = 0;  // the size render.width/height last asked for
   bool scripted_ = false;
   bool failed_ = false;
   std::string screenshot_;

@@ -181,8 +181,11 @@ class ParticlesScene final : public scene::SceneInstance {
   }
 
   void stars() {
-    star_w_ = uint32_t(params_.get_int("render.width"));
-    star_h_ = uint32_t(params_.get_int("render.height"));
+    // One star texel per pixel up to full HD; larger frames stretch it (a 8192^2 field would
+    // not fit lavapipe's 128 MiB per buffer).
+    constexpr int64_t kMaxSide = 1920;
+    star_w_ = uint32_t(std::min(params_.get_int("render.width"), kMaxSide));
+    star_h_ = uint32_t(std::min(params_.get_int("render.height"), kMaxSide));
     const size_t words = 4 * size_t(star_w_) * star_h_;
     if (stars_.size() != words) stars_ = backend_.create<float>(words, "star field");
     backend_.philox_uniform({uint64_t(params_.get_int("particles.seed")), kStarStream, 0}, stars_);
