@@ -127,7 +127,7 @@ void Renderer::draw_background(const ::vk::raii::CommandBuffer& cmd, const scene
   const ImagePush push{
       {img.width, img.height, img.format == scene::ImageLayer::Format::rgba8 ? 0u : 1u,
        img.mono ? 1u : 0u},
-      {img.gain, img.gamma, 0, 0}};
+      {img.gain, img.gamma, float(width()), float(height())}};
   cmd.bindPipeline(::vk::PipelineBindPoint::eGraphics, *image_->pipeline);
   cmd.bindDescriptorSets(::vk::PipelineBindPoint::eGraphics, *image_->layout, 0, set, {});
   cmd.pushConstants<ImagePush>(

@@ -4,7 +4,7 @@
 layout(std430, set = 0, binding = 0) readonly buffer Pixels { uint words[]; };
 layout(push_constant) uniform Push {
   uvec4 shape;  // width, height, format (0 rgba8, 1 rgba32f), mono
-  vec4 tone;    // gain, gamma
+  vec4 tone;    // gain, gamma, viewport width, viewport height
 } pc;
 
 layout(location = 0) in vec2 v_uv;
@@ -19,11 +19,16 @@ vec4 texel(ivec2 p) {
 }
 
 void main() {
-  const vec2 x = v_uv * vec2(pc.shape.xy) - 0.5;
-  const ivec2 i = ivec2(floor(x));
-  const vec2 f = x - vec2(i);
-  const vec4 c = mix(mix(texel(i), texel(i + ivec2(1, 0)), f.x),
-                     mix(texel(i + ivec2(0, 1)), texel(i + ivec2(1, 1)), f.x), f.y);
+  vec4 c;
+  if (vec2(pc.shape.xy) == pc.tone.zw) {
+    c = texel(ivec2(gl_FragCoord.xy));  // one texel per pixel: no filtering needed
+  } else {
+    const vec2 x = v_uv * vec2(pc.shape.xy) - 0.5;
+    const ivec2 i = ivec2(floor(x));
+    const vec2 f = x - vec2(i);
+    c = mix(mix(texel(i), texel(i + ivec2(1, 0)), f.x),
+            mix(texel(i + ivec2(0, 1)), texel(i + ivec2(1, 1)), f.x), f.y);
+  }
   vec3 rgb = pc.shape.w != 0u ? c.rrr : c.rgb;
   rgb = pc.tone.x * pow(max(rgb, vec3(0.0)), vec3(pc.tone.y));
   out_color = vec4(rgb, 1.0);
