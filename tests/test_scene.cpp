@@ -300,6 +300,41 @@ TEST_CASE("the particle scene reruns only what a change needs and never creates 
   CHECK_FALSE(t->view().background.has_value());
 }
 
+TEST_CASE("the view input changes with the camera and only with it") {
+  cpu::CpuBackend cpu(1);
+  ParamSet p = default_params(find_scene_type("particles"));
+  p.set("particles.count", int64_t(500));
+  auto s = find_scene_type("particles").create(cpu, p);
+  // A stage as the atom scene's viewer attenuation would be: it reads only "view".
+  int runs = 0;
+  s->graph().add_stage("viewer", {"view"},
+                       [&] { return std::make_unique<LambdaStage>([&] { ++runs; }); });
+  const std::vector<std::string> viewer = {"viewer"};
+  FrameClock clock;
+  s->update(clock);
+  s->graph().update(viewer);
+  CHECK(runs == 1);
+  s->set("render.colormap", std::string("grey"));
+  s->set("particles.drift_speed", 0.2);
+  clock.time_s = 1.0;  // the camera does not turn: time is not a view change
+  s->update(clock);
+  s->graph().update(viewer);
+  CHECK(runs == 1);
+  s->set("camera.yaw_deg", 10.0);
+  s->graph().update(viewer);
+  CHECK(runs == 2);
+  s->set("camera.orbit_speed_deg", 30.0);  // a turning camera: every new time is a new view
+  s->graph().update(viewer);
+  CHECK(runs == 3);
+  clock.time_s = 2.0;
+  s->update(clock);
+  s->graph().update(viewer);
+  CHECK(runs == 4);
+  s->update(clock);  // the same time: no change
+  s->graph().update(viewer);
+  CHECK(runs == 4);
+}
+
 TEST_CASE("cross-parameter limits of the particle scene name the parameters and the remedy") {
   cpu::CpuBackend cpu(1);
   ParamSet p = default_params(find_scene_type("particles"));

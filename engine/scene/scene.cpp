@@ -13,6 +13,7 @@ SceneInstance::SceneInstance(Backend& backend, ParamSet params)
 void SceneInstance::add_parameter_inputs() {
   for (const TableSchema* t : params_.tables())
     for (const ParamSpec& p : t->params()) graph_.add_input(t->name() + "." + p.key);
+  graph_.add_input("view");
 }
 
 bool SceneInstance::set(std::string_view path, const ParamValue& v) {
@@ -21,6 +22,7 @@ bool SceneInstance::set(std::string_view path, const ParamValue& v) {
   validate(next);
   params_ = std::move(next);
   graph_.touch_if_present(path);
+  if (path.rfind("camera.", 0) == 0) graph_.touch_if_present("view");
   return true;
 }
 
@@ -31,6 +33,11 @@ bool SceneInstance::set_from_string(std::string_view path, std::string_view text
 }
 
 UpdateReport SceneInstance::update(const FrameClock& clock, bool time_stages) {
+  if (clock.time_s != view_time_s_) {
+    if (params_.has("camera.orbit_speed_deg") && params_.get_real("camera.orbit_speed_deg") != 0)
+      graph_.touch_if_present("view");
+    view_time_s_ = clock.time_s;
+  }
   on_clock(clock);
   const std::vector<std::string> t = targets();
   return graph_.update(t, time_stages ? &backend_ : nullptr);

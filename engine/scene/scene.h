@@ -51,13 +51,18 @@ class SceneInstance {
   virtual void on_clock(const FrameClock& clock) = 0;
   // Cross-parameter checks (throws masav::Error naming the parameters and the remedy).
   virtual void validate(const ParamSet& p) const { (void)p; }
-  // Adds every parameter of the scene's tables as a graph input (call from the constructor
-  // after the stages are declared, so stages can name parameters as inputs).
+  // Adds every parameter of the scene's tables as a graph input, and the input "view", which
+  // changes whenever the camera does (a camera.* parameter, or the time while the orbit camera
+  // turns): the stages that depend on the viewpoint (viewer attenuation, the raymarch) read
+  // "view" and nothing else reruns when the user looks around.
   void add_parameter_inputs();
 
   Backend& backend_;
   ParamSet params_;
   StageGraph graph_;
+
+ private:
+  double view_time_s_ = 0;
 };
 
 // What `masav verify` and the pre-render check need from a scene (see cross_check.h).
