@@ -3,12 +3,15 @@
 #include <fmt/format.h>
 #include <unistd.h>
 
+#include <cstdio>
+
 namespace masav::app {
 
 Progress::Progress(std::string what, uint64_t total)
     : what_(std::move(what)), total_(total), tty_(::isatty(2) != 0) {}
 
 void Progress::update(uint64_t done, const std::string& note) {
+  std::fflush(stdout);  // keep the order of messages when stdout is a pipe
   const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
   const double rate = s > 0 ? double(done) / s : 0;
   const double frac = total_ ? double(done) / double(total_) : 1.0;
