@@ -16,6 +16,13 @@ int main(int argc, char** argv) {
   masav::app::add_check_command(app);
   masav::app::add_bench_command(app);
   masav::app::add_atom_command(app);
+  masav::app::add_verify_command(app);
+  masav::app::add_export_command(app);
+  masav::app::add_schema_command(app);
+#if MASAV_HAVE_RENDER
+  masav::app::add_run_command(app);
+  masav::app::add_demo_command(app);
+#endif
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

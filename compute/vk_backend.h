@@ -41,6 +41,10 @@ class VulkanBackend final : public Backend {
   double timestamp_ns(TimestampId id) override { return stream_.timestamp_ns(id); }
   void reset_timestamps() override { stream_.reset_timestamps(); }
 
+  // ---- demo point cloud
+  void drift_points(const DriftParams& p, const Buffer<float>& start,
+                    const Buffer<float>& direction, Buffer<Real4>& positions) override;
+
   void philox_u32(const PhiloxParams& p, Buffer<uint32_t>& out) override;
   void philox_uniform(const PhiloxParams& p, Buffer<float>& out) override;
   void radix_sort(const RadixSortParams& p, Buffer<uint32_t>& keys,
@@ -79,6 +83,11 @@ class VulkanBackend final : public Backend {
   // The most loop iterations any invocation ran since the last call (needs count_loop_ticks).
   uint32_t take_max_loop_ticks();
   uint32_t tile_size() const { return options_.workgroup_size * options_.items_per_thread; }
+
+  // For the renderer (render/), which draws straight from the kernels' buffers when it runs on
+  // this backend's device: the device, and the allocation behind a buffer of this backend.
+  const Context& context() const { return ctx_; }
+  std::shared_ptr<Allocation> allocation(const BufferImpl& b) const { return alloc(b, "render"); }
   SortScatter sort_scatter() const { return scatter_; }
 
  protected:

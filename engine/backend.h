@@ -4,11 +4,18 @@
 #include "engine/atom/atom_params.h"
 #include "engine/device_api.h"
 #include "engine/kernel_params.h"
+#include "engine/points/drift_params.h"
 
 namespace masav {
 
 class Backend : public DeviceApi {
  public:
+  // ---- demo point cloud (engine/points/) ------------------------------------------------
+  // positions[i] for i < p.n: the periodic drift of DriftParams from the uniforms start[4i..]
+  // and direction[4i..] (philox_uniform output); .w is the point's speed.
+  virtual void drift_points(const DriftParams& p, const Buffer<float>& start,
+                            const Buffer<float>& direction, Buffer<Real4>& positions) = 0;
+
   // ---- random numbers -------------------------------------------------------------------
   // Philox4x32-10 words (see PhiloxParams), out.size() of them.
   virtual void philox_u32(const PhiloxParams& p, Buffer<uint32_t>& out) = 0;

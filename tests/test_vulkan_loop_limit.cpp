@@ -239,6 +239,22 @@ TEST_CASE("raymarch: the smallest validated step stays below the limit; skipping
   CHECK_THROWS_AS(b.raymarch(rp, v, tf, bricks, img), Error);
 }
 
+TEST_CASE("drift_points loops three times (one per axis), independent of n") {
+  auto& b = *g_vk;
+  const uint32_t n = 100000;
+  auto start = b.create<float>(4 * n, "start");
+  auto dir = b.create<float>(4 * n, "direction");
+  auto pos = b.create<Real4>(n, "positions");
+  b.philox_uniform({1, 0, 0}, start);
+  b.philox_uniform({1, 1, 0}, dir);
+  (void)b.take_max_loop_ticks();
+  DriftParams p;
+  p.n = n;
+  p.time_s = 100.0f;
+  b.drift_points(p, start, dir, pos);
+  CHECK(b.take_max_loop_ticks() == 3);
+}
+
 int main(int argc, char** argv) {
   const BackendStatus s = mvk::backend_status();
   if (!s.available) {

@@ -42,6 +42,10 @@ class CpuBackend final : public Backend {
   double timestamp_ns(TimestampId id) override;
   void reset_timestamps() override { stamps_.clear(); }
 
+  // ---- demo point cloud
+  void drift_points(const DriftParams& p, const Buffer<float>& start,
+                    const Buffer<float>& direction, Buffer<Real4>& positions) override;
+
   void philox_u32(const PhiloxParams& p, Buffer<uint32_t>& out) override;
   void philox_uniform(const PhiloxParams& p, Buffer<float>& out) override;
   void radix_sort(const RadixSortParams& p, Buffer<uint32_t>& keys,
