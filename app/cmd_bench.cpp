@@ -9,6 +9,8 @@ void add_atom_bench(CLI::App& bench);
 void add_scatter_bench(CLI::App& bench);
 void add_light_bench(CLI::App& bench);
 void add_raymarch_bench(CLI::App& bench);
+void add_sph_bench(CLI::App& bench);
+void add_dambreak_bench(CLI::App& bench);
 
 void add_bench_command(CLI::App& app) {
   auto* bench = app.add_subcommand("bench", "time kernels on each backend (device timestamps)");
@@ -19,6 +21,8 @@ void add_bench_command(CLI::App& app) {
   add_scatter_bench(*bench);
   add_light_bench(*bench);
   add_raymarch_bench(*bench);
+  add_sph_bench(*bench);
+  add_dambreak_bench(*bench);
 }
 
 }  // namespace masav::app

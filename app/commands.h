@@ -14,6 +14,7 @@ void add_export_command(CLI::App& app);
 void add_schema_command(CLI::App& app);
 void add_run_command(CLI::App& app);
 void add_demo_command(CLI::App& app);
+void add_sph_command(CLI::App& app);
 
 // Shared --backend / --device options.
 struct BackendChoice {

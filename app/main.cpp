@@ -23,6 +23,7 @@ int main(int argc, char** argv) {
   masav::app::add_run_command(app);
   masav::app::add_demo_command(app);
 #endif
+  masav::app::add_sph_command(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

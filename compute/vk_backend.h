@@ -59,6 +59,9 @@ class VulkanBackend final : public Backend {
                             Buffer<uint32_t>& counts) override;
 
   // ---- SPH fluid
+  void sph_density(const SphStepParams& p, const SphDensityIO& io) override;
+  void sph_forces(const SphStepParams& p, const SphForcesIO& io) override;
+  void sph_integrate(const SphIntegrateParams& p, const SphIntegrateIO& io) override;
 
   // ---- electron cloud, nebula lighting, volume
   void orbital_sample(const OrbitalSampleParams& p, const Buffer<uint32_t>& tables,

@@ -5,6 +5,7 @@
 #include "engine/device_api.h"
 #include "engine/kernel_params.h"
 #include "engine/points/drift_params.h"
+#include "engine/sph/sph_kernel_params.h"
 
 namespace masav {
 
@@ -43,6 +44,16 @@ class Backend : public DeviceApi {
                                     Buffer<uint32_t>& counts) = 0;
 
   // ---- SPH fluid (engine/sph/) ----------------------------------------------------------
+  // For each sorted particle i < p.n: density (poly6, thesis Eq. 4.4) over the neighbours within
+  // p.h found in the 27 cells around cells[i], and pressure from the equation of state.
+  // Accumulates candidate counts, overflows (never a silent truncation) into io.stats.
+  virtual void sph_density(const SphStepParams& p, const SphDensityIO& io) = 0;
+  // Acceleration of each sorted particle: pressure (spiky gradient), viscosity (its laplacian),
+  // both per p.model, times the particle's inverse mass (positions' w), plus gravity.
+  virtual void sph_forces(const SphStepParams& p, const SphForcesIO& io) = 0;
+  // One integrator stage per particle (p.op), then the box walls for ops that end a step;
+  // speed, displacement, non-finite values and particles outside the box go to io.stats.
+  virtual void sph_integrate(const SphIntegrateParams& p, const SphIntegrateIO& io) = 0;
 
   // ---- electron cloud, nebula lighting, volume (engine/atom/) ----------------------------
   // positions[i] = (x, y, z, 0) of particle i < p.count, drawn from |psi|^2 by inverting the

@@ -11,6 +11,9 @@ struct Vec3f {
 struct Vec4f {
   float x = 0, y = 0, z = 0, w = 0;
 };
+struct Vec3d {
+  double x = 0, y = 0, z = 0;
+};
 struct Vec4d {
   double x = 0, y = 0, z = 0, w = 0;
 };

@@ -17,6 +17,7 @@
 #include "engine/atom/atom_checks.h"
 #include "engine/atom/orbital_tables.h"
 #include "engine/hash_grid.h"
+#include "engine/sph/sph_particles.h"
 
 using namespace masav;
 namespace mvk = masav::vk;
@@ -255,6 +256,57 @@ TEST_CASE("drift_points loops three times (one per axis), independent of n") {
   CHECK(b.take_max_loop_ticks() == 3);
 }
 
+TEST_CASE("sph kernels: loop ticks = rows + cells + candidates, capped below the limit") {
+  auto& b = *g_vk;
+  const uint32_t n = 3000;
+  const float h = 0.05f;
+  // One crowded cell: every particle is every particle's candidate.
+  SphStepParams p;
+  p.grid = make_grid_params({0, 0, 0}, h, {1, 1, 1}, n);
+  p.n = n;
+  p.h = h;
+  p.mass = lattice_mass(1000.0, 0.025, h);
+  p.max_candidates = n;
+  p.walls = true;  // the wall loops tick too: 6 walls, then 6 x (1 + 6) for their gradient
+  p.box_min = {0, 0, 0};
+  p.box_max = {h, h, h};
+  auto pos = b.create<Real4>(n, "pos");
+  auto vel = b.create<Real4>(n, "vel");
+  std::vector<Vec4f> pts = cluster(n, h, 12);
+  for (auto& q : pts) q.w = 1.0f;
+  b.upload(pos, pts);
+  b.upload(vel, std::vector<Vec4f>(n));
+  HashGrid g = make_hash_grid(b, p.grid, n);
+  build_hash_grid(b, g, pos);
+  auto rho = b.create<Real>(n, "rho"), pr = b.create<Real>(n, "p");
+  auto acc = b.create<Real4>(n, "acc");
+  auto stats = b.create<uint32_t>(kSphStatWords, "stats");
+  b.fill(stats, 0u);
+  (void)b.take_max_loop_ticks();
+  const SphGridView view{&g.sorted_cells, &g.cell_start, &g.cell_end};
+  b.sph_density(p, {&pos, view, &rho, &pr, &stats});
+  // x loop 3 + y loop 3 (one x in the grid) + 1 cell in the row + n candidates + 48 wall ticks.
+  const uint32_t walls = 6 + 6 * 7;
+  CHECK(b.take_max_loop_ticks() == 3 + 3 + 1 + n + walls);
+  b.sph_forces(p, {&pos, &vel, &rho, &pr, view, &acc, &stats});
+  CHECK(b.take_max_loop_ticks() == 3 + 3 + 1 + n + walls + 6);  // + the no-slip weight
+  // The worst any SPH kernel can do: 3 + 9 row loops, 27 cells, the validated maximum of
+  // candidates (65000) and the walls' 48 stay under lavapipe's limit; one more is refused.
+  CHECK(3 + 9 + 27 + 65000 + walls + 6 < kLavapipeLoopLimit);
+  p.max_candidates = 65001;
+  CHECK_THROWS_AS(b.sph_density(p, {&pos, view, &rho, &pr, &stats}), Error);
+
+  // The integrator's only loops are the walls' (at most 3 + 3).
+  SphIntegrateParams ip;
+  ip.n = n;
+  ip.op = SphStageOp::euler;
+  ip.tangential_damping = 0.1;
+  ip.box_max = {0.5 * h, 0.5 * h, 0.5 * h};
+  auto xo = b.create<Real4>(n, "xo"), vo = b.create<Real4>(n, "vo");
+  b.sph_integrate(ip, {&pos, &vel, nullptr, &acc, &xo, &vo, nullptr, nullptr, &stats});
+  CHECK(b.take_max_loop_ticks() <= 6);
+}
+
 int main(int argc, char** argv) {
   const BackendStatus s = mvk::backend_status();
   if (!s.available) {
@@ -262,8 +314,10 @@ int main(int argc, char** argv) {
     return 77;
   }
   mvk::set_validation_handler([](const std::string& msg) {
-    if (doctest::is_running_in_test) FAIL_CHECK(msg);
-    else fmt::print(stderr, "{}\n", msg);
+    if (doctest::is_running_in_test)
+      FAIL_CHECK(msg);
+    else
+      fmt::print(stderr, "{}\n", msg);
   });
   mvk::BackendOptions o;
   o.context = mvk::options_from_env();

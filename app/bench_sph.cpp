@@ -1,0 +1,283 @@
+// `masav bench sph`: SPH throughput per backend x integrator x particle count, with the stage
+// breakdown (grid, density, forces, integrate) from device timestamps, and run time against
+// error: integrator x dt on a dam break against RK4 at dt/16 on the CPU reference (fp64).
+#include <fmt/format.h>
+
+#include <chrono>
+#include <cmath>
+#include <sstream>
+
+#include "app/bench_common.h"
+#include "engine/cpu/cpu_backend.h"
+#include "engine/error.h"
+#include "engine/sph/sph_coefficients.h"
+#include "engine/sph/sph_diagnostics.h"
+#include "engine/sph/sph_presets.h"
+#include "engine/sph/sph_simulation.h"
+
+namespace masav::app {
+
+struct SphBenchOptions {
+  BackendChoice choice{"all", ""};
+  std::string counts = "32768,131072,1048576";
+  std::string integrators = "euler,leapfrog,rk4";
+  std::string preset = "water";
+  int steps = 0;  // timed steps per run; 0: about 2M particle-steps, between 2 and 20
+  bool skip_error = false;
+  uint32_t error_particles = 4096;
+  double error_time = 0.02;  // s of dam break for the run-time/error sweep
+  std::string json;
+};
+
+namespace {
+
+std::vector<std::string> split(const std::string& s) {
+  std::vector<std::string> out;
+  std::stringstream ss(s);
+  std::string item;
+  while (std::getline(ss, item, ','))
+    if (!item.empty()) out.push_back(item);
+  return out;
+}
+
+struct Throughput {
+  double step_ms = 0, wall_ms = 0;  // device time per step (sum of stages), wall time per step
+  std::array<double, size_t(SphStage::count)> stage_ms{};
+  int steps = 0;
+  uint32_t particles = 0;
+  double dt = 0;
+};
+
+Throughput measure(Backend& b, const SphScene& scene, int steps) {
+  SphSimulation sim(b, scene);
+  sim.run(2);  // warm-up: pipelines, caches, the first adaptive steps
+  sim.set_profiling(true);
+  sim.reset_stage_ms();
+  const uint64_t sub0 = sim.substeps();
+  const auto t0 = std::chrono::steady_clock::now();
+  sim.run(uint64_t(steps));
+  const double wall =
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+  Throughput t;
+  t.stage_ms = sim.stage_ms();
+  const double taken = double(sim.substeps() - sub0);
+  for (double& s : t.stage_ms) s /= taken;
+  for (double s : t.stage_ms) t.step_ms += s;
+  t.wall_ms = wall / taken;
+  t.steps = int(taken);
+  t.particles = sim.particle_count();
+  t.dt = sim.last_dt();
+  return t;
+}
+
+struct ErrorRun {
+  std::string integrator;
+  double dt = 0, wall_ms = 0;
+  uint64_t steps = 0;
+  double position_error = 0;  // RMS |x - x_ref| / h
+  double velocity_error = 0;  // relative L2 of velocities
+  double energy_error = 0;    // |E - E_ref| / |E_ref(0)|
+  bool stable = true;
+};
+
+SphScene error_scene(const SphBenchOptions& o, SphIntegrator integ, double dt) {
+  SphScene s = make_preset("dam-break", o.error_particles);
+  s.integrator = integ;
+  s.dt = dt;
+  s.cfl_guard = SphCflGuard::off;  // measure the integrator as asked, unstable or not
+  return s;
+}
+
+struct Final {
+  SphState state;
+  double energy0 = 0, energy = 0, wall_ms = 0;
+  uint64_t steps = 0;
+  bool ok = true;
+};
+
+Final run_to(Backend& b, const SphScene& s, double t_end) {
+  Final f;
+  SphSimulation sim(b, s);
+  f.energy0 = compute_diagnostics(sim.download(), sim).total();
+  const uint64_t n = uint64_t(std::llround(t_end / *s.dt));
+  const auto t0 = std::chrono::steady_clock::now();
+  try {
+    sim.run(n);
+  } catch (const Error&) {
+    f.ok = false;
+  }
+  f.wall_ms =
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+  f.steps = sim.steps();
+  f.state = sim.download();
+  f.energy = compute_diagnostics(f.state, sim).total();
+  return f;
+}
+
+int run_sph_bench(const SphBenchOptions& o) {
+  std::vector<uint32_t> counts;
+  for (const auto& c : split(o.counts)) {
+    char* end = nullptr;
+    const unsigned long v = std::strtoul(c.c_str(), &end, 10);
+    if (!end || *end || v < 1 || v > (1ul << 28))
+      throw_invalid("bench sph", "--n", c, "comma-separated particle counts in [1, 2^28]");
+    counts.push_back(uint32_t(v));
+  }
+  std::vector<SphIntegrator> integrators;
+  for (const auto& i : split(o.integrators))
+    integrators.push_back(parse_integrator(i, "--integrators"));
+
+  JsonWriter j;
+  j.begin_object();
+  write_record_header(j, "sph");
+  j.field("preset", o.preset);
+  j.key("thesis_table_4_1").begin_object();  // 32,768 particles, steps per second
+  j.field("note", "Quadro FX 5800 GPU / Core2 Duo P8400 CPU, 32,768 particles, frames per second");
+  j.field("gpu_euler", "8.8 / 10.5 / 7.2 (water / mud / explosion)");
+  j.field("gpu_rk4", "8.6 / 10.4 / 7.0");
+  j.field("cpu_euler", "0.41 / 0.31 / 0.48");
+  j.field("cpu_rk4", "0.25 / 0.21 / 0.35");
+  j.end_object();
+  j.key("throughput").begin_array();
+  fmt::print(
+      "bench sph: preset {}, device time per step by stage (ms), median of the timed "
+      "steps' sums\n",
+      o.preset);
+  fmt::print("  {:<7} {:<10} {:>9} {:>8} {:>8} {:>8} {:>9} {:>9} {:>9} {:>9} {:>12}\n", "backend",
+             "integrator", "particles", "grid", "density", "forces", "integrate", "step", "wall",
+             "steps/s", "Mpart-step/s");
+  int rc = 0;
+  auto backends = open_backends(o.choice);
+  for (auto& b : backends) {
+    for (uint32_t n : counts) {
+      for (SphIntegrator integ : integrators) {
+        SphScene s = make_preset(o.preset, n);
+        s.integrator = integ;
+        const int steps = o.steps ? o.steps : std::clamp(int(2e6 / n), 2, 20);
+        try {
+          const Throughput t = measure(*b, s, steps);
+          const double sps = 1000.0 / t.wall_ms;
+          fmt::print(
+              "  {:<7} {:<10} {:>9} {:>8.2f} {:>8.2f} {:>8.2f} {:>9.2f} {:>9.2f} {:>9.2f} "
+              "{:>9.2f} {:>12.3f}\n",
+              b->name(), to_string(integ), t.particles, t.stage_ms[0], t.stage_ms[1], t.stage_ms[2],
+              t.stage_ms[3], t.step_ms, t.wall_ms, sps, sps * t.particles * 1e-6);
+          j.begin_object();
+          write_device(j, *b);
+          j.field("integrator", to_string(integ)).field("particles", t.particles);
+          j.field("timed_steps", t.steps).field("dt_s", t.dt);
+          j.key("stage_ms_per_step").begin_object();
+          for (size_t k = 0; k < t.stage_ms.size(); ++k)
+            j.field(to_string(SphStage(k)), t.stage_ms[k]);
+          j.end_object();
+          j.field("device_ms_per_step", t.step_ms).field("wall_ms_per_step", t.wall_ms);
+          j.field("steps_per_s", sps).field("particle_steps_per_s", sps * t.particles);
+          j.end_object();
+        } catch (const Error& e) {
+          fmt::print("  {:<7} {:<10} {:>9} skipped: {}\n", b->name(), to_string(integ), n,
+                     e.what());
+        }
+      }
+    }
+  }
+  j.end_array();
+
+  if (!o.skip_error) {
+    // Run time against error on a dam break: dt0 = the CFL limit at rest, dt0 / 2^k, against
+    // RK4 at dt0 / 16 on the CPU reference.
+    cpu::CpuBackend ref_backend;
+    SphScene probe = error_scene(o, SphIntegrator::rk4, 1.0);
+    const SphParticles lay = build_particles(probe);
+    const double dt0 = 0.2 * lay.h / probe.sound_speed;
+    fmt::print(
+        "\nrun time against error: dam break, {} particles, {} s; dt0 = {:.3g} s; "
+        "reference RK4 at dt0/16 (CPU, fp64)\n",
+        o.error_particles, o.error_time, dt0);
+    const Final ref =
+        run_to(ref_backend, error_scene(o, SphIntegrator::rk4, dt0 / 16), o.error_time);
+    std::vector<double> ref_v;
+    for (const auto& v : ref.state.velocities) ref_v.insert(ref_v.end(), {v.x, v.y, v.z});
+    j.key("error_sweep").begin_object();
+    j.field("scene", "dam-break").field("particles", o.error_particles);
+    j.field("time_s", o.error_time).field("dt0_s", dt0);
+    j.field("reference", "rk4 at dt0/16 on the CPU reference (fp64)");
+    j.key("rows").begin_array();
+    fmt::print("  {:<7} {:<10} {:>10} {:>7} {:>10} {:>12} {:>12} {:>12}\n", "backend", "integrator",
+               "dt (s)", "steps", "wall (ms)", "pos err / h", "vel err", "energy err");
+    for (auto& b : backends) {
+      for (SphIntegrator integ : integrators) {
+        for (int k = 0; k < 4; ++k) {
+          const double dt = dt0 / double(1 << k);
+          const Final f = run_to(*b, error_scene(o, integ, dt), o.error_time);
+          ErrorRun r;
+          r.stable = f.ok;
+          double sq = 0, dv = 0, vv = 0;
+          for (size_t i = 0; i < f.state.positions.size(); ++i) {
+            const Vec4d &x = f.state.positions[i], &y = ref.state.positions[i];
+            sq += (x.x - y.x) * (x.x - y.x) + (x.y - y.y) * (x.y - y.y) + (x.z - y.z) * (x.z - y.z);
+            const Vec4d &v = f.state.velocities[i], &w = ref.state.velocities[i];
+            dv += (v.x - w.x) * (v.x - w.x) + (v.y - w.y) * (v.y - w.y) + (v.z - w.z) * (v.z - w.z);
+            vv += w.x * w.x + w.y * w.y + w.z * w.z;
+          }
+          r.position_error = std::sqrt(sq / double(f.state.positions.size())) / lay.h;
+          r.velocity_error = std::sqrt(dv / std::max(vv, 1e-300));
+          r.energy_error = std::abs(f.energy - ref.energy) / std::abs(ref.energy0);
+          if (!std::isfinite(r.position_error)) r.stable = false;
+          fmt::print("  {:<7} {:<10} {:>10.3g} {:>7} {:>10.1f} {:>12.3g} {:>12.3g} {:>12.3g}{}\n",
+                     b->name(), to_string(integ), dt, f.steps, f.wall_ms, r.position_error,
+                     r.velocity_error, r.energy_error, r.stable ? "" : "  (unstable)");
+          j.begin_object();
+          j.field("backend", b->name()).field("device", b->caps().device_name);
+          j.field("integrator", to_string(integ)).field("dt_s", dt).field("steps", f.steps);
+          j.field("wall_ms", f.wall_ms).field("stable", r.stable);
+          if (r.stable) {
+            j.field("position_error_over_h", r.position_error);
+            j.field("velocity_error", r.velocity_error).field("energy_error", r.energy_error);
+          }
+          j.end_object();
+        }
+      }
+    }
+    j.end_array().end_object();
+  }
+  j.end_object();
+  if (!o.json.empty()) {
+    write_file_atomic(o.json, j.str() + "\n");
+    fmt::print("wrote {}\n", o.json);
+  }
+  return rc;
+}
+
+}  // namespace
+
+void add_sph_bench(CLI::App& bench) {
+  static SphBenchOptions o;
+  auto* cmd = bench.add_subcommand(
+      "sph", "SPH particle-steps/s by backend, integrator and count; run time against error");
+  add_backend_options(*cmd, o.choice, true);
+  cmd->add_option("--n", o.counts, "comma-separated particle counts")->capture_default_str();
+  cmd->add_option("--integrators", o.integrators,
+                  "comma-separated: euler, symplectic-euler, "
+                  "rk4, leapfrog")
+      ->capture_default_str();
+  std::vector<std::string> presets;
+  for (const auto& p : sph_presets()) presets.push_back(p.name);
+  cmd->add_option("--preset", o.preset, "scene timed")
+      ->check(CLI::IsMember(presets))
+      ->capture_default_str();
+  cmd->add_option("--steps", o.steps, "timed steps per run (0: ~2M particle-steps, 2..20)")
+      ->check(CLI::Range(0, 100000));
+  cmd->add_flag("--skip-error", o.skip_error, "skip the run-time/error sweep");
+  cmd->add_option("--error-particles", o.error_particles, "particles of the error sweep")
+      ->check(CLI::Range(64u, 1u << 20))
+      ->capture_default_str();
+  cmd->add_option("--error-time", o.error_time, "simulated seconds of the error sweep")
+      ->check(CLI::Range(1e-4, 10.0))
+      ->capture_default_str();
+  cmd->add_option("--json", o.json, "write the results as JSON to this file");
+  cmd->callback([] {
+    if (int rc = run_sph_bench(o)) throw CLI::RuntimeError(rc);
+  });
+}
+
+}  // namespace masav::app

@@ -1,0 +1,450 @@
+#pragma once
+// SPH math shared by the CPU reference (T = double) and CUDA (T = float): smoothing kernels,
+// the Tait equation of state, the pair terms of both pressure models, box walls, and the
+// per-particle neighbour walks. shaders/common/sph.glsl is the GLSL twin.
+//
+// Smoothing kernels (support radius h, q = r/h), Mueller et al. 2003 / thesis Eq. 4.7:
+//   poly6        W(r)      = 315/(64 pi h^3) (1 - q^2)^3            (density, Eq. 4.4)
+//   spiky grad   grad W(r) = -45/(pi h^4) (1 - q)^2 r_hat            (wcsph pressure)
+//   thesis grad  grad W(r) = -45/(pi h^3) (1 - q)^3 r_hat            (Eq. 4.7 as printed)
+//   viscosity    lap W(r)  =  45/(pi h^5) (1 - q)                    (Eq. 4.5)
+// r_hat points from the neighbour j to the particle i. Every coefficient that holds a mass,
+// a viscosity or a pressure constant is computed once on the host in double (SphCoefficients).
+#include <cmath>
+#include <cstdint>
+
+#include "engine/physics/hd.h"
+
+namespace masav::sph {
+
+template <class T>
+struct V3 {
+  T x, y, z;
+};
+template <class T>
+MASAV_HD inline V3<T> operator+(V3<T> a, V3<T> b) {
+  return {a.x + b.x, a.y + b.y, a.z + b.z};
+}
+template <class T>
+MASAV_HD inline V3<T> operator-(V3<T> a, V3<T> b) {
+  return {a.x - b.x, a.y - b.y, a.z - b.z};
+}
+template <class T>
+MASAV_HD inline V3<T> operator*(T s, V3<T> a) {
+  return {s * a.x, s * a.y, s * a.z};
+}
+template <class T>
+MASAV_HD inline T dot(V3<T> a, V3<T> b) {
+  return (a.x * b.x + a.y * b.y) + a.z * b.z;
+}
+
+// Pressure models (SphStepParams::model): 0 = wcsph, 1 = thesis.
+constexpr uint32_t kModelWcsph = 0;
+constexpr uint32_t kModelThesis = 1;
+
+// The kernels' constants, in the precision of the backend (see make_coefficients in
+// engine/sph/sph_coefficients.h for their definitions).
+template <class T>
+struct Coefficients {
+  T h2, inv_h, inv_h2;
+  T density;    // m * 315 / (64 pi h^3)
+  T pressure;   // wcsph: m * 45 / (pi h^4); thesis: kp * m * 45 / (pi h^3) / 2
+  T viscosity;  // nu * m * 45 / (pi h^5)
+  T rest_density, inv_rest_density;
+  T eos;  // wcsph: Tait B = rho0 c0^2 / 7 (Pa); thesis: c^2 of the reported pressure
+  T gravity[3];
+  T lo[3], hi[3];    // box walls (semi-analytic, wcsph only)
+  T wall_viscosity;  // nu * 7.5 / h^2: no-slip walls (see wall_accel)
+  T wall_offset;     // m: the continuum starts this far behind each wall (lattice calibration)
+  uint32_t model;
+  uint32_t clamp_negative_pressure;
+  uint32_t walls;
+};
+
+// Pressure from density. wcsph: Tait, p = B ((rho/rho0)^7 - 1), clamped at 0 when asked (free
+// surfaces). thesis: the force needs no pressure; p = c^2 (rho - rho0) is reported for output.
+template <class T>
+MASAV_HD inline T pressure_of(T rho, const Coefficients<T>& c) {
+  if (c.model == kModelThesis) return c.eos * (rho - c.rest_density);
+  const T x = rho * c.inv_rest_density;
+  const T x2 = x * x;
+  T p = c.eos * (x2 * x2 * x2 * x - T(1));
+  if (c.clamp_negative_pressure && p < T(0)) p = T(0);
+  return p;
+}
+
+// Semi-analytic box walls (wcsph): the fluid beyond each wall is a continuum at rest density, so
+// a particle at distance d = q h < h from a wall gets the density that continuum adds,
+// rho0 int_{z > d} W_poly6 = rho0 (1/2 - 315/256 F(q)), F(q) = int_0^q (1 - u^2)^4 du, and the
+// symmetric pressure force of that continuum (mirror particles at i's own pressure),
+// -2 p_i / rho_i^2 grad rho_wall = 2 p_i / rho_i^2 rho0 315/256 (1 - q^2)^4 / h along the
+// inward normal. Without them, particles near a wall miss up to half their neighbours, sink
+// into it and pile up (Kulasegaram et al. 2004; Ferrand et al. 2013).
+template <class T>
+MASAV_HD inline T wall_density_fraction(T q) {
+  const T q2 = q * q;
+  const T f = q * (T(1) + q2 * (T(-4.0 / 3.0) +
+                                q2 * (T(6.0 / 5.0) + q2 * (T(-4.0 / 7.0) + q2 * T(1.0 / 9.0)))));
+  return T(0.5) - T(315.0 / 256.0) * f;
+}
+template <class T>
+MASAV_HD inline T wall_density_slope(T q) {  // -d(fraction)/dq
+  const T u = T(1) - q * q;
+  return T(315.0 / 256.0) * (u * u) * (u * u);
+}
+
+// The walls' density fraction at x and its gradient along the inward normals (the direction the
+// walls push). Several walls near an edge or a corner overlap: the fluid beyond at least one of
+// them is 1 - prod_k (1 - f_k) (exact for a separable kernel; 7/8 in a corner, where a plain
+// sum would count 3/2 and blow the corner apart).
+template <class T>
+MASAV_HD inline T wall_density(V3<T> x, const Coefficients<T>& c, V3<T>* push) {
+  const T xs[3] = {x.x, x.y, x.z};
+  T f[6], slope[6];
+  T keep = T(1);  // prod_k (1 - f_k)
+  for (int k = 0; k < 6; ++k) {
+    const int a = k >> 1;
+    const T d = (k & 1) ? c.hi[a] - xs[a] : xs[a] - c.lo[a];
+    const T q = ((d > T(0) ? d : T(0)) + c.wall_offset) * c.inv_h;
+    f[k] = q < T(1) ? wall_density_fraction(q) : T(0);
+    slope[k] = q < T(1) ? wall_density_slope(q) : T(0);
+    keep *= T(1) - f[k];
+  }
+  if (push) {
+    T g[3] = {T(0), T(0), T(0)};
+    for (int k = 0; k < 6; ++k) {
+      // d(1 - keep)/dq_k = slope_k prod_{j != k} (1 - f_j); lo walls push +, hi walls push -.
+      T others = T(1);
+      for (int m = 0; m < 6; ++m)
+        if (m != k) others *= T(1) - f[m];
+      g[k >> 1] += ((k & 1) ? -slope[k] : slope[k]) * others;
+    }
+    *push = V3<T>{g[0], g[1], g[2]};
+  }
+  return T(1) - keep;
+}
+
+// Cell coordinates of a cell id (thesis Eq. 4.2 inverted).
+MASAV_HD inline void cell_coords(uint32_t id, const uint32_t dims[3], int out[3]) {
+  const uint32_t yz = dims[1] * dims[2];
+  out[0] = int(id / yz);
+  out[1] = int((id % yz) / dims[2]);
+  out[2] = int(id % dims[2]);
+}
+
+// The sorted range holding the 3 cells (x, y, z-1 .. z+1) of one row of the 27-cell block:
+// consecutive cell ids, so their points are contiguous in cell order. Empty when all 3 are
+// empty (an empty cell has start == end).
+MASAV_HD inline void row_range(int x, int y, int z, const uint32_t dims[3],
+                               const uint32_t* cell_start, const uint32_t* cell_end,
+                               uint32_t& first, uint32_t& last) {
+  first = 0;
+  last = 0;
+  const int z0 = z > 0 ? z - 1 : 0;
+  const int z1 = z + 1 < int(dims[2]) ? z + 1 : int(dims[2]) - 1;
+  const uint32_t base = (uint32_t(x) * dims[1] + uint32_t(y)) * dims[2];
+  bool found = false;
+  for (int k = z0; k <= z1; ++k) {
+    const uint32_t id = base + uint32_t(k);
+    const uint32_t s = cell_start[id], e = cell_end[id];
+    if (e > s) {
+      if (!found) first = s;
+      found = true;
+      last = e;
+    }
+  }
+}
+
+// Visits every candidate j (sorted index) in the 27 cells around `cell`, rows x outermost,
+// then y, each row in increasing sorted index -- the order every backend sums in. Stops after
+// max_candidates candidates and sets `overflow`. visit(j) is called for each candidate.
+template <class Visit>
+MASAV_HD inline uint32_t walk_neighbors(uint32_t cell, const uint32_t dims[3],
+                                        const uint32_t* cell_start, const uint32_t* cell_end,
+                                        uint32_t max_candidates, bool& overflow, Visit&& visit) {
+  int c[3];
+  cell_coords(cell, dims, c);
+  uint32_t candidates = 0;
+  overflow = false;
+  for (int dx = -1; dx <= 1; ++dx) {
+    const int x = c[0] + dx;
+    if (x < 0 || x >= int(dims[0])) continue;
+    for (int dy = -1; dy <= 1; ++dy) {
+      const int y = c[1] + dy;
+      if (y < 0 || y >= int(dims[1])) continue;
+      uint32_t first, last;
+      row_range(x, y, c[2], dims, cell_start, cell_end, first, last);
+      if (last - first > max_candidates - candidates) {
+        overflow = true;
+        return candidates;
+      }
+      candidates += last - first;
+      for (uint32_t j = first; j < last; ++j) visit(j);
+    }
+  }
+  return candidates;
+}
+
+// (1 - q^2)^3 for r^2 < h^2, else 0, without a branch: the density sum's term.
+template <class T>
+MASAV_HD inline T density_term(T r2, const Coefficients<T>& c) {
+  T u = T(1) - r2 * c.inv_h2;
+  u = u > T(0) ? u : T(0);
+  return u * u * u;
+}
+
+template <class T>
+struct DensityResult {
+  T density;
+  uint32_t neighbors;   // points within h, itself included
+  uint32_t candidates;  // points examined
+  bool overflow;
+};
+
+// Density of sorted particle i (thesis Eq. 4.4): sum over j within h of m W_poly6(r_ij).
+// pos_at(j) returns V3<T> of sorted particle j.
+template <class T, class PosAt>
+MASAV_HD inline DensityResult<T> density_at(V3<T> xi, uint32_t cell, const uint32_t dims[3],
+                                            const uint32_t* cell_start, const uint32_t* cell_end,
+                                            uint32_t max_candidates, const Coefficients<T>& c,
+                                            PosAt&& pos_at) {
+  T sum = T(0);
+  uint32_t neighbors = 0;
+  bool overflow = false;
+  const uint32_t candidates =
+      walk_neighbors(cell, dims, cell_start, cell_end, max_candidates, overflow, [&](uint32_t j) {
+        const V3<T> d = xi - pos_at(j);
+        const T r2 = dot(d, d);
+        sum += density_term(r2, c);
+        neighbors += r2 < c.h2 ? 1u : 0u;
+      });
+  T rho = c.density * sum;
+  if (c.walls) rho += c.rest_density * wall_density(xi, c, (V3<T>*)nullptr);
+  return {rho, neighbors, candidates, overflow};
+}
+
+// What the force walk reads of a neighbour.
+template <class T>
+struct Neighbor {
+  V3<T> x, v;
+  T rho, p;
+};
+
+// The acceleration neighbour o gives particle `me` (per unit SPH mass), for 0 <= r2 < h^2 with
+// d = me.x - o.x; pi_over_rho2 = me.p / me.rho^2 (wcsph). Formulas: see force_at.
+template <class T>
+MASAV_HD inline V3<T> pair_accel(const Neighbor<T>& me, T pi_over_rho2, const Neighbor<T>& o,
+                                 V3<T> d, T r2, const Coefficients<T>& c) {
+  const bool thesis = c.model == kModelThesis;
+  const T r = sqrt(r2);
+  const T u = T(1) - r * c.inv_h;  // 1 - q
+  V3<T> a{T(0), T(0), T(0)};
+  if (r2 > T(0)) {  // pressure along r_hat = d / r
+    T s;
+    if (thesis)
+      s = c.pressure * ((o.rho - me.rho) / o.rho) * (u * u * u);
+    else
+      s = c.pressure * (pi_over_rho2 + o.p / (o.rho * o.rho)) * (u * u);
+    a = (s / r) * d;
+  }
+  const T w = thesis ? c.viscosity * u / o.rho : c.viscosity * u * (T(2) / (me.rho + o.rho));
+  return a + w * (o.v - me.v);
+}
+
+// The walls' pressure force on a particle (wcsph with walls; see wall_density).
+// The walls also hold their continuum at rest, so the viscosity term sees it as fluid with zero
+// velocity (no-slip walls): -nu v_i 2 rho0/(rho_i + rho0) int_beyond lap W, and for the
+// viscosity kernel int_{z > d} lap W = 7.5/h^2 (1 - q)^3 (1 + q) per wall.
+template <class T>
+MASAV_HD inline T wall_viscous_weight(V3<T> x, const Coefficients<T>& c) {
+  const T xs[3] = {x.x, x.y, x.z};
+  T w = T(0);
+  for (int k = 0; k < 6; ++k) {
+    const int a = k >> 1;
+    const T d = (k & 1) ? c.hi[a] - xs[a] : xs[a] - c.lo[a];
+    const T q = ((d > T(0) ? d : T(0)) + c.wall_offset) * c.inv_h;
+    if (q < T(1)) {
+      const T u = T(1) - q;
+      w += u * u * u * (T(1) + q);
+    }
+  }
+  return w;
+}
+
+template <class T>
+MASAV_HD inline V3<T> wall_accel(const Neighbor<T>& me, T pi_over_rho2, const Coefficients<T>& c) {
+  V3<T> n{T(0), T(0), T(0)};
+  wall_density(me.x, c, &n);
+  const T damp = c.wall_viscosity * (T(2) * c.rest_density / (me.rho + c.rest_density)) *
+                 wall_viscous_weight(me.x, c);
+  return (T(2) * pi_over_rho2 * c.rest_density * c.inv_h) * n - damp * me.v;
+}
+
+template <class T>
+struct ForceResult {
+  V3<T> accel;
+  uint32_t neighbors;  // within h, itself excluded
+  uint32_t candidates;
+  bool overflow;
+};
+
+// Acceleration of sorted particle i from its neighbours (per unit SPH mass), before the inverse
+// mass scale and gravity (see total_accel).
+//   wcsph:  a_i = sum_j m (p_i/rho_i^2 + p_j/rho_j^2) 45/(pi h^4) (1-q)^2 r_hat
+//               + nu sum_j m (v_j - v_i) 2/(rho_i + rho_j) lap W
+//           Every pair term is antisymmetric in (i, j) -- also in floating point, since
+//           x_i - x_j = -(x_j - x_i) exactly -- so total momentum is conserved.
+//   thesis: a_i = kp sum_j m (rho_j - rho_i)/(2 rho_j) 45/(pi h^3) (1-q)^3 r_hat   (Eq. 4.6)
+//               + nu sum_j m (v_j - v_i)/rho_j lap W                             (Eq. 4.5)
+// pos_at(j) returns V3<T> of sorted particle j, fetch(j) its whole Neighbor<T> (read only for
+// neighbours within h); `self` is i's sorted index.
+template <class T, class PosAt, class Fetch>
+MASAV_HD inline ForceResult<T> force_at(uint32_t self, const Neighbor<T>& me, uint32_t cell,
+                                        const uint32_t dims[3], const uint32_t* cell_start,
+                                        const uint32_t* cell_end, uint32_t max_candidates,
+                                        const Coefficients<T>& c, PosAt&& pos_at, Fetch&& fetch) {
+  V3<T> acc{T(0), T(0), T(0)};
+  uint32_t neighbors = 0;
+  bool overflow = false;
+  const T pi_over_rho2 = me.p / (me.rho * me.rho);
+  const uint32_t candidates =
+      walk_neighbors(cell, dims, cell_start, cell_end, max_candidates, overflow, [&](uint32_t j) {
+        if (j == self) return;
+        const V3<T> d = me.x - pos_at(j);
+        const T r2 = dot(d, d);
+        if (!(r2 < c.h2)) return;
+        ++neighbors;
+        acc = acc + pair_accel(me, pi_over_rho2, fetch(j), d, r2, c);
+      });
+  if (c.walls) acc = acc + wall_accel(me, pi_over_rho2, c);
+  return {acc, neighbors, candidates, overflow};
+}
+
+// Total acceleration: pair forces scaled by the inverse inertial mass (1 fluid, 1/ratio heavy
+// obstacle, 0 pinned), plus gravity for everything that can move.
+template <class T>
+MASAV_HD inline V3<T> total_accel(V3<T> pair, T inv_mass, const Coefficients<T>& c) {
+  if (!(inv_mass > T(0))) return {T(0), T(0), T(0)};
+  return V3<T>{inv_mass * pair.x + c.gravity[0], inv_mass * pair.y + c.gravity[1],
+               inv_mass * pair.z + c.gravity[2]};
+}
+
+// Box walls: a particle past a wall is put back on it; its normal velocity, if it points out,
+// is reversed and scaled by `restitution`; its tangential velocity is scaled by
+// (1 - tangential_damping). Returns true if the particle touched a wall.
+template <class T>
+MASAV_HD inline bool wall_response(V3<T>& x, V3<T>& v, const T lo[3], const T hi[3], T restitution,
+                                   T tangential_damping) {
+  T* xp[3] = {&x.x, &x.y, &x.z};
+  T* vp[3] = {&v.x, &v.y, &v.z};
+  bool hit[3] = {false, false, false};
+  for (int a = 0; a < 3; ++a) {
+    if (*xp[a] < lo[a]) {
+      *xp[a] = lo[a];
+      if (*vp[a] < T(0)) *vp[a] = -restitution * *vp[a];
+      hit[a] = true;
+    } else if (*xp[a] > hi[a]) {
+      *xp[a] = hi[a];
+      if (*vp[a] > T(0)) *vp[a] = -restitution * *vp[a];
+      hit[a] = true;
+    }
+  }
+  const bool any = hit[0] || hit[1] || hit[2];
+  if (any && tangential_damping > T(0)) {
+    const T keep = T(1) - tangential_damping;
+    for (int a = 0; a < 3; ++a)
+      if (!hit[a]) *vp[a] = keep * *vp[a];
+  }
+  return any;
+}
+
+// Integrator stages (SphIntegrateParams::op), as numbers shared with GLSL.
+constexpr uint32_t kOpEuler = 0;            // x1 = x0 + dt v0, v1 = v0 + dt a(x0, v0)
+constexpr uint32_t kOpSymplecticEuler = 1;  // v1 = v0 + dt a, x1 = x0 + dt v1
+constexpr uint32_t kOpRk4Stage1 = 2;        // k1 = (v0, a); stage 2 state y0 + dt/2 k1
+constexpr uint32_t kOpRk4Stage2 = 3;        // k2 = (vk, a); stage 3 state y0 + dt/2 k2
+constexpr uint32_t kOpRk4Stage3 = 4;        // k3 = (vk, a); stage 4 state y0 + dt k3
+constexpr uint32_t kOpRk4Final = 5;         // y1 = y0 + dt/6 (k1 + 2 k2 + 2 k3 + k4)
+constexpr uint32_t kOpKickDrift = 6;        // v_half = v0 + dt/2 a, x1 = x0 + dt v_half
+constexpr uint32_t kOpKick = 7;             // v1 = v_half + dt/2 a(x1)
+
+MASAV_HD inline bool op_ends_step(uint32_t op) {
+  return op == kOpEuler || op == kOpSymplecticEuler || op == kOpRk4Final || op == kOpKickDrift;
+}
+
+// One particle's stage update. x0/v0: step-start state; vk: stage velocity (RK4); a: stage
+// acceleration; sx/sv: RK4 running sums (in: previous, out: updated) or, for kick_drift, sv
+// receives the predicted end-of-step velocity v_half + dt/2 a that the viscosity term uses.
+template <class T>
+MASAV_HD inline void integrate_stage(uint32_t op, T dt, V3<T> x0, V3<T> v0, V3<T> vk, V3<T> a,
+                                     V3<T>& x_out, V3<T>& v_out, V3<T>& sx, V3<T>& sv) {
+  const T half = T(0.5) * dt;
+  switch (op) {
+    case kOpEuler:
+      x_out = x0 + dt * v0;
+      v_out = v0 + dt * a;
+      break;
+    case kOpSymplecticEuler:
+      v_out = v0 + dt * a;
+      x_out = x0 + dt * v_out;
+      break;
+    case kOpRk4Stage1:
+      sx = v0;
+      sv = a;
+      x_out = x0 + half * v0;
+      v_out = v0 + half * a;
+      break;
+    case kOpRk4Stage2:
+      sx = sx + T(2) * vk;
+      sv = sv + T(2) * a;
+      x_out = x0 + half * vk;
+      v_out = v0 + half * a;
+      break;
+    case kOpRk4Stage3:
+      sx = sx + T(2) * vk;
+      sv = sv + T(2) * a;
+      x_out = x0 + dt * vk;
+      v_out = v0 + dt * a;
+      break;
+    case kOpRk4Final: {
+      const T sixth = dt / T(6);
+      x_out = x0 + sixth * (sx + vk);
+      v_out = v0 + sixth * (sv + a);
+      break;
+    }
+    case kOpKickDrift:
+      v_out = v0 + half * a;
+      x_out = x0 + dt * v_out;
+      break;
+    case kOpKick:
+    default:
+      x_out = x0;
+      v_out = v0 + half * a;
+      break;
+  }
+}
+
+// The stage update of one particle, then (for ops that end a step) the box walls; kick_drift
+// also predicts the end-of-step velocity into sv. Returns false if the particle lies outside
+// the box afterwards (walls off, or a non-finite position).
+template <class T>
+struct StageParams {
+  uint32_t op;
+  T dt;
+  uint32_t walls;
+  T lo[3], hi[3];
+  T restitution, tangential_damping;
+};
+
+template <class T>
+MASAV_HD inline bool stage_particle(const StageParams<T>& p, V3<T> x0, V3<T> v0, V3<T> vk, V3<T> a,
+                                    V3<T>& x_out, V3<T>& v_out, V3<T>& sx, V3<T>& sv) {
+  integrate_stage(p.op, p.dt, x0, v0, vk, a, x_out, v_out, sx, sv);
+  if (op_ends_step(p.op) && p.walls)
+    wall_response(x_out, v_out, p.lo, p.hi, p.restitution, p.tangential_damping);
+  if (p.op == kOpKickDrift) sv = v_out + (T(0.5) * p.dt) * a;
+  return x_out.x >= p.lo[0] && x_out.x <= p.hi[0] && x_out.y >= p.lo[1] && x_out.y <= p.hi[1] &&
+         x_out.z >= p.lo[2] && x_out.z <= p.hi[2];
+}
+
+}  // namespace masav::sph

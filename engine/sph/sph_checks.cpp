@@ -1,0 +1,138 @@
+#include "engine/sph/sph_checks.h"
+
+#include <fmt/format.h>
+
+#include <cmath>
+
+#include "engine/error.h"
+#include "engine/kernel_checks.h"
+
+namespace masav {
+namespace {
+
+void finite_positive(const char* kernel, const char* field, double v, bool allow_zero) {
+  if (!std::isfinite(v) || v < 0 || (!allow_zero && v == 0))
+    throw_invalid(kernel, field, fmt::format("{}", v),
+                  allow_zero ? "finite and >= 0" : "finite and > 0");
+}
+
+template <class B>
+void need(const DeviceApi& dev, const B* b, size_t count, const char* kernel, const char* field) {
+  if (!b)
+    throw Error(dev.name(), kernel, fmt::format("no '{}' buffer given", field),
+                "pass every buffer the kernel reads or writes");
+  check_owner(dev, b->impl(), kernel);
+  if (b->size() < count)
+    throw_invalid(kernel, fmt::format("{} size", field), std::to_string(b->size()),
+                  fmt::format("at least {} elements", count));
+}
+
+void check_view(const DeviceApi& dev, const SphStepParams& p, const SphGridView& g,
+                const char* kernel) {
+  const size_t cells = size_t(grid_cell_count(p.grid));
+  need(dev, g.cells, p.n, kernel, "cells");
+  need(dev, g.cell_start, cells, kernel, "cell_start");
+  need(dev, g.cell_end, cells, kernel, "cell_end");
+}
+
+}  // namespace
+
+void check_sph_step(const DeviceApi& dev, const SphStepParams& p, const char* kernel) {
+  check_grid(p.grid, kernel);
+  if (p.n != p.grid.n)
+    throw_invalid(kernel, "n", std::to_string(p.n),
+                  fmt::format("equal to the grid's point count {}", p.grid.n));
+  finite_positive(kernel, "h", p.h, false);
+  if (double(p.grid.cell_size) < p.h)
+    throw_invalid(kernel, "grid cell_size", fmt::format("{}", p.grid.cell_size),
+                  fmt::format(">= h = {} so that the 27 cells around a particle hold every "
+                              "neighbour",
+                              p.h));
+  finite_positive(kernel, "mass", p.mass, false);
+  finite_positive(kernel, "rest_density", p.rest_density, false);
+  finite_positive(kernel, "gradient_correction", p.gradient_correction, false);
+  finite_positive(kernel, "wall_offset", p.wall_offset, true);
+  finite_positive(kernel, "viscosity", p.viscosity, true);
+  if (p.model == SphPressureModel::wcsph)
+    finite_positive(kernel, "sound_speed", p.sound_speed, false);
+  else
+    finite_positive(kernel, "kp", p.kp, true);
+  for (double g : {p.gravity.x, p.gravity.y, p.gravity.z})
+    if (!std::isfinite(g))
+      throw_invalid(kernel, "gravity",
+                    fmt::format("({}, {}, {})", p.gravity.x, p.gravity.y, p.gravity.z), "finite");
+  if (p.walls) {
+    const double lo[3] = {p.box_min.x, p.box_min.y, p.box_min.z};
+    const double hi[3] = {p.box_max.x, p.box_max.y, p.box_max.z};
+    for (int a = 0; a < 3; ++a)
+      if (!std::isfinite(lo[a]) || !std::isfinite(hi[a]) || !(lo[a] < hi[a]))
+        throw_invalid(kernel, "box", fmt::format("[{}, {}] on axis {}", lo[a], hi[a], a),
+                      "finite with min < max on every axis");
+  }
+  if (p.max_candidates < 1 || p.max_candidates > 65000)
+    throw_invalid(kernel, "max_candidates", std::to_string(p.max_candidates),
+                  "in [1, 65000] (lavapipe stops a shader invocation after 65,535 loop "
+                  "iterations)");
+  (void)dev;
+}
+
+void check_sph_density(const DeviceApi& dev, const SphStepParams& p, const SphDensityIO& io) {
+  const char* k = "sph_density";
+  check_sph_step(dev, p, k);
+  need(dev, io.positions, p.n, k, "positions");
+  check_view(dev, p, io.grid, k);
+  need(dev, io.density, p.n, k, "density");
+  need(dev, io.pressure, p.n, k, "pressure");
+  need(dev, io.stats, kSphStatWords, k, "stats");
+}
+
+void check_sph_forces(const DeviceApi& dev, const SphStepParams& p, const SphForcesIO& io) {
+  const char* k = "sph_forces";
+  check_sph_step(dev, p, k);
+  need(dev, io.positions, p.n, k, "positions");
+  need(dev, io.velocities, p.n, k, "velocities");
+  need(dev, io.density, p.n, k, "density");
+  need(dev, io.pressure, p.n, k, "pressure");
+  check_view(dev, p, io.grid, k);
+  need(dev, io.accel, p.n, k, "accel");
+  need(dev, io.stats, kSphStatWords, k, "stats");
+}
+
+void check_sph_integrate(const DeviceApi& dev, const SphIntegrateParams& p,
+                         const SphIntegrateIO& io) {
+  const char* k = "sph_integrate";
+  const uint32_t op = uint32_t(p.op);
+  if (op > uint32_t(SphStageOp::kick)) throw_invalid(k, "op", std::to_string(op), "a SphStageOp");
+  if (!std::isfinite(p.dt) || !(p.dt > 0))
+    throw_invalid(k, "dt", fmt::format("{}", p.dt), "finite and > 0 (seconds)");
+  if (p.walls) {
+    const double lo[3] = {p.box_min.x, p.box_min.y, p.box_min.z};
+    const double hi[3] = {p.box_max.x, p.box_max.y, p.box_max.z};
+    for (int a = 0; a < 3; ++a)
+      if (!std::isfinite(lo[a]) || !std::isfinite(hi[a]) || !(lo[a] < hi[a]))
+        throw_invalid(k, "box", fmt::format("[{}, {}] on axis {}", lo[a], hi[a], a),
+                      "finite with min < max on every axis");
+  }
+  if (!(p.restitution >= 0 && p.restitution <= 1))
+    throw_invalid(k, "restitution", fmt::format("{}", p.restitution), "in [0, 1]");
+  if (!(p.tangential_damping >= 0 && p.tangential_damping <= 1))
+    throw_invalid(k, "tangential_damping", fmt::format("{}", p.tangential_damping), "in [0, 1]");
+  const SphStageOp o = p.op;
+  const bool rk4 = o >= SphStageOp::rk4_stage1 && o <= SphStageOp::rk4_final;
+  need(dev, io.v0, p.n, k, "v0");
+  need(dev, io.accel, p.n, k, "accel");
+  need(dev, io.v_out, p.n, k, "v_out");
+  need(dev, io.stats, kSphStatWords, k, "stats");
+  if (o != SphStageOp::kick) {
+    need(dev, io.x0, p.n, k, "x0");
+    need(dev, io.x_out, p.n, k, "x_out");
+  }
+  if (rk4 && o != SphStageOp::rk4_stage1) need(dev, io.vk, p.n, k, "vk");
+  if (rk4) {
+    need(dev, io.sum_x, p.n, k, "sum_x");
+    need(dev, io.sum_v, p.n, k, "sum_v");
+  }
+  if (o == SphStageOp::kick_drift) need(dev, io.sum_v, p.n, k, "sum_v");
+}
+
+}  // namespace masav

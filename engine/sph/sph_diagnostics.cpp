@@ -1,0 +1,90 @@
+#include "engine/sph/sph_diagnostics.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "engine/sph/sph_coefficients.h"
+
+namespace masav {
+
+SphDiagnostics compute_diagnostics(const SphState& s, const SphSimulation& sim) {
+  const SphScene& sc = sim.scene();
+  const SphParticles& lay = sim.layout();
+  const SphStepParams sp = sim.step_params();
+  const double m = lay.mass;
+  SphDiagnostics d;
+  double fluid_mass = 0;
+  d.surge_front = -1e300;
+  for (size_t i = 0; i < s.positions.size(); ++i) {
+    const Vec4d& x = s.positions[i];
+    const Vec4d& v = s.velocities[i];
+    if (!std::isfinite(x.x) || !std::isfinite(x.y) || !std::isfinite(x.z) || !std::isfinite(v.x) ||
+        !std::isfinite(v.y) || !std::isfinite(v.z))
+      d.finite = false;
+    if (x.x < sc.box_min.x || x.y < sc.box_min.y || x.z < sc.box_min.z || x.x > sc.box_max.x ||
+        x.y > sc.box_max.y || x.z > sc.box_max.z)
+      ++d.outside;
+    if (sc.model == SphPressureModel::wcsph)
+      d.internal += m * tait_internal_energy(s.density[i], sp);
+    if (x.w > 0) {
+      const double big_m = m / x.w;
+      const double v2 = v.x * v.x + v.y * v.y + v.z * v.z;
+      d.kinetic += 0.5 * big_m * v2;
+      d.potential -= big_m * (sc.gravity.x * x.x + sc.gravity.y * x.y + sc.gravity.z * x.z);
+      d.momentum.x += big_m * v.x;
+      d.momentum.y += big_m * v.y;
+      d.momentum.z += big_m * v.z;
+      d.momentum_scale += big_m * std::sqrt(v2);
+      d.max_speed = std::max(d.max_speed, std::sqrt(v2));
+    }
+    if (i < lay.fluid) {
+      fluid_mass += m;
+      d.center_of_mass.x += m * x.x;
+      d.center_of_mass.y += m * x.y;
+      d.center_of_mass.z += m * x.z;
+      d.mean_density += s.density[i];
+      d.max_density = std::max(d.max_density, s.density[i]);
+      d.surge_front = std::max(d.surge_front, x.x);
+    }
+  }
+  if (lay.fluid) {
+    d.center_of_mass.x /= fluid_mass;
+    d.center_of_mass.y /= fluid_mass;
+    d.center_of_mass.z /= fluid_mass;
+    d.mean_density /= double(lay.fluid);
+    d.surge_front += 0.5 * lay.placed_dx;
+  }
+  return d;
+}
+
+std::vector<std::string> diagnostics_columns() {
+  return {"step",       "time_s",        "dt_s",          "kinetic_J",  "potential_J",
+          "internal_J", "total_J",       "momentum_x",    "momentum_y", "momentum_z",
+          "max_speed",  "mean_density",  "max_density",   "com_x",      "com_y",
+          "com_z",      "surge_front_m", "max_neighbors", "retries",    "outside"};
+}
+
+std::vector<double> diagnostics_row(const SphSimulation& sim, const SphDiagnostics& d) {
+  return {double(sim.steps()),
+          sim.time(),
+          sim.last_dt(),
+          d.kinetic,
+          d.potential,
+          d.internal,
+          d.total(),
+          d.momentum.x,
+          d.momentum.y,
+          d.momentum.z,
+          d.max_speed,
+          d.mean_density,
+          d.max_density,
+          d.center_of_mass.x,
+          d.center_of_mass.y,
+          d.center_of_mass.z,
+          d.surge_front,
+          double(sim.last_stats().max_neighbors),
+          double(sim.retries()),
+          double(d.outside)};
+}
+
+}  // namespace masav

@@ -1,0 +1,531 @@
+#include "engine/sph/sph_simulation.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <bit>
+#include <cmath>
+#include <limits>
+
+#include "engine/error.h"
+#include "engine/kernel_checks.h"
+#include "engine/sph/sph_coefficients.h"
+
+namespace masav {
+namespace {
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+constexpr int kMaxRetries = 12;
+constexpr uint64_t kMaxSubsteps = 1u << 20;
+
+float bits_to_float(uint32_t w) {
+  return std::bit_cast<float>(w);
+}
+
+// Device memory the simulation needs per particle: 10 Real4 arrays, 2 Real, 2 ids, the grid's 2.
+uint64_t bytes_per_particle(const Backend& b) {
+  return 10 * 4 * b.real_bytes() + 2 * b.real_bytes() + 4 * 4;
+}
+
+// Refuses, before anything is allocated, a particle count the device cannot hold.
+void check_capacity(const Backend& b, const SphScene& s) {
+  const Capabilities& caps = b.caps();
+  const uint64_t n = s.particles;  // the obstacle is checked once its size is known
+  const uint64_t real4 = 4 * b.real_bytes();
+  if (caps.max_buffer_bytes && n * real4 > caps.max_buffer_bytes)
+    throw_invalid(
+        "sph scene", "particles", std::to_string(n),
+        fmt::format("at most {} on {} (one buffer of positions holds at most {} MiB); "
+                    "use fewer particles or a device with larger buffers",
+                    caps.max_buffer_bytes / real4, caps.device_name, caps.max_buffer_bytes >> 20));
+  const uint64_t need = n * bytes_per_particle(b);
+  if (caps.device_memory_bytes && need > caps.device_memory_bytes / 2)
+    throw_invalid(
+        "sph scene", "particles", std::to_string(n),
+        fmt::format("at most {} on {} ({} bytes per particle, {} MiB of memory)",
+                    caps.device_memory_bytes / 2 / bytes_per_particle(b), caps.device_name,
+                    bytes_per_particle(b), caps.device_memory_bytes >> 20));
+}
+
+}  // namespace
+
+const char* to_string(SphStage s) {
+  switch (s) {
+    case SphStage::grid:
+      return "grid";
+    case SphStage::density:
+      return "density";
+    case SphStage::forces:
+      return "forces";
+    case SphStage::integrate:
+      return "integrate";
+    default:
+      return "?";
+  }
+}
+
+SphSimulation::SphSimulation(Backend& backend, const SphScene& scene)
+    : backend_(backend), scene_(scene) {
+  validate(scene_);
+  check_capacity(backend_, scene_);
+  layout_ = build_particles(scene_);
+  n_ = layout_.total();
+  const Capabilities& caps = backend_.caps();
+  const uint64_t real4_bytes = 4 * backend_.real_bytes();
+  if (caps.max_buffer_bytes && uint64_t(n_) * real4_bytes > caps.max_buffer_bytes) {
+    const uint64_t fit = caps.max_buffer_bytes / real4_bytes;
+    throw_invalid("sph scene", "particles", std::to_string(n_),
+                  fmt::format("at most {} on {} (one buffer of positions holds at most {} MiB); "
+                              "use fewer particles or a device with larger buffers",
+                              fit, caps.device_name, caps.max_buffer_bytes >> 20));
+  }
+
+  // The grid: cells of h (Euler, leapfrog) or h (1 + skin) (RK4) over the box.
+  const double h = layout_.h;
+  skin_ = scene_.integrator == SphIntegrator::rk4 ? scene_.rk4_skin * h : 0.0;
+  cell_size_ = h + skin_;
+  // fp32 cell size, rounded up so that it is never below h + skin in fp32 either.
+  float cell = float(cell_size_);
+  if (double(cell) < cell_size_) cell = std::nextafter(cell, 2.0f * cell);
+  const double ext[3] = {scene_.box_max.x - scene_.box_min.x, scene_.box_max.y - scene_.box_min.y,
+                         scene_.box_max.z - scene_.box_min.z};
+  uint32_t dims[3];
+  for (int a = 0; a < 3; ++a) {
+    const double cells = std::ceil(ext[a] / double(cell));
+    if (cells > double(1 << 20))
+      throw_invalid("sph scene", "box", fmt::format("{} m on axis {}", ext[a], a),
+                    fmt::format("at most 2^20 cells of {} m per axis; shrink the box or use "
+                                "fewer particles",
+                                cell));
+    dims[a] = std::max(1u, uint32_t(cells));
+  }
+  const GridParams gp =
+      make_grid_params({float(scene_.box_min.x), float(scene_.box_min.y), float(scene_.box_min.z)},
+                       cell, {dims[0], dims[1], dims[2]}, n_);
+  if (grid_cell_count(gp) > (uint64_t(1) << 27))
+    throw_invalid("sph scene", "box", fmt::format("{} x {} x {} cells", dims[0], dims[1], dims[2]),
+                  "at most 2^27 grid cells (box / smoothing radius); shrink the box or use a "
+                  "larger smoothing radius");
+
+  step_params_.grid = gp;
+  step_params_.n = n_;
+  step_params_.max_candidates = scene_.max_candidates;
+  step_params_.model = scene_.model;
+  step_params_.h = h;
+  step_params_.mass = layout_.mass;
+  step_params_.gradient_correction = layout_.gradient_correction;
+  step_params_.wall_offset = layout_.wall_offset;
+  step_params_.rest_density = scene_.rest_density;
+  step_params_.sound_speed = scene_.sound_speed;
+  step_params_.clamp_negative_pressure = scene_.clamp_negative_pressure;
+  step_params_.kp = scene_.kp;
+  step_params_.viscosity = scene_.viscosity;
+  step_params_.gravity = scene_.gravity;
+  step_params_.walls = scene_.walls;
+  step_params_.box_min = scene_.box_min;
+  step_params_.box_max = scene_.box_max;
+
+  grid_ = make_hash_grid(backend_, gp, n_);
+  auto real4 = [&](const char* label) { return backend_.create<Real4>(n_, label); };
+  pos_ = real4("sph positions");
+  vel_ = real4("sph velocities");
+  xs_ = real4("sph stage positions");
+  vs_ = real4("sph stage velocities");
+  sum_x_ = real4("sph rk4 position sums");
+  sum_v_ = real4("sph rk4 velocity sums");
+  ta_ = real4("sph sorted positions");
+  tb_ = real4("sph sorted velocities");
+  tc_ = real4("sph sorted predicted velocities");
+  accel_ = real4("sph accelerations");
+  density_ = backend_.create<Real>(n_, "sph density");
+  pressure_ = backend_.create<Real>(n_, "sph pressure");
+  ids_ = backend_.create<uint32_t>(n_, "sph ids");
+  ids_t_ = backend_.create<uint32_t>(n_, "sph sorted ids");
+  stats_buf_ = backend_.create<uint32_t>(kSphStatWords, "sph stats");
+
+  backend_.upload(pos_, layout_.positions);
+  backend_.upload(vel_, layout_.velocities);
+  std::vector<uint32_t> ids(n_);
+  for (uint32_t i = 0; i < n_; ++i) ids[i] = i;
+  backend_.upload(ids_, ids);
+
+  // A first force pass gives a_max for the first dt (and leapfrog's first kick).
+  backend_.fill(stats_buf_, 0u);
+  sort_state();
+  evaluate(pos_, vel_);
+  uint32_t w[kSphStatWords];
+  stats_ = read_stats(w);
+  if (w[kSphStatOverflow] != 0)
+    throw Error(backend_.name(), "sph",
+                fmt::format("a particle of the initial state has more than {} neighbour "
+                            "candidates in its 27 cells",
+                            scene_.max_candidates),
+                "raise max_candidates (at most 65000) or lower the initial density_ratio");
+  double vmax = 0;
+  for (const auto& v : layout_.velocities) vmax = std::max(vmax, std::hypot(v.x, v.y, v.z));
+  stats_.max_speed = vmax;
+  accel_valid_ = true;
+  fields_current_ = true;
+  adaptive_dt_ = std::min(scene_.dt_max, dt_limit());
+}
+
+double SphSimulation::limit_for(const SphStepStats& s) const {
+  const double h = layout_.h;
+  const double c = signal_speed(step_params_);
+  double dt = scene_.cfl_velocity * h / (c + s.max_speed);
+  if (s.max_accel > 0) dt = std::min(dt, scene_.cfl_force * std::sqrt(h / s.max_accel));
+  if (scene_.viscosity > 0) dt = std::min(dt, scene_.cfl_viscous * h * h / scene_.viscosity);
+  if (skin_ > 0 && s.max_speed > 0) dt = std::min(dt, 0.5 * 0.5 * skin_ / s.max_speed);
+  return dt;
+}
+
+double SphSimulation::dt_limit() const {
+  return limit_for(stats_);
+}
+
+void SphSimulation::mark(SphStage ended) {
+  if (profiling_) marks_.push_back({backend_.timestamp(), ended});
+}
+
+void SphSimulation::rebuild_grid(const Buffer<Real4>& positions) {
+  build_hash_grid(backend_, grid_, positions);
+}
+
+void SphSimulation::sort_state() {
+  rebuild_grid(pos_);
+  reorder(backend_, grid_, pos_.impl(), ta_.impl());
+  reorder(backend_, grid_, vel_.impl(), tb_.impl());
+  reorder(backend_, grid_, ids_.impl(), ids_t_.impl());
+  std::swap(pos_, ta_);
+  std::swap(vel_, tb_);
+  std::swap(ids_, ids_t_);
+  mark(SphStage::grid);
+}
+
+void SphSimulation::evaluate(const Buffer<Real4>& x, const Buffer<Real4>& v) {
+  const SphGridView view{&grid_.sorted_cells, &grid_.cell_start, &grid_.cell_end};
+  backend_.sph_density(step_params_, SphDensityIO{&x, view, &density_, &pressure_, &stats_buf_});
+  mark(SphStage::density);
+  backend_.sph_forces(step_params_,
+                      SphForcesIO{&x, &v, &density_, &pressure_, view, &accel_, &stats_buf_});
+  mark(SphStage::forces);
+}
+
+void SphSimulation::integrate(SphStageOp op, double dt, const Buffer<Real4>& x0,
+                              const Buffer<Real4>& v0, const Buffer<Real4>* vk,
+                              Buffer<Real4>* x_out, Buffer<Real4>& v_out, Buffer<Real4>* sum_x,
+                              Buffer<Real4>* sum_v) {
+  SphIntegrateParams p;
+  p.n = n_;
+  p.op = op;
+  p.dt = dt;
+  p.walls = scene_.walls;
+  p.box_min = scene_.box_min;
+  p.box_max = scene_.box_max;
+  p.restitution = scene_.restitution;
+  p.tangential_damping = scene_.tangential_damping;
+  backend_.sph_integrate(
+      p, SphIntegrateIO{&x0, &v0, vk, &accel_, x_out, &v_out, sum_x, sum_v, &stats_buf_});
+  mark(SphStage::integrate);
+}
+
+void SphSimulation::step_euler(double dt, SphStageOp op) {
+  sort_state();
+  evaluate(pos_, vel_);
+  integrate(op, dt, pos_, vel_, nullptr, &xs_, vs_, nullptr, nullptr);
+}
+
+void SphSimulation::step_rk4(double dt) {
+  sort_state();  // the one rebuild of this step (see the header)
+  evaluate(pos_, vel_);
+  integrate(SphStageOp::rk4_stage1, dt, pos_, vel_, nullptr, &xs_, vs_, &sum_x_, &sum_v_);
+  evaluate(xs_, vs_);
+  integrate(SphStageOp::rk4_stage2, dt, pos_, vel_, &vs_, &xs_, vs_, &sum_x_, &sum_v_);
+  evaluate(xs_, vs_);
+  integrate(SphStageOp::rk4_stage3, dt, pos_, vel_, &vs_, &xs_, vs_, &sum_x_, &sum_v_);
+  evaluate(xs_, vs_);
+  integrate(SphStageOp::rk4_final, dt, pos_, vel_, &vs_, &xs_, vs_, &sum_x_, &sum_v_);
+}
+
+void SphSimulation::step_leapfrog(double dt) {
+  if (!accel_valid_) {
+    sort_state();
+    evaluate(pos_, vel_);
+    accel_valid_ = true;
+  }
+  // Kick and drift from the committed state; sum_v_ gets the predicted end velocity.
+  integrate(SphStageOp::kick_drift, dt, pos_, vel_, nullptr, &xs_, vs_, nullptr, &sum_v_);
+  rebuild_grid(xs_);
+  reorder(backend_, grid_, xs_.impl(), ta_.impl());
+  reorder(backend_, grid_, vs_.impl(), tb_.impl());
+  reorder(backend_, grid_, ids_.impl(), ids_t_.impl());
+  const bool viscous = scene_.viscosity > 0;
+  if (viscous) reorder(backend_, grid_, sum_v_.impl(), tc_.impl());
+  mark(SphStage::grid);
+  // Forces at the new positions; viscosity sees the predicted end-of-step velocity, which keeps
+  // the scheme second order when forces depend on velocity.
+  accel_valid_ = false;
+  evaluate(ta_, viscous ? tc_ : tb_);
+  integrate(SphStageOp::kick, dt, tb_, tb_, nullptr, nullptr, tb_, nullptr, nullptr);
+}
+
+SphStepStats SphSimulation::read_stats(uint32_t w[kSphStatWords]) {
+  const std::vector<uint32_t> words = backend_.download(stats_buf_);
+  std::copy(words.begin(), words.begin() + kSphStatWords, w);
+  SphStepStats s;
+  s.max_speed = std::sqrt(double(bits_to_float(w[kSphStatMaxSpeed2])));
+  s.max_accel = std::sqrt(double(bits_to_float(w[kSphStatMaxAccel2])));
+  s.max_drift = std::sqrt(double(bits_to_float(w[kSphStatMaxDisp2])));
+  s.max_candidates = w[kSphStatMaxCandidates];
+  s.max_neighbors = w[kSphStatMaxNeighbors];
+  s.outside = w[kSphStatOutside];
+  return s;
+}
+
+void SphSimulation::collect_stage_times() {
+  if (!profiling_ || marks_.empty()) return;
+  double prev = backend_.timestamp_ns(first_mark_);
+  for (const auto& [id, stage] : marks_) {
+    const double t = backend_.timestamp_ns(id);
+    stage_ms_[size_t(stage)] += (t - prev) * 1e-6;
+    prev = t;
+  }
+  marks_.clear();
+}
+
+SphSimulation::Attempt SphSimulation::attempt(double dt) {
+  if (profiling_) {
+    backend_.finish();
+    backend_.reset_timestamps();
+    first_mark_ = backend_.timestamp();
+  }
+  backend_.fill(stats_buf_, 0u);
+  switch (scene_.integrator) {
+    case SphIntegrator::euler:
+      step_euler(dt, SphStageOp::euler);
+      break;
+    case SphIntegrator::symplectic_euler:
+      step_euler(dt, SphStageOp::symplectic_euler);
+      break;
+    case SphIntegrator::rk4:
+      step_rk4(dt);
+      break;
+    case SphIntegrator::leapfrog:
+      step_leapfrog(dt);
+      break;
+  }
+  uint32_t w[kSphStatWords];
+  const SphStepStats s = read_stats(w);  // waits for the step
+  collect_stage_times();
+  if (w[kSphStatOverflow] != 0) {
+    throw Error(backend_.name(), "sph",
+                fmt::format("step {}: a particle has more than {} neighbour candidates in its 27 "
+                            "cells (the fluid is compressed far beyond rest density)",
+                            steps_ + 1, scene_.max_candidates),
+                "raise max_candidates (at most 65000), lower dt, or stiffen the fluid "
+                "(sound_speed, kp)");
+  }
+  Attempt a;
+  if (w[kSphStatNonFinite] != 0) {
+    a.ok = false;
+    a.reason = "a position or velocity became NaN/Inf";
+  } else if (skin_ > 0 && s.max_drift > 0.5 * skin_) {
+    a.ok = false;
+    a.reason = fmt::format(
+        "an RK4 stage moved a particle {:.3g} m, more than the grid's skin / 2 "
+        "= {:.3g} m",
+        s.max_drift, 0.5 * skin_);
+  } else if (scene_.cfl_guard != SphCflGuard::off) {
+    const double courant = dt * (signal_speed(step_params_) + s.max_speed) / layout_.h;
+    if (courant > 2.0 * scene_.cfl_velocity) {
+      a.ok = false;
+      a.reason = fmt::format(
+          "the Courant number reached {:.3g} (limit {:.3g}: max speed {:.3g} "
+          "m/s)",
+          courant, scene_.cfl_velocity, s.max_speed);
+    }
+  }
+  fields_current_ = false;
+  if (!a.ok) {
+    if (scene_.integrator == SphIntegrator::leapfrog) accel_valid_ = false;
+    return a;
+  }
+  // Commit.
+  if (scene_.integrator == SphIntegrator::leapfrog) {
+    std::swap(pos_, ta_);
+    std::swap(vel_, tb_);
+    std::swap(ids_, ids_t_);
+    accel_valid_ = true;
+    fields_current_ = true;  // the force pass ran at the new positions
+  } else {
+    std::swap(pos_, xs_);
+    std::swap(vel_, vs_);
+  }
+  stats_ = s;
+  time_ += dt;
+  last_dt_ = dt;
+  ++substeps_;
+  return a;
+}
+
+void SphSimulation::fail_non_finite(double dt) {
+  // Name the particle: one already non-finite in the committed state (the origin), else the
+  // first one the step turned non-finite.
+  auto first_bad = [](const std::vector<Vec4d>& p, const std::vector<Vec4d>& v,
+                      const std::vector<uint32_t>& ids) {
+    uint32_t best = UINT32_MAX;
+    for (size_t i = 0; i < p.size(); ++i) {
+      const bool bad = !std::isfinite(p[i].x) || !std::isfinite(p[i].y) || !std::isfinite(p[i].z) ||
+                       !std::isfinite(v[i].x) || !std::isfinite(v[i].y) || !std::isfinite(v[i].z);
+      if (bad) best = std::min(best, ids[i]);
+    }
+    return best;
+  };
+  uint32_t id =
+      first_bad(backend_.download(pos_), backend_.download(vel_), backend_.download(ids_));
+  const bool origin = id != UINT32_MAX;
+  if (!origin) {
+    const bool lf = scene_.integrator == SphIntegrator::leapfrog;
+    id = first_bad(backend_.download(lf ? ta_ : xs_), backend_.download(lf ? tb_ : vs_),
+                   backend_.download(lf ? ids_t_ : ids_));
+  }
+  throw Error(
+      backend_.name(), "sph",
+      fmt::format("step {} (t = {:.6g} s, dt = {:.3g} s): particle {} {} a non-finite "
+                  "position or velocity",
+                  steps_ + 1, time_, dt, id == UINT32_MAX ? std::string("?") : std::to_string(id),
+                  origin ? "entered the step with" : "got"),
+      "the state of the last good step is kept (export it to inspect); lower dt or use "
+      "the adaptive dt, raise viscosity, or check the scene's parameters");
+}
+
+void SphSimulation::advance(double dt, int depth, bool whole) {
+  const Attempt a = attempt(dt);
+  if (a.ok) return;
+  ++retries_;
+  const bool non_finite = a.reason.find("NaN") != std::string::npos;
+  if (scene_.cfl_guard == SphCflGuard::stop || scene_.cfl_guard == SphCflGuard::off ||
+      depth >= kMaxRetries || dt * 0.5 < scene_.dt_min) {
+    if (non_finite) fail_non_finite(dt);
+    throw Error(backend_.name(), "sph cfl guard",
+                fmt::format("step {} (t = {:.6g} s) with dt = {:.3g} s was unstable: {}",
+                            steps_ + 1, time_, dt, a.reason),
+                scene_.cfl_guard == SphCflGuard::stop
+                    ? fmt::format("use dt <= {:.3g} s (the CFL limit now) or the adaptive dt, "
+                                  "or --cfl-guard reduce to let masav split steps",
+                                  dt_limit())
+                    : fmt::format("the guard could not stabilise it above dt_min = {:.3g} s: "
+                                  "lower sound_speed or kp, raise viscosity, or give the fluid "
+                                  "more room",
+                                  scene_.dt_min));
+  }
+  // Retry with half the step; a fixed-dt step still covers its whole interval.
+  advance(0.5 * dt, depth + 1, whole);
+  if (whole) advance(0.5 * dt, depth + 1, whole);
+}
+
+void SphSimulation::step() {
+  const double limit = dt_limit();
+  if (scene_.dt) {
+    const double dt = *scene_.dt;
+    uint64_t parts = 1;
+    if (dt > limit && scene_.cfl_guard != SphCflGuard::off) {
+      if (scene_.cfl_guard == SphCflGuard::stop)
+        throw Error(
+            backend_.name(), "sph cfl guard",
+            fmt::format("step {} (t = {:.6g} s): dt = {:.3g} s exceeds the CFL limit "
+                        "{:.3g} s (velocity {:.3g} m/s, acceleration {:.3g} m/s^2, "
+                        "signal speed {:.3g} m/s, h = {:.3g} m)",
+                        steps_ + 1, time_, dt, limit, stats_.max_speed, stats_.max_accel,
+                        signal_speed(step_params_), layout_.h),
+            fmt::format("use dt <= {:.3g} s, the adaptive dt, or --cfl-guard reduce", limit));
+      const double want = std::ceil(dt / limit);
+      if (want > double(kMaxSubsteps) || dt / want < scene_.dt_min)
+        throw Error(backend_.name(), "sph cfl guard",
+                    fmt::format("step {}: dt = {:.3g} s would need {:.3g} sub-steps of the CFL "
+                                "limit {:.3g} s",
+                                steps_ + 1, dt, want, limit),
+                    "use a smaller dt or the adaptive dt; lower sound_speed or kp");
+      parts = uint64_t(want);
+    }
+    for (uint64_t k = 0; k < parts; ++k) advance(dt / double(parts), 0, true);
+  } else {
+    const double dt = std::min({limit, adaptive_dt_ * 1.25, scene_.dt_max});
+    if (dt < scene_.dt_min)
+      throw Error(
+          backend_.name(), "sph cfl guard",
+          fmt::format("step {} (t = {:.6g} s): the CFL limit {:.3g} s is below dt_min = "
+                      "{:.3g} s (max speed {:.3g} m/s, max acceleration {:.3g} m/s^2)",
+                      steps_ + 1, time_, dt, scene_.dt_min, stats_.max_speed, stats_.max_accel),
+          "the fluid is blowing up: lower sound_speed or kp, raise viscosity");
+    advance(dt, 0, false);
+    adaptive_dt_ = last_dt_;
+  }
+  ++steps_;
+}
+
+void SphSimulation::run(uint64_t steps) {
+  for (uint64_t i = 0; i < steps; ++i) step();
+}
+
+void SphSimulation::set_velocities(const std::vector<Vec4d>& by_id) {
+  if (by_id.size() != n_)
+    throw_invalid("sph", "velocities", std::to_string(by_id.size()),
+                  fmt::format("one per particle ({})", n_));
+  const std::vector<uint32_t> ids = backend_.download(ids_);
+  std::vector<Vec4d> vel(n_);
+  for (uint32_t i = 0; i < n_; ++i) vel[i] = by_id[ids[i]];
+  backend_.upload(vel_, vel);
+  accel_valid_ = false;
+  fields_current_ = false;
+  double vmax = 0;
+  for (const auto& v : by_id) vmax = std::max(vmax, std::hypot(v.x, v.y, v.z));
+  if (std::isfinite(vmax)) stats_.max_speed = std::max(stats_.max_speed, vmax);
+}
+
+SphState SphSimulation::download() {
+  const Buffer<Real4>* px = &pos_;
+  const Buffer<Real4>* pv = &vel_;
+  const Buffer<uint32_t>* pid = &ids_;
+  if (!fields_current_) {
+    // Density at the current positions without touching the committed state: sort copies of
+    // the positions, velocities and ids into a fresh grid (scratch buffers), evaluate there.
+    rebuild_grid(pos_);
+    reorder(backend_, grid_, pos_.impl(), ta_.impl());
+    reorder(backend_, grid_, vel_.impl(), tb_.impl());
+    reorder(backend_, grid_, ids_.impl(), ids_t_.impl());
+    backend_.fill(stats_buf_, 0u);
+    const SphGridView view{&grid_.sorted_cells, &grid_.cell_start, &grid_.cell_end};
+    backend_.sph_density(step_params_,
+                         SphDensityIO{&ta_, view, &density_, &pressure_, &stats_buf_});
+    backend_.sph_forces(step_params_,
+                        SphForcesIO{&ta_, &tb_, &density_, &pressure_, view, &accel_, &stats_buf_});
+    accel_valid_ = false;
+    px = &ta_;
+    pv = &tb_;
+    pid = &ids_t_;
+  }
+  const auto pos = backend_.download(*px);
+  const auto vel = backend_.download(*pv);
+  const auto ids = backend_.download(*pid);
+  const auto rho = backend_.download(density_);
+  const auto pr = backend_.download(pressure_);
+  const auto acc = backend_.download(accel_);
+  SphState s;
+  s.positions.resize(n_);
+  s.velocities.resize(n_);
+  s.density.resize(n_);
+  s.pressure.resize(n_);
+  s.neighbors.resize(n_);
+  for (uint32_t i = 0; i < n_; ++i) {
+    const uint32_t id = ids[i];
+    s.positions[id] = pos[i];
+    s.velocities[id] = vel[i];
+    s.density[id] = rho[i];
+    s.pressure[id] = pr[i];
+    s.neighbors[id] = acc[i].w + 1.0;
+  }
+  return s;
+}
+
+}  // namespace masav

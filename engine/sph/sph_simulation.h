@@ -1,0 +1,142 @@
+#pragma once
+// The SPH simulation driver: owns the particle buffers on one backend, rebuilds the hash grid
+// (the foundation's sort on only the cell bits in use), calls the SPH kernels in the order each
+// integrator needs, chooses dt (fixed or CFL-adaptive) and guards it, and reads back state for
+// diagnostics and export. Independent of the command line, so the renderer can drive it.
+//
+// Grid rebuilds. Every step starts (Euler, RK4) or ends its drift (leapfrog) with a rebuild:
+// cells of the current positions, sort on the cell bits in use, cell ranges, and a gather of
+// positions, velocities and particle ids into cell order, so the neighbour loops read
+// neighbours from contiguous memory.
+//  - Euler / symplectic Euler: one force pass per step at the step-start positions.
+//  - Leapfrog (kick-drift-kick): the grid is rebuilt after the drift; the force pass there
+//    serves this step's second kick and the next step's first (one pass per step).
+//  - RK4: ONE rebuild per step, not per stage. The four stages evaluate forces at positions up
+//    to dt |v| away from the step start; the grid's cells are h (1 + rk4_skin) wide, so a pair
+//    within h at a stage was within h + skin h of each other at the rebuild and lies in the 27
+//    cells walked (each particle drifts at most skin h / 2, which sph_integrate measures every
+//    stage; a step that drifts further is rejected and retried with a smaller dt). Rebuilding
+//    per stage would cost three more sorts and re-gathers of six arrays per step; the skin costs
+//    (1 + skin)^3 more candidates, which the distance test rejects cheaply.
+//
+// CFL guard. dt is limited by C_v h / (c + v_max), C_f sqrt(h / a_max) and C_nu h^2 / nu (and
+// the skin for RK4). Adaptive mode takes the smallest (growing at most 25% per step). A fixed dt
+// over the limit is split into equal sub-steps (guard `reduce`) or stops with advice (`stop`).
+// After every step the new velocities are checked: a step whose Courant number exceeded twice
+// the limit, whose RK4 drift exceeded the skin, or that produced a NaN/Inf is rolled back and
+// retried with half the dt; below dt_min the run stops with advice. A NaN that persists names the
+// step and the particle. The last good state stays available (download()) after any error.
+#include <array>
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "engine/backend.h"
+#include "engine/hash_grid.h"
+#include "engine/sph/sph_params.h"
+#include "engine/sph/sph_particles.h"
+
+namespace masav {
+
+// Particle state on the host, in particle-id order (ids are the initial order: fluid first).
+struct SphState {
+  std::vector<Vec4d> positions;   // m; w = inverse mass scale
+  std::vector<Vec4d> velocities;  // m/s
+  std::vector<double> density;    // kg/m^3, at these positions
+  std::vector<double> pressure;   // Pa
+  std::vector<double> neighbors;  // within h, itself included
+};
+
+struct SphStepStats {
+  double max_speed = 0, max_accel = 0, max_drift = 0;  // m/s, m/s^2, m
+  uint32_t max_candidates = 0, max_neighbors = 0, outside = 0;
+};
+
+enum class SphStage : uint8_t { grid, density, forces, integrate, count };
+const char* to_string(SphStage s);
+
+class SphSimulation {
+ public:
+  SphSimulation(Backend& backend, const SphScene& scene);
+
+  // Advances the simulation by one step: dt (fixed, possibly split into sub-steps by the CFL
+  // guard) or the adaptive dt. Throws masav::Error (state left at the last good step).
+  void step();
+  void run(uint64_t steps);
+
+  double time() const { return time_; }
+  uint64_t steps() const { return steps_; }
+  uint64_t substeps() const { return substeps_; }  // integrator steps actually taken
+  uint64_t retries() const { return retries_; }    // steps the guard rejected and retried
+  double last_dt() const { return last_dt_; }
+  // The limit the CFL conditions give for the current state (s).
+  double dt_limit() const;
+
+  const SphScene& scene() const { return scene_; }
+  const SphParticles& layout() const { return layout_; }  // spacing, h, mass, counts
+  uint32_t particle_count() const { return n_; }
+  SphStepParams step_params() const { return step_params_; }
+  const SphStepStats& last_stats() const { return stats_; }
+  Backend& backend() { return backend_; }
+
+  // Current state, in particle-id order, with density and pressure at these positions.
+  SphState download();
+  // Replaces the velocities (indexed by particle id), e.g. to start from a velocity field.
+  void set_velocities(const std::vector<Vec4d>& by_id);
+
+  // Device time per stage, summed since the last reset (recorded when profiling is on).
+  void set_profiling(bool on) { profiling_ = on; }
+  std::array<double, size_t(SphStage::count)> stage_ms() const { return stage_ms_; }
+  void reset_stage_ms() { stage_ms_.fill(0.0); }
+
+ private:
+  struct Attempt {
+    bool ok = true;
+    std::string reason;
+  };
+  void rebuild_grid(const Buffer<Real4>& positions);
+  void sort_state();  // rebuild on pos_ and gather pos_, vel_, ids_ into cell order
+  void evaluate(const Buffer<Real4>& x, const Buffer<Real4>& v);
+  void integrate(SphStageOp op, double dt, const Buffer<Real4>& x0, const Buffer<Real4>& v0,
+                 const Buffer<Real4>* vk, Buffer<Real4>* x_out, Buffer<Real4>& v_out,
+                 Buffer<Real4>* sum_x, Buffer<Real4>* sum_v);
+  Attempt attempt(double dt);  // one integrator step, committed if accepted
+  // attempt() with the guard's retries at half the step; `whole` covers all of dt.
+  void advance(double dt, int depth, bool whole);
+  void step_euler(double dt, SphStageOp op);
+  void step_rk4(double dt);
+  void step_leapfrog(double dt);
+  SphStepStats read_stats(uint32_t words[kSphStatWords]);
+  [[noreturn]] void fail_non_finite(double dt);
+  void mark(SphStage ended);
+  void collect_stage_times();
+  double limit_for(const SphStepStats& s) const;
+
+  Backend& backend_;
+  SphScene scene_;
+  SphParticles layout_;
+  uint32_t n_ = 0;
+  SphStepParams step_params_;
+  double cell_size_ = 0;
+  double skin_ = 0;  // m: allowed drift of a stage from the rebuild positions (RK4)
+  HashGrid grid_;
+
+  // Committed state in the order of the last rebuild, and scratch.
+  Buffer<Real4> pos_, vel_, xs_, vs_, sum_x_, sum_v_, ta_, tb_, tc_, accel_;
+  Buffer<uint32_t> ids_, ids_t_, stats_buf_;
+  Buffer<Real> density_, pressure_;
+  bool accel_valid_ = false;     // leapfrog: accel_ holds a(pos_) in pos_'s order
+  bool fields_current_ = false;  // density_, pressure_, accel_ belong to pos_ (pos_'s order)
+
+  double time_ = 0, last_dt_ = 0, adaptive_dt_ = 0;
+  uint64_t steps_ = 0, substeps_ = 0, retries_ = 0;
+  SphStepStats stats_;
+
+  bool profiling_ = false;
+  std::vector<std::pair<TimestampId, SphStage>> marks_;
+  TimestampId first_mark_ = 0;
+  std::array<double, size_t(SphStage::count)> stage_ms_{};
+};
+
+}  // namespace masav

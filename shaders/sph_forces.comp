@@ -1,0 +1,94 @@
+#version 450
+#extension GL_GOOGLE_include_directive : require
+#extension GL_KHR_shader_subgroup_arithmetic : require
+// Acceleration of each sorted particle: pressure (spiky gradient) and viscosity (its laplacian)
+// per the pressure model, times the inverse mass (positions' w), plus gravity. One invocation
+// per particle, no atomics in the neighbour loop, neighbours read in cell order. Twin of
+// sph::force_at (engine/physics/sph_kernels.h).
+#include "kernel_base.glsl"
+
+layout(std430, binding = 1) readonly buffer Positions { vec4 positions[]; };
+layout(std430, binding = 2) readonly buffer Velocities { vec4 velocities[]; };
+layout(std430, binding = 3) readonly buffer Density { float density[]; };
+layout(std430, binding = 4) readonly buffer Pressure { float pressure[]; };
+layout(std430, binding = 5) readonly buffer Cells { uint cells[]; };
+layout(std430, binding = 6) readonly buffer Start { uint cell_start[]; };
+layout(std430, binding = 7) readonly buffer End { uint cell_end[]; };
+layout(std430, binding = 8) writeonly buffer Accel { vec4 accel[]; };
+layout(std430, binding = 9) buffer Stats { uint stats[]; };
+
+#include "sph.glsl"
+#include "sph_walk.glsl"
+
+layout(push_constant) uniform Push {
+  vec4 origin_inv_cell;
+  uvec4 dims_n;
+  SphCoefs c;
+} pc;
+
+void main() {
+  const uint i = flat_invocation_id();
+  const bool live = i < pc.dims_n.w;
+  uint candidates = 0u;
+  bool overflow = false, bad = false;
+  float accel2 = 0.0;
+  if (live) {
+    const vec4 pw = positions[i];
+    const vec3 p = pw.xyz;
+    const vec3 v = velocities[i].xyz;
+    const float rho = density[i];
+    const float pi_over_rho2 = pressure[i] / (rho * rho);
+    const uvec3 dims = pc.dims_n.xyz;
+    const ivec3 cc = sph_cell_coords(cells[i], dims);
+    vec3 acc = vec3(0.0);
+    uint neighbors = 0u;
+    for (int dx = -1; dx <= 1 && !overflow; ++dx) {
+      LOOP_TICK();
+      const int x = cc.x + dx;
+      if (x < 0 || x >= int(dims.x)) continue;
+      for (int dy = -1; dy <= 1; ++dy) {
+        LOOP_TICK();
+        const int y = cc.y + dy;
+        if (y < 0 || y >= int(dims.y)) continue;
+        const uvec2 r = sph_row_range(x, y, cc.z, dims);
+        if (r.y - r.x > pc.c.max_candidates - candidates) {
+          overflow = true;
+          break;
+        }
+        candidates += r.y - r.x;
+        for (uint j = r.x; j < r.y; ++j) {
+          LOOP_TICK();
+          if (j == i) continue;
+          const vec3 d = p - positions[j].xyz;
+          const float r2 = dot(d, d);
+          if (!(r2 < pc.c.h2)) continue;
+          ++neighbors;
+          acc += sph_pair_accel(v, rho, pi_over_rho2, velocities[j].xyz, density[j], pressure[j],
+                                d, r2, pc.c);
+        }
+      }
+    }
+    if (pc.c.walls != 0u) {
+      vec3 n;
+      sph_wall_density(p, pc.c, n);
+      const float damp = pc.c.lo.w * (2.0 * pc.c.rest_density / (rho + pc.c.rest_density)) *
+                         sph_wall_viscous_weight(p, pc.c);
+      acc += (2.0 * pi_over_rho2 * pc.c.rest_density * pc.c.inv_h) * n - damp * v;
+    }
+    const vec3 a = sph_total_accel(acc, pw.w, pc.c);
+    accel[i] = vec4(a, float(neighbors));
+    bad = !sph_finite(a);
+    if (!bad && pw.w > 0.0) accel2 = dot(a, a);
+  }
+  const uint max_cand = subgroupMax(candidates);
+  const uint over = subgroupMax(overflow ? ~i : 0u);
+  const uint nonfinite = subgroupMax(bad ? ~i : 0u);
+  const uint max_a2 = subgroupMax(floatBitsToUint(accel2));
+  if (subgroupElect()) {
+    atomicMax(stats[SPH_STAT_MAX_CANDIDATES], max_cand);
+    atomicMax(stats[SPH_STAT_MAX_ACCEL2], max_a2);
+    if (over != 0u) atomicMax(stats[SPH_STAT_OVERFLOW], over);
+    if (nonfinite != 0u) atomicMax(stats[SPH_STAT_NON_FINITE], nonfinite);
+  }
+  report_loop_ticks();
+}
