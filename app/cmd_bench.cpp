@@ -5,6 +5,10 @@ namespace masav::app {
 
 void add_sort_bench(CLI::App& bench);
 void add_grid_bench(CLI::App& bench);
+void add_atom_bench(CLI::App& bench);
+void add_scatter_bench(CLI::App& bench);
+void add_light_bench(CLI::App& bench);
+void add_raymarch_bench(CLI::App& bench);
 void add_sph_bench(CLI::App& bench);
 void add_dambreak_bench(CLI::App& bench);
 
@@ -13,6 +17,10 @@ void add_bench_command(CLI::App& app) {
   bench->require_subcommand(1);
   add_sort_bench(*bench);
   add_grid_bench(*bench);
+  add_atom_bench(*bench);
+  add_scatter_bench(*bench);
+  add_light_bench(*bench);
+  add_raymarch_bench(*bench);
   add_sph_bench(*bench);
   add_dambreak_bench(*bench);
 }

@@ -7,6 +7,13 @@ namespace masav::app {
 void add_info_command(CLI::App& app);
 void add_check_command(CLI::App& app);
 void add_bench_command(CLI::App& app);
+void add_atom_command(CLI::App& app);  // also `masav volume`
+// Scenes: verify, export and schema need no renderer; run and demo draw with Vulkan.
+void add_verify_command(CLI::App& app);
+void add_export_command(CLI::App& app);
+void add_schema_command(CLI::App& app);
+void add_run_command(CLI::App& app);
+void add_demo_command(CLI::App& app);
 void add_sph_command(CLI::App& app);
 
 // Shared --backend / --device options.

@@ -15,6 +15,14 @@ int main(int argc, char** argv) {
   masav::app::add_info_command(app);
   masav::app::add_check_command(app);
   masav::app::add_bench_command(app);
+  masav::app::add_atom_command(app);
+  masav::app::add_verify_command(app);
+  masav::app::add_export_command(app);
+  masav::app::add_schema_command(app);
+#if MASAV_HAVE_RENDER
+  masav::app::add_run_command(app);
+  masav::app::add_demo_command(app);
+#endif
   masav::app::add_sph_command(app);
   try {
     app.parse(argc, argv);

@@ -68,7 +68,14 @@ bool has_layer(const raii::Context& ctx, const char* name) {
   return false;
 }
 
-std::unique_ptr<raii::Instance> make_instance(const raii::Context& ctx, bool validation) {
+bool has_instance_extension(const raii::Context& ctx, const std::string& name) {
+  for (const auto& e : ctx.enumerateInstanceExtensionProperties())
+    if (name == e.extensionName.data()) return true;
+  return false;
+}
+
+std::unique_ptr<raii::Instance> make_instance(const raii::Context& ctx, bool validation,
+                                              const std::vector<std::string>& wanted = {}) {
   const uint32_t loader_version = ctx.enumerateInstanceVersion();
   if (loader_version < VK_API_VERSION_1_1)
     throw Error("vulkan", "", "the Vulkan loader only offers Vulkan 1.0",
@@ -82,6 +89,13 @@ std::unique_ptr<raii::Instance> make_instance(const raii::Context& ctx, bool val
                   "install the Debian package vulkan-validationlayers, or unset MASAV_VK_VALIDATION");
     layers.push_back(kValidationLayer);
     extensions.push_back(VK_EXT_DEBUG_UTILS_EXTENSION_NAME);
+  }
+  for (const auto& e : wanted) {
+    if (!has_instance_extension(ctx, e))
+      throw Error("vulkan", "", fmt::format("the Vulkan loader lacks the instance extension {}", e),
+                  "install mesa-vulkan-drivers and libvulkan1 with window-system support, or "
+                  "render headless with `masav run`");
+    extensions.push_back(e.c_str());
   }
   ::vk::InstanceCreateInfo info({}, &app, layers, extensions);
   try {
@@ -133,14 +147,20 @@ std::string version_string(uint32_t v) {
 }
 
 // A queue family with compute and timestamps, graphics too when there is one (for rendering).
-std::optional<uint32_t> pick_queue_family(const raii::PhysicalDevice& pd) {
+// With `graphics`, only families that also draw (and present, if `present` is given) qualify.
+std::optional<uint32_t> pick_queue_family(const raii::PhysicalDevice& pd, bool graphics = false,
+                                          const PresentSupport& present = {},
+                                          VkInstance instance = VK_NULL_HANDLE) {
   std::optional<uint32_t> compute_only;
   const auto families = pd.getQueueFamilyProperties();
   for (uint32_t i = 0; i < families.size(); ++i) {
     const auto& f = families[i];
     if (!(f.queueFlags & ::vk::QueueFlagBits::eCompute) || f.timestampValidBits == 0) continue;
-    if (f.queueFlags & ::vk::QueueFlagBits::eGraphics) return i;
-    if (!compute_only) compute_only = i;
+    if (f.queueFlags & ::vk::QueueFlagBits::eGraphics) {
+      if (present && !present(instance, static_cast<VkPhysicalDevice>(*pd), i)) continue;
+      return i;
+    }
+    if (!compute_only && !graphics) compute_only = i;
   }
   return compute_only;
 }
@@ -161,6 +181,23 @@ std::string unusable_reason(const raii::PhysicalDevice& pd) {
     return fmt::format("subgroup size {} outside [4, 128]", sg.subgroupSize);
   if (props.limits.maxComputeSharedMemorySize < 16384) return "less than 16 KiB shared memory";
   if (props.limits.maxComputeWorkGroupInvocations < 256) return "workgroups below 256 invocations";
+  return "";
+}
+
+// Why this device cannot render as `options` asks (graphics queue, presentation, extensions),
+// or "" if it can.
+std::string render_unusable_reason(const raii::PhysicalDevice& pd, const ContextOptions& options,
+                                   VkInstance instance) {
+  if (!options.graphics) return "";
+  if (!pick_queue_family(pd, true)) return "no queue that both computes and draws";
+  if (options.present_support && !pick_queue_family(pd, true, options.present_support, instance))
+    return "cannot present to this window";
+  const auto available = pd.enumerateDeviceExtensionProperties();
+  for (const auto& want : options.device_extensions) {
+    bool found = false;
+    for (const auto& e : available) found = found || want == e.extensionName.data();
+    if (!found) return "no " + want;
+  }
   return "";
 }
 
@@ -209,7 +246,13 @@ std::vector<DeviceListing> Context::list_devices() {
 
 Context::Context(const ContextOptions& options) {
   context_ = open_loader();
-  instance_ = make_instance(*context_, options.validation);
+  instance_ = make_instance(*context_, options.validation, options.instance_extensions);
+  graphics_ = options.graphics;
+  const VkInstance raw_instance = static_cast<VkInstance>(**instance_);
+  auto why_not = [&](const raii::PhysicalDevice& pd) {
+    std::string why = unusable_reason(pd);
+    return why.empty() ? render_unusable_reason(pd, options, raw_instance) : why;
+  };
   if (options.validation) {
     using S = ::vk::DebugUtilsMessageSeverityFlagBitsEXT;
     using T = ::vk::DebugUtilsMessageTypeFlagBitsEXT;
@@ -245,7 +288,7 @@ Context::Context(const ContextOptions& options) {
       if (!chosen)
         throw_invalid("vulkan", "device", sel, fmt::format("an index or part of a name ({})", listing));
     }
-    const std::string why = unusable_reason(devices[*chosen]);
+    const std::string why = why_not(devices[*chosen]);
     if (!why.empty())
       throw Error("vulkan", "", fmt::format("device '{}' cannot run masav: {}",
                                             devices[*chosen].getProperties().deviceName.data(), why),
@@ -253,25 +296,42 @@ Context::Context(const ContextOptions& options) {
   } else {
     int best_rank = 1 << 30;
     for (size_t i = 0; i < devices.size(); ++i) {
-      if (!unusable_reason(devices[i]).empty()) continue;
+      if (!why_not(devices[i]).empty()) continue;
       const int r = type_rank(devices[i].getProperties().deviceType);
       if (r < best_rank) best_rank = r, chosen = i;
     }
-    if (!chosen)
-      throw Error("vulkan", "", fmt::format("no usable Vulkan device among: {}", listing),
-                  "masav needs Vulkan 1.1 with subgroup arithmetic in compute shaders; "
-                  "mesa-vulkan-drivers (lavapipe) provides it on any CPU");
+    if (!chosen) {
+      std::string reasons;
+      for (size_t i = 0; i < devices.size(); ++i)
+        reasons += fmt::format("{}{}: {}", i ? "; " : "",
+                               devices[i].getProperties().deviceName.data(), why_not(devices[i]));
+      throw Error("vulkan", "", fmt::format("no usable Vulkan device ({})", reasons),
+                  options.graphics
+                      ? "masav renders with Vulkan 1.1 on a queue that computes and draws; "
+                        "mesa-vulkan-drivers (lavapipe) provides one on any CPU"
+                      : "masav needs Vulkan 1.1 with subgroup arithmetic in compute shaders; "
+                        "mesa-vulkan-drivers (lavapipe) provides it on any CPU");
+    }
   }
   physical_ = std::make_unique<raii::PhysicalDevice>(std::move(devices[*chosen]));
 
   const auto props = physical_->getProperties();
-  queue_family_ = *pick_queue_family(*physical_);
+  queue_family_ =
+      *pick_queue_family(*physical_, options.graphics, options.present_support, raw_instance);
   timestamp_bits_ = physical_->getQueueFamilyProperties()[queue_family_].timestampValidBits;
   std::memcpy(cache_uuid_.data(), props.pipelineCacheUUID.data(), VK_UUID_SIZE);
 
   const float priority = 1.0f;
   ::vk::DeviceQueueCreateInfo qinfo({}, queue_family_, 1, &priority);
-  ::vk::DeviceCreateInfo dinfo({}, qinfo);
+  std::vector<const char*> device_extensions;
+  for (const auto& e : options.device_extensions) device_extensions.push_back(e.c_str());
+  ::vk::PhysicalDeviceFeatures features;
+  if (options.graphics) {
+    // Point sprites larger than one pixel need largePoints (every desktop driver and lavapipe).
+    features.largePoints = physical_->getFeatures().largePoints;
+    max_point_size_ = features.largePoints ? props.limits.pointSizeRange[1] : 1.0f;
+  }
+  ::vk::DeviceCreateInfo dinfo({}, qinfo, {}, device_extensions, &features);
   try {
     device_ = std::make_unique<raii::Device>(*physical_, dinfo);
   } catch (const ::vk::SystemError& e) {

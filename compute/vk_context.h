@@ -23,9 +23,20 @@ struct DeviceListing {
   int rank = 0;        // lower is preferred
 };
 
+// Whether a queue family of a device can present to the window (glfwGetPhysicalDevice-
+// PresentationSupport); used to pick the device and queue when rendering to a window.
+using PresentSupport = std::function<bool(VkInstance, VkPhysicalDevice, uint32_t family)>;
+
 struct ContextOptions {
   std::string device_selector;  // "" = best ranked
   bool validation = false;      // VK_LAYER_KHRONOS_validation with a debug messenger
+  // Rendering (render/): a graphics queue and large points are required; instance and device
+  // extensions for a window surface and swapchain; present_support restricts the choice to
+  // devices and queues that can show the window.
+  bool graphics = false;
+  std::vector<std::string> instance_extensions;
+  std::vector<std::string> device_extensions;
+  PresentSupport present_support;
 };
 
 // Called for every validation message; default prints to stderr. Tests install one that fails.
@@ -45,6 +56,7 @@ class Context {
   // is no loader or no driver at all).
   static std::vector<DeviceListing> list_devices();
 
+  const ::vk::raii::Instance& instance() const { return *instance_; }
   const ::vk::raii::Device& device() const { return *device_; }
   const ::vk::raii::PhysicalDevice& physical() const { return *physical_; }
   const ::vk::raii::Queue& queue() const { return *queue_; }
@@ -53,6 +65,8 @@ class Context {
   uint32_t timestamp_valid_bits() const { return timestamp_bits_; }
   std::array<uint8_t, VK_UUID_SIZE> pipeline_cache_uuid() const { return cache_uuid_; }
   bool subgroup_ballot() const { return subgroup_ballot_; }
+  bool graphics() const { return graphics_; }
+  float max_point_size() const { return max_point_size_; }
 
  private:
   std::unique_ptr<::vk::raii::Context> context_;
@@ -64,6 +78,8 @@ class Context {
   uint32_t queue_family_ = 0;
   uint32_t timestamp_bits_ = 0;
   bool subgroup_ballot_ = false;
+  bool graphics_ = false;
+  float max_point_size_ = 1.0f;
   std::array<uint8_t, VK_UUID_SIZE> cache_uuid_{};
   Capabilities caps_;
 };

@@ -108,31 +108,19 @@ std::unique_ptr<BufferImpl> CudaBackend::create_buffer(ElemKind kind, size_t cou
   return std::make_unique<CudaBuffer>(this, kind, count, bytes, std::string(label), p);
 }
 
-void CudaBackend::upload_bytes(BufferImpl& dst, const void* src, size_t bytes, size_t offset) {
-  if (offset + bytes > dst.bytes())
-    throw Error("cuda", "upload", fmt::format("{} bytes at {} overrun '{}'", bytes, offset,
-                                              dst.label()), "upload within the buffer");
-  if (!bytes) return;
+void CudaBackend::write_bytes(BufferImpl& dst, const void* src, size_t bytes, size_t offset) {
   // Ordered on the stream; from pageable memory the call returns once `src` has been staged.
   check(cudaMemcpyAsync(static_cast<char*>(ptr(dst, "upload")) + offset, src, bytes,
                         cudaMemcpyHostToDevice, stream_), "upload", "cudaMemcpyAsync");
 }
 
-void CudaBackend::download_bytes(const BufferImpl& src, void* dst, size_t bytes, size_t offset) {
-  if (offset + bytes > src.bytes())
-    throw Error("cuda", "download", fmt::format("{} bytes at {} overrun '{}'", bytes, offset,
-                                                src.label()), "download within the buffer");
-  if (!bytes) return;
+void CudaBackend::read_bytes(const BufferImpl& src, void* dst, size_t bytes, size_t offset) {
   check(cudaMemcpyAsync(dst, static_cast<const char*>(ptr(src, "download")) + offset, bytes,
                         cudaMemcpyDeviceToHost, stream_), "download", "cudaMemcpyAsync");
   finish();
 }
 
-void CudaBackend::copy_bytes(const BufferImpl& src, BufferImpl& dst, size_t bytes) {
-  if (bytes > src.bytes() || bytes > dst.bytes())
-    throw Error("cuda", "copy", fmt::format("{} bytes from '{}' to '{}' overrun a buffer", bytes,
-                                            src.label(), dst.label()), "copy within both buffers");
-  if (!bytes) return;
+void CudaBackend::copy_buffer(const BufferImpl& src, BufferImpl& dst, size_t bytes) {
   check(cudaMemcpyAsync(ptr(dst, "copy"), ptr(src, "copy"), bytes, cudaMemcpyDeviceToDevice,
                         stream_), "copy", "cudaMemcpyAsync");
 }

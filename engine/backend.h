@@ -1,14 +1,22 @@
 #pragma once
 // The kernel set. Every backend (Vulkan, CUDA, CPU reference) implements each method; a kernel
 // missing from one backend is a build error. Buffers, ordering and timestamps: device_api.h.
+#include "engine/atom/atom_params.h"
 #include "engine/device_api.h"
 #include "engine/kernel_params.h"
+#include "engine/points/drift_params.h"
 #include "engine/sph/sph_kernel_params.h"
 
 namespace masav {
 
 class Backend : public DeviceApi {
  public:
+  // ---- demo point cloud (engine/points/) ------------------------------------------------
+  // positions[i] for i < p.n: the periodic drift of DriftParams from the uniforms start[4i..]
+  // and direction[4i..] (philox_uniform output); .w is the point's speed.
+  virtual void drift_points(const DriftParams& p, const Buffer<float>& start,
+                            const Buffer<float>& direction, Buffer<Real4>& positions) = 0;
+
   // ---- random numbers -------------------------------------------------------------------
   // Philox4x32-10 words (see PhiloxParams), out.size() of them.
   virtual void philox_u32(const PhiloxParams& p, Buffer<uint32_t>& out) = 0;
@@ -48,6 +56,38 @@ class Backend : public DeviceApi {
   virtual void sph_integrate(const SphIntegrateParams& p, const SphIntegrateIO& io) = 0;
 
   // ---- electron cloud, nebula lighting, volume (engine/atom/) ----------------------------
+  // positions[i] = (x, y, z, 0) of particle i < p.count, drawn from |psi|^2 by inverting the
+  // tables of make_orbital_tables() (engine/atom/orbital_tables.h); particle i uses Philox block
+  // i, so every backend draws the same cloud up to fp32 rounding.
+  virtual void orbital_sample(const OrbitalSampleParams& p, const Buffer<uint32_t>& tables,
+                              Buffer<Real4>& positions) = 0;
+  // density[c] = probability per a0^3 of hash-grid cell c (counts from the grid's cell ranges).
+  virtual void cloud_density(const CloudDensityParams& p, const Buffer<uint32_t>& cell_start,
+                             const Buffer<uint32_t>& cell_end, Buffer<Real>& density) = 0;
+  // Monte Carlo scattering table, one photon per invocation: table = rows x (bins +
+  // kScatterExtras) weight fractions, hits = photons per entry (exact counts).
+  virtual void scatter_table(const ScatterTableParams& p, Buffer<Real>& table,
+                             Buffer<uint32_t>& hits) = 0;
+  // Eq. 2.4 per particle: light received from the nucleus through the density grid.
+  virtual void nebula_illuminate(const NebulaLightParams& p, const Buffer<Real4>& positions,
+                                 const Buffer<Real>& density, Buffer<Real>& illumination) = 0;
+  // Eq. 2.5-2.6 per particle: scattered toward the viewer and attenuated on the way (the only
+  // step a change of viewpoint reruns; a change of Phi only rescales). `table`: rows x bins of
+  // make_phase_table() (engine/atom/scatter_cache.h).
+  virtual void nebula_view(const NebulaLightParams& p, const Buffer<Real4>& positions,
+                           const Buffer<Real>& density, const Buffer<Real>& table,
+                           const Buffer<Real>& illumination, Buffer<Real>& light) = 0;
+  // Thesis §3.3.2 on the grid's N^3 cells: probability p, mean light g, sample = s g + t p/max p.
+  virtual void voxelize(const VoxelizeParams& p, const Buffer<Real4>& positions,
+                        const Buffer<Real>& light, Buffer<Real>& probability,
+                        Buffer<Real>& mean_light, Buffer<Real>& sample) = 0;
+  // Per brick: (value min, value max, largest transfer alpha over that range, 0).
+  virtual void volume_bricks(const VolumeBrickParams& p, const Buffer<Real>& volume,
+                             const Buffer<Real4>& tf, Buffer<Real4>& bricks) = 0;
+  // image[y * width + x] = RGBA (colour premultiplied by alpha) of pixel (x, y), y = 0 on top.
+  virtual void raymarch(const RaymarchParams& p, const Buffer<Real>& volume,
+                        const Buffer<Real4>& tf, const Buffer<Real4>& bricks,
+                        Buffer<Real4>& image) = 0;
 };
 
 }  // namespace masav

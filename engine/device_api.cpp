@@ -5,6 +5,7 @@
 #include <cstring>
 
 #include "engine/error.h"
+#include "engine/kernel_checks.h"
 
 namespace masav {
 
@@ -17,6 +18,34 @@ void DeviceApi::check_upload(const BufferImpl& dst, size_t count) const {
                 fmt::format("{} elements do not fit buffer '{}' of {}", count, dst.label(),
                             dst.count()),
                 "create a larger buffer");
+}
+
+void DeviceApi::upload_bytes(BufferImpl& dst, const void* src, size_t bytes, size_t offset) {
+  check_owner(*this, dst, "upload");
+  if (offset > dst.bytes() || bytes > dst.bytes() - offset)
+    throw Error(name(), "upload", fmt::format("{} bytes at offset {} overrun '{}' ({} bytes)", bytes,
+                                              offset, dst.label(), dst.bytes()),
+                "upload within the buffer");
+  if (bytes) write_bytes(dst, src, bytes, offset);
+}
+
+void DeviceApi::download_bytes(const BufferImpl& src, void* dst, size_t bytes, size_t offset) {
+  check_owner(*this, src, "download");
+  if (offset > src.bytes() || bytes > src.bytes() - offset)
+    throw Error(name(), "download", fmt::format("{} bytes at offset {} overrun '{}' ({} bytes)",
+                                                bytes, offset, src.label(), src.bytes()),
+                "download within the buffer");
+  if (bytes) read_bytes(src, dst, bytes, offset);
+}
+
+void DeviceApi::copy_bytes(const BufferImpl& src, BufferImpl& dst, size_t bytes) {
+  check_owner(*this, src, "copy");
+  check_owner(*this, dst, "copy");
+  if (bytes > src.bytes() || bytes > dst.bytes())
+    throw Error(name(), "copy", fmt::format("{} bytes from '{}' to '{}' overrun a buffer", bytes,
+                                            src.label(), dst.label()),
+                "copy within both buffers");
+  if (bytes) copy_buffer(src, dst, bytes);
 }
 
 void DeviceApi::upload_reals(BufferImpl& dst, const double* src, size_t scalars) {

@@ -28,9 +28,10 @@ class DeviceApi {
   }
   virtual std::unique_ptr<BufferImpl> create_buffer(ElemKind kind, size_t count,
                                                     std::string_view label) = 0;
-  virtual void upload_bytes(BufferImpl& dst, const void* src, size_t bytes, size_t offset) = 0;
-  virtual void download_bytes(const BufferImpl& src, void* dst, size_t bytes, size_t offset) = 0;
-  virtual void copy_bytes(const BufferImpl& src, BufferImpl& dst, size_t bytes) = 0;
+  // Byte-level access, bounds- and owner-checked here for every backend.
+  void upload_bytes(BufferImpl& dst, const void* src, size_t bytes, size_t offset);
+  void download_bytes(const BufferImpl& src, void* dst, size_t bytes, size_t offset);
+  void copy_bytes(const BufferImpl& src, BufferImpl& dst, size_t bytes);
   virtual void fill_u32(BufferImpl& dst, uint32_t value) = 0;
 
   // ---- ordering and timing
@@ -65,6 +66,11 @@ class DeviceApi {
   }
 
  protected:
+  // The backends' byte copies; arguments are already checked (in range, owned, bytes > 0).
+  virtual void write_bytes(BufferImpl& dst, const void* src, size_t bytes, size_t offset) = 0;
+  virtual void read_bytes(const BufferImpl& src, void* dst, size_t bytes, size_t offset) = 0;
+  virtual void copy_buffer(const BufferImpl& src, BufferImpl& dst, size_t bytes) = 0;
+
   void check_upload(const BufferImpl& dst, size_t count) const;
   void upload_reals(BufferImpl& dst, const double* src, size_t scalars);
   void upload_reals(BufferImpl& dst, const float* src, size_t scalars);

@@ -5,6 +5,7 @@
 #include <doctest/doctest.h>
 #include <fmt/format.h>
 
+#include <cmath>
 #include <memory>
 #include <numeric>
 #include <random>
@@ -13,6 +14,8 @@
 #include "compute/vk_backend.h"
 #include "compute/vk_factory.h"
 #include "engine/error.h"
+#include "engine/atom/atom_checks.h"
+#include "engine/atom/orbital_tables.h"
 #include "engine/hash_grid.h"
 #include "engine/sph/sph_particles.h"
 
@@ -97,6 +100,160 @@ TEST_CASE("grid assignment, ranges and gather do not loop") {
   auto sorted = b.create<Real4>(n, "sorted");
   reorder(b, g, pos.impl(), sorted.impl());
   CHECK(b.take_max_loop_ticks() == 0);
+}
+
+TEST_CASE("orbital_sample: three bounded binary searches (exact) or one (shells)") {
+  auto& b = *g_vk;
+  for (OrbitalPlacement pl : {OrbitalPlacement::exact, OrbitalPlacement::shells}) {
+    const auto t = atom::make_orbital_tables({5, 3, -2, true}, pl, 20000, 1);
+    auto tables = b.create<uint32_t>(t.cdf.size(), "tables");
+    b.upload(tables, t.cdf);
+    auto pos = b.create<Real4>(t.params.count, "positions");
+    (void)b.take_max_loop_ticks();
+    b.orbital_sample(t.params, tables, pos);
+    const uint32_t ticks = b.take_max_loop_ticks();
+    MESSAGE("orbital_sample (placement " << int(pl) << "): " << ticks << " loop iterations");
+    CHECK(ticks > 10);
+    CHECK(ticks <= 10 + 3 * 25);  // Philox's ten rounds + at most 25 halvings per table (2^24 bins)
+  }
+}
+
+TEST_CASE("scatter_table: the event cap bounds a photon that never escapes") {
+  auto& b = *g_vk;
+  ScatterTableParams p;
+  p.rows = 1;
+  p.first_row = 1;
+  p.tau_step = 1e4f;  // optically so thick that no photon leaves
+  p.albedo = 1.0f;
+  p.weight_threshold = 0.0f;
+  p.max_scatterings = 5000;  // the validated maximum
+  p.photons_per_row = 32;
+  p.start = ScatterStart::centre;
+  const uint32_t entries = p.bins + kScatterExtras;
+  auto table = b.create<Real>(entries, "table");
+  auto hits = b.create<uint32_t>(entries, "hits");
+  (void)b.take_max_loop_ticks();
+  b.scatter_table(p, table, hits);
+  const uint32_t ticks = b.take_max_loop_ticks();
+  MESSAGE("scatter_table at 5000 events: " << ticks << " loop iterations");
+  CHECK(ticks >= 5001 * 11);  // each event: one iteration plus Philox's ten rounds
+  CHECK(ticks < kLavapipeLoopLimit);
+  CHECK(b.download(hits)[p.bins + kScatterCapped] == p.photons_per_row);
+}
+
+TEST_CASE("nebula paths: voxel traversal and the smallest midpoint step stay below the limit") {
+  auto& b = *g_vk;
+  NebulaLightParams p;
+  p.grid = make_grid_params({-8, -8, -8}, 0.25f, {64, 64, 64}, 2);
+  p.viewer = {9, 9, 9};
+  auto pos = b.create<Real4>(2, "positions");
+  b.upload(pos, std::vector<Vec4f>{{-7.99f, -7.99f, -7.99f, 0}, {7.9f, -7.9f, 7.9f, 0}});
+  auto density = b.create<Real>(64 * 64 * 64, "density");
+  b.upload(density, std::vector<double>(64 * 64 * 64, 0.01));
+  auto table = b.create<Real>(size_t(p.table_rows) * p.table_bins, "table");
+  b.upload(table, std::vector<double>(size_t(p.table_rows) * p.table_bins, 0.01));
+  auto ill = b.create<Real>(2, "illumination"), light = b.create<Real>(2, "light");
+  for (OpticalPath path : {OpticalPath::exact, OpticalPath::midpoint}) {
+    p.path = path;
+    p.step_a0 = path == OpticalPath::midpoint ? float(16 * std::sqrt(3.0) / kMaxPathSteps) * 1.0001f
+                                              : 0.1f;
+    (void)b.take_max_loop_ticks();
+    b.nebula_illuminate(p, pos, density, ill);
+    b.nebula_view(p, pos, density, table, ill, light);
+    const uint32_t ticks = b.take_max_loop_ticks();
+    MESSAGE("nebula path " << int(path) << ": " << ticks << " loop iterations");
+    CHECK(ticks < kLavapipeLoopLimit);
+    if (path == OpticalPath::exact) CHECK(ticks <= 3 * 64 + 3 + 6);
+    else CHECK(ticks > 50000);  // the diagonal at the smallest step
+  }
+  p.step_a0 *= 0.5f;  // below the validated step: refused before dispatch
+  CHECK_THROWS_AS(b.nebula_view(p, pos, density, table, ill, light), Error);
+}
+
+TEST_CASE("voxelize does not loop; volume_bricks at the largest brick stays below the limit") {
+  auto& b = *g_vk;
+  VoxelizeParams vp;
+  vp.grid = make_grid_params({0, 0, 0}, 0.1f, {10, 10, 10}, 1000);
+  auto pos = b.create<Real4>(1000, "pos");
+  b.upload(pos, cluster(1000, 1.0f, 2));
+  auto light = b.create<Real>(1000, "light");
+  b.upload(light, std::vector<double>(1000, 0.5));
+  auto p = b.create<Real>(1000, "p"), g = b.create<Real>(1000, "g"), s = b.create<Real>(1000, "s");
+  (void)b.take_max_loop_ticks();
+  b.voxelize(vp, pos, light, p, g, s);
+  CHECK(b.take_max_loop_ticks() == 0);
+  const VolumeDesc vol{{64, 64, 64}, {0, 0, 0}, {1, 1, 1}, 0.0f, 1.0f};
+  auto v = b.create<Real>(64 * 64 * 64, "volume");
+  b.upload(v, std::vector<double>(64 * 64 * 64, 0.5));
+  auto tf = b.create<Real4>(4096, "tf");
+  std::vector<Vec4d> tfv(4096, Vec4d{1, 1, 1, 0.1});
+  b.upload(tf, tfv);
+  auto bricks = b.create<Real4>(8, "bricks");
+  b.volume_bricks({vol, 32, 4096}, v, tf, bricks);
+  const uint32_t ticks = b.take_max_loop_ticks();
+  MESSAGE("volume_bricks, brick 32: " << ticks << " loop iterations");
+  CHECK(ticks == 33 * 33 * 33 + 2);  // voxels of the first brick and its apron + 2 TF entries
+  CHECK(ticks < kLavapipeLoopLimit);
+}
+
+TEST_CASE("raymarch: the smallest validated step stays below the limit; skipping and ERT cut it") {
+  auto& b = *g_vk;
+  const VolumeDesc vol{{64, 64, 64}, {0, 0, 0}, {1, 1, 1}, 0.0f, 1.0f};
+  auto v = b.create<Real>(64 * 64 * 64, "volume");
+  auto tf = b.create<Real4>(2, "tf");
+  auto bricks = b.create<Real4>(512, "bricks");
+  auto img = b.create<Real4>(64, "image");
+  RaymarchParams rp;
+  rp.volume = vol;
+  rp.width = rp.height = 8;
+  rp.eye = {-0.5f, -0.5f, -0.5f};
+  rp.target = {1, 1, 1};
+  rp.up = {0, 0, 1};
+  rp.fov_y_deg = 2;
+  rp.tf_size = 2;
+  rp.termination_alpha = 1.0f;
+  rp.skip_empty = false;
+  rp.step = 1.0f;
+  const uint64_t fixed = max_ray_segments(rp) - 2 + 3 * 24 + 16;  // what check_raymarch adds
+  rp.step = float(std::sqrt(3.0) / double(kMaxRaySteps - fixed)) * 1.001f;
+  auto run = [&](double value, double alpha) {
+    b.upload(v, std::vector<double>(64 * 64 * 64, value));
+    b.upload(tf, std::vector<Vec4d>{{1, 1, 1, alpha}, {1, 1, 1, alpha}});
+    b.volume_bricks({vol, rp.brick, 2}, v, tf, bricks);
+    (void)b.take_max_loop_ticks();
+    b.raymarch(rp, v, tf, bricks, img);
+    return b.take_max_loop_ticks();
+  };
+  const uint32_t worst = run(0.5, 1e-6);
+  MESSAGE("raymarch at the smallest step: " << worst << " loop iterations");
+  CHECK(worst > 55000);  // all the segments ran (a nested loop once made lavapipe stop at 32,768)
+  CHECK(worst < kLavapipeLoopLimit);
+  rp.skip_empty = true;
+  const uint32_t empty = run(0.5, 0.0);  // every brick empty: one slab test per brick
+  MESSAGE("raymarch through empty bricks: " << empty << " loop iterations");
+  CHECK(empty < 200);
+  rp.termination_alpha = 0.99f;
+  rp.reference_step = rp.step;
+  const uint32_t dense = run(0.5, 0.5);  // opaque after seven samples
+  CHECK(dense < 100);
+  rp.step *= 0.9f;
+  CHECK_THROWS_AS(b.raymarch(rp, v, tf, bricks, img), Error);
+}
+
+TEST_CASE("drift_points loops three times (one per axis), independent of n") {
+  auto& b = *g_vk;
+  const uint32_t n = 100000;
+  auto start = b.create<float>(4 * n, "start");
+  auto dir = b.create<float>(4 * n, "direction");
+  auto pos = b.create<Real4>(n, "positions");
+  b.philox_uniform({1, 0, 0}, start);
+  b.philox_uniform({1, 1, 0}, dir);
+  (void)b.take_max_loop_ticks();
+  DriftParams p;
+  p.n = n;
+  p.time_s = 100.0f;
+  b.drift_points(p, start, dir, pos);
+  CHECK(b.take_max_loop_ticks() == 3);
 }
 
 TEST_CASE("sph kernels: loop ticks = rows + cells + candidates, capped below the limit") {

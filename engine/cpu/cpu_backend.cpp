@@ -73,29 +73,16 @@ std::unique_ptr<BufferImpl> CpuBackend::create_buffer(ElemKind kind, size_t coun
   }
 }
 
-void CpuBackend::upload_bytes(BufferImpl& dst, const void* src, size_t bytes, size_t offset) {
-  auto& d = own(dst, "upload");
-  if (offset + bytes > d.bytes())
-    throw Error("cpu", "upload", fmt::format("{} bytes at {} overrun '{}'", bytes, offset,
-                                             d.label()), "upload within the buffer");
-  if (bytes) std::memcpy(d.data() + offset, src, bytes);
+void CpuBackend::write_bytes(BufferImpl& dst, const void* src, size_t bytes, size_t offset) {
+  std::memcpy(static_cast<CpuBuffer&>(dst).data() + offset, src, bytes);
 }
 
-void CpuBackend::download_bytes(const BufferImpl& src, void* dst, size_t bytes, size_t offset) {
-  const auto& s = own(src, "download");
-  if (offset + bytes > s.bytes())
-    throw Error("cpu", "download", fmt::format("{} bytes at {} overrun '{}'", bytes, offset,
-                                               s.label()), "download within the buffer");
-  if (bytes) std::memcpy(dst, s.data() + offset, bytes);
+void CpuBackend::read_bytes(const BufferImpl& src, void* dst, size_t bytes, size_t offset) {
+  std::memcpy(dst, static_cast<const CpuBuffer&>(src).data() + offset, bytes);
 }
 
-void CpuBackend::copy_bytes(const BufferImpl& src, BufferImpl& dst, size_t bytes) {
-  const auto& s = own(src, "copy");
-  auto& d = own(dst, "copy");
-  if (bytes > s.bytes() || bytes > d.bytes())
-    throw Error("cpu", "copy", fmt::format("{} bytes from '{}' to '{}' overrun a buffer", bytes,
-                                           s.label(), d.label()), "copy within both buffers");
-  if (bytes) std::memcpy(d.data(), s.data(), bytes);
+void CpuBackend::copy_buffer(const BufferImpl& src, BufferImpl& dst, size_t bytes) {
+  std::memcpy(static_cast<CpuBuffer&>(dst).data(), static_cast<const CpuBuffer&>(src).data(), bytes);
 }
 
 void CpuBackend::fill_u32(BufferImpl& dst, uint32_t value) {

@@ -1,5 +1,6 @@
 #pragma once
-// SPIR-V of every compute kernel, compiled from shaders/*.comp at build time.
+// SPIR-V of every compute kernel (shaders/*.comp, by name) and render shader (shaders/render/*,
+// as "render/<file>"), compiled at build time.
 #include <cstddef>
 #include <cstdint>
 #include <span>

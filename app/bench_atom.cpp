@@ -1,0 +1,119 @@
+// `masav bench atom`: cloud creation (orbital_sample) for the thesis's Table 2.3 states and
+// particle counts on each backend, beside the thesis's times; and run time against error:
+// particle count against the error of the sampled moments <r>, <r^2> (closed forms).
+#include <fmt/format.h>
+
+#include <cmath>
+
+#include "app/bench_atom_common.h"
+#include "engine/atom/orbital_tables.h"
+#include "engine/error.h"
+
+namespace masav::app {
+
+struct AtomBenchOptions {
+  BackendChoice choice{"all", ""};
+  double scale = 1.0;  // fraction of the thesis's particle counts
+  int reps = 3;
+  std::string sweep_state = "state6";
+  std::string json;
+};
+
+namespace {
+
+int run_atom_bench(const AtomBenchOptions& o) {
+  fmt::print("bench atom: cloud creation for thesis Table 2.3 (counts x {}), median of {} runs\n",
+             o.scale, o.reps);
+  JsonWriter j;
+  j.begin_object();
+  write_record_header(j, "atom");
+  j.field("scale", o.scale).key("rows").begin_array();
+  int rc = 0;
+  auto backends = open_backends(o.choice);
+  fmt::print("  {:<8} {:<8} {:>9} {:>11} {:>12} {:>11}\n", "backend", "state", "particles",
+             "median ms", "Mparticles/s", "thesis s");
+  for (auto& b : backends) {
+    for (const ThesisRow& row : kThesisTable23) {
+      try {
+        const uint32_t n = std::max(1u, uint32_t(std::lround(row.particles * o.scale)));
+        const auto t = atom::make_orbital_tables(atom::preset_state(row.state),
+                                                 OrbitalPlacement::exact, n, 1);
+        auto tables = b->create<uint32_t>(t.cdf.size(), "tables");
+        b->upload(tables, t.cdf);
+        auto pos = b->create<Real4>(n, "positions");
+        const TimingStats s = summarize(time_on_device(
+            *b, 1, o.reps, [] {}, [&] { b->orbital_sample(t.params, tables, pos); }));
+        fmt::print("  {:<8} {:<8} {:>9} {:>11.3f} {:>12.1f} {:>11.1f}\n", b->name(), row.state, n,
+                   s.median_ms, n / (s.median_ms * 1e3), row.creation_s);
+        j.begin_object();
+        write_device(j, *b);
+        j.field("state", row.state).field("particles", n).field("median_ms", s.median_ms);
+        j.field("min_ms", s.min_ms).field("max_ms", s.max_ms);
+        j.field("thesis_creation_s", row.creation_s).end_object();
+      } catch (const Error& e) {
+        fmt::print("  {:<8} {:<8} error: {}\n", b->name(), row.state, e.what());
+        rc = 1;
+      }
+    }
+  }
+  j.end_array();
+  // Run time against error: the sampled <r> and <r^2> against the closed forms.
+  const atom::OrbitalState st = atom::preset_state(o.sweep_state);
+  fmt::print("  particle count vs moment error ({}, {}):\n", o.sweep_state, describe(st));
+  fmt::print("  {:<8} {:>9} {:>10} {:>12} {:>12}\n", "backend", "particles", "ms",
+             "|<r>| rel", "|<r^2>| rel");
+  j.field("sweep_state", o.sweep_state).key("sweep").begin_array();
+  for (auto& b : backends) {
+    for (uint32_t n : {1000u, 10000u, 100000u, 1000000u}) {
+      try {
+        const auto t = atom::make_orbital_tables(st, OrbitalPlacement::exact, n, 77);
+        auto tables = b->create<uint32_t>(t.cdf.size(), "tables");
+        b->upload(tables, t.cdf);
+        auto pos = b->create<Real4>(n, "positions");
+        const TimingStats s = summarize(time_on_device(
+            *b, 1, o.reps, [] {}, [&] { b->orbital_sample(t.params, tables, pos); }));
+        double r = 0, r2 = 0;
+        for (const Vec4d& p : b->download(pos)) {
+          const double rr = p.x * p.x + p.y * p.y + p.z * p.z;
+          r += std::sqrt(rr);
+          r2 += rr;
+        }
+        const double er = std::abs(r / n / atom::expect_r(st.n, st.l) - 1);
+        const double er2 = std::abs(r2 / n / atom::expect_r2(st.n, st.l) - 1);
+        fmt::print("  {:<8} {:>9} {:>10.3f} {:>12.2e} {:>12.2e}\n", b->name(), n, s.median_ms, er,
+                   er2);
+        j.begin_object().field("backend", b->name()).field("particles", n);
+        j.field("median_ms", s.median_ms).field("rel_error_r", er).field("rel_error_r2", er2);
+        j.end_object();
+      } catch (const Error& e) {
+        fmt::print("  {:<8} error: {}\n", b->name(), e.what());
+        rc = 1;
+      }
+    }
+  }
+  j.end_array().end_object();
+  finish_record(j, o.json);
+  return rc;
+}
+
+}  // namespace
+
+void add_atom_bench(CLI::App& bench) {
+  static AtomBenchOptions o;
+  auto* cmd = bench.add_subcommand("atom", "cloud creation: thesis Table 2.3 states; count vs error");
+  add_backend_options(*cmd, o.choice, true);
+  cmd->add_option("--scale", o.scale, "fraction of the thesis's particle counts")
+      ->check(CLI::Range(1e-4, 16.0))
+      ->capture_default_str();
+  cmd->add_option("--reps", o.reps, "timed runs (after one warm-up)")
+      ->check(CLI::Range(1, 1000))
+      ->capture_default_str();
+  cmd->add_option("--sweep-state", o.sweep_state, "state of the count-vs-error sweep")
+      ->capture_default_str();
+  cmd->add_option("--json", o.json, "write the results as JSON to this file");
+  cmd->callback([] {
+    if (int rc = run_atom_bench(o)) throw CLI::RuntimeError(rc);
+  });
+}
+
+}  // namespace masav::app

@@ -1,0 +1,242 @@
+// `masav atom`: the electron cloud of one hydrogen state, lit as a reflection nebula, voxelized
+// and raymarched; writes the cloud (.vtp), the volume (.vti), the scattering table (.csv) and
+// images (.png). `masav volume`: raymarches a scalar volume from a raw, NRRD or VTI file.
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+
+#include "app/commands.h"
+#include "engine/atom/atom_export.h"
+#include "engine/atom/transfer_function.h"
+#include "engine/atom/volume_io.h"
+#include "engine/error.h"
+#include "engine/io/png_writer.h"
+#include "engine/registry/registry.h"
+
+namespace masav::app {
+namespace {
+
+struct AtomCliOptions {
+  BackendChoice choice;
+  std::string preset;
+  int n = 0, l = 0, m = 0;
+  bool real = false;
+  std::string placement = "exact";
+  uint32_t particles = 500000;
+  uint64_t seed = 1;
+  std::string out;
+  float power = 250000.0f;
+  std::string view = "front";
+  uint32_t width = 512, height = 512;
+  uint32_t dims = 60, density_dims = 60;
+  uint32_t photons = 2048;
+  float tau_peak = 0.5f;
+  float s = 0.6f, t = 0.4f;
+  std::string tf;
+  bool no_cache = false;
+};
+
+struct VolumeCliOptions {
+  BackendChoice choice;
+  std::string file, out, type, array, tf, view = "front", mode = "front-to-back";
+  std::vector<uint32_t> dims;
+  std::vector<float> spacing;
+  bool big_endian = false;
+  uint32_t width = 512, height = 512;
+  float step_voxels = 0.5f;
+};
+
+std::vector<Vec4d> transfer(const std::string& file) {
+  return atom::resample_transfer(file.empty() ? atom::default_transfer_points()
+                                              : atom::load_transfer_points(file));
+}
+
+// The nebula as the thesis shows it: particles projected along the view, coloured by their light
+// (green, saturating) -- a quick look without the renderer.
+std::vector<Vec4d> splat_cloud(atom::AtomScene& scene, atom::ViewPreset view, uint32_t size) {
+  Backend& b = scene.backend();
+  const auto pos = b.download_f32(scene.positions);
+  const auto light = b.download(scene.light);
+  std::vector<Vec4d> img(size_t(size) * size, Vec4d{0, 0, 0, 0});
+  const double h = scene.box_half_width();
+  const double k = scene.exposure();
+  for (size_t i = 0; i < pos.size(); ++i) {
+    double u = 0, v = 0;
+    switch (view) {
+      case atom::ViewPreset::top: u = pos[i].x, v = pos[i].y; break;
+      case atom::ViewPreset::left: u = -pos[i].y, v = pos[i].z; break;
+      case atom::ViewPreset::front: u = pos[i].x, v = pos[i].z; break;
+    }
+    const int px = int((u / h * 0.5 + 0.5) * size), py = int((0.5 - v / h * 0.5) * size);
+    if (px < 0 || py < 0 || px >= int(size) || py >= int(size)) continue;
+    Vec4d& c = img[size_t(py) * size + px];
+    const double g = std::min(1.0, light[i] * k);
+    c.x += 0.02 * g * g;  // hot particles tint towards white
+    c.y += 0.05 * g;
+    c.z += 0.015;         // every particle leaves a faint trace, so the whole cloud shows
+    c.w = 1;
+  }
+  return img;
+}
+
+int run_atom(const AtomCliOptions& o) {
+  atom::AtomSceneOptions so;
+  if (!o.preset.empty()) {
+    so.state = atom::preset_state(o.preset);
+    so.state.real = o.real;
+  } else {
+    if (o.n == 0)
+      throw_invalid("masav atom", "--state or --n", "none", "a preset (--state state1..state10) "
+                                                            "or a state (--n N --l L --m M)");
+    so.state = {o.n, o.l, o.m, o.real};
+  }
+  atom::validate_state(so.state, "masav atom");
+  if (o.placement != "exact" && o.placement != "shells")
+    throw_invalid("masav atom", "--placement", o.placement, "exact or shells");
+  so.placement = o.placement == "shells" ? OrbitalPlacement::shells : OrbitalPlacement::exact;
+  so.particles = o.particles;
+  so.seed = o.seed;
+  so.source_power_lm = o.power;
+  so.density_dims = o.density_dims;
+  so.volume_dims = o.dims;
+  so.scatter.photons_per_row = o.photons;
+  so.tau_peak = o.tau_peak;
+  so.s = o.s;
+  so.t = o.t;
+  so.use_cache = !o.no_cache;
+  const atom::ViewPreset view = atom::parse_view(o.view);
+  const std::vector<Vec4d> tf = transfer(o.tf);
+  auto backend = create_backend(o.choice.backend, o.choice.device);
+  // The viewer of the nebula lighting sits where the raymarch camera does.
+  const float half = float(atom::box_half_width(so.state, so.box_probability));
+  const Vec3f eye = atom::view_eye(view, 1.9f * half * std::sqrt(3.0f));
+  so.viewer = eye;
+  fmt::print("atom: {} ({} particles, {} placement) on {} ({})\n", describe(so.state),
+             so.particles, o.placement, backend->name(), backend->caps().device_name);
+  atom::AtomScene scene(*backend, so);
+  scene.run_all();
+  const auto& t = scene.times();
+  fmt::print("  cloud {:.1f} ms, density {:.1f} ms, scattering table {:.1f} ms{}, illumination "
+             "{:.1f} ms, view {:.1f} ms, voxelize {:.1f} ms\n",
+             t.cloud_ms, t.density_ms, t.table_ms, t.table_from_cache ? " (from the cache)" : "",
+             t.illuminate_ms, t.view_ms, t.voxelize_ms);
+  std::filesystem::create_directories(o.out);
+  const std::string dir = o.out + "/";
+  atom::write_cloud_vtp(scene, dir + "cloud.vtp");
+  atom::write_volume_vti(scene, dir + "volume.vti");
+  atom::write_scatter_csv(scene.table(), dir + "scatter_table.csv");
+  RaymarchParams rp = atom::default_raymarch(scene.volume(), view, o.width, o.height);
+  const auto img = atom::render_volume(*backend, scene.volume(), scene.sample, tf, rp);
+  atom::write_image_png(img, o.width, o.height, dir + "raymarch.png");
+  const auto splat = splat_cloud(scene, view, std::min(o.width, o.height));
+  write_png(dir + "cloud.png", std::min(o.width, o.height), std::min(o.width, o.height),
+            to_rgba8(splat, {0, 0, 0}, true));
+  fmt::print("  wrote {}{{cloud.vtp, volume.vti, scatter_table.csv, raymarch.png, cloud.png}}\n",
+             dir);
+  return 0;
+}
+
+int run_volume(const VolumeCliOptions& o) {
+  const std::vector<Vec4d> tf = transfer(o.tf);  // every input is checked before any work
+  const atom::ViewPreset view = atom::parse_view(o.view);
+  if (o.mode != "front-to-back" && o.mode != "lerp")
+    throw_invalid("masav volume", "--mode", o.mode, "front-to-back or lerp");
+  atom::ScalarVolume vol;
+  const std::string ext = std::filesystem::path(o.file).extension().string();
+  if (ext == ".nrrd" || ext == ".nhdr") {
+    vol = atom::load_nrrd(o.file);
+  } else if (ext == ".vti") {
+    vol = atom::load_vti(o.file, o.array);
+  } else {
+    if (o.dims.size() != 3)
+      throw_invalid("masav volume", "--dims", fmt::format("{} values", o.dims.size()),
+                    "three sizes X,Y,Z for a raw file");
+    if (o.type.empty())
+      throw_invalid("masav volume", "--type", "none", "the sample type of a raw file (uint8, int16, "
+                                                      "float32, ...)");
+    Vec3f sp{1, 1, 1};
+    if (o.spacing.size() == 3) sp = {o.spacing[0], o.spacing[1], o.spacing[2]};
+    vol = atom::load_raw(o.file, {o.dims[0], o.dims[1], o.dims[2]}, atom::parse_sample_type(o.type),
+                         o.big_endian, sp);
+  }
+  const VolumeDesc desc = atom::volume_desc(vol);
+  auto backend = create_backend(o.choice.backend, o.choice.device);
+  auto buf = backend->create<Real>(vol.values.size(), "volume");
+  backend->upload(buf, std::span<const float>(vol.values));
+  RaymarchParams rp = atom::default_raymarch(desc, view, o.width, o.height);
+  rp.step *= 2.0f * o.step_voxels;
+  rp.mode = o.mode == "lerp" ? Compositing::lerp : Compositing::front_to_back;
+  const auto img = atom::render_volume(*backend, desc, buf, tf, rp);
+  atom::write_image_png(img, o.width, o.height, o.out);
+  fmt::print("volume: {}x{}x{} values in [{}, {}] raymarched on {} to {}\n", desc.dims.x,
+             desc.dims.y, desc.dims.z, vol.min, vol.max, backend->name(), o.out);
+  return 0;
+}
+
+}  // namespace
+
+void add_atom_command(CLI::App& app) {
+  static AtomCliOptions o;
+  auto* cmd = app.add_subcommand("atom", "hydrogen electron cloud as a reflection nebula: cloud, "
+                                         "lighting, volume, raymarch; writes .vtp/.vti/.csv/.png");
+  add_backend_options(*cmd, o.choice, false);
+  cmd->add_option("--state", o.preset, "thesis Table 2.1 preset: state1 .. state10");
+  cmd->add_option("--n", o.n, "principal quantum number")->check(CLI::Range(1, atom::kMaxN));
+  cmd->add_option("--l", o.l, "azimuthal quantum number, 0 <= l < n");
+  cmd->add_option("--m", o.m, "magnetic quantum number, -l <= m <= l");
+  cmd->add_flag("--real", o.real, "real orbital (cos/sin of m phi) instead of e^{i m phi}");
+  cmd->add_option("--placement", o.placement, "exact (inverse CDF) or shells (thesis Alg. 2.1)")
+      ->capture_default_str();
+  cmd->add_option("--particles", o.particles, "cloud size")
+      ->check(CLI::Range(1u, 1u << 28))
+      ->capture_default_str();
+  cmd->add_option("--seed", o.seed, "random seed (Philox key)")->capture_default_str();
+  cmd->add_option("--out", o.out, "output directory")->required();
+  cmd->add_option("--power", o.power, "source power Phi in lumens")
+      ->check(CLI::Range(0.0f, 1e9f))
+      ->capture_default_str();
+  cmd->add_option("--view", o.view, "top, left or front")->capture_default_str();
+  cmd->add_option("--width", o.width, "image width")->check(CLI::Range(16u, 8192u))->capture_default_str();
+  cmd->add_option("--height", o.height, "image height")->check(CLI::Range(16u, 8192u))->capture_default_str();
+  cmd->add_option("--dims", o.dims, "voxel grid N (N^3 volume)")->check(CLI::Range(2u, 512u))->capture_default_str();
+  cmd->add_option("--density-dims", o.density_dims, "density grid N (cells of the lighting)")
+      ->check(CLI::Range(2u, 512u))
+      ->capture_default_str();
+  cmd->add_option("--photons", o.photons, "photons per tau row of the scattering table")
+      ->check(CLI::Range(1u, 1u << 24))
+      ->capture_default_str();
+  cmd->add_option("--tau-peak", o.tau_peak, "scattering depth of one cell at the peak density")
+      ->check(CLI::Range(0.0f, 1000.0f))
+      ->capture_default_str();
+  cmd->add_option("--s", o.s, "volume mix: weight of the light g")->check(CLI::Range(0.0f, 1.0f));
+  cmd->add_option("--t", o.t, "volume mix: weight of the density p")->check(CLI::Range(0.0f, 1.0f));
+  cmd->add_option("--tf", o.tf, "transfer function file (lines: value r g b a)");
+  cmd->add_flag("--no-cache", o.no_cache, "recompute the scattering table");
+  cmd->callback([] {
+    if (int rc = run_atom(o)) throw CLI::RuntimeError(rc);
+  });
+
+  static VolumeCliOptions v;
+  auto* vc = app.add_subcommand("volume", "raymarch a scalar volume (raw, .nrrd/.nhdr, .vti) to PNG");
+  add_backend_options(*vc, v.choice, false);
+  vc->add_option("file", v.file, "the volume file")->required();
+  vc->add_option("--out", v.out, "output PNG")->required();
+  vc->add_option("--dims", v.dims, "raw: sizes X Y Z")->delimiter(',')->expected(3);
+  vc->add_option("--type", v.type, "raw: uint8, int8, uint16, int16, uint32, int32, float32, float64");
+  vc->add_option("--spacing", v.spacing, "raw: voxel size X,Y,Z")->delimiter(',')->expected(3);
+  vc->add_flag("--big-endian", v.big_endian, "raw: big-endian samples");
+  vc->add_option("--array", v.array, "vti: the array to read (default: the first)");
+  vc->add_option("--tf", v.tf, "transfer function file (lines: value r g b a)");
+  vc->add_option("--view", v.view, "top, left or front")->capture_default_str();
+  vc->add_option("--mode", v.mode, "front-to-back or lerp (the thesis)")->capture_default_str();
+  vc->add_option("--width", v.width, "image width")->check(CLI::Range(16u, 8192u));
+  vc->add_option("--height", v.height, "image height")->check(CLI::Range(16u, 8192u));
+  vc->add_option("--step", v.step_voxels, "ray step in voxels")->check(CLI::Range(0.05f, 4.0f));
+  vc->callback([] {
+    if (int rc = run_volume(v)) throw CLI::RuntimeError(rc);
+  });
+}
+
+}  // namespace masav::app

@@ -1,0 +1,56 @@
+// `masav verify scene.toml`: the cross-check alone -- every kernel the scene uses, on the chosen
+// backend and a second one, with identical inputs; the report printed and saved as JSON. Needs
+// no renderer, so it runs wherever the backends do.
+#include <fmt/format.h>
+
+#include "app/commands.h"
+#include "app/scene_options.h"
+#include "engine/error.h"
+#include "engine/registry/registry.h"
+#include "engine/util/json_writer.h"
+#include "engine/verify/cross_check.h"
+
+namespace masav::app {
+namespace {
+
+struct VerifyOptions {
+  SceneChoice scene;
+  BackendChoice choice;
+  std::string reference;  // "" = the scene's verify.reference
+  std::string json = "out/verify.json";
+};
+
+int run_verify(const VerifyOptions& o) {
+  scene::SceneFile f = load_scene(o.scene);
+  if (!o.reference.empty()) f.params.set("verify.reference", o.reference);
+  auto backend = create_backend(o.choice.backend, o.choice.device);
+  auto reference = verify::open_reference(*backend, f.params.get_text("verify.reference"));
+  const verify::CrossCheckReport r = verify::cross_check_scene(*backend, *reference, f.params);
+  fmt::print("{}", verify::format_report(r));
+  if (!o.json.empty()) {
+    write_file_atomic(o.json, verify::report_json(r));
+    fmt::print("wrote {}\n", o.json);
+  }
+  if (!r.pass()) fmt::print(stderr, "masav: cross-check failed: {}\n", verify::failure_summary(r));
+  return r.pass() ? 0 : 1;
+}
+
+}  // namespace
+
+void add_verify_command(CLI::App& app) {
+  static VerifyOptions o;
+  auto* cmd = app.add_subcommand("verify",
+                                 "cross-check every kernel a scene uses against a "
+                                 "second backend (report printed and saved as JSON)");
+  add_scene_options(*cmd, o.scene, false);
+  add_backend_options(*cmd, o.choice, false);
+  cmd->add_option("--reference,-r", o.reference,
+                  "second backend (default: the scene's verify.reference, auto)")
+      ->check(CLI::IsMember({"auto", "cpu", "vulkan", "cuda"}));
+  cmd->add_option("--json", o.json, "write the report here (\"\" for none)")->capture_default_str();
+  cmd->callback([] {
+    if (int rc = run_verify(o)) throw CLI::RuntimeError(rc);
+  });
+}
+
+}  // namespace masav::app

@@ -1,0 +1,169 @@
+#include "app/demo/demo_panel.h"
+
+#include <fmt/format.h>
+#include <imgui.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+
+#include "app/demo/param_widgets.h"
+#include "engine/error.h"
+
+namespace masav::app {
+namespace {
+
+// Controls beyond the schema's, per scene type. The schema already gives every parameter its
+// widget; these are the thesis's shortcuts.
+// ---- atom and atom-volume (issue 4; the lead fills this in when the scenes are merged):
+//      the ten states as preset buttons (state1 ... state10 set atom.n/l/m), the source power
+//      slider in >= 10 steps from 50K to 500K lumens (atom.source_power_lm, schema .steps()),
+//      the volume mix s/t.
+// ---- sph (issue 3): the presets (explosion, water, mud, obstacle), integrator, particle count.
+// Scenes that are not built in have no controls here: nothing is shown that would do nothing.
+void scene_shortcuts(render::ScenePlayer& player, DemoState& st) {
+  (void)player;
+  (void)st;
+}
+
+void table_controls(render::ScenePlayer& player, DemoState& st, const scene::TableSchema& t) {
+  for (const scene::ParamSpec& spec : t.params()) {
+    const std::string path = t.name() + "." + spec.key;
+    scene::ParamValue next;
+    if (param_widget(spec, path, player.scene().params().get(path), next))
+      set_param(player, st, path, next);
+  }
+}
+
+void stage_table(render::ScenePlayer& player) {
+  if (!ImGui::BeginTable("stages", 5, ImGuiTableFlags_RowBg | ImGuiTableFlags_SizingFixedFit))
+    return;
+  for (const char* h : {"stage", "created", "runs", "skipped", "ms"}) ImGui::TableSetupColumn(h);
+  ImGui::TableHeadersRow();
+  for (const auto& c : player.scene().graph().counters()) {
+    ImGui::TableNextRow();
+    ImGui::TableNextColumn();
+    ImGui::TextUnformatted(c.name.c_str());
+    ImGui::TableNextColumn();
+    ImGui::TextUnformatted(c.created ? "yes" : "never");
+    ImGui::TableNextColumn();
+    ImGui::Text("%llu", (unsigned long long)c.runs);
+    ImGui::TableNextColumn();
+    ImGui::Text("%llu", (unsigned long long)c.skips);
+    ImGui::TableNextColumn();
+    ImGui::Text("%.3f", c.last_ms);
+  }
+  ImGui::EndTable();
+}
+
+void mouse_camera(render::ScenePlayer& player, DemoState& st) {
+  const ImGuiIO& io = ImGui::GetIO();
+  if (io.WantCaptureMouse) return;
+  const scene::ParamSet& p = player.scene().params();
+  if (ImGui::IsMouseDragging(ImGuiMouseButton_Left) &&
+      (io.MouseDelta.x != 0 || io.MouseDelta.y != 0)) {
+    double yaw = p.get_real("camera.yaw_deg") - 0.4 * io.MouseDelta.x;
+    yaw = std::remainder(yaw, 360.0);
+    const double pitch =
+        std::clamp(p.get_real("camera.pitch_deg") + 0.4 * io.MouseDelta.y, -89.0, 89.0);
+    set_param(player, st, "camera.view", std::string("orbit"));
+    set_param(player, st, "camera.yaw_deg", yaw);
+    set_param(player, st, "camera.pitch_deg", pitch);
+  }
+  if (io.MouseWheel != 0) {
+    const double d =
+        std::clamp(p.get_real("camera.distance") * std::pow(0.9, io.MouseWheel), 0.1, 100.0);
+    set_param(player, st, "camera.distance", d);
+  }
+}
+
+}  // namespace
+
+void set_param(render::ScenePlayer& player, DemoState& st, const std::string& path,
+               const scene::ParamValue& v) {
+  try {
+    player.scene().set(path, v);
+    st.message.clear();
+  } catch (const Error& e) {
+    st.message = e.what();
+  }
+}
+
+void draw_panel(render::ScenePlayer& player, DemoState& st) {
+  mouse_camera(player, st);
+  if (!st.show_panel) return;
+  const float scale = ImGui::GetIO().FontGlobalScale;
+  ImGui::SetNextWindowPos(ImVec2(ImGui::GetIO().DisplaySize.x - 390 * scale, 10 * scale),
+                          ImGuiCond_FirstUseEver);
+  ImGui::SetNextWindowSize(ImVec2(380 * scale, ImGui::GetIO().DisplaySize.y - 20 * scale),
+                           ImGuiCond_FirstUseEver);
+  if (!ImGui::Begin("masav")) {
+    ImGui::End();
+    return;
+  }
+  const scene::ParamSet& p = player.scene().params();
+  // Scene.
+  const std::string current = player.file().source;
+  if (ImGui::BeginCombo("scene", std::filesystem::path(current).filename().string().c_str())) {
+    for (const auto& f : st.scene_files)
+      if (ImGui::Selectable(f.c_str(), f == current) && f != current) st.requests.scene_file = f;
+    ImGui::EndCombo();
+  }
+  ImGui::Text("%s, %.1f fps (%.1f ms)", player.file().type.c_str(), st.fps, st.frame_ms);
+
+  // Transport.
+  if (ImGui::Button(st.paused ? "Resume" : "Pause")) st.paused = !st.paused;
+  ImGui::SameLine();
+  if (ImGui::Button("Step")) st.step = true, st.paused = true;
+  ImGui::SameLine();
+  if (ImGui::Button("Reset")) st.requests.reset = true;
+  ImGui::SameLine();
+  ImGui::Text("t = %.2f s", player.clock().time_s);
+  {
+    const scene::ParamSpec& fps = p.spec("run.fps");
+    scene::ParamValue next;
+    if (param_widget(fps, "run.fps", p.get("run.fps"), next))
+      set_param(player, st, "run.fps", next);
+    ImGui::SameLine();
+    ImGui::TextDisabled("dt %.4g s", 1.0 / p.get_real("run.fps"));
+  }
+
+  // Viewpoints.
+  for (const char* v : {"front", "top", "left", "orbit"}) {
+    if (ImGui::RadioButton(v, p.get_text("camera.view") == v))
+      set_param(player, st, "camera.view", std::string(v));
+    ImGui::SameLine();
+  }
+  ImGui::NewLine();
+  ImGui::TextDisabled("drag: orbit, wheel: zoom");
+
+  // Backend and the cross-check.
+  if (ImGui::BeginCombo("backend", player.backend().name().c_str())) {
+    for (const auto& b : st.backends)
+      if (ImGui::Selectable(b.c_str(), b == player.backend().name()) &&
+          b != player.backend().name())
+        st.requests.backend = b;
+    ImGui::EndCombo();
+  }
+  ImGui::TextWrapped("%s", player.backend().caps().device_name.c_str());
+  ImGui::TextWrapped("%s", player.verify_status().empty() ? "cross-check: not run"
+                                                          : player.verify_status().c_str());
+  if (ImGui::Button("Run cross-check")) st.requests.verify = true;
+
+  if (!st.message.empty()) ImGui::TextColored(ImVec4(1, 0.4f, 0.3f, 1), "%s", st.message.c_str());
+
+  // Every parameter of the scene's own tables, then rendering and camera.
+  const scene::SceneType& type = scene::find_scene_type(player.file().type);
+  scene_shortcuts(player, st);
+  for (const scene::TableSchema* t : type.tables)
+    if (ImGui::CollapsingHeader(t->name().c_str(), ImGuiTreeNodeFlags_DefaultOpen))
+      table_controls(player, st, *t);
+  for (const char* name : {"render", "camera"})
+    if (ImGui::CollapsingHeader(name))
+      for (const scene::TableSchema* t : p.tables())
+        if (t->name() == name) table_controls(player, st, *t);
+  if (ImGui::CollapsingHeader("timings", ImGuiTreeNodeFlags_DefaultOpen)) stage_table(player);
+  ImGui::End();
+}
+
+}  // namespace masav::app

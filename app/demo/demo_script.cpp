@@ -1,0 +1,85 @@
+#include "app/demo/demo_script.h"
+
+#include <fmt/format.h>
+
+#include <charconv>
+#include <fstream>
+#include <map>
+#include <sstream>
+
+#include "engine/error.h"
+
+namespace masav::app {
+namespace {
+
+struct Form {
+  size_t args;
+  const char* usage;
+};
+
+const std::map<std::string, Form>& forms() {
+  static const std::map<std::string, Form> f = {
+      {"wait", {1, "wait N"}},
+      {"set", {2, "set TABLE.KEY VALUE"}},
+      {"view", {1, "view front|top|left|orbit"}},
+      {"orbit", {2, "orbit YAW_DEG PITCH_DEG"}},
+      {"scene", {1, "scene PATH"}},
+      {"backend", {1, "backend vulkan|cuda|cpu"}},
+      {"pause", {0, "pause"}},
+      {"resume", {0, "resume"}},
+      {"step", {0, "step"}},
+      {"reset", {0, "reset"}},
+      {"verify", {0, "verify"}},
+      {"panel", {1, "panel on|off"}},
+      {"screenshot", {1, "screenshot PATH"}},
+      {"quit", {0, "quit"}},
+  };
+  return f;
+}
+
+}  // namespace
+
+std::vector<ScriptCommand> load_script(const std::string& path) {
+  std::ifstream in(path);
+  if (!in)
+    throw Error("", "--script", fmt::format("cannot read the script '{}'", path),
+                "give the path of a demo script (see `masav demo --help`)");
+  std::vector<ScriptCommand> out;
+  std::string text;
+  int line = 0;
+  while (std::getline(in, text)) {
+    ++line;
+    if (const auto hash = text.find('#'); hash != std::string::npos) text.resize(hash);
+    std::istringstream words(text);
+    ScriptCommand c;
+    c.line = line;
+    if (!(words >> c.verb)) continue;
+    for (std::string w; words >> w;) c.args.push_back(w);
+    const std::string at = fmt::format("{}:{}", path, line);
+    const auto it = forms().find(c.verb);
+    if (it == forms().end()) {
+      std::string all;
+      for (const auto& [verb, form] : forms()) all += (all.empty() ? "" : ", ") + verb;
+      throw_invalid(at, "script command", c.verb, "one of " + all);
+    }
+    if (c.args.size() != it->second.args)
+      throw_invalid(at, "arguments of " + c.verb, std::to_string(c.args.size()),
+                    fmt::format("{} (as in: {})", it->second.args, it->second.usage));
+    if (c.verb == "wait") {
+      int n = 0;
+      const auto& a = c.args[0];
+      const auto [p, ec] = std::from_chars(a.data(), a.data() + a.size(), n);
+      if (ec != std::errc() || p != a.data() + a.size() || n < 1 || n > 100000)
+        throw_invalid(at, "wait", a, "a frame count in [1, 100000]");
+    }
+    if (c.verb == "view" && c.args[0] != "front" && c.args[0] != "top" && c.args[0] != "left" &&
+        c.args[0] != "orbit")
+      throw_invalid(at, "view", c.args[0], "front, top, left or orbit");
+    if (c.verb == "panel" && c.args[0] != "on" && c.args[0] != "off")
+      throw_invalid(at, "panel", c.args[0], "on or off");
+    out.push_back(std::move(c));
+  }
+  return out;
+}
+
+}  // namespace masav::app

@@ -1,0 +1,29 @@
+#pragma once
+// Scripted input for the demo (`masav demo --script FILE`), how the tests drive the window under
+// xvfb-run. One command per line, '#' starts a comment:
+//   wait N                 draw N frames
+//   set TABLE.KEY VALUE    change a parameter, as the panel does (e.g. set render.brightness 2)
+//   view front|top|left|orbit
+//   orbit YAW PITCH        orbit camera angles in degrees
+//   scene PATH             switch to another scene file
+//   backend NAME           switch the compute backend (vulkan, cuda, cpu)
+//   pause | resume | step | reset | verify
+//   panel on|off           show or hide the control panel
+//   screenshot PATH        write the next frame (panel and overlay included) as PNG
+//   quit                   close the demo (also at the end of the script)
+#include <string>
+#include <vector>
+
+namespace masav::app {
+
+struct ScriptCommand {
+  int line = 0;
+  std::string verb;
+  std::vector<std::string> args;
+};
+
+// Reads and checks the whole script up front: an unknown command or a wrong argument count is
+// an error naming the file, the line and the allowed forms.
+std::vector<ScriptCommand> load_script(const std::string& path);
+
+}  // namespace masav::app

@@ -1,0 +1,96 @@
+#include "app/demo/demo_window.h"
+
+#define GLFW_INCLUDE_VULKAN
+#include <GLFW/glfw3.h>
+#include <fmt/format.h>
+
+#include <cstdlib>
+
+#include "engine/error.h"
+#include "render/render_device.h"
+
+namespace masav::app {
+namespace {
+
+constexpr const char* kHeadless =
+    "render headless instead: masav run scene.toml --out DIR (or start the demo under "
+    "xvfb-run)";
+
+std::string glfw_error() {
+  const char* text = nullptr;
+  glfwGetError(&text);
+  return text ? text : "no description";
+}
+
+}  // namespace
+
+DemoWindow::DemoWindow(uint32_t width, uint32_t height, const std::string& title) {
+  const char* x11 = std::getenv("DISPLAY");
+  const char* wayland = std::getenv("WAYLAND_DISPLAY");
+  if ((!x11 || !*x11) && (!wayland || !*wayland))
+    throw Error("demo", "", "no display: DISPLAY is not set (no X server or Wayland session)",
+                kHeadless);
+  if (!glfwInit())
+    throw Error("demo", "", fmt::format("the window system could not be opened ({})", glfw_error()),
+                kHeadless);
+  if (!glfwVulkanSupported()) {
+    glfwTerminate();
+    throw Error("demo", "", "GLFW finds no Vulkan loader with window-system support",
+                "install libvulkan1 and mesa-vulkan-drivers, or render headless with masav run");
+  }
+  glfwWindowHint(GLFW_CLIENT_API, GLFW_NO_API);
+  window_ = glfwCreateWindow(int(width), int(height), title.c_str(), nullptr, nullptr);
+  if (!window_) {
+    const std::string why = glfw_error();
+    glfwTerminate();
+    throw Error("demo", "", fmt::format("the window could not be created ({})", why), kHeadless);
+  }
+}
+
+DemoWindow::~DemoWindow() {
+  if (window_) glfwDestroyWindow(window_);
+  glfwTerminate();
+}
+
+vk::ContextOptions DemoWindow::graphics_options(const std::string& device) const {
+  vk::ContextOptions o = render::graphics_options(device);
+  uint32_t count = 0;
+  const char** names = glfwGetRequiredInstanceExtensions(&count);
+  if (!names)
+    throw Error("demo", "", "GLFW reports no Vulkan surface extensions for this display",
+                kHeadless);
+  for (uint32_t i = 0; i < count; ++i) o.instance_extensions.push_back(names[i]);
+  o.device_extensions.push_back(VK_KHR_SWAPCHAIN_EXTENSION_NAME);
+  o.present_support = [](VkInstance instance, VkPhysicalDevice pd, uint32_t family) {
+    return glfwGetPhysicalDevicePresentationSupport(instance, pd, family) == GLFW_TRUE;
+  };
+  return o;
+}
+
+VkSurfaceKHR DemoWindow::create_surface(const vk::Context& ctx) const {
+  VkSurfaceKHR surface = VK_NULL_HANDLE;
+  const VkResult r =
+      glfwCreateWindowSurface(static_cast<VkInstance>(*ctx.instance()), window_, nullptr, &surface);
+  if (r != VK_SUCCESS)
+    throw Error("demo", "",
+                fmt::format("the window surface could not be created (VkResult {})", int(r)),
+                kHeadless);
+  return surface;
+}
+
+bool DemoWindow::should_close() const {
+  return glfwWindowShouldClose(window_);
+}
+
+void DemoWindow::set_title(const std::string& title) {
+  glfwSetWindowTitle(window_, title.c_str());
+}
+
+void DemoWindow::framebuffer_size(uint32_t& width, uint32_t& height) const {
+  int w = 0, h = 0;
+  glfwGetFramebufferSize(window_, &w, &h);
+  width = uint32_t(std::max(w, 0));
+  height = uint32_t(std::max(h, 0));
+}
+
+}  // namespace masav::app

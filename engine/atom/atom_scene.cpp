@@ -1,0 +1,206 @@
+#include "engine/atom/atom_scene.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+
+#include "engine/atom/atom_checks.h"
+#include "engine/error.h"
+#include "engine/hash_grid.h"
+
+namespace masav::atom {
+namespace {
+constexpr float kReferencePower = 250000.0f;  // the thesis's middle setting (lumens)
+}
+
+ViewPreset parse_view(const std::string& name) {
+  if (name == "top") return ViewPreset::top;
+  if (name == "left") return ViewPreset::left;
+  if (name == "front") return ViewPreset::front;
+  throw_invalid("atom", "view", name, "top, left or front");
+}
+
+Vec3f view_eye(ViewPreset v, float d) {
+  switch (v) {
+    case ViewPreset::top: return {0, 0, d};
+    case ViewPreset::left: return {-d, 0, 0};
+    case ViewPreset::front: return {0, -d, 0};
+  }
+  return {0, -d, 0};
+}
+
+Vec3f view_up(ViewPreset v) { return v == ViewPreset::top ? Vec3f{0, 1, 0} : Vec3f{0, 0, 1}; }
+
+AtomScene::AtomScene(Backend& b, AtomSceneOptions o) : b_(b), o_(std::move(o)) {
+  validate_state(o_.state, "atom");
+  if (o_.particles < 1)
+    throw_invalid("atom", "particles", std::to_string(o_.particles), "at least 1");
+  const uint64_t limit = b_.caps().max_buffer_bytes;
+  if (limit && uint64_t(o_.particles) * 4 * b_.real_bytes() > limit)
+    throw_invalid("atom", "particles", std::to_string(o_.particles),
+                  fmt::format("at most {} on {} (one buffer holds {} MiB)",
+                              limit / (4 * b_.real_bytes()), b_.caps().device_name, limit >> 20));
+  for (auto [name, v] : {std::pair{"density_dims", o_.density_dims}, {"volume_dims", o_.volume_dims}})
+    if (v < 2 || v > 512) throw_invalid("atom", name, std::to_string(v), "in [2, 512]");
+  if (!(o_.box_probability >= 0.9 && o_.box_probability < 1 - 1e-9))
+    throw_invalid("atom", "box_probability", fmt::format("{}", o_.box_probability), "in [0.9, 1)");
+  if (!std::isfinite(o_.tau_peak) || o_.tau_peak < 0)
+    throw_invalid("atom", "tau_peak", fmt::format("{}", o_.tau_peak), "finite and >= 0");
+  half_ = atom::box_half_width(o_.state, o_.box_probability);
+  const float h = float(half_);
+  density_grid_ = make_grid_params({-h, -h, -h}, 2 * h / float(o_.density_dims),
+                                   {o_.density_dims, o_.density_dims, o_.density_dims}, o_.particles);
+  volume_grid_ = make_grid_params({-h, -h, -h}, 2 * h / float(o_.volume_dims),
+                                  {o_.volume_dims, o_.volume_dims, o_.volume_dims}, o_.particles);
+  // sigma_sct = kappa * density: tau_peak at the state's largest |psi|^2 over one cell.
+  kappa_ = float(o_.tau_peak / (peak_density(o_.state) * density_grid_.cell_size));
+  if (o_.viewer.x == 0 && o_.viewer.y == 0 && o_.viewer.z == 0)
+    o_.viewer = view_eye(ViewPreset::front, 2.5f * h);
+  exposure_ = o_.exposure;
+}
+
+double AtomScene::timed(const std::function<void()>& work) {
+  b_.finish();
+  const auto t0 = std::chrono::steady_clock::now();
+  work();
+  b_.finish();
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+}
+
+void AtomScene::build_cloud() {
+  tables_ = make_orbital_tables(o_.state, o_.placement, o_.particles, o_.seed, o_.tables);
+  auto cdf = b_.create<uint32_t>(tables_.cdf.size(), "orbital tables");
+  b_.upload(cdf, tables_.cdf);
+  positions = b_.create<Real4>(o_.particles, "cloud positions");
+  times_.cloud_ms = timed([&] { b_.orbital_sample(tables_.params, cdf, positions); });
+}
+
+void AtomScene::build_density() {
+  density = b_.create<Real>(grid_cell_count(density_grid_), "cloud density");
+  times_.density_ms = timed([&] {
+    HashGrid g = make_hash_grid(b_, density_grid_, o_.particles);
+    build_hash_grid(b_, g, positions);
+    b_.cloud_density({density_grid_, o_.particles}, g.cell_start, g.cell_end, density);
+    b_.finish();  // the grid's buffers die here
+  });
+}
+
+void AtomScene::build_table() {
+  const auto t0 = std::chrono::steady_clock::now();
+  if (o_.use_cache) {
+    table_ = scatter_table_cached(b_, o_.scatter, o_.cache_dir, &times_.table_from_cache);
+  } else {
+    table_ = compute_scatter_table(b_, o_.scatter);
+    times_.table_from_cache = false;
+  }
+  const std::vector<double> ph = make_phase_table(table_);
+  phase = b_.create<Real>(ph.size(), "phase table");
+  b_.upload(phase, ph);
+  times_.table_ms =
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+}
+
+NebulaLightParams AtomScene::light_params() const {
+  NebulaLightParams p;
+  p.grid = density_grid_;
+  p.source_power_lm = o_.source_power_lm;
+  p.kappa_a2 = kappa_;
+  p.albedo = o_.scatter.albedo > 0 ? o_.scatter.albedo : 1.0f;
+  p.core_radius_a0 = 0.5f * density_grid_.cell_size;
+  p.viewer = o_.viewer;
+  p.path = o_.path;
+  p.step_a0 = o_.step_a0 > 0 ? o_.step_a0 : 0.5f * density_grid_.cell_size;
+  p.table_rows = o_.scatter.rows;
+  p.table_bins = o_.scatter.bins;
+  p.table_tau_step = o_.scatter.tau_step;
+  return p;
+}
+
+void AtomScene::illuminate() {
+  illumination = b_.create<Real>(o_.particles, "illumination");
+  times_.illuminate_ms =
+      timed([&] { b_.nebula_illuminate(light_params(), positions, density, illumination); });
+}
+
+void AtomScene::view() {
+  if (!light) light = b_.create<Real>(o_.particles, "light");
+  times_.view_ms =
+      timed([&] { b_.nebula_view(light_params(), positions, density, phase, illumination, light); });
+  if (exposure_ <= 0) {
+    // Automatic exposure, fixed once: the 90th percentile of the light at the reference power
+    // maps to full green, so a change of Phi brightens or darkens as in the thesis.
+    std::vector<double> l = b_.download(light);
+    const size_t k = l.size() * 9 / 10;
+    std::nth_element(l.begin(), l.begin() + k, l.end());
+    const double ref = l[k] * kReferencePower / std::max(1e-30, double(o_.source_power_lm));
+    exposure_ = ref > 0 ? float(1.0 / ref) : 1.0f;
+  }
+}
+
+void AtomScene::voxelize() {
+  const size_t cells = grid_cell_count(volume_grid_);
+  probability = b_.create<Real>(cells, "p");
+  mean_light = b_.create<Real>(cells, "g");
+  sample = b_.create<Real>(cells, "sample");
+  VoxelizeParams vp;
+  vp.grid = volume_grid_;
+  vp.s = o_.s;
+  vp.t = o_.t;
+  vp.light_to_unit = exposure_;
+  times_.voxelize_ms = timed([&] { b_.voxelize(vp, positions, light, probability, mean_light, sample); });
+}
+
+void AtomScene::run_all() {
+  build_cloud();
+  build_density();
+  build_table();
+  illuminate();
+  view();
+  voxelize();
+}
+
+VolumeDesc AtomScene::volume() const {
+  const float h = float(half_);
+  return VolumeDesc{volume_grid_.dims, {-h, -h, -h}, {h, h, h}, 0.0f, 1.0f};
+}
+
+RaymarchParams default_raymarch(const VolumeDesc& d, ViewPreset view, uint32_t width,
+                                uint32_t height) {
+  RaymarchParams rp;
+  rp.volume = d;
+  rp.width = width;
+  rp.height = height;
+  const Vec3f c{0.5f * (d.box_min.x + d.box_max.x), 0.5f * (d.box_min.y + d.box_max.y),
+                0.5f * (d.box_min.z + d.box_max.z)};
+  const float ex = d.box_max.x - d.box_min.x, ey = d.box_max.y - d.box_min.y,
+              ez = d.box_max.z - d.box_min.z;
+  const float half_diag = 0.5f * std::sqrt(ex * ex + ey * ey + ez * ez);
+  const Vec3f e = view_eye(view, 1.9f * half_diag);
+  rp.eye = {c.x + e.x, c.y + e.y, c.z + e.z};
+  rp.target = c;
+  rp.up = view_up(view);
+  rp.fov_y_deg = 45.0f;
+  const float voxel = std::min({ex / d.dims.x, ey / d.dims.y, ez / d.dims.z});
+  rp.step = 0.5f * voxel;
+  rp.reference_step = voxel;
+  rp.tf_size = 256;
+  return rp;
+}
+
+std::vector<Vec4d> render_volume(Backend& b, const VolumeDesc& desc, const Buffer<Real>& volume,
+                                 const std::vector<Vec4d>& tf, RaymarchParams rp) {
+  rp.volume = desc;
+  rp.tf_size = uint32_t(tf.size());
+  auto t = b.create<Real4>(tf.size(), "transfer function");
+  b.upload(t, tf);
+  const UVec3 nb = brick_dims(desc, rp.brick);
+  auto bricks = b.create<Real4>(size_t(nb.x) * nb.y * nb.z, "bricks");
+  b.volume_bricks({desc, rp.brick, rp.tf_size}, volume, t, bricks);
+  auto img = b.create<Real4>(size_t(rp.width) * rp.height, "image");
+  b.raymarch(rp, volume, t, bricks, img);
+  return b.download(img);
+}
+
+}  // namespace masav::atom

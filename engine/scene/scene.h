@@ -1,0 +1,92 @@
+#pragma once
+// A running scene on one backend, and the registry of scene types. A scene type declares its
+// parameter tables, the kernels it uses (for the cross-check), and how to build its stage graph;
+// adding a scene (atom, atom-volume, sph) is one SceneType in scene_types.cpp.
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "engine/backend.h"
+#include "engine/scene/param_schema.h"
+#include "engine/scene/scene_view.h"
+#include "engine/scene/stage_graph.h"
+
+namespace masav::scene {
+
+// The clock of one frame. Time-driven scenes (particles) read time_s; stepped scenes (SPH)
+// step by dt_s unless paused. `step_once` advances one step while paused.
+struct FrameClock {
+  uint64_t frame = 0;
+  double time_s = 0;
+  double dt_s = 1.0 / 30;
+  bool paused = false;
+  bool step_once = false;
+};
+
+class SceneInstance {
+ public:
+  SceneInstance(Backend& backend, ParamSet params);
+  virtual ~SceneInstance() = default;
+
+  Backend& backend() { return backend_; }
+  const ParamSet& params() const { return params_; }
+  StageGraph& graph() { return graph_; }
+  const StageGraph& graph() const { return graph_; }
+
+  // Changes a parameter (validated) and marks the stages that read it stale. Returns whether the
+  // value changed. Cross-parameter limits are checked too (validate()); on failure the old value
+  // stays.
+  bool set(std::string_view path, const ParamValue& v);
+  bool set_from_string(std::string_view path, std::string_view text);
+
+  // Brings the stages the current parameters need up to date for this frame.
+  UpdateReport update(const FrameClock& clock, bool time_stages = false);
+  virtual SceneView view() const = 0;
+  // Stage names update() brings up to date with the current parameters.
+  virtual std::vector<std::string> targets() const = 0;
+
+ protected:
+  // Called before update(): advance stepped state, touch "time" inputs, ...
+  virtual void on_clock(const FrameClock& clock) = 0;
+  // Cross-parameter checks (throws masav::Error naming the parameters and the remedy).
+  virtual void validate(const ParamSet& p) const { (void)p; }
+  // Adds every parameter of the scene's tables as a graph input, and the input "view", which
+  // changes whenever the camera does (a camera.* parameter, or the time while the orbit camera
+  // turns): the stages that depend on the viewpoint (viewer attenuation, the raymarch) read
+  // "view" and nothing else reruns when the user looks around.
+  void add_parameter_inputs();
+
+  Backend& backend_;
+  ParamSet params_;
+  StageGraph graph_;
+
+ private:
+  double view_time_s_ = 0;
+};
+
+// What `masav verify` and the pre-render check need from a scene (see cross_check.h).
+struct CheckInputs {
+  uint32_t points = 0;  // points in each kernel's check input
+  uint64_t seed = 1;
+  std::optional<GridParams> grid;  // the scene's hash grid (with n = points), if it has one
+  float neighbor_radius = 0;
+};
+
+struct SceneType {
+  std::string name;
+  std::string help;
+  std::vector<const TableSchema*> tables;  // the domain's tables (the common ones are added)
+  // Kernels the scene runs with these parameters (each must have a cross-check).
+  std::function<std::vector<std::string>(const ParamSet&)> kernels;
+  std::function<CheckInputs(const ParamSet&)> check_inputs;
+  std::function<std::unique_ptr<SceneInstance>(Backend&, const ParamSet&)> create;
+};
+
+const std::vector<SceneType>& scene_types();
+std::vector<std::string> scene_type_names();
+const SceneType& find_scene_type(std::string_view name);
+// Every table of a scene type (common + domain) at its defaults.
+ParamSet default_params(const SceneType& type);
+
+}  // namespace masav::scene

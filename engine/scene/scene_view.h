@@ -1,0 +1,56 @@
+#pragma once
+// What a scene hands the renderer: backend buffers and how to draw them, no graphics types.
+// The renderer binds them directly when the compute backend is Vulkan on its own device, and
+// copies them (only when their version changed) from CUDA or the CPU reference otherwise.
+#include <cstdint>
+#include <optional>
+#include <string>
+
+#include "engine/buffer.h"
+#include "engine/types.h"
+
+namespace masav::scene {
+
+// Particles drawn as point sprites, coloured by a per-point scalar through the colour map.
+struct PointLayer {
+  const Buffer<Real4>* positions = nullptr;  // xyz; w holds a per-point value
+  uint32_t count = 0;
+  enum class ScalarFrom : uint8_t {
+    buffer,      // `scalar`: u32, f32 or real per point, in the same order as `positions`
+    position_w,  // positions[i].w
+    position_z,  // height
+    none,        // one colour (the colour map's middle)
+  };
+  ScalarFrom from = ScalarFrom::none;
+  const BufferImpl* scalar = nullptr;
+  float scalar_lo = 0, scalar_hi = 1;  // colour-map range
+  std::string scalar_name;             // for the legend, e.g. "neighbours within r"
+  uint64_t version = 0;                // changes when positions or scalars change
+};
+
+// An image computed on the backend (the raymarch; the particle demo's star field), drawn as a
+// full-screen quad behind everything else: colour = gain * pixel^gamma (per channel).
+struct ImageLayer {
+  const BufferImpl* pixels = nullptr;
+  uint32_t width = 0, height = 0;
+  enum class Format : uint8_t {
+    rgba8,    // u32 per pixel, r in the low byte
+    rgba32f,  // four f32 (or real) per pixel
+  };
+  Format format = Format::rgba32f;
+  float gain = 1.0f, gamma = 1.0f;
+  bool mono = false;  // use the red channel for all three
+  uint64_t version = 0;
+};
+
+struct Box {
+  Vec3f lo{0, 0, 0}, hi{1, 1, 1};
+};
+
+struct SceneView {
+  std::optional<PointLayer> points;
+  std::optional<ImageLayer> background;
+  Box box;
+};
+
+}  // namespace masav::scene

@@ -1,0 +1,178 @@
+#include "engine/verify/cross_check.h"
+
+#include <fmt/format.h>
+
+#include <chrono>
+#include <cmath>
+#include <cstdlib>
+
+#include "engine/cpu/cpu_backend.h"
+#include "engine/error.h"
+#include "engine/registry/registry.h"
+#include "engine/util/json_writer.h"
+
+namespace masav::verify {
+namespace {
+
+double ms_since(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+}
+
+// Test hook (see cross_check.h): one word flipped or one value nudged by one ulp.
+void inject_fault(CheckOutputs& outs) {
+  for (auto& o : outs) {
+    if (!o.words.empty()) {
+      o.words[o.words.size() / 2] ^= 1u;
+      return;
+    }
+    if (!o.reals.empty()) {
+      double& v = o.reals[o.reals.size() / 2];
+      v = v == 0 ? 1.0 : v * (1.0 + 1e-3);
+      return;
+    }
+  }
+}
+
+}  // namespace
+
+bool CrossCheckReport::pass() const {
+  return failures() == 0;
+}
+size_t CrossCheckReport::failures() const {
+  size_t f = 0;
+  for (const auto& r : rows) f += !r.pass;
+  return f;
+}
+
+CrossCheckReport cross_check(Backend& backend, Backend& reference,
+                             const std::vector<std::string>& kernels, const CheckInputs& in,
+                             const std::vector<KernelCheck>& checks) {
+  CrossCheckReport rep;
+  rep.backend = backend.name();
+  rep.device = backend.caps().device_name;
+  rep.reference = reference.name();
+  rep.reference_device = reference.caps().device_name;
+  rep.points = in.points;
+  rep.seed = in.seed;
+  const char* fault_env = std::getenv("MASAV_VERIFY_FAULT");
+  const std::string fault = fault_env ? fault_env : "";
+  for (const auto& kernel : kernels) {
+    CheckRow row;
+    row.kernel = kernel;
+    const KernelCheck* check = nullptr;
+    for (const auto& c : checks)
+      if (c.kernel == kernel) check = &c;
+    if (!check) {
+      row.error = "no cross-check is registered for this kernel";
+      rep.rows.push_back(row);
+      continue;
+    }
+    row.kind = check->kind;
+    try {
+      auto t0 = std::chrono::steady_clock::now();
+      CheckOutputs got = check->run(backend, in);
+      row.ms_backend = ms_since(t0);
+      t0 = std::chrono::steady_clock::now();
+      const CheckOutputs want = check->run(reference, in);
+      row.ms_reference = ms_since(t0);
+      if (fault == kernel) inject_fault(got);
+      const Verdict v = check->compare(got, want, in);
+      row.pass = v.pass;
+      row.metrics = v.metrics;
+      row.tolerance = v.tolerance;
+      row.numbers = v.numbers;
+    } catch (const Error& e) {
+      row.error = e.what();
+    }
+    rep.rows.push_back(row);
+  }
+  return rep;
+}
+
+CrossCheckReport cross_check_scene(Backend& backend, Backend& reference,
+                                   const scene::ParamSet& params) {
+  const scene::SceneType& type = scene::find_scene_type(params.get_text("scene.type"));
+  CrossCheckReport r =
+      cross_check(backend, reference, type.kernels(params), type.check_inputs(params));
+  r.scene = type.name;
+  return r;
+}
+
+std::unique_ptr<Backend> open_reference(const Backend& chosen, const std::string& choice) {
+  if (choice != "auto") {
+    if (choice == "cpu") return std::make_unique<cpu::CpuBackend>();
+    return create_backend(choice);
+  }
+  const std::string me = chosen.name();
+  if (me == "vulkan" || me == "cuda") {
+    const std::string other = me == "vulkan" ? "cuda" : "vulkan";
+    for (const auto& s : list_backends())
+      if (s.name == other && s.available) {
+        try {
+          return create_backend(other);
+        } catch (const Error&) {
+          break;  // listed but cannot open: fall back to the CPU reference
+        }
+      }
+    return std::make_unique<cpu::CpuBackend>();
+  }
+  // The chosen backend is the CPU reference: compare with a GPU backend when there is one.
+  for (const std::string other : {"vulkan", "cuda"})
+    for (const auto& s : list_backends())
+      if (s.name == other && s.available) {
+        try {
+          return create_backend(other);
+        } catch (const Error&) {
+        }
+      }
+  return std::make_unique<cpu::CpuBackend>();
+}
+
+std::string format_report(const CrossCheckReport& r) {
+  std::string out =
+      fmt::format("cross-check of the '{}' scene: {} ({}) against {} ({}), {} points, seed {}\n",
+                  r.scene, r.backend, r.device, r.reference, r.reference_device, r.points, r.seed);
+  for (const auto& row : r.rows) {
+    out += fmt::format("  {:<22} {:<11} {}  ", row.kernel, check_kind_name(row.kind),
+                       row.pass ? "PASS" : "FAIL");
+    if (!row.error.empty())
+      out += "error: " + row.error + "\n";
+    else
+      out += fmt::format("{}; allowed: {}\n", row.metrics, row.tolerance);
+  }
+  out += fmt::format("cross-check {}: {} of {} kernels agree\n", r.pass() ? "passed" : "FAILED",
+                     r.rows.size() - r.failures(), r.rows.size());
+  return out;
+}
+
+std::string report_json(const CrossCheckReport& r) {
+  JsonWriter j;
+  j.begin_object();
+  j.field("scene", r.scene).field("pass", r.pass());
+  j.key("backend").begin_object().field("name", r.backend).field("device", r.device).end_object();
+  j.key("reference").begin_object().field("name", r.reference).field("device", r.reference_device);
+  j.end_object();
+  j.field("points", r.points).field("seed", r.seed);
+  j.key("kernels").begin_array();
+  for (const auto& row : r.rows) {
+    j.begin_object().field("kernel", row.kernel).field("kind", check_kind_name(row.kind));
+    j.field("pass", row.pass).field("metrics", row.metrics).field("tolerance", row.tolerance);
+    if (!row.error.empty()) j.field("error", row.error);
+    j.key("numbers").begin_object();
+    for (const auto& [k, v] : row.numbers) j.field(k, v);
+    j.end_object();
+    j.field("ms_backend", row.ms_backend).field("ms_reference", row.ms_reference);
+    j.end_object();
+  }
+  j.end_array().end_object();
+  return j.str() + "\n";
+}
+
+std::string failure_summary(const CrossCheckReport& r) {
+  std::string kernels;
+  for (const auto& row : r.rows)
+    if (!row.pass) kernels += (kernels.empty() ? "" : ", ") + row.kernel;
+  return fmt::format("{} disagrees with {} on {}", r.backend, r.reference, kernels);
+}
+
+}  // namespace masav::verify

@@ -1,0 +1,56 @@
+#pragma once
+// The cross-check before rendering (SPEC §2): every kernel a scene uses runs on the chosen
+// backend and on a second one with identical inputs; the report names each kernel, both
+// backends and devices, the errors and the tolerances, and is printed and saved as JSON.
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "engine/backend.h"
+#include "engine/scene/scene.h"
+#include "engine/verify/kernel_check.h"
+
+namespace masav::verify {
+
+struct CheckRow {
+  std::string kernel;
+  CheckKind kind = CheckKind::exact;
+  bool pass = false;
+  std::string metrics, tolerance;
+  std::map<std::string, double> numbers;
+  std::string error;  // the kernel threw (on either backend), or no check exists
+  double ms_backend = 0, ms_reference = 0;  // wall time of each run, inputs included
+};
+
+struct CrossCheckReport {
+  std::string scene;  // scene type
+  std::string backend, device, reference, reference_device;
+  uint32_t points = 0;
+  uint64_t seed = 0;
+  std::vector<CheckRow> rows;
+  bool pass() const;
+  size_t failures() const;
+};
+
+// Runs the checks of `kernels` on `backend` and `reference`. A kernel without a registered check
+// fails (every kernel a scene uses must be checked). MASAV_VERIFY_FAULT=<kernel> perturbs that
+// kernel's output on `backend` by one unit in the last place: how the tests prove a mismatch is
+// caught and stops the run.
+CrossCheckReport cross_check(Backend& backend, Backend& reference,
+                             const std::vector<std::string>& kernels, const CheckInputs& in,
+                             const std::vector<KernelCheck>& checks = kernel_checks());
+// All the checks a scene's parameters need.
+CrossCheckReport cross_check_scene(Backend& backend, Backend& reference,
+                                   const scene::ParamSet& params);
+
+// The second backend: `choice` (verify.reference: auto, cpu, vulkan, cuda). auto = the other
+// GPU backend if it is available, else the CPU reference (a second instance when the chosen
+// backend is the CPU itself and no GPU backend is present).
+std::unique_ptr<Backend> open_reference(const Backend& chosen, const std::string& choice);
+
+std::string format_report(const CrossCheckReport& r);
+std::string report_json(const CrossCheckReport& r);
+// The one-line reason a failed report stops rendering, with the remedy.
+std::string failure_summary(const CrossCheckReport& r);
+
+}  // namespace masav::verify

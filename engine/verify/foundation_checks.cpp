@@ -1,0 +1,102 @@
+// Cross-checks of the foundation's kernels: Philox, the radix sort and the hash-grid kernels,
+// all integer results, so bit for bit. Inputs come from the scene (its point count, seed and
+// grid), generated on the host and uploaded identically to both backends.
+#include <cstring>
+#include <numeric>
+#include <random>
+
+#include "engine/hash_grid.h"
+#include "engine/verify/check_registry.h"
+
+namespace masav::verify {
+namespace {
+
+GridParams grid_or_default(const CheckInputs& in) {
+  if (in.grid) {
+    GridParams g = *in.grid;
+    g.n = in.points;
+    return g;
+  }
+  return make_grid_params({0, 0, 0}, 1.0f / 16, {16, 16, 16}, in.points);
+}
+
+// The grid built from the shared check points, with the positions left in `pos`.
+HashGrid grid_on(Backend& b, const CheckInputs& in, Buffer<Real4>& pos) {
+  const GridParams g = grid_or_default(in);
+  pos = b.create<Real4>(in.points, "check positions");
+  b.upload(pos, check_points(in));
+  HashGrid grid = make_hash_grid(b, g, in.points);
+  build_hash_grid(b, grid, pos);
+  return grid;
+}
+
+}  // namespace
+
+std::vector<KernelCheck> foundation_checks() {
+  std::vector<KernelCheck> c;
+  c.push_back(exact_check("philox_u32", [](Backend& b, const CheckInputs& in) {
+    auto out = b.create<uint32_t>(4 * size_t(in.points), "check philox");
+    b.philox_u32({in.seed, 7, 0}, out);
+    return CheckOutputs{{"words", b.download(out), {}}};
+  }));
+  c.push_back(exact_check("philox_uniform", [](Backend& b, const CheckInputs& in) {
+    auto out = b.create<float>(4 * size_t(in.points), "check uniforms");
+    b.philox_uniform({in.seed, 0, 0}, out);
+    const auto f = b.download(out);
+    std::vector<uint32_t> bits(f.size());
+    std::memcpy(bits.data(), f.data(), 4 * f.size());
+    return CheckOutputs{{"float bits", bits, {}}};
+  }));
+  c.push_back(exact_check("radix_sort", [](Backend& b, const CheckInputs& in) {
+    std::mt19937 rng(uint32_t(in.seed));
+    std::vector<uint32_t> keys(in.points), values(in.points);
+    for (auto& k : keys) k = rng();
+    std::iota(values.begin(), values.end(), 0u);
+    auto kb = b.create<uint32_t>(in.points, "check keys");
+    auto vb = b.create<uint32_t>(in.points, "check values");
+    b.upload(kb, keys);
+    b.upload(vb, values);
+    b.radix_sort({in.points, 32}, kb, &vb);
+    return CheckOutputs{{"keys", b.download(kb), {}}, {"values", b.download(vb), {}}};
+  }));
+  c.push_back(exact_check("grid_assign_cells", [](Backend& b, const CheckInputs& in) {
+    const GridParams g = grid_or_default(in);
+    auto pos = b.create<Real4>(in.points, "check positions");
+    b.upload(pos, check_points(in));
+    auto cells = b.create<uint32_t>(in.points, "check cells");
+    auto idx = b.create<uint32_t>(in.points, "check indices");
+    b.grid_assign_cells(g, pos, cells, idx);
+    return CheckOutputs{{"cells", b.download(cells), {}}, {"indices", b.download(idx), {}}};
+  }));
+  c.push_back(exact_check("grid_cell_ranges", [](Backend& b, const CheckInputs& in) {
+    Buffer<Real4> pos;
+    HashGrid g = grid_on(b, in, pos);
+    return CheckOutputs{{"sorted cells", b.download(g.sorted_cells), {}},
+                        {"cell start", b.download(g.cell_start), {}},
+                        {"cell end", b.download(g.cell_end), {}}};
+  }));
+  c.push_back(exact_check("gather", [](Backend& b, const CheckInputs& in) {
+    Buffer<Real4> pos;
+    HashGrid g = grid_on(b, in, pos);
+    auto sorted = b.create<Real4>(in.points, "check sorted");
+    reorder(b, g, pos.impl(), sorted.impl());
+    const auto f = b.download_f32(sorted);
+    std::vector<uint32_t> bits(4 * f.size());
+    std::memcpy(bits.data(), f.data(), 16 * f.size());
+    return CheckOutputs{{"sorted positions (fp32 bits)", bits, {}}};
+  }));
+  c.push_back(exact_check("grid_count_neighbors", [](Backend& b, const CheckInputs& in) {
+    Buffer<Real4> pos;
+    HashGrid g = grid_on(b, in, pos);
+    auto sorted = b.create<Real4>(in.points, "check sorted");
+    reorder(b, g, pos.impl(), sorted.impl());
+    auto counts = b.create<uint32_t>(in.points, "check counts");
+    const float r = in.neighbor_radius > 0 ? in.neighbor_radius : g.params.cell_size;
+    b.grid_count_neighbors(make_neighbor_params(g.params, r), sorted, g.cell_start, g.cell_end,
+                           counts);
+    return CheckOutputs{{"counts", b.download(counts), {}}};
+  }));
+  return c;
+}
+
+}  // namespace masav::verify

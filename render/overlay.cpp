@@ -1,0 +1,40 @@
+#include "render/overlay.h"
+
+#include <fmt/format.h>
+#include <imgui.h>
+
+namespace masav::render {
+
+void draw_overlay(const OverlayInfo& info) {
+  std::vector<std::string> lines;
+  lines.push_back(info.title.empty() ? "masav" : info.title);
+  lines.push_back(fmt::format(
+      "frame {}  t = {:.2f} s{}", info.frame, info.time_s,
+      info.fps > 0 ? fmt::format("  {:.1f} fps ({:.1f} ms)", info.fps, info.frame_ms) : ""));
+  lines.push_back(fmt::format("compute: {} ({})", info.backend, info.device));
+  lines.push_back(info.render_device.empty()
+                      ? "render: same device, no copies"
+                      : fmt::format("render: {} (copies)", info.render_device));
+  if (!info.verify.empty()) lines.push_back(info.verify);
+  if (!info.legend.empty()) lines.push_back(info.legend);
+  for (const auto& s : info.stages)
+    if (s.created)
+      lines.push_back(fmt::format("  {:<20} {:>8.3f} ms  ran {}x", s.name, s.last_ms, s.runs));
+
+  ImDrawList* dl = ImGui::GetForegroundDrawList();
+  const float scale = ImGui::GetIO().FontGlobalScale;
+  const float line_h = ImGui::GetFontSize() + 2.0f * scale;
+  float width = 0;
+  for (const auto& l : lines) width = std::max(width, ImGui::CalcTextSize(l.c_str()).x);
+  const ImVec2 origin(8.0f * scale, 8.0f * scale);
+  const float pad = 5.0f * scale;
+  dl->AddRectFilled(ImVec2(origin.x - pad, origin.y - pad),
+                    ImVec2(origin.x + width + pad, origin.y + line_h * float(lines.size()) + pad),
+                    IM_COL32(0, 0, 0, 150), 4.0f * scale);
+  for (size_t i = 0; i < lines.size(); ++i)
+    dl->AddText(ImVec2(origin.x, origin.y + line_h * float(i)),
+                i == 0 ? IM_COL32(255, 220, 120, 255) : IM_COL32(235, 235, 235, 255),
+                lines[i].c_str());
+}
+
+}  // namespace masav::render

@@ -1,0 +1,28 @@
+#pragma once
+// The text overlay drawn on every frame (SPEC §3): scene, frame and time, fps, the backend and
+// its device, and each stage's device time of the last update -- through ImGui's foreground
+// draw list, so headless frames and the demo show the same thing.
+#include <string>
+#include <vector>
+
+#include "engine/scene/stage_graph.h"
+
+namespace masav::render {
+
+struct OverlayInfo {
+  std::string title;
+  std::string backend, device;
+  std::string render_device;  // "" when the renderer shares the compute device
+  uint64_t frame = 0;
+  double time_s = 0;
+  double fps = 0;       // frames per wall-clock second (0: not measured, e.g. headless)
+  double frame_ms = 0;  // wall time of the last frame
+  std::string verify;   // cross-check status line
+  std::string legend;   // colour-map legend: scalar name and range
+  std::vector<scene::StageCounters> stages;
+};
+
+// Adds the overlay to the current ImGui frame (between NewFrame and Render).
+void draw_overlay(const OverlayInfo& info);
+
+}  // namespace masav::render

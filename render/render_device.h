@@ -1,0 +1,63 @@
+#pragma once
+// The Vulkan device the renderer draws with. When the compute backend is Vulkan (opened with
+// graphics, see open_compute_backend) the renderer borrows that backend's device, so kernel
+// outputs are drawn where they lie; otherwise (CUDA, the CPU reference) it opens a device of its
+// own and the kernel outputs are copied over (layer_bridge.h).
+#include <functional>
+#include <memory>
+#include <string>
+
+#include "compute/vk_backend.h"
+#include "compute/vk_context.h"
+
+namespace masav::render {
+
+// Options for a rendering context from the environment (MASAV_VK_DEVICE, MASAV_VK_VALIDATION),
+// with a graphics queue required.
+vk::ContextOptions graphics_options(const std::string& device = "");
+
+// The compute backend for a scene that is drawn: "vulkan" (and "auto" when it resolves to
+// Vulkan) opens the Vulkan backend on a device that can also draw, with `options`; the others
+// come from the registry.
+std::unique_ptr<Backend> open_compute_backend(const std::string& name, const std::string& device,
+                                              const vk::ContextOptions& options);
+
+class RenderDevice {
+ public:
+  // Borrows `compute`'s device when it is a Vulkan backend opened with graphics; else opens one
+  // with `options`.
+  RenderDevice(Backend& compute, const vk::ContextOptions& options);
+  ~RenderDevice();
+
+  const vk::Context& ctx() const { return *ctx_; }
+  const ::vk::raii::Device& device() const { return ctx_->device(); }
+  // The compute backend whose buffers the renderer binds directly, or null when it copies.
+  vk::VulkanBackend* shared() const { return shared_; }
+  Backend& compute() const { return compute_; }
+
+  // One command buffer, recorded and submitted per frame; submit() waits for it.
+  const ::vk::raii::CommandBuffer& begin();
+  void submit(::vk::Semaphore wait = {}, ::vk::PipelineStageFlags wait_stage = {},
+              ::vk::Semaphore signal = {});
+
+ private:
+  Backend& compute_;
+  vk::VulkanBackend* shared_ = nullptr;
+  std::unique_ptr<vk::Context> owned_;
+  const vk::Context* ctx_ = nullptr;
+  ::vk::raii::CommandPool pool_ = nullptr;
+  ::vk::raii::CommandBuffer cmd_ = nullptr;
+  ::vk::raii::Fence fence_ = nullptr;
+  bool recording_ = false;
+};
+
+// Device memory for an image (the render targets), device-local.
+struct ImageMemory {
+  ::vk::raii::Image image = nullptr;
+  ::vk::raii::DeviceMemory memory = nullptr;
+  ::vk::raii::ImageView view = nullptr;
+};
+ImageMemory make_image(const vk::Context& ctx, const ::vk::ImageCreateInfo& info,
+                       ::vk::ImageAspectFlags aspect, const std::string& label);
+
+}  // namespace masav::render

@@ -1,0 +1,117 @@
+#include "render/scene_player.h"
+
+#include <fmt/format.h>
+#include <imgui.h>
+
+#include <algorithm>
+
+#include "engine/error.h"
+
+namespace masav::render {
+
+uint32_t frame_width(const scene::ParamSet& p) {
+  return uint32_t(p.get_int("render.width"));
+}
+uint32_t frame_height(const scene::ParamSet& p) {
+  return uint32_t(p.get_int("render.height"));
+}
+
+ScenePlayer::ScenePlayer(scene::SceneFile file, const PlayerOptions& options) : options_(options) {
+  backend_ = open_compute_backend(options.backend, options.device, options.graphics);
+  make_scene(std::move(file));
+  render_device_ = std::make_unique<RenderDevice>(*backend_, options.graphics);
+  // ImGui's 13 px font stays legible on large frames.
+  const float scale = std::max(1.0f, float(frame_height(file_.params)) / 720.0f);
+  ui_ = std::make_unique<UiContext>(std::floor(scale * 2.0f) / 2.0f);
+  renderer_ = std::make_unique<Renderer>(*render_device_, *ui_, frame_width(file_.params),
+                                         frame_height(file_.params));
+}
+
+ScenePlayer::~ScenePlayer() {
+  // The renderer may borrow the backend's device and the scene holds the backend's buffers.
+  renderer_.reset();
+  render_device_.reset();
+  scene_.reset();
+  backend_.reset();
+}
+
+void ScenePlayer::make_scene(scene::SceneFile file) {
+  const scene::SceneType& type = scene::find_scene_type(file.type);
+  auto next = type.create(*backend_, file.params);
+  scene_ = std::move(next);
+  file_ = std::move(file);
+  clock_ = scene::FrameClock{};
+  clock_.time_s = file_.params.get_real("run.start_time_s");
+  clock_.dt_s = 1.0 / file_.params.get_real("run.fps");
+}
+
+void ScenePlayer::load_scene(scene::SceneFile file) {
+  if (backend_) backend_->finish();
+  make_scene(std::move(file));
+  verify_status_.clear();
+  if (renderer_) renderer_->resize(frame_width(file_.params), frame_height(file_.params));
+}
+
+void ScenePlayer::reset() {
+  load_scene(file_);
+}
+
+verify::CrossCheckReport ScenePlayer::verify() {
+  auto reference = verify::open_reference(*backend_, scene_->params().get_text("verify.reference"));
+  verify::CrossCheckReport r = verify::cross_check_scene(*backend_, *reference, scene_->params());
+  verify_status_ =
+      r.pass() ? fmt::format("cross-check: {} kernels agree with {}", r.rows.size(), r.reference)
+               : fmt::format("cross-check FAILED: {}", verify::failure_summary(r));
+  return r;
+}
+
+scene::UpdateReport ScenePlayer::update() {
+  return scene_->update(clock_, true);
+}
+
+OverlayInfo ScenePlayer::overlay(double fps, double frame_ms) const {
+  OverlayInfo o;
+  const scene::ParamSet& p = scene_->params();
+  o.title = p.get_text("scene.title").empty() ? fmt::format("masav: {} scene", file_.type)
+                                              : p.get_text("scene.title");
+  o.backend = backend_->name();
+  o.device = backend_->caps().device_name;
+  if (!render_device_->shared()) o.render_device = render_device_->ctx().caps().device_name;
+  o.frame = clock_.frame;
+  o.time_s = clock_.time_s;
+  o.fps = fps;
+  o.frame_ms = frame_ms;
+  o.verify = verify_status_;
+  const scene::SceneView v = scene_->view();
+  if (v.points && !v.points->scalar_name.empty()) {
+    float lo = v.points->scalar_lo, hi = v.points->scalar_hi;
+    if (!p.get_flag("render.auto_range"))
+      lo = float(p.get_real("render.range_min")), hi = float(p.get_real("render.range_max"));
+    o.legend = fmt::format("colour: {} from {:.3g} to {:.3g} ({})", v.points->scalar_name, lo, hi,
+                           p.get_text("render.colormap"));
+  }
+  o.stages = scene_->graph().counters();
+  return o;
+}
+
+void ScenePlayer::draw(FrameRequest extra, const std::function<void()>& build_ui, double fps,
+                       double frame_ms) {
+  const scene::SceneView view = scene_->view();
+  ui_->make_current();
+  if (platform_frame_) platform_frame_();
+  ImGuiIO& io = ImGui::GetIO();
+  io.DisplaySize = ImVec2(float(renderer_->width()), float(renderer_->height()));
+  if (!platform_frame_) io.DeltaTime = float(frame_ms > 0 ? frame_ms * 1e-3 : clock_.dt_s);
+  if (!(io.DeltaTime > 0)) io.DeltaTime = 1.0f / 60.0f;
+  ImGui::NewFrame();
+  if (scene_->params().get_flag("render.overlay")) draw_overlay(overlay(fps, frame_ms));
+  if (build_ui) build_ui();
+  ImGui::Render();
+  extra.view = &view;
+  extra.params = &scene_->params();
+  extra.time_s = clock_.time_s;
+  extra.ui = ImGui::GetDrawData();
+  renderer_->render(extra);
+}
+
+}  // namespace masav::render

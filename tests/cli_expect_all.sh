@@ -1,0 +1,26 @@
+#!/usr/bin/env bash
+# cli_expect_all.sh ok|fail REGEX... -- COMMAND...
+# Like cli_expect.sh, with several regexes that must each match some line of the output (in
+# any order): for tables such as `masav run --stats`.
+set -u
+want=$1
+shift
+regexes=()
+while [[ $# -gt 0 && "$1" != "--" ]]; do
+  regexes+=("$1")
+  shift
+done
+[[ "${1:-}" == "--" ]] && shift
+out=$("$@" 2>&1)
+rc=$?
+fail() { printf '%s\n--- output (exit %d) ---\n%s\n' "$1" "$rc" "$out"; exit 1; }
+case "$want" in
+  ok) [[ $rc -eq 0 ]] || fail "expected success" ;;
+  fail) [[ $rc -ne 0 ]] || fail "expected a non-zero exit" ;;
+  *) echo "cli_expect_all.sh: unknown expectation '$want'"; exit 2 ;;
+esac
+[[ $rc -lt 128 ]] || fail "crashed (signal $((rc - 128)))"
+for r in "${regexes[@]}"; do
+  grep -Eq -- "$r" <<<"$out" || fail "output does not match /$r/"
+done
+exit 0

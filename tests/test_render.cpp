@@ -1,0 +1,360 @@
+// Rendering through Vulkan (lavapipe in CI): points land where the camera projects them, in the
+// colour map's colours, depth-tested; the background image and the box are drawn; the copy path
+// (CPU backend) and the shared-device path (Vulkan backend) give the same image; the particle
+// scene renders non-blank, changing frames; PNGs round-trip. With MASAV_DEMO_SHOTS set, the
+// "demo screenshots" case inspects what `masav demo --script` wrote under xvfb-run.
+#define DOCTEST_CONFIG_IMPLEMENT
+#include <doctest/doctest.h>
+#include <fmt/format.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+
+#include "compute/vk_factory.h"
+#include "engine/cpu/cpu_backend.h"
+#include "engine/error.h"
+#include "engine/scene/scene.h"
+#include "render/png.h"
+#include "render/renderer.h"
+#include "render/scene_player.h"
+
+using namespace masav;
+
+namespace {
+
+struct Rgb {
+  int r, g, b;
+};
+
+struct Frame {
+  uint32_t w = 0, h = 0;
+  std::vector<uint8_t> px;
+  Rgb at(int x, int y) const {
+    const size_t i = 4 * (size_t(y) * w + size_t(x));
+    return {px[i], px[i + 1], px[i + 2]};
+  }
+  // The brightest pixel (by r+g+b) within `radius` of (x, y).
+  Rgb brightest(int x, int y, int radius) const {
+    Rgb best{-1, -1, -1};
+    for (int yy = std::max(0, y - radius); yy <= std::min(int(h) - 1, y + radius); ++yy)
+      for (int xx = std::max(0, x - radius); xx <= std::min(int(w) - 1, x + radius); ++xx) {
+        const Rgb c = at(xx, yy);
+        if (c.r + c.g + c.b > best.r + best.g + best.b) best = c;
+      }
+    return best;
+  }
+  double mean() const {
+    double s = 0;
+    for (size_t i = 0; i < px.size(); i += 4) s += px[i] + px[i + 1] + px[i + 2];
+    return s / (3.0 * w * h);
+  }
+};
+
+// Fraction of pixels whose colour differs by more than `tol` in some channel.
+double fraction_differing(const Frame& a, const Frame& b, int tol = 24) {
+  REQUIRE(a.px.size() == b.px.size());
+  size_t n = 0;
+  for (size_t i = 0; i < a.px.size(); i += 4)
+    for (int c = 0; c < 3; ++c)
+      if (std::abs(int(a.px[i + c]) - int(b.px[i + c])) > tol) {
+        ++n;
+        break;
+      }
+  return double(n) / double(a.w * a.h);
+}
+
+// Not the clear colour (5, 5, 10) nor a faint star.
+bool lit(const Rgb& c) {
+  return c.r + c.g + c.b > 90;
+}
+
+scene::ParamSet plain_params(uint32_t w, uint32_t h) {
+  scene::ParamSet p = scene::default_params(scene::find_scene_type("particles"));
+  p.set("render.width", int64_t(w));
+  p.set("render.height", int64_t(h));
+  p.set("render.background", std::string("black"));
+  p.set("render.show_box", false);
+  p.set("render.show_axes", false);
+  p.set("render.overlay", false);
+  p.set("render.colormap", std::string("thesis"));  // pure blue -> green -> red
+  p.set("camera.view", std::string("front"));
+  return p;
+}
+
+struct Rig {
+  std::unique_ptr<Backend> backend;
+  std::unique_ptr<render::RenderDevice> device;
+  std::unique_ptr<render::UiContext> ui;
+  std::unique_ptr<render::Renderer> renderer;
+  Rig(const std::string& name, uint32_t w, uint32_t h) {
+    const masav::vk::ContextOptions o = render::graphics_options();
+    backend = name == "cpu" ? std::unique_ptr<Backend>(new cpu::CpuBackend(1))
+                            : render::open_compute_backend(name, "", o);
+    device = std::make_unique<render::RenderDevice>(*backend, o);
+    ui = std::make_unique<render::UiContext>();
+    renderer = std::make_unique<render::Renderer>(*device, *ui, w, h);
+  }
+  Frame draw(const scene::SceneView& v, const scene::ParamSet& p) {
+    render::FrameRequest f;
+    f.view = &v;
+    f.params = &p;
+    f.readback = true;
+    renderer->render(f);
+    return Frame{renderer->width(), renderer->height(), renderer->pixels()};
+  }
+};
+
+// Pixel of a world point under the camera the renderer used.
+std::pair<int, int> project(const render::Camera& c, float x, float y, float z, uint32_t w,
+                            uint32_t h) {
+  const glm::vec4 clip = c.view_proj * glm::vec4(x, y, z, 1.0f);
+  const glm::vec2 ndc(clip.x / clip.w, clip.y / clip.w);
+  return {int(std::floor((ndc.x * 0.5f + 0.5f) * float(w))),
+          int(std::floor((ndc.y * 0.5f + 0.5f) * float(h)))};
+}
+
+struct Points {
+  Buffer<Real4> pos;
+  Buffer<float> scalar;
+  scene::SceneView view;
+};
+
+Points make_points(Backend& b, const std::vector<Vec4f>& p, const std::vector<float>& s) {
+  Points pts{
+      b.create<Real4>(p.size(), "test points"), b.create<float>(s.size(), "test scalars"), {}};
+  b.upload(pts.pos, p);
+  b.upload(pts.scalar, s);
+  scene::PointLayer pl;
+  pl.positions = &pts.pos;
+  pl.count = uint32_t(p.size());
+  pl.from = scene::PointLayer::ScalarFrom::buffer;
+  pl.scalar = &pts.scalar.impl();
+  pl.scalar_lo = 0;
+  pl.scalar_hi = 1;
+  pl.version = 1;
+  pts.view.points = pl;
+  return pts;
+}
+
+}  // namespace
+
+TEST_CASE("points land where the camera projects them, in the colour map's colours") {
+  const uint32_t W = 120, H = 90;
+  scene::ParamSet p = plain_params(W, H);
+  p.set("render.blend", std::string("additive"));  // the sprite's centre is the map colour
+  p.set("render.point_size", 9.0);
+  const std::vector<Vec4f> pos = {
+      {0.2f, 0.5f, 0.25f, 0}, {0.5f, 0.5f, 0.5f, 0}, {0.8f, 0.5f, 0.75f, 0}};
+  const std::vector<float> scalar = {0.0f, 0.5f, 1.0f};
+  const Rgb expected[3] = {{0, 0, 255}, {0, 255, 0}, {255, 0, 0}};
+  std::vector<Frame> frames;
+  for (const char* path : {"vulkan", "cpu"}) {
+    CAPTURE(path);
+    Rig rig(path, W, H);
+    CHECK((rig.device->shared() != nullptr) == (std::string(path) == "vulkan"));
+    Points pts = make_points(*rig.backend, pos, scalar);
+    const Frame f = rig.draw(pts.view, p);
+    for (int i = 0; i < 3; ++i) {
+      const auto [x, y] = project(rig.renderer->camera(), pos[i].x, pos[i].y, pos[i].z, W, H);
+      CAPTURE(i);
+      REQUIRE(x >= 2);
+      REQUIRE(x < int(W) - 2);
+      // The sprite's centre pixel, within the falloff of being off the pixel centre.
+      const Rgb c = f.brightest(x, y, 1);
+      CHECK(std::abs(c.r - expected[i].r) <= 20);
+      CHECK(std::abs(c.g - expected[i].g) <= 20);
+      CHECK(std::abs(c.b - expected[i].b) <= 20);
+    }
+    // z up, front view: the higher point is higher on screen.
+    CHECK(project(rig.renderer->camera(), 0.5f, 0.5f, 0.9f, W, H).second <
+          project(rig.renderer->camera(), 0.5f, 0.5f, 0.1f, W, H).second);
+    // Far from every point: the clear colour.
+    const Rgb corner = f.at(3, int(H) - 4);
+    CHECK(corner.r + corner.g + corner.b < 30);
+    frames.push_back(f);
+  }
+  // The copy path draws exactly what the shared-device path draws.
+  CHECK(frames[0].px == frames[1].px);
+}
+
+TEST_CASE("opaque sprites are depth-tested: the nearer of two overlapping points wins") {
+  Rig rig("vulkan", 80, 80);
+  scene::ParamSet p = plain_params(80, 80);
+  p.set("render.point_size", 12.0);
+  // Front view looks along +y: y = 0.3 is nearer. The far point is drawn second.
+  Points pts =
+      make_points(*rig.backend, {{0.5f, 0.3f, 0.5f, 0}, {0.5f, 0.7f, 0.5f, 0}}, {0.0f, 1.0f});
+  const Frame f = rig.draw(pts.view, p);
+  const auto [x, y] = project(rig.renderer->camera(), 0.5f, 0.5f, 0.5f, 80, 80);
+  const Rgb c = f.at(x, y);
+  CHECK(c.b > 100);
+  CHECK(c.r < 30);
+  // Additive sprites do not hide each other: both colours add up.
+  p.set("render.blend", std::string("additive"));
+  const Frame g = rig.draw(pts.view, p);
+  const Rgb d = g.brightest(x, y, 1);
+  CHECK(d.b > 150);
+  CHECK(d.r > 150);
+}
+
+TEST_CASE("a kernel's image fills the background and the box is drawn over it") {
+  const uint32_t W = 64, H = 48;
+  Rig rig("vulkan", W, H);
+  scene::ParamSet p = plain_params(W, H);
+  // A 2x2 RGBA8 image: red, green / blue, white (row 0 at the top).
+  auto img = rig.backend->create<uint32_t>(4, "test image");
+  rig.backend->upload(img,
+                      std::vector<uint32_t>{0xFF0000FFu, 0xFF00FF00u, 0xFFFF0000u, 0xFFFFFFFFu});
+  scene::SceneView v;
+  scene::ImageLayer il;
+  il.pixels = &img.impl();
+  il.width = il.height = 2;
+  il.format = scene::ImageLayer::Format::rgba8;
+  il.version = 1;
+  v.background = il;
+  Frame f = rig.draw(v, p);
+  const Rgb tl = f.at(3, 3), tr = f.at(int(W) - 4, 3), bl = f.at(3, int(H) - 4),
+            br = f.at(int(W) - 4, int(H) - 4);
+  CHECK((tl.r > 240 && tl.g < 15 && tl.b < 15));
+  CHECK((tr.g > 240 && tr.r < 15 && tr.b < 15));
+  CHECK((bl.b > 240 && bl.r < 15 && bl.g < 15));
+  CHECK((br.r > 240 && br.g > 240 && br.b > 240));
+  // gain and gamma: 0.5 * 1^gamma.
+  v.background->gain = 0.5f;
+  v.background->gamma = 3.0f;
+  f = rig.draw(v, p);
+  CHECK(std::abs(f.at(3, 3).r - 128) <= 2);
+
+  // The box, over a black background: its front bottom edge is grey where the camera puts it.
+  v.background.reset();
+  p.set("render.show_box", true);
+  f = rig.draw(v, p);
+  const auto [x, y] = project(rig.renderer->camera(), 0.5f, 0.0f, 0.0f, W, H);
+  const Rgb e = f.brightest(x, y, 1);
+  CHECK(e.r > 100);
+  CHECK(std::abs(e.r - e.g) < 30);
+}
+
+TEST_CASE("the particle scene renders non-blank, changing frames with the overlay") {
+  scene::SceneFile file = scene::default_scene("particles");
+  file.params.set("particles.count", int64_t(8000));
+  file.params.set("particles.grid_cells", int64_t(16));
+  file.params.set("particles.drift_speed", 0.5);
+  file.params.set("render.width", int64_t(200));
+  file.params.set("render.height", int64_t(150));
+  render::PlayerOptions po;
+  po.backend = "vulkan";
+  po.graphics = render::graphics_options();
+  render::ScenePlayer player(file, po);
+  auto frame = [&](double t) {
+    player.clock().time_s = t;
+    player.update();
+    render::FrameRequest req;
+    req.readback = true;
+    player.draw(req);
+    return Frame{player.renderer().width(), player.renderer().height(), player.renderer().pixels()};
+  };
+  const Frame a = frame(0.0), b = frame(1.0);
+  // Not blank: many pixels carry point colours.
+  size_t colored = 0;
+  for (uint32_t y = 0; y < a.h; ++y)
+    for (uint32_t x = 0; x < a.w; ++x) colored += lit(a.at(int(x), int(y)));
+  CHECK(colored > a.w * a.h / 20);
+  // The drift moves the points: the frames differ.
+  CHECK(fraction_differing(a, b) > 0.02);
+  // The overlay's text is in the top-left corner: bright, near-white pixels.
+  size_t text = 0;
+  for (int y = 4; y < 40; ++y)
+    for (int x = 4; x < 120; ++x) {
+      const Rgb c = a.at(x, y);
+      text += c.r > 200 && c.g > 200 && c.b > 200;
+    }
+  CHECK(text > 30);
+  // Without the overlay, the corner shows the scene instead.
+  player.scene().set("render.overlay", false);
+  const Frame c = frame(1.0);
+  CHECK(fraction_differing(b, c) > 0.01);
+}
+
+TEST_CASE("frames are written as PNG and read back unchanged") {
+  const std::string path = (std::filesystem::temp_directory_path() / "masav_render_test.png");
+  std::vector<uint8_t> px(16 * 8 * 4);
+  for (size_t i = 0; i < px.size(); ++i) px[i] = uint8_t(i * 7);
+  render::write_png(path, 16, 8, px);
+  const render::Rgba8Image img = render::read_png(path);
+  CHECK(img.width == 16);
+  CHECK(img.height == 8);
+  CHECK(img.pixels == px);
+  std::filesystem::remove(path);
+  CHECK_THROWS_AS(render::write_png("/proc/masav/x.png", 16, 8, px), Error);
+}
+
+TEST_CASE("demo screenshots" * doctest::skip(std::getenv("MASAV_DEMO_SHOTS") == nullptr)) {
+  // Written by tests/data/demo_script.txt: a (start), b (brighter), c (top view),
+  // d (the speed scene), e (the speed scene on the CPU backend).
+  const std::string dir = std::getenv("MASAV_DEMO_SHOTS");
+  auto load = [&](const char* name) {
+    const render::Rgba8Image img = render::read_png(dir + "/" + name);
+    return Frame{img.width, img.height, img.pixels};
+  };
+  const Frame a = load("a.png"), b = load("b.png"), c = load("c.png"), d = load("d.png"),
+              e = load("e.png");
+  // The scene area: left of the panel, below the overlay (the bottom-left quarter).
+  auto region_mean = [](const Frame& f) {
+    double s = 0;
+    size_t n = 0;
+    for (uint32_t y = f.h / 2; y < f.h; ++y)
+      for (uint32_t x = 0; x < f.w / 2; ++x, ++n) {
+        const Rgb c = f.at(int(x), int(y));
+        s += c.r + c.g + c.b;
+      }
+    return s / double(n);
+  };
+  // Red-dominated pixels among lit ones: inferno's dark reds and oranges, never viridis (whose
+  // yellow has nearly as much green as red).
+  auto warm_fraction = [](const Frame& f) {
+    size_t warm = 0, lit_px = 0;
+    for (uint32_t y = f.h / 2; y < f.h; ++y)
+      for (uint32_t x = 0; x < f.w / 2; ++x) {
+        const Rgb c = f.at(int(x), int(y));
+        if (!lit(c)) continue;
+        ++lit_px;
+        warm += c.r > 1.4 * std::max(c.g, c.b) + 8;
+      }
+    return lit_px ? double(warm) / double(lit_px) : 0.0;
+  };
+  for (const Frame* f : {&a, &b, &c, &d, &e}) CHECK(f->mean() > 5.0);
+  MESSAGE("scene-area mean a " << region_mean(a) << ", b " << region_mean(b) << "; warm a "
+                               << warm_fraction(a) << ", d " << warm_fraction(d) << ", e "
+                               << warm_fraction(e) << "; b/c differ " << fraction_differing(b, c));
+  CHECK(region_mean(b) > 1.3 * region_mean(a));  // brighter after `set render.brightness`
+  CHECK(fraction_differing(b, c) > 0.05);        // another viewpoint
+  CHECK(warm_fraction(a) < 0.05);                // viridis neighbour counts
+  CHECK(warm_fraction(d) > 0.2);                 // inferno speeds after `scene`
+  CHECK(warm_fraction(e) > 0.2);                 // the same scene computed on the CPU
+  // The panel (an ImGui window) covers the right side: dark grey with light text.
+  size_t panel_text = 0;
+  for (uint32_t y = 20; y < a.h / 2; ++y)
+    for (uint32_t x = a.w - a.w / 4; x < a.w - 20; ++x) {
+      const Rgb c = a.at(int(x), int(y));
+      panel_text += c.r > 180 && c.g > 180 && c.b > 180;
+    }
+  CHECK(panel_text > 50);
+}
+
+int main(int argc, char** argv) {
+  const BackendStatus s = masav::vk::backend_status();
+  if (!s.available) {
+    fmt::print("SKIPPED: Vulkan is not available here: {}\n", s.reason);
+    return 77;
+  }
+  masav::vk::set_validation_handler([](const std::string& msg) {
+    if (doctest::is_running_in_test)
+      FAIL_CHECK(msg);
+    else
+      fmt::print(stderr, "{}\n", msg);
+  });
+  doctest::Context ctx(argc, argv);
+  return ctx.run();
+}

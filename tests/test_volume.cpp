@@ -1,0 +1,342 @@
+// voxelize, volume_bricks and raymarch on every backend: exact counts and the thesis's p(i),
+// g(i), sample; brick ranges; the composited opacity against the analytic line integral of a
+// known volume, with the error falling as the step shrinks; empty-space skipping and early ray
+// termination leave the image unchanged; the thesis's lerp mode; the CPU reference; bad input.
+#include <doctest/doctest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <random>
+#include <vector>
+
+#include "engine/atom/atom_checks.h"
+#include "engine/error.h"
+#include "engine/physics/grid_cell.h"
+#include "engine/util/error_metrics.h"
+#include "tests/backend_fixture.h"
+
+using namespace masav;
+
+namespace {
+
+struct Voxels {
+  std::vector<double> p, g, sample;
+};
+
+Voxels voxelize_on(Backend& b, const VoxelizeParams& vp, const std::vector<Vec4f>& pts,
+                   const std::vector<double>& light) {
+  auto pos = b.create<Real4>(pts.size(), "positions");
+  b.upload(pos, pts);
+  auto lit = b.create<Real>(light.size(), "light");
+  b.upload(lit, light);
+  const size_t cells = grid_cell_count(vp.grid);
+  auto p = b.create<Real>(cells, "p"), g = b.create<Real>(cells, "g"), s = b.create<Real>(cells, "s");
+  b.voxelize(vp, pos, lit, p, g, s);
+  return {b.download(p), b.download(g), b.download(s)};
+}
+
+struct Volume {
+  VolumeDesc desc;
+  std::vector<double> values;
+};
+
+// v = a . (voxel coordinates) + d: trilinear interpolation reproduces it exactly between the
+// outermost voxel centres (and clamps beyond them).
+Volume ramp_volume(UVec3 dims, Vec3f lo, Vec3f hi) {
+  Volume v{{dims, lo, hi, 0.0f, 1.0f}, {}};
+  const double total = double(dims.x - 1) + (dims.y - 1) + (dims.z - 1);
+  for (uint32_t k = 0; k < dims.z; ++k)
+    for (uint32_t j = 0; j < dims.y; ++j)
+      for (uint32_t i = 0; i < dims.x; ++i) v.values.push_back((i + j + k) / total);
+  return v;
+}
+
+// Transfer function with colour 1 and alpha such that the extinction is c * v per unit length:
+// alpha(v) = 1 - exp(-c v ref). With the opacity correction the composited alpha is then the
+// midpoint rule for 1 - exp(-c int v ds).
+std::vector<Vec4d> absorption_tf(uint32_t size, double c, double ref) {
+  std::vector<Vec4d> tf(size);
+  for (uint32_t k = 0; k < size; ++k) {
+    const double v = double(k) / (size - 1);
+    tf[k] = {1, 1, 1, 1 - std::exp(-c * v * ref)};
+  }
+  return tf;
+}
+
+std::vector<Vec4d> render(Backend& b, const RaymarchParams& rp, const Volume& vol,
+                          const std::vector<Vec4d>& tf) {
+  auto v = b.create<Real>(vol.values.size(), "volume");
+  b.upload(v, vol.values);
+  auto t = b.create<Real4>(tf.size(), "tf");
+  b.upload(t, tf);
+  const UVec3 nb = brick_dims(rp.volume, rp.brick);
+  auto bricks = b.create<Real4>(size_t(nb.x) * nb.y * nb.z, "bricks");
+  b.volume_bricks({rp.volume, rp.brick, rp.tf_size}, v, t, bricks);
+  auto img = b.create<Real4>(size_t(rp.width) * rp.height, "image");
+  b.raymarch(rp, v, t, bricks, img);
+  return b.download(img);
+}
+
+// int_{t0}^{t1} clamp(o + t d, lo, hi) dt, exactly.
+double clamped_linear_integral(double o, double d, double lo, double hi, double t0, double t1) {
+  if (d == 0) return std::clamp(o, lo, hi) * (t1 - t0);
+  double ta = (lo - o) / d, tb = (hi - o) / d;
+  if (ta > tb) std::swap(ta, tb);
+  const double a = std::clamp(ta, t0, t1), b = std::clamp(tb, t0, t1);
+  const double below = d > 0 ? lo : hi, above = d > 0 ? hi : lo;
+  return below * (a - t0) + (o * (b - a) + 0.5 * d * (b * b - a * a)) + above * (t1 - b);
+}
+
+}  // namespace
+
+TEST_CASE("voxelize: exact counts, sum p = 1, g the mean light, sample = s g + t p / max p") {
+  std::mt19937_64 rng(4);
+  std::normal_distribution<float> gauss(0.0f, 1.3f);
+  const uint32_t n = 50000;
+  std::vector<Vec4f> pts(n);
+  std::vector<double> light(n);
+  for (uint32_t i = 0; i < n; ++i) {
+    pts[i] = {gauss(rng), gauss(rng), gauss(rng), 0.0f};  // some outside the box: clamped
+    light[i] = std::exp(-double(pts[i].x * pts[i].x)) * 2.0;
+  }
+  VoxelizeParams vp;
+  vp.grid = make_grid_params({-3, -3, -3}, 0.25f, {24, 24, 24}, n);
+  vp.light_to_unit = 0.8f;
+  const Voxels got = voxelize_on(test::backend(), vp, pts, light);
+  // Brute force in double.
+  const size_t cells = grid_cell_count(vp.grid);
+  std::vector<double> count(cells, 0), sum(cells, 0);
+  const float origin[3] = {-3, -3, -3};
+  const uint32_t dims[3] = {24, 24, 24};
+  for (uint32_t i = 0; i < n; ++i) {
+    const auto c = grid::point_cell(pts[i].x, pts[i].y, pts[i].z, origin, vp.grid.inv_cell, dims);
+    const uint32_t id = grid::cell_id(c.x, c.y, c.z, 24, 24);
+    count[id] += 1;
+    sum[id] += std::min(1.0, light[i] * double(vp.light_to_unit));
+  }
+  const double max_count = *std::max_element(count.begin(), count.end());
+  double total = 0;
+  size_t count_mismatch = 0;
+  for (size_t o = 0; o < cells; ++o) {  // outputs x fastest, grid cell ids z fastest
+    const size_t c = (o % 24 * 24 + o / 24 % 24) * 24 + o / 576;
+    count_mismatch += std::llround(got.p[o] * n) != std::llround(count[c]);
+    total += got.p[o];
+    const double g = count[c] ? sum[c] / count[c] : 0.0;
+    CHECK(std::abs(got.g[o] - g) <= 2e-6);
+    CHECK(std::abs(got.sample[o] - (vp.s * g + vp.t * count[c] / max_count)) <= 3e-6);
+  }
+  CHECK(count_mismatch == 0);
+  CHECK(total == doctest::Approx(1.0).epsilon(1e-5));
+  const Voxels ref = voxelize_on(test::reference(), vp, pts, light);
+  const ErrorStats e = compare(got.sample, ref.sample, 1e-3);
+  CAPTURE(describe(e));
+  CHECK(e.max_abs < 3e-6);
+}
+
+TEST_CASE("volume_bricks: value range over each brick and its apron, largest alpha over it") {
+  const Volume vol = ramp_volume({19, 10, 7}, {0, 0, 0}, {1.9f, 1.0f, 0.7f});
+  std::vector<Vec4d> tf(16);
+  for (uint32_t k = 0; k < 16; ++k) tf[k] = {0, 0, 0, k < 6 ? 0.0 : k / 16.0};
+  const VolumeBrickParams bp{vol.desc, 4, 16};
+  Backend& b = test::backend();
+  auto v = b.create<Real>(vol.values.size(), "volume");
+  b.upload(v, vol.values);
+  auto t = b.create<Real4>(16, "tf");
+  b.upload(t, tf);
+  const UVec3 nb = brick_dims(vol.desc, 4);
+  CHECK(nb.x == 5);
+  CHECK(nb.z == 2);
+  auto bricks = b.create<Real4>(size_t(nb.x) * nb.y * nb.z, "bricks");
+  b.volume_bricks(bp, v, t, bricks);
+  const auto got = b.download(bricks);
+  const double total = 18 + 9 + 6;
+  for (uint32_t z = 0; z < nb.z; ++z)
+    for (uint32_t y = 0; y < nb.y; ++y)
+      for (uint32_t x = 0; x < nb.x; ++x) {
+        const auto& br = got[(z * nb.y + y) * nb.x + x];
+        const double lo = (4.0 * (x + y + z)) / total;
+        const double hi = (std::min(4 * x + 4, 18u) + std::min(4 * y + 4, 9u) + std::min(4 * z + 4, 6u)) / total;
+        CHECK(br.x == doctest::Approx(lo).epsilon(1e-6));
+        CHECK(br.y == doctest::Approx(hi).epsilon(1e-6));
+        double amax = 0;
+        for (uint32_t k = uint32_t(lo * 15); k <= std::min(15u, uint32_t(std::ceil(hi * 15))); ++k)
+          amax = std::max(amax, tf[k].w);
+        CHECK(br.z == doctest::Approx(amax).epsilon(1e-6));
+      }
+}
+
+TEST_CASE("raymarch: opacity equals the analytic line integral; error falls with the step") {
+  const Volume vol = ramp_volume({24, 24, 24}, {-1, -1, -1}, {1, 1, 1});
+  const double c = 1.5, ref = 0.01;
+  const auto tf = absorption_tf(4096, c, ref);
+  RaymarchParams rp;
+  rp.volume = vol.desc;
+  rp.width = 12;
+  rp.height = 10;
+  rp.eye = {2.2f, 1.7f, 2.9f};
+  rp.fov_y_deg = 45;
+  rp.reference_step = float(ref);
+  rp.termination_alpha = 1.0f;
+  rp.tf_size = 4096;
+  rp.skip_empty = false;
+  const volume::RayCamera cam = make_ray_camera(rp);
+  const double total = 3.0 * 23, spacing = 2.0 / 24;
+  // Analytic: v along the ray = sum over axes of clamp(voxel coordinate, 0, 23) / total.
+  std::vector<double> want(size_t(rp.width) * rp.height, 0.0);
+  for (uint32_t y = 0; y < rp.height; ++y)
+    for (uint32_t x = 0; x < rp.width; ++x) {
+      const hd::V3<double> eye = volume::v3<double>(cam.eye);
+      const hd::V3<double> d = volume::pixel_direction<double>(rp, cam, x, y);
+      double t0 = 0, t1 = 1e30;
+      if (!volume::slab(eye, d, hd::V3<double>{-1, -1, -1}, hd::V3<double>{1, 1, 1}, t0, t1)) continue;
+      double integral = 0;
+      for (int a = 0; a < 3; ++a) {
+        const double o = (hd::comp(eye, a) + 1) / spacing - 0.5, du = hd::comp(d, a) / spacing;
+        integral += clamped_linear_integral(o, du, 0, 23, t0, t1) / total;
+      }
+      want[y * rp.width + x] = 1 - std::exp(-c * integral);
+    }
+  double prev = 0;
+  for (float step : {0.2f, 0.1f, 0.05f, 0.025f}) {
+    rp.step = step;
+    const auto img = render(test::backend(), rp, vol, tf);
+    double err = 0;
+    for (size_t i = 0; i < img.size(); ++i) {
+      err = std::max(err, std::abs(img[i].w - want[i]));
+      CHECK(std::abs(img[i].x - img[i].w) < 1e-5);  // colour 1: premultiplied colour = alpha
+    }
+    MESSAGE("raymarch step " << step << ": max |alpha - analytic| " << err);
+    if (prev > 1e-5) CHECK(err < 0.6 * prev);
+    prev = err;
+  }
+  CHECK(prev < 2e-4);
+}
+
+TEST_CASE("raymarch: skipping empty bricks and early termination keep the image") {
+  // A blob in one corner of an otherwise empty volume; the transfer function is 0 below 0.2.
+  const UVec3 dims{32, 32, 32};
+  Volume vol{{dims, {0, 0, 0}, {1, 1, 1}, 0.0f, 1.0f}, {}};
+  for (uint32_t k = 0; k < dims.z; ++k)
+    for (uint32_t j = 0; j < dims.y; ++j)
+      for (uint32_t i = 0; i < dims.x; ++i) {
+        const double dx = i - 22.0, dy = j - 12.0, dz = k - 18.0;
+        vol.values.push_back(std::exp(-(dx * dx + dy * dy + dz * dz) / 30.0));
+      }
+  std::vector<Vec4d> tf(64);
+  for (uint32_t k = 0; k < 64; ++k) {
+    const double v = k / 63.0;
+    tf[k] = {v, 1 - v, 0.5, v < 0.2 ? 0.0 : 0.6 * (v - 0.2)};
+  }
+  RaymarchParams rp;
+  rp.volume = vol.desc;
+  rp.width = rp.height = 24;
+  rp.eye = {1.8f, 1.3f, -1.2f};
+  rp.target = {0.5f, 0.5f, 0.5f};
+  rp.step = 0.004f;
+  rp.reference_step = 0.01f;
+  rp.tf_size = 64;
+  rp.termination_alpha = 1.0f;
+  rp.skip_empty = false;
+  const auto full = render(test::backend(), rp, vol, tf);
+  rp.skip_empty = true;
+  const auto skipped = render(test::backend(), rp, vol, tf);
+  double diff = 0, alpha = 0;
+  for (size_t i = 0; i < full.size(); ++i) {
+    diff = std::max({diff, std::abs(full[i].x - skipped[i].x), std::abs(full[i].w - skipped[i].w)});
+    alpha = std::max(alpha, full[i].w);
+  }
+  CHECK(alpha > 0.5);  // the blob is in view
+  CHECK(diff < 1e-6);
+  rp.termination_alpha = 0.9f;
+  const auto ert = render(test::backend(), rp, vol, tf);
+  for (size_t i = 0; i < full.size(); ++i) {
+    // Stopping at alpha >= 0.9 loses at most the remaining 1 - alpha of the colour.
+    CHECK(std::abs(ert[i].x - full[i].x) <= 1 - std::min(ert[i].w, 1.0) + 1e-6);
+    if (full[i].w >= 0.9) CHECK(ert[i].w >= 0.9);
+  }
+}
+
+TEST_CASE("raymarch: the thesis's lerp compositing of n samples of a uniform volume") {
+  Volume vol{{{8, 8, 8}, {-1, -1, -1}, {1, 1, 1}, 0.0f, 1.0f}, std::vector<double>(512, 0.5)};
+  std::vector<Vec4d> tf = {{0.2, 0.4, 0.6, 0.1}, {0.2, 0.4, 0.6, 0.1}};
+  RaymarchParams rp;
+  rp.volume = vol.desc;
+  rp.width = rp.height = 3;
+  rp.eye = {0, 0, 5};
+  rp.step = 0.1f;
+  rp.tf_size = 2;
+  rp.mode = Compositing::lerp;
+  const auto img = render(test::backend(), rp, vol, tf);
+  // The centre ray crosses 2.0 of the box: n = 20 samples, each blending in alpha 0.1.
+  const double a = 1 - std::pow(0.9, 20);
+  CHECK(img[4].w == doctest::Approx(a).epsilon(1e-5));
+  CHECK(img[4].x == doctest::Approx(0.2 * a).epsilon(1e-5));
+  CHECK(img[4].z == doctest::Approx(0.6 * a).epsilon(1e-5));
+}
+
+TEST_CASE("raymarch matches the CPU reference on a smooth volume with the default colours") {
+  const UVec3 dims{20, 24, 16};
+  Volume vol{{dims, {-1, -1.2f, -0.8f}, {1, 1.2f, 0.8f}, -0.2f, 1.1f}, {}};
+  for (uint32_t k = 0; k < dims.z; ++k)
+    for (uint32_t j = 0; j < dims.y; ++j)
+      for (uint32_t i = 0; i < dims.x; ++i)
+        vol.values.push_back(std::sin(0.4 * i) * std::cos(0.3 * j) + 0.05 * k);
+  std::vector<Vec4d> tf(128);
+  for (uint32_t k = 0; k < 128; ++k) {
+    const double v = k / 127.0;
+    tf[k] = {v, 1 - std::abs(2 * v - 1), 1 - v, 0.3 * v};
+  }
+  RaymarchParams rp;
+  rp.volume = vol.desc;
+  rp.width = 40;
+  rp.height = 30;
+  rp.eye = {2.5f, -1.5f, 2.0f};
+  rp.step = 0.02f;
+  rp.reference_step = 0.02f;
+  rp.tf_size = 128;
+  for (Compositing mode : {Compositing::front_to_back, Compositing::lerp}) {
+    rp.mode = mode;
+    const auto got = render(test::backend(), rp, vol, tf), want = render(test::reference(), rp, vol, tf);
+    double err = 0;
+    for (size_t i = 0; i < got.size(); ++i)
+      err = std::max({err, std::abs(got[i].x - want[i].x), std::abs(got[i].y - want[i].y),
+                      std::abs(got[i].z - want[i].z), std::abs(got[i].w - want[i].w)});
+    CAPTURE(int(mode));
+    CHECK(err < 1e-4);
+  }
+}
+
+TEST_CASE("voxelize and raymarch reject bad input, naming the field") {
+  Backend& b = test::backend();
+  Volume vol{{{8, 8, 8}, {0, 0, 0}, {1, 1, 1}, 0.0f, 1.0f}, std::vector<double>(512, 0.5)};
+  RaymarchParams rp;
+  rp.volume = vol.desc;
+  rp.width = rp.height = 4;
+  rp.tf_size = 2;
+  auto v = b.create<Real>(512, "volume");
+  auto t = b.create<Real4>(2, "tf");
+  auto bricks = b.create<Real4>(1, "bricks");
+  auto img = b.create<Real4>(16, "image");
+  rp.step = 1e-6f;
+  CHECK_THROWS_WITH_AS(b.raymarch(rp, v, t, bricks, img), doctest::Contains("invalid step"), Error);
+  rp.step = 0.01f;
+  rp.tf_size = 1;
+  CHECK_THROWS_WITH_AS(b.raymarch(rp, v, t, bricks, img), doctest::Contains("tf_size"), Error);
+  rp.tf_size = 2;
+  rp.up = {0, 0, 1};  // parallel to the view direction (eye on +z looking at the origin)
+  CHECK_THROWS_WITH_AS(b.raymarch(rp, v, t, bricks, img), doctest::Contains("invalid up"), Error);
+  rp.up = {0, 1, 0};
+  rp.volume.dims = {8, 8, 9};
+  CHECK_THROWS_WITH_AS(b.raymarch(rp, v, t, bricks, img), doctest::Contains("volume size"), Error);
+  rp.volume.value_max = rp.volume.value_min;
+  CHECK_THROWS_WITH_AS(b.raymarch(rp, v, t, bricks, img), doctest::Contains("value range"), Error);
+  VoxelizeParams vp;
+  vp.grid = make_grid_params({0, 0, 0}, 0.5f, {2, 2, 2}, 0);
+  auto pos = b.create<Real4>(4, "pos");
+  auto lit = b.create<Real>(4, "light");
+  auto out = b.create<Real>(8, "out");
+  CHECK_THROWS_WITH_AS(b.voxelize(vp, pos, lit, out, out, out), doctest::Contains("particles"), Error);
+  vp.grid.n = 4;
+  vp.s = 2;
+  CHECK_THROWS_WITH_AS(b.voxelize(vp, pos, lit, out, out, out), doctest::Contains("invalid s"), Error);
+}
