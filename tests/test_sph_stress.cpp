@@ -53,15 +53,17 @@ void long_run(SphScene s, uint64_t steps, const Bounds& b = {}) {
     CHECK(d.total() <= e0 + b.energy_growth * std::abs(e0));
   }
   const double sec = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  MESSAGE(fmt::format("{} / {} / {}: {} steps to t = {:.3f} s in {:.0f} s ({} retried); energy "
-                      "{:.4g} J, largest growth {:+.2e} of it",
-                      s.preset, to_string(s.model), to_string(s.integrator), sim.steps(),
-                      sim.time(), sec, sim.retries(), e0, worst));
+  MESSAGE(
+      fmt::format("{} / {} / {}: {} steps to t = {:.3f} s in {:.0f} s ({} retried); energy "
+                  "{:.4g} J, largest growth {:+.2e} of it",
+                  s.preset, to_string(s.model), to_string(s.integrator), sim.steps(), sim.time(),
+                  sec, sim.retries(), e0, worst));
 }
 
 }  // namespace
 
-TEST_CASE("[stress] every preset and pressure model: 1e5 steps finite, in the box, energy bounded") {
+TEST_CASE(
+    "[stress] every preset and pressure model: 1e5 steps finite, in the box, energy bounded") {
   for (const auto& info : sph_presets()) {
     for (SphPressureModel model : {SphPressureModel::wcsph, SphPressureModel::thesis}) {
       const std::string name = info.name + "/" + to_string(model);

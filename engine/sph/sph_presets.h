@@ -36,7 +36,7 @@ constexpr ThesisConstants kThesisWater{5.35e-5, 1.41e-5};      // Figs. 4.11-4.1
 constexpr ThesisConstants kThesisMud{3.73e-4, 1.50e-5};        // Fig. 4.13
 
 constexpr double kThesisViscosityScale = 63.94;  // m^2/s per thesis unit: l^2 / tau, l = 0.5 m
-constexpr double kThesisKpScale = 7.0e4;  // m^4 kg^-1 s^-2 per thesis unit (calibrated)
+constexpr double kThesisKpScale = 7.0e4;         // m^4 kg^-1 s^-2 per thesis unit (calibrated)
 
 struct SphPresetInfo {
   std::string name;
