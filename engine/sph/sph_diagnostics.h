@@ -19,7 +19,7 @@ struct SphDiagnostics {
   double mean_density = 0, max_density = 0;  // kg/m^3, fluid particles
   double max_speed = 0;                      // m/s
   double surge_front = 0;  // m: the fluid's largest x, plus half a spacing (the particle's extent)
-  uint32_t outside = 0;    // particles outside the box
+  uint32_t outside = 0;    // particles outside the box (by more than 1e-6 of a coordinate)
   bool finite = true;      // every position and velocity finite
 };
 
