@@ -79,7 +79,9 @@ MASAV_HD inline T pressure_of(T rho, const Coefficients<T>& c) {
 // symmetric pressure force of that continuum (mirror particles at i's own pressure),
 // -2 p_i / rho_i^2 grad rho_wall = 2 p_i / rho_i^2 rho0 315/256 (1 - q^2)^4 / h along the
 // inward normal. Without them, particles near a wall miss up to half their neighbours, sink
-// into it and pile up (Kulasegaram et al. 2004; Ferrand et al. 2013).
+// into it and pile up (Kulasegaram et al. 2004; Ferrand et al. 2013). The factor 2 (i's pressure
+// on both sides of the pair) is what holds a fluid at rest against the wall; the energy-
+// conserving factor would be 1, so motion to and from walls is not exactly energy-neutral.
 template <class T>
 MASAV_HD inline T wall_density_fraction(T q) {
   const T q2 = q * q;

@@ -63,7 +63,8 @@ sph::Coefficients<float> to_float(const sph::Coefficients<double>& c) {
 }
 
 double signal_speed(const SphStepParams& p) {
-  if (p.model == SphPressureModel::thesis) return std::sqrt(p.kp * p.rest_density * p.h);
+  if (p.model == SphPressureModel::thesis)
+    return std::sqrt(3.0 / 14.0 * p.kp * p.rest_density * p.h);
   return p.sound_speed;
 }
 

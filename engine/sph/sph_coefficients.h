@@ -9,10 +9,11 @@ namespace masav {
 sph::Coefficients<double> make_coefficients(const SphStepParams& p);
 sph::Coefficients<float> to_float(const sph::Coefficients<double>& c);
 
-// Signal speed of the pressure model (m/s): c0 for wcsph; for the thesis model, whose force is
-// kp m sum (rho_j - rho_i)/(2 rho_j) grad W with |grad W| ~ 1/h^3, sqrt(kp rho0 h) -- the speed
-// at which a density step of rho0 over h accelerates a particle across h. Used by the CFL limit
-// and to report a thesis-model pressure c^2 (rho - rho0).
+// Signal speed of the pressure model (m/s): c0 for wcsph; for the thesis model, whose force
+// kp m sum (rho_j - rho_i)/(2 rho_j) grad W_thesis approximates -(3/14) kp h grad rho (the
+// continuum moment of Eq. 4.7's kernel), the sound speed of that isothermal gas,
+// sqrt(3/14 kp rho0 h). Used by the CFL limit and to report a thesis-model pressure
+// c^2 (rho - rho0).
 double signal_speed(const SphStepParams& p);
 
 // Tait pressure and the internal energy per unit mass it stores, e(rho) = int_rho0^rho p/r^2 dr

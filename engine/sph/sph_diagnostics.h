@@ -11,7 +11,7 @@ namespace masav {
 struct SphDiagnostics {
   double kinetic = 0;    // J, sum 1/2 M v^2 over particles that move (M = inertial mass)
   double potential = 0;  // J, -sum M g . x over particles that move
-  double internal = 0;   // J, sum m e(rho) (wcsph's Tait energy; 0 for the thesis model)
+  double internal = 0;   // J, sum m e(rho): wcsph's Tait energy; thesis: c^2 ln(rho/rho0)
   double total() const { return kinetic + potential + internal; }
   Vec3d momentum;             // kg m/s, sum M v
   double momentum_scale = 0;  // kg m/s, sum M |v| (what momentum errors are relative to)
@@ -19,7 +19,7 @@ struct SphDiagnostics {
   double mean_density = 0, max_density = 0;  // kg/m^3, fluid particles
   double max_speed = 0;                      // m/s
   double surge_front = 0;  // m: the fluid's largest x, plus half a spacing (the particle's extent)
-  uint32_t outside = 0;    // particles outside the box
+  uint32_t outside = 0;    // particles outside the box (by more than 1e-6 of a coordinate)
   bool finite = true;      // every position and velocity finite
 };
 

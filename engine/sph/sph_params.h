@@ -84,7 +84,7 @@ struct SphScene {
   double dt_max = 5e-3;        // s, adaptive ceiling
   double dt_min = 1e-9;        // s: the guard stops below this
   SphCflGuard cfl_guard = SphCflGuard::reduce;
-  double rk4_skin = 0.25;  // RK4: cells are h (1 + skin); stages may drift skin h / 2
+  double rk4_skin = 0.1;  // RK4: cells are h (1 + skin); stages may drift skin h / 2
   uint32_t max_candidates = 8192;
 
   uint64_t seed = 1;

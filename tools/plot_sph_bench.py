@@ -1,0 +1,142 @@
+#!/usr/bin/python3
+"""Plots of the SPH benchmarks (masav bench sph | dambreak).
+
+usage: tools/plot_sph_bench.py OUT_PREFIX RECORD.json...
+  reads the records (each names its benchmark: sph or dambreak) and writes
+  OUT_PREFIX_throughput.png  particle-steps/s per backend x integrator x particle count, with the
+                             thesis's Table 4.1 (32,768 particles) for comparison;
+  OUT_PREFIX_pareto.png      run time against error (integrator x dt against RK4 at dt0/16), the
+                             Pareto front of all backends' runs drawn as a step line;
+  OUT_PREFIX_dambreak.png    the simulated surge front against the laboratory measurements.
+Needs python3-matplotlib (tools/setup --plots).
+"""
+import json
+import sys
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+
+# Thesis Table 4.1: frames per second at 32,768 particles (water), Quadro FX 5800 / Core2 Duo.
+THESIS_WATER_FPS = {"GPU euler": 8.8, "GPU rk4": 8.6, "CPU euler": 0.41, "CPU rk4": 0.25}
+
+
+def load(paths):
+    records = {}
+    for path in paths:
+        with open(path) as f:
+            record = json.load(f)
+        records.setdefault(record["benchmark"], []).append(record)
+    return records
+
+
+def plot_throughput(prefix, sph_records):
+    rows = [r for rec in sph_records for r in rec.get("throughput", [])]
+    if not rows:
+        return
+    fig, ax = plt.subplots(figsize=(8, 4.8))
+    for be in sorted({r["backend"] for r in rows}):
+        for integ in sorted({r["integrator"] for r in rows}):
+            pts = sorted(
+                (r["particles"], r["particle_steps_per_s"])
+                for r in rows
+                if r["backend"] == be and r["integrator"] == integ
+            )
+            if pts:
+                ax.plot(*zip(*pts), "-o", label=f"{be} {integ}")
+    for name, fps in THESIS_WATER_FPS.items():
+        ax.plot([32768], [fps * 32768], "k*" if name.startswith("GPU") else "kx", ms=9)
+        ax.annotate(f"thesis {name}", (32768, fps * 32768), fontsize=7,
+                    xytext=(6, -9 if "rk4" in name else 2),
+                    textcoords="offset points")
+    ax.axhline(0.75e6, color="grey", ls=":", lw=1)
+    ax.annotate("SPEC §5 CPU target", (rows[0]["particles"], 0.75e6), fontsize=7, color="grey")
+    ax.set_xscale("log")
+    ax.set_yscale("log")
+    ax.set_xlabel("particles")
+    ax.set_ylabel("particle-steps / s")
+    ax.set_title("SPH throughput (water preset)")
+    ax.legend(fontsize=7)
+    fig.tight_layout()
+    fig.savefig(f"{prefix}_throughput.png", dpi=120)
+
+
+def pareto(points):
+    """Points (time, error) not dominated by a faster and more accurate one, by time."""
+    front, best = [], float("inf")
+    for t, e in sorted(points):
+        if e < best:
+            front.append((t, e))
+            best = e
+    return front
+
+
+def plot_pareto(prefix, sph_records):
+    rows = [
+        r for rec in sph_records for r in rec.get("error_sweep", {}).get("rows", []) if r["stable"]
+    ]
+    if not rows:
+        return
+    sweep = next(rec["error_sweep"] for rec in sph_records if "error_sweep" in rec)
+    fig, ax = plt.subplots(figsize=(8, 4.8))
+    markers = {"euler": "o", "symplectic-euler": "v", "leapfrog": "s", "rk4": "D"}
+    for be in sorted({r["backend"] for r in rows}):
+        for integ in sorted({r["integrator"] for r in rows}):
+            pts = sorted(
+                (r["wall_ms"], r["position_error_over_h"], r["dt_s"])
+                for r in rows
+                if r["backend"] == be and r["integrator"] == integ
+            )
+            if not pts:
+                continue
+            ax.plot([p[0] for p in pts], [p[1] for p in pts], "-" + markers.get(integ, "o"),
+                    label=f"{be} {integ}", alpha=0.8)
+    front = pareto([(r["wall_ms"], r["position_error_over_h"]) for r in rows])
+    ax.step([p[0] for p in front], [p[1] for p in front], "k--", where="post", lw=1,
+            label="Pareto front")
+    ax.set_xscale("log")
+    ax.set_yscale("log")
+    ax.set_xlabel("wall time, ms")
+    ax.set_ylabel("RMS position error / h")
+    ax.set_title(f"run time against error: dam break, {sweep['particles']} particles, "
+                 f"{sweep['time_s']} s, ref. RK4 at dt0/16", fontsize=9)
+    ax.legend(fontsize=7)
+    fig.tight_layout()
+    fig.savefig(f"{prefix}_pareto.png", dpi=120)
+
+
+def plot_dambreak(prefix, records):
+    if not records:
+        return
+    fig, ax = plt.subplots(figsize=(7, 4.8))
+    for rec in records:
+        sim = rec["simulated"]
+        ax.plot(sim["T"], sim["Z"], "-",
+                label=f"masav {rec['pressure_model']} / {rec['integrator']}, "
+                      f"{rec['particles']} particles ({rec['backend']})")
+    markers = ["o", "s", "^", "v"]
+    for k, exp in enumerate(records[0]["experiments"]):
+        pts = exp["points"]
+        ax.plot([p["T"] for p in pts], [p["Z"] for p in pts], markers[k % 4], mfc="none",
+                label=f"{exp['source']} (mean |dZ| {exp.get('mean_abs_difference', 0):.3f})")
+    ax.set_xlabel("T = t sqrt(2 g / a)")
+    ax.set_ylabel("Z = surge front / a")
+    ax.set_title("dam break: surge front against laboratory data")
+    ax.legend(fontsize=7)
+    fig.tight_layout()
+    fig.savefig(f"{prefix}_dambreak.png", dpi=120)
+
+
+def main():
+    if len(sys.argv) < 3:
+        sys.exit(__doc__)
+    prefix = sys.argv[1]
+    records = load(sys.argv[2:])
+    plot_throughput(prefix, records.get("sph", []))
+    plot_pareto(prefix, records.get("sph", []))
+    plot_dambreak(prefix, records.get("dambreak", []))
+
+
+if __name__ == "__main__":
+    main()
