@@ -105,6 +105,12 @@ TEST_CASE("the sph scene steps with the frame clock and reruns nothing for colou
   CHECK(sim->layout().obstacle > 0);
   CHECK(sim->particle_count() == 1000 + sim->layout().obstacle);
   CHECK(s->graph().counters("simulation").runs == 4);
+  // A restart in the same update as a new frame steps the new simulation (the demo's `step`
+  // right after an integrator change).
+  s->set("sph.integrator", std::string("leapfrog"));
+  clock.frame = 6;
+  CHECK(s->update(clock).ran == Names{"simulation", "step"});
+  CHECK(sph::simulation_of(*s)->steps() == 3);
 }
 
 TEST_CASE("the sph scene maps its table onto the preset and rejects bad values by key") {

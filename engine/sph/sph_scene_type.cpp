@@ -103,8 +103,9 @@ class SphSceneInstance final : public scene::SceneInstance {
  private:
   void restart() {
     sim_.reset();  // free the old buffers first
+    // A frame that advanced together with the restart still steps (the demo's `step` right
+    // after an integrator change): step_due_ stays as on_clock left it.
     sim_ = std::make_unique<SphSimulation>(backend_, scene_from_params(params_));
-    step_due_ = false;
   }
 
   void advance() {
