@@ -111,7 +111,7 @@ TEST_CASE("the SPH cube drop renders and the fluid ends at the bottom of the box
                     << " below the middle");
   CHECK(b.count > 400);
   CHECK(b.mean_row > mid_row);
-  CHECK(double(below.count) > 0.9 * double(b.count));
+  CHECK(double(below.count) > 0.85 * double(b.count));  // 94% measured: splashes fly higher
 }
 
 TEST_CASE("demo sph screenshots" * doctest::skip(std::getenv("MASAV_DEMO_SPH_SHOTS") == nullptr)) {
