@@ -4,6 +4,7 @@
 #include <imgui.h>
 
 #include <algorithm>
+#include <bit>
 #include <cstring>
 
 #include "engine/error.h"
@@ -207,7 +208,12 @@ void Renderer::draw_points(const ::vk::raii::CommandBuffer& cmd, const scene::Po
     mode = 3;
   } else if (pts.from == From::position_z) {
     mode = 4;
+  } else if (pts.from == From::vector_length && pts.scalar) {
+    scalars = bridge_.words("scalars", *pts.scalar, pts.version);
+    mode = 5;
   }
+  const uint32_t marker = pts.marker_below_w ? 1u : 0u;
+  const uint32_t marker_w = std::bit_cast<uint32_t>(pts.marker_below_w.value_or(0.0f));
   float lo = pts.scalar_lo, hi = pts.scalar_hi;
   if (!p.get_flag("render.auto_range")) {
     lo = float(p.get_real("render.range_min"));
@@ -220,7 +226,7 @@ void Renderer::draw_points(const ::vk::raii::CommandBuffer& cmd, const scene::Po
                         {float(p.get_real("render.point_size")), camera_.distance,
                          dev_.ctx().max_point_size(), float(p.get_real("render.brightness"))},
                         {lo, hi, additive ? 1.0f : 0.0f, 0},
-                        {mode, 0, 0, 0}};
+                        {mode, marker, marker_w, 0}};
   cmd.bindPipeline(::vk::PipelineBindPoint::eGraphics, *pipe.pipeline);
   cmd.bindDescriptorSets(::vk::PipelineBindPoint::eGraphics, *pipe.layout, 0, set, {});
   cmd.pushConstants<PointsPush>(

@@ -8,6 +8,7 @@
 #include <filesystem>
 
 #include "app/demo/param_widgets.h"
+#include "app/demo/sph_panel.h"
 #include "engine/error.h"
 
 namespace masav::app {
@@ -22,8 +23,7 @@ namespace {
 // ---- sph (issue 3): the presets (explosion, water, mud, obstacle), integrator, particle count.
 // Scenes that are not built in have no controls here: nothing is shown that would do nothing.
 void scene_shortcuts(render::ScenePlayer& player, DemoState& st) {
-  (void)player;
-  (void)st;
+  if (player.file().type == "sph") sph_controls(player, st);
 }
 
 void table_controls(render::ScenePlayer& player, DemoState& st, const scene::TableSchema& t) {

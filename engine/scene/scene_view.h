@@ -20,11 +20,16 @@ struct PointLayer {
     position_w,  // positions[i].w
     position_z,  // height
     none,        // one colour (the colour map's middle)
+    // `scalar` is a real4 buffer (e.g. velocities): the length of each element's xyz.
+    vector_length,
   };
   ScalarFrom from = ScalarFrom::none;
   const BufferImpl* scalar = nullptr;
   float scalar_lo = 0, scalar_hi = 1;  // colour-map range
   std::string scalar_name;             // for the legend, e.g. "neighbours within r"
+  // Points whose position w is below this are drawn in grey whatever their scalar (the SPH
+  // scene's obstacle particles, whose w is their inverse mass scale).
+  std::optional<float> marker_below_w;
   uint64_t version = 0;                // changes when positions or scalars change
 };
 

@@ -82,6 +82,14 @@ class SphSimulation {
 
   // Current state, in particle-id order, with density and pressure at these positions.
   SphState download();
+  // The committed state on the backend, for a renderer to bind without a copy: in the order of
+  // the last grid rebuild (not particle-id order); positions' w = inverse mass scale. density()
+  // and pressure() are index-aligned with positions() and belong to the last force pass (at
+  // most one step old) -- until download() evaluates at a re-sorted scratch copy.
+  const Buffer<Real4>& positions() const { return pos_; }
+  const Buffer<Real4>& velocities() const { return vel_; }
+  const Buffer<Real>& density() const { return density_; }
+  const Buffer<Real>& pressure() const { return pressure_; }
   // Replaces the velocities (indexed by particle id), e.g. to start from a velocity field.
   void set_velocities(const std::vector<Vec4d>& by_id);
 

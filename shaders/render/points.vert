@@ -13,7 +13,9 @@ layout(push_constant) uniform Push {
   vec4 size;    // x: sprite diameter in px at reference depth, y: reference depth,
                 // z: largest size the device draws, w: brightness
   vec4 range;   // x: scalar at the map's first colour, y: at its last, z: additive (1) or not
-  uvec4 mode;   // x: 0 none, 1 u32 buffer, 2 f32 buffer, 3 position.w, 4 position.z
+  uvec4 mode;   // x: 0 none, 1 u32 buffer, 2 f32 buffer, 3 position.w, 4 position.z,
+                //    5 length of xyz of a vec4 buffer;
+                // y: 1 = grey marker for points with position.w below uintBitsToFloat(z)
 } pc;
 
 layout(location = 0) out vec3 v_color;
@@ -27,11 +29,18 @@ void main() {
     case 2u: s = uintBitsToFloat(scalar_words[gl_VertexIndex]); break;
     case 3u: s = p.w; break;
     case 4u: s = p.z; break;
+    case 5u: {
+      const uint b = 4u * uint(gl_VertexIndex);
+      s = length(vec3(uintBitsToFloat(scalar_words[b]), uintBitsToFloat(scalar_words[b + 1u]),
+                      uintBitsToFloat(scalar_words[b + 2u])));
+      break;
+    }
     default: break;
   }
   const float span = pc.range.y - pc.range.x;
   const float t = span != 0.0 ? (s - pc.range.x) / span : 0.5;
   v_color = COLORMAP_LOOKUP(colormap, t) * pc.size.w;
+  if (pc.mode.y == 1u && p.w < uintBitsToFloat(pc.mode.z)) v_color = vec3(0.55) * pc.size.w;
   // Perspective: sprites shrink with depth, as the particles they stand for would.
   const float depth = max(gl_Position.w, 1e-4);
   gl_PointSize = clamp(pc.size.x * pc.size.y / depth, 1.0, pc.size.z);
