@@ -7,6 +7,7 @@
 #include <cmath>
 #include <filesystem>
 
+#include "app/demo/atom_controls.h"
 #include "app/demo/param_widgets.h"
 #include "engine/error.h"
 
@@ -22,8 +23,7 @@ namespace {
 // ---- sph (issue 3): the presets (explosion, water, mud, obstacle), integrator, particle count.
 // Scenes that are not built in have no controls here: nothing is shown that would do nothing.
 void scene_shortcuts(render::ScenePlayer& player, DemoState& st) {
-  (void)player;
-  (void)st;
+  atom_controls(player, st);  // atom, atom-volume (app/demo/atom_controls.cpp)
 }
 
 void table_controls(render::ScenePlayer& player, DemoState& st, const scene::TableSchema& t) {
