@@ -48,6 +48,23 @@ std::vector<double> blocks(const Image& img, uint32_t b) {
   return out;
 }
 
+struct QuarterTurn {
+  double worst = 0, top = 0;  // largest block difference, brightest block
+};
+
+// Compares the image's block means with those of the image turned a quarter about its centre.
+QuarterTurn quarter_turn(const Image& img) {
+  REQUIRE(img.w == img.h);
+  const uint32_t b = 16, n = img.w / b;
+  const std::vector<double> m = blocks(img, b);
+  QuarterTurn q;
+  for (double v : m) q.top = std::max(q.top, v);
+  for (uint32_t y = 0; y < n; ++y)
+    for (uint32_t x = 0; x < n; ++x)  // (x, y) -> (n - 1 - y, x) on the block grid
+      q.worst = std::max(q.worst, std::abs(m[size_t(y) * n + x] - m[size_t(x) * n + (n - 1 - y)]));
+  return q;
+}
+
 // The scene as the tests draw it: small, no overlay, box or axes (they break the symmetry).
 scene::SceneFile atom_file(const char* name, uint32_t count) {
   scene::SceneFile f = scene::load_scene_file(std::string(MASAV_SOURCE_DIR) + "/scenes/" + name);
@@ -95,26 +112,23 @@ TEST_CASE("atom state 1 renders non-blank, symmetric from the top, brighter with
   // Not blank: the cloud covers a good part of the frame.
   const double lit = a.lit_fraction();
   MESSAGE("state1 top: lit fraction " << lit << ", mean luma " << a.mean_luma());
-  CHECK(lit > 0.05);
+  CHECK(lit > 0.02);
   // A quarter turn about the centre maps the frame onto itself (1s is spherically symmetric,
-  // the camera looks down the z axis at the nucleus): 16 x 16 px block means agree within 10%
-  // of the brightest block plus the sampling noise.
-  REQUIRE(a.w == a.h);
-  const uint32_t b = 16, n = a.w / b;
-  const std::vector<double> m = blocks(a, b);
-  double top = 0, worst = 0, sum = 0;
-  for (double v : m) top = std::max(top, v);
-  for (uint32_t y = 0; y < n; ++y)
-    for (uint32_t x = 0; x < n; ++x) {
-      // (x, y) -> (n - 1 - y, x): the quarter turn of the block grid.
-      const double d = std::abs(m[size_t(y) * n + x] - m[size_t(x) * n + (n - 1 - y)]);
-      worst = std::max(worst, d);
-      sum += d;
-    }
-  MESSAGE("quarter turn: worst block difference " << worst << ", mean " << sum / (n * n)
-                                                  << ", brightest block " << top);
-  CHECK(worst < 0.1 * top + 4.0);
-  CHECK(sum / (n * n) < 0.02 * top + 1.0);
+  // the camera looks down the z axis at the nucleus): 16 x 16 px block means agree within 6%
+  // of the brightest block (measured: under 3%, the particles' sampling noise).
+  const QuarterTurn q = quarter_turn(a);
+  MESSAGE("state1 quarter turn: worst block difference " << q.worst << ", brightest block "
+                                                         << q.top);
+  CHECK(q.worst < 0.06 * q.top);
+  // The check can fail: state 3 (2p, m = 0: two lobes along z) from the front is no more
+  // symmetric under a quarter turn.
+  {
+    scene::SceneFile g = atom_file("atom_state3.toml", 40000);
+    render::ScenePlayer p3(g, vulkan());
+    const QuarterTurn r = quarter_turn(draw(p3));
+    MESSAGE("state3 front quarter turn: worst " << r.worst << ", brightest " << r.top);
+    CHECK(r.worst > 0.2 * r.top);
+  }
   // More power, brighter; less power, darker (the mean luminance of the frame).
   player.scene().set("nebula.power_lm", 500000.0);
   const Image bright = draw(player);

