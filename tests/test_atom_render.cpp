@@ -30,6 +30,14 @@ struct Image {
       for (uint32_t x = 0; x < w; ++x) s += luma(x, y);
     return s / (double(w) * h);
   }
+  // Light above the background (clear colour, box lines, faint sprites): the mean of
+  // max(0, luma - floor).
+  double excess(double floor = 20) const {
+    double s = 0;
+    for (uint32_t y = 0; y < h; ++y)
+      for (uint32_t x = 0; x < w; ++x) s += std::max(0.0, luma(x, y) - floor);
+    return s / (double(w) * h);
+  }
   double lit_fraction(double above = 30) const {
     size_t n = 0;
     for (uint32_t y = 0; y < h; ++y)
@@ -164,7 +172,7 @@ TEST_CASE("the atom-volume scene raymarches the lit cloud behind the box") {
 }
 
 TEST_CASE("atom demo screenshots" * doctest::skip(std::getenv("MASAV_ATOM_DEMO_SHOTS") == nullptr)) {
-  // Written by tests/data/atom_demo_script.txt: a (particles), b (state 1 at 250K lm),
+  // Written by tests/data/atom_demo_script.txt: a (particles), b (state 3 at 250K lm),
   // c (500K lm), d (top view), e (the volume scene).
   const std::string dir = std::getenv("MASAV_ATOM_DEMO_SHOTS");
   auto load = [&](const char* name) {
@@ -173,25 +181,29 @@ TEST_CASE("atom demo screenshots" * doctest::skip(std::getenv("MASAV_ATOM_DEMO_S
   };
   const Image a = load("a.png"), b = load("b.png"), c = load("c.png"), d = load("d.png"),
               e = load("e.png");
-  // The scene area: left of the panel, below the overlay.
+  // The scene area below the overlay's text (the panel is off after the scene switch).
   auto region = [](const Image& f) {
     Image r;
-    r.w = f.w / 2;
-    r.h = f.h / 2;
-    for (uint32_t y = f.h / 2; y < f.h / 2 + r.h; ++y)
-      for (uint32_t x = 0; x < r.w; ++x)
+    r.w = f.w;
+    r.h = f.h - f.h / 3;
+    for (uint32_t y = f.h / 3; y < f.h; ++y)
+      for (uint32_t x = 0; x < f.w; ++x)
         for (int k = 0; k < 4; ++k) r.px.push_back(f.px[4 * (size_t(y) * f.w + x) + k]);
     return r;
   };
   const Image ra = region(a), rb = region(b), rc = region(c), rd = region(d), re = region(e);
-  MESSAGE("scene-area mean luma: particles " << ra.mean_luma() << ", state1 250K "
+  MESSAGE("scene-area mean luma: particles " << ra.mean_luma() << ", state3 250K "
                                              << rb.mean_luma() << ", 500K " << rc.mean_luma()
                                              << ", top " << rd.mean_luma() << ", volume "
-                                             << re.mean_luma());
-  CHECK(rb.lit_fraction() > 0.02);                // the atom scene is drawn
-  CHECK(rc.mean_luma() > 1.1 * rb.mean_luma());   // brighter after `set nebula.power_lm`
+                                             << re.mean_luma() << "; light above the background "
+                                             << rb.excess() << " -> " << rc.excess());
+  CHECK(rb.lit_fraction() > 0.02);         // the atom scene is drawn
+  // Brighter after `set nebula.power_lm 500000` (measured +11%: the brightest sprites are at the
+  // colour map's top already, the faint outskirts gain little; test_atom_render's first case
+  // checks the power steps on a plain frame).
+  CHECK(rc.excess() > 1.05 * rb.excess());
   size_t differ = 0;
   for (size_t i = 0; i < c.px.size(); i += 4) differ += std::abs(int(c.px[i + 1]) - int(d.px[i + 1])) > 24;
-  CHECK(differ > c.px.size() / 4 / 50);            // another viewpoint
+  CHECK(differ > c.px.size() / 4 / 100);  // another viewpoint (state 3: lobes along z)
   CHECK(re.lit_fraction() > 0.02);                 // the raymarched volume
 }
