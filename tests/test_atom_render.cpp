@@ -171,7 +171,8 @@ TEST_CASE("the atom-volume scene raymarches the lit cloud behind the box") {
   CHECK(differ > b.px.size() / 4 / 50);
 }
 
-TEST_CASE("atom demo screenshots" * doctest::skip(std::getenv("MASAV_ATOM_DEMO_SHOTS") == nullptr)) {
+TEST_CASE("atom demo screenshots" *
+          doctest::skip(std::getenv("MASAV_ATOM_DEMO_SHOTS") == nullptr)) {
   // Written by tests/data/atom_demo_script.txt: a (particles), b (state 3 at 250K lm),
   // c (500K lm), d (top view), e (the volume scene).
   const std::string dir = std::getenv("MASAV_ATOM_DEMO_SHOTS");
@@ -192,18 +193,18 @@ TEST_CASE("atom demo screenshots" * doctest::skip(std::getenv("MASAV_ATOM_DEMO_S
     return r;
   };
   const Image ra = region(a), rb = region(b), rc = region(c), rd = region(d), re = region(e);
-  MESSAGE("scene-area mean luma: particles " << ra.mean_luma() << ", state3 250K "
-                                             << rb.mean_luma() << ", 500K " << rc.mean_luma()
-                                             << ", top " << rd.mean_luma() << ", volume "
-                                             << re.mean_luma() << "; light above the background "
-                                             << rb.excess() << " -> " << rc.excess());
-  CHECK(rb.lit_fraction() > 0.02);         // the atom scene is drawn
+  MESSAGE("scene-area mean luma: particles "
+          << ra.mean_luma() << ", state3 250K " << rb.mean_luma() << ", 500K " << rc.mean_luma()
+          << ", top " << rd.mean_luma() << ", volume " << re.mean_luma()
+          << "; light above the background " << rb.excess() << " -> " << rc.excess());
+  CHECK(rb.lit_fraction() > 0.02);  // the atom scene is drawn
   // Brighter after `set nebula.power_lm 500000` (measured +11%: the brightest sprites are at the
   // colour map's top already, the faint outskirts gain little; test_atom_render's first case
   // checks the power steps on a plain frame).
   CHECK(rc.excess() > 1.05 * rb.excess());
   size_t differ = 0;
-  for (size_t i = 0; i < c.px.size(); i += 4) differ += std::abs(int(c.px[i + 1]) - int(d.px[i + 1])) > 24;
+  for (size_t i = 0; i < c.px.size(); i += 4)
+    differ += std::abs(int(c.px[i + 1]) - int(d.px[i + 1])) > 24;
   CHECK(differ > c.px.size() / 4 / 100);  // another viewpoint (state 3: lobes along z)
-  CHECK(re.lit_fraction() > 0.02);                 // the raymarched volume
+  CHECK(re.lit_fraction() > 0.02);        // the raymarched volume
 }

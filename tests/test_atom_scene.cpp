@@ -3,13 +3,12 @@
 // the frame size; the scattering table from the disk cache on the second run; the volume stages
 // never created by the `atom` scene; every shipped atom scene file parses; bad input.
 #include <doctest/doctest.h>
+#include <fmt/format.h>
 
 #include <algorithm>
 #include <cstdlib>
 #include <filesystem>
 #include <functional>
-
-#include <fmt/format.h>
 
 #include "engine/cpu/cpu_backend.h"
 #include "engine/error.h"
@@ -170,10 +169,12 @@ TEST_CASE("every atom scene file parses, and atom parameters are checked") {
     }
     return "(no error)";
   };
-  std::string e = error_of([] { parse_scene("[scene]\ntype = \"atom\"\n[nebula]\npower_lm = 1e6\n", "a.toml"); });
+  std::string e = error_of(
+      [] { parse_scene("[scene]\ntype = \"atom\"\n[nebula]\npower_lm = 1e6\n", "a.toml"); });
   CHECK(e.find("nebula.power_lm") != std::string::npos);
   CHECK(e.find("50000") != std::string::npos);
-  e = error_of([] { parse_scene("[scene]\ntype = \"atom\"\n[atom]\nstate = \"state11\"\n", "a.toml"); });
+  e = error_of(
+      [] { parse_scene("[scene]\ntype = \"atom\"\n[atom]\nstate = \"state11\"\n", "a.toml"); });
   CHECK(e.find("atom.state") != std::string::npos);
   CHECK(e.find("state10") != std::string::npos);
   e = error_of([] { parse_scene("[scene]\ntype = \"atom\"\n[volume]\ndims = 8\n", "a.toml"); });

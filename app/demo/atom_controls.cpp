@@ -18,8 +18,7 @@ void atom_controls(render::ScenePlayer& player, DemoState& st) {
     const std::string label = fmt::format("{}##state", i + 1);
     const bool current = p.get_text("atom.state") == names[i];
     if (current) ImGui::PushStyleColor(ImGuiCol_Button, ImVec4(0.2f, 0.5f, 0.3f, 1));
-    if (ImGui::Button(label.c_str(), ImVec2(30, 0)))
-      set_param(player, st, "atom.state", names[i]);
+    if (ImGui::Button(label.c_str(), ImVec2(30, 0))) set_param(player, st, "atom.state", names[i]);
     if (current) ImGui::PopStyleColor();
     if (ImGui::IsItemHovered())
       ImGui::SetTooltip("%s: %s", names[i].c_str(), atom::describe(s).c_str());

@@ -8,8 +8,8 @@
 #include <mutex>
 
 #include "engine/atom/atom_checks.h"
-#include "engine/atom/orbital.h"
 #include "engine/atom/atom_schema.h"
+#include "engine/atom/orbital.h"
 #include "engine/atom/orbital_tables.h"
 #include "engine/atom/scatter_cache.h"
 #include "engine/atom/transfer_function.h"
@@ -26,8 +26,8 @@ using atom::state_of;
 const scene::ParamSet& params_of(const CheckInputs& in) {
   static const scene::ParamSet defaults = [] {
     scene::ParamSet p;
-    for (const auto* t : {&atom::atom_table(), &atom::nebula_table(),
-                          &atom::scatter_table_schema(), &atom::volume_table()})
+    for (const auto* t : {&atom::atom_table(), &atom::nebula_table(), &atom::scatter_table_schema(),
+                          &atom::volume_table()})
       p.add_table(*t);
     return p;
   }();
@@ -108,15 +108,15 @@ NebulaLightParams light_params(const CheckInputs& in, const ScatterTableParams& 
   const atom::OrbitalState state = state_of(p);
   NebulaLightParams lp;
   lp.grid = density_grid(in);
-  lp.kappa_a2 = float(p.get_real("nebula.tau_peak") /
-                      (atom::peak_density(state) * lp.grid.cell_size));
+  lp.kappa_a2 =
+      float(p.get_real("nebula.tau_peak") / (atom::peak_density(state) * lp.grid.cell_size));
   lp.albedo = float(p.get_real("scatter.albedo"));
   lp.core_radius_a0 = 0.5f * lp.grid.cell_size;
   const float h = half_width(p);
   lp.viewer = {0.4f * h, -2.5f * h, 0.8f * h};
   lp.path = p.get_text("nebula.path") == "midpoint" ? OpticalPath::midpoint : OpticalPath::exact;
   lp.step_a0 = p.get_real("nebula.step_a0") > 0 ? float(p.get_real("nebula.step_a0"))
-                                                 : 0.5f * lp.grid.cell_size;
+                                                : 0.5f * lp.grid.cell_size;
   lp.table_rows = sp.rows;
   lp.table_bins = sp.bins;
   lp.table_tau_step = sp.tau_step;
@@ -125,7 +125,8 @@ NebulaLightParams light_params(const CheckInputs& in, const ScatterTableParams& 
 
 std::vector<Vec4f> sampled_cloud(const CheckInputs& in) {
   const scene::ParamSet& p = params_of(in);
-  const auto t = atom::make_orbital_tables(state_of(p), OrbitalPlacement::exact, in.points, in.seed);
+  const auto t =
+      atom::make_orbital_tables(state_of(p), OrbitalPlacement::exact, in.points, in.seed);
   cpu::CpuBackend cpu;
   auto tables = cpu.create<uint32_t>(t.cdf.size(), "check orbital tables");
   cpu.upload(tables, t.cdf);
@@ -203,16 +204,16 @@ std::vector<KernelCheck> atom_checks() {
     c.push_back(std::move(k));
   }
   // cloud_density: integer counts over N * cell volume: fp32 rounding only.
-  c.push_back(tolerance_check("cloud_density", {1e-6, 0, 1e-6},
-                              [](Backend& b, const CheckInputs& in) {
-                                const GridParams g = density_grid(in);
-                                Buffer<Real4> pos = cloud_points(b, in, g);
-                                HashGrid grid = make_hash_grid(b, g, in.points);
-                                build_hash_grid(b, grid, pos);
-                                auto d = b.create<Real>(grid_cell_count(g), "check density");
-                                b.cloud_density({g, in.points}, grid.cell_start, grid.cell_end, d);
-                                return CheckOutputs{{"density", {}, b.download(d)}};
-                              }));
+  c.push_back(
+      tolerance_check("cloud_density", {1e-6, 0, 1e-6}, [](Backend& b, const CheckInputs& in) {
+        const GridParams g = density_grid(in);
+        Buffer<Real4> pos = cloud_points(b, in, g);
+        HashGrid grid = make_hash_grid(b, g, in.points);
+        build_hash_grid(b, grid, pos);
+        auto d = b.create<Real>(grid_cell_count(g), "check density");
+        b.cloud_density({g, in.points}, grid.cell_start, grid.cell_end, d);
+        return CheckOutputs{{"density", {}, b.download(d)}};
+      }));
   // scatter_table: Monte Carlo; the photon histograms must be the same distribution
   // (two-sample chi-square, as tests/test_scatter.cpp). A few rows of the scene's table.
   c.push_back(chi_square_check("scatter_table", 1e-4, [](Backend& b, const CheckInputs& in) {
@@ -238,18 +239,18 @@ std::vector<KernelCheck> atom_checks() {
                              LitCloud lc = lit_cloud(b, in, lp);
                              return CheckOutputs{{"illumination", {}, b.download(lc.illumination)}};
                            }));
-  c.push_back(scaled_check("nebula_view", {1e-5, 0, 2e-2}, 1e-6,
-                           [](Backend& b, const CheckInputs& in) {
-                             ScatterTableParams sp;
-                             const std::vector<double>& phase = check_phase_table(sp);
-                             const NebulaLightParams lp = light_params(in, sp);
-                             LitCloud lc = lit_cloud(b, in, lp);
-                             auto tab = b.create<Real>(phase.size(), "check phase table");
-                             b.upload(tab, phase);
-                             auto light = b.create<Real>(in.points, "check light");
-                             b.nebula_view(lp, lc.pos, lc.density, tab, lc.illumination, light);
-                             return CheckOutputs{{"light", {}, b.download(light)}};
-                           }));
+  c.push_back(
+      scaled_check("nebula_view", {1e-5, 0, 2e-2}, 1e-6, [](Backend& b, const CheckInputs& in) {
+        ScatterTableParams sp;
+        const std::vector<double>& phase = check_phase_table(sp);
+        const NebulaLightParams lp = light_params(in, sp);
+        LitCloud lc = lit_cloud(b, in, lp);
+        auto tab = b.create<Real>(phase.size(), "check phase table");
+        b.upload(tab, phase);
+        auto light = b.create<Real>(in.points, "check light");
+        b.nebula_view(lp, lc.pos, lc.density, tab, lc.illumination, light);
+        return CheckOutputs{{"light", {}, b.download(light)}};
+      }));
   // voxelize: counts exact, means in fp32: 3e-6 absolute on values in [0, 1]
   // (tests/test_volume.cpp).
   c.push_back(tolerance_check("voxelize", {1e-5, 3e-6, 0}, [](Backend& b, const CheckInputs& in) {
@@ -274,18 +275,18 @@ std::vector<KernelCheck> atom_checks() {
                         {"sample", {}, b.download(sample)}};
   }));
   // volume_bricks: ranges and the largest alpha: fp32 of values in [0, 1].
-  c.push_back(tolerance_check("volume_bricks", {1e-6, 2e-6, 0},
-                              [](Backend& b, const CheckInputs& in) {
-                                const CheckVolume v = check_volume(in);
-                                auto vol = b.create<Real>(v.values.size(), "check volume");
-                                b.upload(vol, v.values);
-                                auto tf = b.create<Real4>(v.tf.size(), "check transfer");
-                                b.upload(tf, v.tf);
-                                const UVec3 nb = brick_dims(v.desc, 8);
-                                auto br = b.create<Real4>(size_t(nb.x) * nb.y * nb.z, "check bricks");
-                                b.volume_bricks({v.desc, 8, uint32_t(v.tf.size())}, vol, tf, br);
-                                return CheckOutputs{{"bricks", {}, flatten(b.download(br))}};
-                              }));
+  c.push_back(
+      tolerance_check("volume_bricks", {1e-6, 2e-6, 0}, [](Backend& b, const CheckInputs& in) {
+        const CheckVolume v = check_volume(in);
+        auto vol = b.create<Real>(v.values.size(), "check volume");
+        b.upload(vol, v.values);
+        auto tf = b.create<Real4>(v.tf.size(), "check transfer");
+        b.upload(tf, v.tf);
+        const UVec3 nb = brick_dims(v.desc, 8);
+        auto br = b.create<Real4>(size_t(nb.x) * nb.y * nb.z, "check bricks");
+        b.volume_bricks({v.desc, 8, uint32_t(v.tf.size())}, vol, tf, br);
+        return CheckOutputs{{"bricks", {}, flatten(b.download(br))}};
+      }));
   // raymarch: fp32 compositing along ~100 steps: rel L2 1e-4; per channel 2e-3 absolute (the
   // kernel test's 1e-4 is for a gentle transfer function; the default one's opacity ramp is
   // steeper: measured 8.8e-4).

@@ -5,8 +5,8 @@
 #include <algorithm>
 #include <cmath>
 
-#include "engine/atom/atom_scene.h"
 #include "engine/atom/atom_checks.h"
+#include "engine/atom/atom_scene.h"
 #include "engine/atom/atom_schema.h"
 #include "engine/atom/transfer_function.h"
 #include "engine/error.h"
@@ -45,25 +45,24 @@ class AtomCloudScene final : public scene::SceneInstance {
       });
     };
     add("cloud",
-        {"atom.state", "atom.n", "atom.l", "atom.m", "atom.orbital", "atom.count",
-         "atom.placement", "atom.seed"},
+        {"atom.state", "atom.n", "atom.l", "atom.m", "atom.orbital", "atom.count", "atom.placement",
+         "atom.seed"},
         [this] { core_.build_cloud(); });
     add("density", {"cloud", "nebula.density_dims", "nebula.box_probability"},
         [this] { core_.build_density(); });
-    graph_.add_stage("scatter_table",
-                     {"scatter.rows", "scatter.bins", "scatter.tau_step", "scatter.g",
-                      "scatter.albedo", "scatter.photons", "scatter.max_scatterings",
-                      "scatter.seed"},
-                     [this] {
-                       return std::make_unique<TableStage>([this] {
-                         sync();
-                         core_.build_table();
-                         return core_.times().table_from_cache;
-                       });
-                     });
-    add("illuminate",
-        {"density", "nebula.tau_peak", "nebula.path", "nebula.step_a0", "scatter.albedo"},
+    graph_.add_stage(
+        "scatter_table",
+        {"scatter.rows", "scatter.bins", "scatter.tau_step", "scatter.g", "scatter.albedo",
+         "scatter.photons", "scatter.max_scatterings", "scatter.seed"},
         [this] {
+          return std::make_unique<TableStage>([this] {
+            sync();
+            core_.build_table();
+            return core_.times().table_from_cache;
+          });
+        });
+    add("illuminate",
+        {"density", "nebula.tau_peak", "nebula.path", "nebula.step_a0", "scatter.albedo"}, [this] {
           core_.reset_exposure();  // a new light field: choose the automatic exposure anew
           core_.illuminate();
         });
@@ -103,7 +102,8 @@ class AtomCloudScene final : public scene::SceneInstance {
       // The rescale: light * light_to_unit = 1 is the colour map's top.
       pl.scalar_lo = 0;
       pl.scalar_hi = float(1.0 / std::max(double(light_to_unit_), 1e-30));
-      pl.scalar_name = fmt::format("light at {:.0f}K lm", params_.get_real("nebula.power_lm") / 1e3);
+      pl.scalar_name =
+          fmt::format("light at {:.0f}K lm", params_.get_real("nebula.power_lm") / 1e3);
       pl.version = graph_.version("viewer");
       v.points = pl;
     }

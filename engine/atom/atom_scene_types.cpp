@@ -15,8 +15,8 @@ using scene::ParamSet;
 // The kernels the cloud and its light run: sampling, the density grid (hash grid + density),
 // the scattering table (when not cached, and always in the check), the two lighting passes.
 std::vector<std::string> cloud_kernels() {
-  return {"orbital_sample",  "grid_assign_cells", "radix_sort",       "grid_cell_ranges",
-          "cloud_density",   "scatter_table",     "nebula_illuminate", "nebula_view"};
+  return {"orbital_sample", "grid_assign_cells", "radix_sort",        "grid_cell_ranges",
+          "cloud_density",  "scatter_table",     "nebula_illuminate", "nebula_view"};
 }
 
 scene::CheckInputs check_inputs_of(const ParamSet& p) {

@@ -41,8 +41,7 @@ const scene::TableSchema& nebula_table() {
     s.integer("density_dims", 60, 2, 512, "density grid cells per axis (the thesis's cubes)");
     s.real("box_probability", 0.999, 0.9, 0.999999,
            "the grid's cube holds at least this much of |psi|^2");
-    s.real("tau_peak", 0.5, 0.0, 100.0,
-           "scattering depth of one cell at the state's peak density");
+    s.real("tau_peak", 0.5, 0.0, 100.0, "scattering depth of one cell at the state's peak density");
     s.choice("path", "exact", {"exact", "midpoint"},
              "optical path: exact voxel traversal, or midpoint steps of step_a0");
     s.real("step_a0", 0.0, 0.0, 100.0, "midpoint path step (0 = half a cell)", "a0");
@@ -119,8 +118,8 @@ ScatterTableParams scatter_params_of(const scene::ParamSet& p) {
 AtomSceneOptions scene_options_of(const scene::ParamSet& p) {
   AtomSceneOptions o;
   o.state = state_of(p);
-  o.placement = p.get_text("atom.placement") == "shells" ? OrbitalPlacement::shells
-                                                         : OrbitalPlacement::exact;
+  o.placement =
+      p.get_text("atom.placement") == "shells" ? OrbitalPlacement::shells : OrbitalPlacement::exact;
   o.particles = uint32_t(p.get_int("atom.count"));
   o.seed = uint64_t(p.get_int("atom.seed"));
   o.density_dims = uint32_t(p.get_int("nebula.density_dims"));
