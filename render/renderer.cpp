@@ -116,11 +116,13 @@ std::shared_ptr<vk::Allocation> Renderer::host_buffer(std::shared_ptr<vk::Alloca
 void Renderer::draw_background(const ::vk::raii::CommandBuffer& cmd, const scene::ImageLayer& img) {
   if (!img.pixels || img.width == 0 || img.height == 0) return;
   const size_t per_pixel = img.format == scene::ImageLayer::Format::rgba8 ? 1 : 4;
-  if (img.pixels->count() < size_t(img.width) * img.height * per_pixel)
+  // A real4 buffer (the raymarch's image) holds four values per element.
+  const size_t values = img.pixels->count() * (img.pixels->kind() == ElemKind::real4 ? 4 : 1);
+  if (values < size_t(img.width) * img.height * per_pixel)
     throw Error("render", "background",
                 fmt::format("image buffer '{}' holds {} values, {}x{} "
                             "pixels need {}",
-                            img.pixels->label(), img.pixels->count(), img.width, img.height,
+                            img.pixels->label(), values, img.width, img.height,
                             size_t(img.width) * img.height * per_pixel),
                 "internal error: the scene's image layer does not match its buffer");
   const auto pixels = bridge_.words("background", *img.pixels, img.version);

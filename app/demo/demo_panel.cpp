@@ -7,6 +7,7 @@
 #include <cmath>
 #include <filesystem>
 
+#include "app/demo/atom_controls.h"
 #include "app/demo/param_widgets.h"
 #include "app/demo/sph_panel.h"
 #include "engine/error.h"
@@ -23,6 +24,7 @@ namespace {
 // ---- sph (issue 3): the presets (explosion, water, mud, obstacle), integrator, particle count.
 // Scenes that are not built in have no controls here: nothing is shown that would do nothing.
 void scene_shortcuts(render::ScenePlayer& player, DemoState& st) {
+  atom_controls(player, st);  // atom, atom-volume (app/demo/atom_controls.cpp)
   if (player.file().type == "sph") sph_controls(player, st);
 }
 

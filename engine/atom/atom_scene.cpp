@@ -11,9 +11,6 @@
 #include "engine/hash_grid.h"
 
 namespace masav::atom {
-namespace {
-constexpr float kReferencePower = 250000.0f;  // the thesis's middle setting (lumens)
-}
 
 ViewPreset parse_view(const std::string& name) {
   if (name == "top") return ViewPreset::top;
@@ -33,7 +30,13 @@ Vec3f view_eye(ViewPreset v, float d) {
 
 Vec3f view_up(ViewPreset v) { return v == ViewPreset::top ? Vec3f{0, 1, 0} : Vec3f{0, 0, 1}; }
 
-AtomScene::AtomScene(Backend& b, AtomSceneOptions o) : b_(b), o_(std::move(o)) {
+AtomScene::AtomScene(Backend& b, AtomSceneOptions o) : b_(b) {
+  reconfigure(std::move(o));
+  exposure_ = o_.exposure;
+}
+
+void AtomScene::reconfigure(AtomSceneOptions o) {
+  o_ = std::move(o);
   validate_state(o_.state, "atom");
   if (o_.particles < 1)
     throw_invalid("atom", "particles", std::to_string(o_.particles), "at least 1");
@@ -58,7 +61,6 @@ AtomScene::AtomScene(Backend& b, AtomSceneOptions o) : b_(b), o_(std::move(o)) {
   kappa_ = float(o_.tau_peak / (peak_density(o_.state) * density_grid_.cell_size));
   if (o_.viewer.x == 0 && o_.viewer.y == 0 && o_.viewer.z == 0)
     o_.viewer = view_eye(ViewPreset::front, 2.5f * h);
-  exposure_ = o_.exposure;
 }
 
 double AtomScene::timed(const std::function<void()>& work) {
@@ -119,13 +121,14 @@ NebulaLightParams AtomScene::light_params() const {
 }
 
 void AtomScene::illuminate() {
-  illumination = b_.create<Real>(o_.particles, "illumination");
+  if (illumination.size() != o_.particles)
+    illumination = b_.create<Real>(o_.particles, "illumination");
   times_.illuminate_ms =
       timed([&] { b_.nebula_illuminate(light_params(), positions, density, illumination); });
 }
 
 void AtomScene::view() {
-  if (!light) light = b_.create<Real>(o_.particles, "light");
+  if (light.size() != o_.particles) light = b_.create<Real>(o_.particles, "light");
   times_.view_ms =
       timed([&] { b_.nebula_view(light_params(), positions, density, phase, illumination, light); });
   if (exposure_ <= 0) {
@@ -134,21 +137,25 @@ void AtomScene::view() {
     std::vector<double> l = b_.download(light);
     const size_t k = l.size() * 9 / 10;
     std::nth_element(l.begin(), l.begin() + k, l.end());
-    const double ref = l[k] * kReferencePower / std::max(1e-30, double(o_.source_power_lm));
+    const double ref = l[k] * kReferencePowerLm / std::max(1e-30, double(o_.source_power_lm));
     exposure_ = ref > 0 ? float(1.0 / ref) : 1.0f;
   }
 }
 
-void AtomScene::voxelize() {
+void AtomScene::voxelize() { voxelize(exposure_); }
+
+void AtomScene::voxelize(float light_to_unit) {
   const size_t cells = grid_cell_count(volume_grid_);
-  probability = b_.create<Real>(cells, "p");
-  mean_light = b_.create<Real>(cells, "g");
-  sample = b_.create<Real>(cells, "sample");
+  if (sample.size() != cells) {
+    probability = b_.create<Real>(cells, "p");
+    mean_light = b_.create<Real>(cells, "g");
+    sample = b_.create<Real>(cells, "sample");
+  }
   VoxelizeParams vp;
   vp.grid = volume_grid_;
   vp.s = o_.s;
   vp.t = o_.t;
-  vp.light_to_unit = exposure_;
+  vp.light_to_unit = light_to_unit;
   times_.voxelize_ms = timed([&] { b_.voxelize(vp, positions, light, probability, mean_light, sample); });
 }
 

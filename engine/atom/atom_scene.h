@@ -14,6 +14,10 @@
 
 namespace masav::atom {
 
+// The source power the light is computed at when a caller rescales it (the thesis's middle
+// setting): light is linear in Phi.
+constexpr float kReferencePowerLm = 250000.0f;
+
 enum class ViewPreset { top, left, front };
 ViewPreset parse_view(const std::string& name);  // top, left, front
 // Eye at `distance` from the nucleus on the preset's axis, and the matching up vector.
@@ -50,6 +54,13 @@ struct StageTimes {
 class AtomScene {
  public:
   AtomScene(Backend& b, AtomSceneOptions o);
+  // New options for the stages that run next (validated; the derived grids, box and kappa
+  // follow). Buffers are kept: a scene graph reruns only the stages whose inputs changed.
+  void reconfigure(AtomSceneOptions o);
+  // Moves the viewer of view() (the scene graph's camera).
+  void set_viewer(Vec3f viewer) { o_.viewer = viewer; }
+  // Lets the next view() choose the automatic exposure again (after the light changed).
+  void reset_exposure() { exposure_ = o_.exposure; }
 
   void build_cloud();
   void build_density();
@@ -57,6 +68,9 @@ class AtomScene {
   void illuminate();
   void view();  // also fixes the automatic exposure on its first run
   void voxelize();
+  // Voxelizes with light * light_to_unit as the light (the scene graph folds the source power
+  // into it: light is linear in Phi).
+  void voxelize(float light_to_unit);
   void run_all();
 
   Backend& backend() { return b_; }

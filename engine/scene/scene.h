@@ -4,6 +4,7 @@
 // adding a scene (atom, atom-volume, sph) is one SceneType in scene_types.cpp.
 #include <functional>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -71,6 +72,9 @@ struct CheckInputs {
   uint64_t seed = 1;
   std::optional<GridParams> grid;  // the scene's hash grid (with n = points), if it has one
   float neighbor_radius = 0;
+  // The scene's parameters, for checks that build their inputs from their domain's tables
+  // (the atom checks read the state, the scattering table and the grids).
+  ParamSet params;
 };
 
 struct SceneType {

@@ -7,8 +7,7 @@ const std::vector<KernelCheck>& kernel_checks() {
   static const std::vector<KernelCheck> all = [] {
     std::vector<KernelCheck> v;
     for (auto* domain : {
-             &foundation_checks, &points_checks, &sph_checks
-             // The lead adds: &sph_checks (issue 3), &atom_checks (issue 4).
+              &foundation_checks, &points_checks, &atom_checks, &sph_checks
          })
       for (auto& c : (*domain)()) v.push_back(std::move(c));
     return v;

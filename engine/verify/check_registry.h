@@ -9,5 +9,6 @@ namespace masav::verify {
 std::vector<KernelCheck> foundation_checks();  // engine/verify/foundation_checks.cpp
 std::vector<KernelCheck> points_checks();      // engine/points/points_checks.cpp
 std::vector<KernelCheck> sph_checks();         // engine/sph/sph_cross_checks.cpp
+std::vector<KernelCheck> atom_checks();        // engine/atom/atom_cross_checks.cpp
 
 }  // namespace masav::verify

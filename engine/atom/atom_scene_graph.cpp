@@ -1,0 +1,243 @@
+#include "engine/atom/atom_scene_graph.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "engine/atom/atom_checks.h"
+#include "engine/atom/atom_scene.h"
+#include "engine/atom/atom_schema.h"
+#include "engine/atom/transfer_function.h"
+#include "engine/error.h"
+#include "engine/scene/camera_pose.h"
+
+namespace masav::atom {
+namespace {
+
+using scene::ParamSet;
+
+// The scattering table stage: reports whether its table came from the disk cache.
+class TableStage final : public scene::Stage {
+ public:
+  explicit TableStage(std::function<bool()> run) : run_(std::move(run)) {}
+  void run() override { from_cache_ = run_(); }
+  bool loaded_from_cache() const override { return from_cache_; }
+
+ private:
+  std::function<bool()> run_;
+  bool from_cache_ = false;
+};
+
+class AtomCloudScene final : public scene::SceneInstance {
+ public:
+  AtomCloudScene(Backend& b, const ParamSet& p, bool volume)
+      : SceneInstance(b, p), volume_(volume), core_(b, (validate(p), scene_options_of(p))) {
+    synced_ = domain_version();
+    add_parameter_inputs();
+    auto stage = [](auto fn) { return std::make_unique<scene::LambdaStage>(fn); };
+    auto add = [&](const char* name, std::vector<std::string> in, std::function<void()> fn) {
+      graph_.add_stage(name, std::move(in), [this, fn, stage] {
+        return stage([this, fn] {
+          sync();
+          fn();
+        });
+      });
+    };
+    add("cloud",
+        {"atom.state", "atom.n", "atom.l", "atom.m", "atom.orbital", "atom.count", "atom.placement",
+         "atom.seed"},
+        [this] { core_.build_cloud(); });
+    add("density", {"cloud", "nebula.density_dims", "nebula.box_probability"},
+        [this] { core_.build_density(); });
+    graph_.add_stage(
+        "scatter_table",
+        {"scatter.rows", "scatter.bins", "scatter.tau_step", "scatter.g", "scatter.albedo",
+         "scatter.photons", "scatter.max_scatterings", "scatter.seed"},
+        [this] {
+          return std::make_unique<TableStage>([this] {
+            sync();
+            core_.build_table();
+            return core_.times().table_from_cache;
+          });
+        });
+    add("illuminate",
+        {"density", "nebula.tau_peak", "nebula.path", "nebula.step_a0", "scatter.albedo"}, [this] {
+          core_.reset_exposure();  // a new light field: choose the automatic exposure anew
+          core_.illuminate();
+        });
+    add("viewer", {"illuminate", "scatter_table", "view"}, [this] {
+      core_.set_viewer(pose().eye);
+      core_.view();
+    });
+    add("light", {"viewer", "nebula.power_lm", "nebula.exposure"}, [this] { rescale(); });
+    if (!volume_) return;
+    add("voxelize", {"light", "volume.dims", "volume.s", "volume.t"},
+        [this] { core_.voxelize(light_to_unit_); });
+    add("transfer", {"volume.transfer_file"}, [this] { transfer(); });
+    add("bricks", {"voxelize", "transfer"}, [this] { bricks(); });
+    add("raymarch",
+        {"bricks", "view", "render.width", "render.height", "volume.step_voxels",
+         "volume.compositing"},
+        [this] { raymarch(); });
+  }
+
+  std::vector<std::string> targets() const override {
+    if (!volume_) return {"light"};
+    std::vector<std::string> t = {"raymarch"};
+    if (params_.get_flag("volume.show_particles")) t.push_back("light");
+    return t;
+  }
+
+  scene::SceneView view() const override {
+    scene::SceneView v;
+    v.box = box();
+    if ((!volume_ || params_.get_flag("volume.show_particles")) && core_.light.valid() &&
+        graph_.version("light") > 0) {
+      scene::PointLayer pl;
+      pl.positions = &core_.positions;
+      pl.count = uint32_t(core_.positions.size());
+      pl.from = scene::PointLayer::ScalarFrom::buffer;
+      pl.scalar = &core_.light.impl();
+      // The rescale: light * light_to_unit = 1 is the colour map's top.
+      pl.scalar_lo = 0;
+      pl.scalar_hi = float(1.0 / std::max(double(light_to_unit_), 1e-30));
+      pl.scalar_name =
+          fmt::format("light at {:.0f}K lm", params_.get_real("nebula.power_lm") / 1e3);
+      pl.version = graph_.version("viewer");
+      v.points = pl;
+    }
+    if (volume_ && image_.valid() && graph_.version("raymarch") > 0) {
+      scene::ImageLayer img;
+      img.pixels = &image_.impl();
+      img.width = image_w_;
+      img.height = image_h_;
+      img.format = scene::ImageLayer::Format::rgba32f;
+      img.gain = float(params_.get_real("volume.gain"));
+      img.version = graph_.version("raymarch");
+      v.background = img;
+    }
+    return v;
+  }
+
+ protected:
+  void on_clock(const scene::FrameClock& clock) override { time_s_ = clock.time_s; }
+
+  void validate(const ParamSet& p) const override {
+    (void)state_of(p);  // a custom state must be a hydrogen state
+    const uint64_t limit = backend_.caps().max_buffer_bytes;
+    const uint64_t count = uint64_t(p.get_int("atom.count"));
+    if (limit && count * 4 * backend_.real_bytes() > limit)
+      throw_invalid("scene", "atom.count", std::to_string(count),
+                    fmt::format("at most {} on {} (one buffer holds {} MiB)",
+                                limit / (4 * backend_.real_bytes()), backend_.caps().device_name,
+                                limit >> 20));
+    if (p.has_table("volume")) {
+      const double s = p.get_real("volume.s"), t = p.get_real("volume.t");
+      if (s + t <= 0)
+        throw Error("", "atom-volume",
+                    fmt::format("volume.s = {} and volume.t = {} leave the volume empty", s, t),
+                    "give s or t a positive weight (the thesis: s = 0.6, t = 0.4)");
+    }
+  }
+
+ private:
+  // Brings the pipeline's options to the current parameters (the derived grids follow).
+  // Only the domain's own tables feed the pipeline: a camera or render change (every frame of
+  // an orbit) does not redo the box and optical-depth set-up.
+  void sync() {
+    const uint64_t v = domain_version();
+    if (synced_ == v) return;
+    core_.reconfigure(scene_options_of(params_));
+    synced_ = v;
+  }
+
+  uint64_t domain_version() const {
+    uint64_t v = 0;
+    for (const scene::TableSchema* t : params_.tables()) {
+      const std::string& name = t->name();
+      if (name != "atom" && name != "nebula" && name != "scatter" && name != "volume") continue;
+      for (const scene::ParamSpec& spec : t->params())
+        v = std::max(v, params_.version(name + "." + spec.key));
+    }
+    return v;
+  }
+
+  scene::Box box() const {
+    const float h = float(core_.box_half_width());
+    return {{-h, -h, -h}, {h, h, h}};
+  }
+
+  scene::CameraPose pose() const { return scene::camera_pose(params_, box(), time_s_); }
+
+  void rescale() {
+    const double exposure = params_.get_real("nebula.exposure") > 0
+                                ? params_.get_real("nebula.exposure")
+                                : double(core_.exposure());
+    light_to_unit_ = float(exposure * params_.get_real("nebula.power_lm") / kReferencePowerLm);
+  }
+
+  void transfer() {
+    const std::string& file = params_.get_text("volume.transfer_file");
+    const std::vector<Vec4d> tf =
+        resample_transfer(file.empty() ? default_transfer_points() : load_transfer_points(file));
+    if (tf_.size() != tf.size()) tf_ = backend_.create<Real4>(tf.size(), "transfer function");
+    backend_.upload(tf_, tf);
+  }
+
+  RaymarchParams raymarch_params() const {
+    RaymarchParams rp;
+    rp.volume = core_.volume();
+    rp.tf_size = uint32_t(tf_.size());
+    return rp;
+  }
+
+  void bricks() {
+    const RaymarchParams rp = raymarch_params();
+    const UVec3 nb = brick_dims(rp.volume, rp.brick);
+    const size_t n = size_t(nb.x) * nb.y * nb.z;
+    if (bricks_.size() != n) bricks_ = backend_.create<Real4>(n, "bricks");
+    backend_.volume_bricks({rp.volume, rp.brick, rp.tf_size}, core_.sample, tf_, bricks_);
+  }
+
+  void raymarch() {
+    RaymarchParams rp = raymarch_params();
+    rp.width = uint32_t(params_.get_int("render.width"));
+    rp.height = uint32_t(params_.get_int("render.height"));
+    const scene::CameraPose c = pose();
+    rp.eye = c.eye;
+    rp.target = c.target;
+    rp.up = c.up;
+    rp.fov_y_deg = c.fov_y_deg;
+    const VolumeDesc& d = rp.volume;
+    const float voxel = std::min({(d.box_max.x - d.box_min.x) / float(d.dims.x),
+                                  (d.box_max.y - d.box_min.y) / float(d.dims.y),
+                                  (d.box_max.z - d.box_min.z) / float(d.dims.z)});
+    rp.step = float(params_.get_real("volume.step_voxels")) * voxel;
+    rp.reference_step = voxel;
+    rp.mode = params_.get_text("volume.compositing") == "lerp" ? Compositing::lerp
+                                                               : Compositing::front_to_back;
+    const size_t pixels = size_t(rp.width) * rp.height;
+    if (image_.size() != pixels) image_ = backend_.create<Real4>(pixels, "raymarched image");
+    backend_.raymarch(rp, core_.sample, tf_, bricks_, image_);
+    image_w_ = rp.width;
+    image_h_ = rp.height;
+  }
+
+  bool volume_;
+  AtomScene core_;
+  uint64_t synced_ = 0;
+  double time_s_ = 0;
+  float light_to_unit_ = 1;
+  Buffer<Real4> tf_, bricks_, image_;
+  uint32_t image_w_ = 0, image_h_ = 0;
+};
+
+}  // namespace
+
+std::unique_ptr<scene::SceneInstance> make_atom_scene(Backend& b, const scene::ParamSet& p,
+                                                      bool volume) {
+  return std::make_unique<AtomCloudScene>(b, p, volume);
+}
+
+}  // namespace masav::atom
