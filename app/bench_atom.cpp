@@ -105,12 +105,10 @@ void add_atom_bench(CLI::App& bench) {
   cmd->add_option("--scale", o.scale, "fraction of the thesis's particle counts")
       ->check(CLI::Range(1e-4, 16.0))
       ->capture_default_str();
-  cmd->add_option("--reps", o.reps, "timed runs (after one warm-up)")
-      ->check(CLI::Range(1, 1000))
-      ->capture_default_str();
+  add_reps_option(*cmd, o.reps);
   cmd->add_option("--sweep-state", o.sweep_state, "state of the count-vs-error sweep")
       ->capture_default_str();
-  cmd->add_option("--json", o.json, "write the results as JSON to this file");
+  add_json_option(*cmd, o.json);
   cmd->callback([] {
     if (int rc = run_atom_bench(o)) throw CLI::RuntimeError(rc);
   });

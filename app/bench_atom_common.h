@@ -34,11 +34,4 @@ inline constexpr std::array<ThesisRow, 10> kThesisTable23 = {{
 // Thesis §3.4: raymarching the 60^3 volume took 32-37 ms per frame on the Quadro FX 5800.
 inline constexpr double kThesisRaymarchMs[2] = {32.0, 37.0};
 
-// Writes the JSON record if a path was given.
-inline void finish_record(const JsonWriter& j, const std::string& path) {
-  if (path.empty()) return;
-  write_file_atomic(path, j.str() + "\n");
-  fmt::print("wrote {}\n", path);
-}
-
 }  // namespace masav::app

@@ -77,4 +77,20 @@ void write_device(JsonWriter& j, const Backend& b) {
   if (c.threads > 1) j.field("threads", c.threads);
 }
 
+void finish_record(const JsonWriter& j, const std::string& path) {
+  if (path.empty()) return;
+  write_file_atomic(path, j.str() + "\n");
+  fmt::print("wrote {}\n", path);
+}
+
+void add_reps_option(CLI::App& cmd, int& reps) {
+  cmd.add_option("--reps", reps, "timed runs (after one warm-up)")
+      ->check(CLI::Range(1, 1000))
+      ->capture_default_str();
+}
+
+void add_json_option(CLI::App& cmd, std::string& path) {
+  cmd.add_option("--json", path, "write the results as JSON to this file");
+}
+
 }  // namespace masav::app

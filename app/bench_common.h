@@ -30,5 +30,11 @@ std::vector<std::unique_ptr<Backend>> open_backends(const BackendChoice& choice)
 
 void write_record_header(JsonWriter& j, const std::string& benchmark);
 void write_device(JsonWriter& j, const Backend& b);
+// Writes the JSON record (atomically) if a path was given, and says where.
+void finish_record(const JsonWriter& j, const std::string& path);
+
+// The options every benchmark has: --reps (timed runs after one warm-up, 1..1000) and --json.
+void add_reps_option(CLI::App& cmd, int& reps);
+void add_json_option(CLI::App& cmd, std::string& path);
 
 }  // namespace masav::app

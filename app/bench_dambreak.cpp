@@ -160,10 +160,7 @@ int run_dambreak(const DamBreakOptions& o) {
     j.end_object();
   }
   j.end_array().end_object();
-  if (!o.json.empty()) {
-    write_file_atomic(o.json, j.str() + "\n");
-    fmt::print("wrote {}\n", o.json);
-  }
+  finish_record(j, o.json);
   if (!o.csv.empty()) {
     table.write(o.csv);
     fmt::print("wrote {}\n", o.csv);

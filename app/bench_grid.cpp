@@ -87,10 +87,7 @@ int run_grid_bench(const GridBenchOptions& o) {
     }
   }
   j.end_array().end_object();
-  if (!o.json.empty()) {
-    write_file_atomic(o.json, j.str() + "\n");
-    fmt::print("wrote {}\n", o.json);
-  }
+  finish_record(j, o.json);
   return rc;
 }
 
@@ -104,10 +101,8 @@ void add_grid_bench(CLI::App& bench) {
   cmd->add_option("--per-cell", o.per_cell, "mean points per cell")
       ->check(CLI::Range(0.5, 1000.0))
       ->capture_default_str();
-  cmd->add_option("--reps", o.reps, "timed runs (after one warm-up)")
-      ->check(CLI::Range(1, 1000))
-      ->capture_default_str();
-  cmd->add_option("--json", o.json, "write the results as JSON to this file");
+  add_reps_option(*cmd, o.reps);
+  add_json_option(*cmd, o.json);
   cmd->callback([] {
     if (int rc = run_grid_bench(o)) throw CLI::RuntimeError(rc);
   });

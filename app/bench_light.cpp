@@ -128,13 +128,11 @@ void add_light_bench(CLI::App& bench) {
   cmd->add_option("--scale", o.scale, "fraction of the thesis's particle counts")
       ->check(CLI::Range(1e-4, 16.0))
       ->capture_default_str();
-  cmd->add_option("--reps", o.reps, "timed runs (after one warm-up)")
-      ->check(CLI::Range(1, 1000))
-      ->capture_default_str();
+  add_reps_option(*cmd, o.reps);
   cmd->add_option("--photons", o.photons, "photons per tau row of the table")
       ->check(CLI::Range(1u, 1u << 20))
       ->capture_default_str();
-  cmd->add_option("--json", o.json, "write the results as JSON to this file");
+  add_json_option(*cmd, o.json);
   cmd->callback([] {
     if (int rc = run_light_bench(o)) throw CLI::RuntimeError(rc);
   });

@@ -182,11 +182,9 @@ void add_raymarch_bench(CLI::App& bench) {
   static RaymarchBenchOptions o;
   auto* cmd = bench.add_subcommand("raymarch", "volume ray casting of 60^3; step vs error");
   add_backend_options(*cmd, o.choice, true);
-  cmd->add_option("--reps", o.reps, "timed runs (after one warm-up)")
-      ->check(CLI::Range(1, 1000))
-      ->capture_default_str();
+  add_reps_option(*cmd, o.reps);
   cmd->add_flag("--large", o.large, "also a 256^3 volume at 1920x1080");
-  cmd->add_option("--json", o.json, "write the results as JSON to this file");
+  add_json_option(*cmd, o.json);
   cmd->callback([] {
     if (int rc = run_raymarch_bench(o)) throw CLI::RuntimeError(rc);
   });

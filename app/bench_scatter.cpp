@@ -145,10 +145,8 @@ void add_scatter_bench(CLI::App& bench) {
   cmd->add_option("--reference-photons", o.reference_photons, "photons per row of the converged table")
       ->check(CLI::Range(64u, 1u << 20))
       ->capture_default_str();
-  cmd->add_option("--reps", o.reps, "timed runs (after one warm-up)")
-      ->check(CLI::Range(1, 1000))
-      ->capture_default_str();
-  cmd->add_option("--json", o.json, "write the results as JSON to this file");
+  add_reps_option(*cmd, o.reps);
+  add_json_option(*cmd, o.json);
   cmd->callback([] {
     if (int rc = run_scatter_bench(o)) throw CLI::RuntimeError(rc);
   });

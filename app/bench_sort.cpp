@@ -67,10 +67,7 @@ int run_sort_bench(const SortBenchOptions& o) {
     }
   }
   j.end_array().end_object();
-  if (!o.json.empty()) {
-    write_file_atomic(o.json, j.str() + "\n");
-    fmt::print("wrote {}\n", o.json);
-  }
+  finish_record(j, o.json);
   return rc;
 }
 
@@ -84,10 +81,8 @@ void add_sort_bench(CLI::App& bench) {
   cmd->add_option("--key-bits", o.key_bits, "key bits in use (keys are masked to them)")
       ->check(CLI::Range(1u, 32u))
       ->capture_default_str();
-  cmd->add_option("--reps", o.reps, "timed runs (after one warm-up)")
-      ->check(CLI::Range(1, 1000))
-      ->capture_default_str();
-  cmd->add_option("--json", o.json, "write the results as JSON to this file");
+  add_reps_option(*cmd, o.reps);
+  add_json_option(*cmd, o.json);
   cmd->callback([] {
     if (int rc = run_sort_bench(o)) throw CLI::RuntimeError(rc);
   });

@@ -241,10 +241,7 @@ int run_sph_bench(const SphBenchOptions& o) {
     j.end_array().end_object();
   }
   j.end_object();
-  if (!o.json.empty()) {
-    write_file_atomic(o.json, j.str() + "\n");
-    fmt::print("wrote {}\n", o.json);
-  }
+  finish_record(j, o.json);
   return rc;
 }
 
@@ -274,7 +271,7 @@ void add_sph_bench(CLI::App& bench) {
   cmd->add_option("--error-time", o.error_time, "simulated seconds of the error sweep")
       ->check(CLI::Range(1e-4, 10.0))
       ->capture_default_str();
-  cmd->add_option("--json", o.json, "write the results as JSON to this file");
+  add_json_option(*cmd, o.json);
   cmd->callback([] {
     if (int rc = run_sph_bench(o)) throw CLI::RuntimeError(rc);
   });

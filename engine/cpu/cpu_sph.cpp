@@ -86,34 +86,6 @@ const Soa& soa_positions(ThreadPool& pool, const double* pos, size_t n) {
   return s;
 }
 
-// The 9 rows of the 27-cell block in sph::walk_neighbors' order; calls row(first, last) for
-// each non-empty one. Returns the candidates, or sets overflow past max_candidates.
-template <class Row>
-uint32_t for_each_row(uint32_t cell, const uint32_t dims[3], const uint32_t* start,
-                      const uint32_t* end, uint32_t max_candidates, bool& overflow, Row&& row) {
-  int c[3];
-  sph::cell_coords(cell, dims, c);
-  uint32_t candidates = 0;
-  overflow = false;
-  for (int dx = -1; dx <= 1; ++dx) {
-    const int x = c[0] + dx;
-    if (x < 0 || x >= int(dims[0])) continue;
-    for (int dy = -1; dy <= 1; ++dy) {
-      const int y = c[1] + dy;
-      if (y < 0 || y >= int(dims[1])) continue;
-      uint32_t first, last;
-      sph::row_range(x, y, c[2], dims, start, end, first, last);
-      if (last - first > max_candidates - candidates) {
-        overflow = true;
-        return candidates;
-      }
-      candidates += last - first;
-      if (last > first) row(first, last);
-    }
-  }
-  return candidates;
-}
-
 }  // namespace
 
 void CpuBackend::sph_density(const SphStepParams& p, const SphDensityIO& io) {
@@ -139,7 +111,7 @@ void CpuBackend::sph_density(const SphStepParams& p, const SphDensityIO& io) {
       uint32_t within = 0;
       bool overflow = false;
       const double px = xyz.x[i], py = xyz.y[i], pz = xyz.z[i];
-      const uint32_t candidates = for_each_row(
+      const uint32_t candidates = sph::walk_neighbor_rows(
           cells[i], dims.d, start, end, p.max_candidates, overflow, [&](uint32_t f, uint32_t l) {
             density_row(&xyz.x[f], &xyz.y[f], &xyz.z[f], l - f, px, py, pz, c.inv_h2, sum, within);
           });
@@ -188,7 +160,7 @@ void CpuBackend::sph_forces(const SphStepParams& p, const SphForcesIO& io) {
       const uint32_t self = uint32_t(i);
       uint32_t count = 0;
       bool overflow = false;
-      const uint32_t candidates = for_each_row(
+      const uint32_t candidates = sph::walk_neighbor_rows(
           cells[i], dims.d, start, end, p.max_candidates, overflow, [&](uint32_t f, uint32_t l) {
             count += neighbors_row(&xyz.x[f], &xyz.y[f], &xyz.z[f], f, l - f, me.x.x, me.x.y,
                                    me.x.z, c.h2, self, out + count);

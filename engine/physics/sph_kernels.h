@@ -157,13 +157,14 @@ MASAV_HD inline void row_range(int x, int y, int z, const uint32_t dims[3],
   }
 }
 
-// Visits every candidate j (sorted index) in the 27 cells around `cell`, rows x outermost,
-// then y, each row in increasing sorted index -- the order every backend sums in. Stops after
-// max_candidates candidates and sets `overflow`. visit(j) is called for each candidate.
-template <class Visit>
-MASAV_HD inline uint32_t walk_neighbors(uint32_t cell, const uint32_t dims[3],
-                                        const uint32_t* cell_start, const uint32_t* cell_end,
-                                        uint32_t max_candidates, bool& overflow, Visit&& visit) {
+// Visits the non-empty rows of the 27 cells around `cell` (x outermost, then y; each row a
+// contiguous range [first, last) of sorted indices along z) -- the order every backend sums in.
+// Stops before the row that would pass max_candidates candidates and sets `overflow`.
+// row(first, last) is called for each row; the CPU reference vectorises over a row.
+template <class Row>
+MASAV_HD inline uint32_t walk_neighbor_rows(uint32_t cell, const uint32_t dims[3],
+                                            const uint32_t* cell_start, const uint32_t* cell_end,
+                                            uint32_t max_candidates, bool& overflow, Row&& row) {
   int c[3];
   cell_coords(cell, dims, c);
   uint32_t candidates = 0;
@@ -181,10 +182,21 @@ MASAV_HD inline uint32_t walk_neighbors(uint32_t cell, const uint32_t dims[3],
         return candidates;
       }
       candidates += last - first;
-      for (uint32_t j = first; j < last; ++j) visit(j);
+      if (last > first) row(first, last);
     }
   }
   return candidates;
+}
+
+// Visits every candidate j (sorted index) of walk_neighbor_rows, in its order.
+template <class Visit>
+MASAV_HD inline uint32_t walk_neighbors(uint32_t cell, const uint32_t dims[3],
+                                        const uint32_t* cell_start, const uint32_t* cell_end,
+                                        uint32_t max_candidates, bool& overflow, Visit&& visit) {
+  return walk_neighbor_rows(cell, dims, cell_start, cell_end, max_candidates, overflow,
+                            [&](uint32_t first, uint32_t last) {
+                              for (uint32_t j = first; j < last; ++j) visit(j);
+                            });
 }
 
 // (1 - q^2)^3 for r^2 < h^2, else 0, without a branch: the density sum's term.
