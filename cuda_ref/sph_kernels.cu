@@ -76,8 +76,8 @@ __global__ void forces_kernel(SphGridArgs g, sph::Coefficients<float> c,
   if (i < g.n) {
     auto pos_at = [pos](uint32_t j) { return xyz(__ldg(&pos[j])); };
     auto fetch = [=](uint32_t j) {
-      return sph::Neighbor<float>{xyz(__ldg(&pos[j])), xyz(__ldg(&vel[j])), __ldg(&density[j]),
-                                  __ldg(&pressure[j])};
+      return sph::make_neighbor<float>(xyz(__ldg(&pos[j])), xyz(__ldg(&vel[j])),
+                                       __ldg(&density[j]), __ldg(&pressure[j]));
     };
     const float4 pw = pos[i];
     const sph::Neighbor<float> me = fetch(uint32_t(i));

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "engine/error.h"
+#include "engine/physics/grid_cell.h"
 #include "engine/physics/sph_kernels.h"
 #include "engine/sph/sph_coefficients.h"
 #include "engine/util/error_metrics.h"
@@ -147,6 +148,81 @@ TEST_CASE("sph_forces equals the CPU reference for both pressure models") {
         CHECK(std::sqrt(fx * fx + fy * fy + fz * fz) < 1e-12 * scale);
       }
     }
+}
+
+// The CPU reference keeps sph_density's neighbour lists for sph_forces (engine/cpu/
+// cpu_sph_lists.h). Whatever a backend keeps, sph_forces must depend on its inputs only: the
+// same bits whether sph_density just ran on these positions, on other positions in the same
+// buffers, or on another particle set.
+TEST_CASE("sph_forces depends only on its inputs, whatever sph_density saw before") {
+  Backend& b = test::backend();
+  test::SphCase c = test::make_sph_case(9, SphPressureModel::wcsph, 21);
+  test::with_walls(c, true);
+  test::SphCase other = test::make_sph_case(9, SphPressureModel::wcsph, 22);
+  test::SphBuffers s = test::upload_sph_case(b, c), o = test::upload_sph_case(b, other);
+  auto density = [&](test::SphBuffers& x) {
+    b.sph_density(c.params, {&x.sorted_pos, x.view(), &x.density, &x.pressure, &x.stats});
+  };
+  auto forces = [&](test::SphBuffers& x) {
+    b.sph_forces(c.params, {&x.sorted_pos, &x.sorted_vel, &x.density, &x.pressure, x.view(),
+                            &x.accel, &x.stats});
+    return b.download(x.accel);
+  };
+  auto same = [](const std::vector<Vec4d>& a, const std::vector<Vec4d>& z) {
+    return a.size() == z.size() && std::memcmp(a.data(), z.data(), a.size() * sizeof(Vec4d)) == 0;
+  };
+  density(s);
+  const auto fresh = forces(s);
+  density(o);  // another particle set ran last
+  CHECK(same(forces(s), fresh));
+  density(s);
+  (void)forces(o);  // forces on other inputs in between
+  CHECK(same(forces(s), fresh));
+
+  // Move one particle inside its cell, in the same buffer, after the density, so far that its
+  // set of neighbours within h changes (a stale list would keep the old set).
+  density(s);
+  auto moved = b.download(s.sorted_pos);
+  const auto cells = b.download(s.grid.sorted_cells);
+  const GridParams& g = c.params.grid;
+  const float origin[3] = {g.origin.x, g.origin.y, g.origin.z};
+  const uint32_t dims[3] = {g.dims.x, g.dims.y, g.dims.z};
+  auto cell_of = [&](const Vec4d& q) {
+    const grid::CellCoord cc =
+        grid::point_cell(float(q.x), float(q.y), float(q.z), origin, g.inv_cell, dims);
+    return grid::cell_id(cc.x, cc.y, cc.z, dims[1], dims[2]);
+  };
+  auto within_h = [&](uint32_t k, const Vec4d& q) {
+    uint32_t count = 0;
+    for (uint32_t j = 0; j < moved.size(); ++j) {
+      const double dx = q.x - moved[j].x, dy = q.y - moved[j].y, dz = q.z - moved[j].z;
+      count += j != k && dx * dx + dy * dy + dz * dz < c.params.h * c.params.h ? 1 : 0;
+    }
+    return count;
+  };
+  uint32_t k = 0;
+  bool found = false;
+  for (; k < moved.size() && !found; ++k)
+    for (double shift : {0.3 * c.params.h, -0.3 * c.params.h}) {
+      Vec4d q = moved[k];
+      q.x += shift;
+      if (cell_of(q) != cells[k] || within_h(k, q) == within_h(k, moved[k])) continue;
+      moved[k] = q;
+      found = true;
+      break;
+    }
+  REQUIRE(found);
+  --k;
+  b.upload(s.sorted_pos, moved);
+  const auto after_move = forces(s);  // density and pressure still those of the old positions
+  CHECK(after_move[k].w == double(within_h(k, moved[k])));  // the neighbour count
+  test::SphBuffers t = test::upload_sph_case(b, c);
+  b.upload(t.sorted_pos, moved);
+  density(t);  // the moved positions' own neighbour walk, then the old density and pressure
+  b.upload(t.density, b.download(s.density));
+  b.upload(t.pressure, b.download(s.pressure));
+  CHECK(same(forces(t), after_move));
+  CHECK(!same(after_move, fresh));
 }
 
 TEST_CASE("sph_integrate: every stage and the walls equal the CPU reference") {

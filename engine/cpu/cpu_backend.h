@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "engine/backend.h"
+#include "engine/cpu/cpu_sph_lists.h"
 #include "engine/cpu/thread_pool.h"
 
 namespace masav::cpu {
@@ -94,9 +95,16 @@ class CpuBackend final : public Backend {
  private:
   CpuBuffer& own(BufferImpl& b, std::string_view kernel);
   const CpuBuffer& own(const BufferImpl& b, std::string_view kernel) const;
+  // The SPH neighbour lists sph_density builds and sph_forces reuses (cpu_sph.cpp).
+  SphListInputs sph_list_inputs(const SphStepParams& p, const SphGridView& grid,
+                                const char* kernel) const;
+  template <class Found>
+  void build_sph_lists(const SphListInputs& in, size_t chunks, Found&& found);
 
   Capabilities caps_;
   ThreadPool pool_;
+  SphNeighborLists sph_lists_;
+  std::vector<double> sph_p_rho2_;  // sph_forces' p / rho^2 per particle, kept between calls
   std::vector<std::chrono::steady_clock::time_point> stamps_;
   std::chrono::steady_clock::time_point epoch_ = std::chrono::steady_clock::now();
 };

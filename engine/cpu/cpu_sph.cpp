@@ -1,6 +1,8 @@
 // SPH kernels of the CPU reference: the shared per-particle bodies of
 // engine/physics/sph_kernels.h in double precision, one contiguous chunk of sorted particles per
-// task. Statistics are gathered per chunk and merged once, in chunk order.
+// task. Statistics are gathered per chunk and merged once, in chunk order. sph_density finds the
+// neighbour lists (cpu_sph_lists.h) that sph_forces then reuses; the candidate test runs on
+// structure-of-arrays positions (cpu_sph_rows.h).
 #include <algorithm>
 #include <bit>
 #include <cmath>
@@ -61,11 +63,6 @@ bool finite3(V v) {
   return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
 }
 
-struct Dims {
-  uint32_t d[3];
-  explicit Dims(const GridParams& g) : d{g.dims.x, g.dims.y, g.dims.z} {}
-};
-
 // Positions as three contiguous arrays (the row loops vectorise over them).
 struct Soa {
   std::vector<double> x, y, z;
@@ -88,42 +85,76 @@ const Soa& soa_positions(ThreadPool& pool, const double* pos, size_t n) {
 
 }  // namespace
 
+SphListInputs CpuBackend::sph_list_inputs(const SphStepParams& p, const SphGridView& grid,
+                                          const char* kernel) const {
+  const auto c = make_coefficients(p);
+  SphListInputs in{};
+  in.cells = own(grid.cells->impl(), kernel).as<uint32_t>();
+  in.cell_start = own(grid.cell_start->impl(), kernel).as<uint32_t>();
+  in.cell_end = own(grid.cell_end->impl(), kernel).as<uint32_t>();
+  in.cell_count = grid_cell_count(p.grid);
+  in.n = p.n;
+  in.dims[0] = p.grid.dims.x;
+  in.dims[1] = p.grid.dims.y;
+  in.dims[2] = p.grid.dims.z;
+  in.h2 = c.h2;
+  in.max_candidates = p.max_candidates;
+  return in;
+}
+
+// Finds every particle's neighbours into sph_lists_ (sph::walk_neighbor_rows, then the
+// candidate test row by row) and calls found(chunk, i, count, r2) with each particle's squared
+// distances, in list order.
+template <class Found>
+void CpuBackend::build_sph_lists(const SphListInputs& in, size_t chunks, Found&& found) {
+  sph_lists_.reset(in.n, chunks);
+  const Soa& xyz = soa_positions(pool_, in.positions, in.n);
+  pool_.run_chunks(in.n, chunks, [&](size_t chunk, size_t b, size_t e) {
+    // Per-thread scratch, kept between calls (60,004 entries at the default candidate cap).
+    static thread_local std::vector<uint32_t> index;
+    static thread_local std::vector<double> r2;
+    index.resize(std::max(index.size(), size_t(in.max_candidates) + 4));  // neighbors_row's slack
+    r2.resize(std::max(r2.size(), size_t(in.max_candidates) + 4));
+    for (size_t i = b; i < e; ++i) {
+      const uint32_t self = uint32_t(i);
+      const double px = xyz.x[i], py = xyz.y[i], pz = xyz.z[i];
+      uint32_t count = 0;
+      bool overflow = false;
+      const uint32_t candidates = sph::walk_neighbor_rows(
+          in.cells[i], in.dims, in.cell_start, in.cell_end, in.max_candidates, overflow,
+          [&](uint32_t f, uint32_t l) {
+            count += neighbors_row(&xyz.x[f], &xyz.y[f], &xyz.z[f], f, l - f, px, py, pz, in.h2,
+                                   self, index.data() + count, r2.data() + count);
+          });
+      sph_lists_.append(chunk, self, index.data(), count, candidates, overflow);
+      found(chunk, self, count, r2.data());
+    }
+  });
+  sph_lists_.remember(in);
+}
+
 void CpuBackend::sph_density(const SphStepParams& p, const SphDensityIO& io) {
   check_sph_density(*this, p, io);
   const char* k = "sph_density";
   const auto c = make_coefficients(p);
-  const double* pos = own(io.positions->impl(), k).as<double>();
-  const uint32_t* cells = own(io.grid.cells->impl(), k).as<uint32_t>();
-  const uint32_t* start = own(io.grid.cell_start->impl(), k).as<uint32_t>();
-  const uint32_t* end = own(io.grid.cell_end->impl(), k).as<uint32_t>();
+  SphListInputs in = sph_list_inputs(p, io.grid, k);
+  in.positions = own(io.positions->impl(), k).as<double>();
   double* rho = own(io.density->impl(), k).as<double>();
   double* pr = own(io.pressure->impl(), k).as<double>();
   uint32_t* words = own(io.stats->impl(), k).as<uint32_t>();
-  const Dims dims(p.grid);
   const size_t chunks = chunk_count(pool_, p.n, 256);
   std::vector<ChunkStats> st(chunks);
-  // sph::density_at's walk and terms, row by row on SoA positions (cpu_sph_rows.h).
-  const Soa& xyz = soa_positions(pool_, pos, p.n);
-  pool_.run_chunks(p.n, chunks, [&](size_t chunk, size_t b, size_t e) {
+  // sph::density_at's sum over the neighbour list: the particle itself (r = 0, term 1) first,
+  // then its neighbours; candidates beyond h add exactly nothing there.
+  build_sph_lists(in, chunks, [&](size_t chunk, uint32_t i, uint32_t count, const double* r2) {
     ChunkStats& s = st[chunk];
-    for (size_t i = b; i < e; ++i) {
-      double sum = 0;
-      uint32_t within = 0;
-      bool overflow = false;
-      const double px = xyz.x[i], py = xyz.y[i], pz = xyz.z[i];
-      const uint32_t candidates = sph::walk_neighbor_rows(
-          cells[i], dims.d, start, end, p.max_candidates, overflow, [&](uint32_t f, uint32_t l) {
-            density_row(&xyz.x[f], &xyz.y[f], &xyz.z[f], l - f, px, py, pz, c.inv_h2, sum, within);
-          });
-      rho[i] = c.density * sum;
-      if (c.walls) rho[i] += c.rest_density * sph::wall_density(V{px, py, pz}, c, (V*)nullptr);
-      pr[i] = sph::pressure_of(rho[i], c);
-      s.max_candidates = std::max(s.max_candidates, candidates);
-      s.max_neighbors = std::max(s.max_neighbors, within);
-      if (overflow) s.overflow = std::min(s.overflow, uint32_t(i));
-      if (!std::isfinite(rho[i]) || !std::isfinite(pr[i]))
-        s.non_finite = std::min(s.non_finite, uint32_t(i));
-    }
+    rho[i] = c.density * (1.0 + density_sum(r2, count, c.inv_h2));
+    if (c.walls) rho[i] += c.rest_density * sph::wall_density(load3(in.positions, i), c, (V*)nullptr);
+    pr[i] = sph::pressure_of(rho[i], c);
+    s.max_candidates = std::max(s.max_candidates, sph_lists_.candidates(i));
+    s.max_neighbors = std::max(s.max_neighbors, count + 1);
+    if (sph_lists_.overflow(i)) s.overflow = std::min(s.overflow, i);
+    if (!std::isfinite(rho[i]) || !std::isfinite(pr[i])) s.non_finite = std::min(s.non_finite, i);
   });
   merge(words, st);
 }
@@ -132,54 +163,50 @@ void CpuBackend::sph_forces(const SphStepParams& p, const SphForcesIO& io) {
   check_sph_forces(*this, p, io);
   const char* k = "sph_forces";
   const auto c = make_coefficients(p);
+  SphListInputs in = sph_list_inputs(p, io.grid, k);
   const double* pos = own(io.positions->impl(), k).as<double>();
+  in.positions = pos;
   const double* vel = own(io.velocities->impl(), k).as<double>();
   const double* rho = own(io.density->impl(), k).as<double>();
   const double* pr = own(io.pressure->impl(), k).as<double>();
-  const uint32_t* cells = own(io.grid.cells->impl(), k).as<uint32_t>();
-  const uint32_t* start = own(io.grid.cell_start->impl(), k).as<uint32_t>();
-  const uint32_t* end = own(io.grid.cell_end->impl(), k).as<uint32_t>();
   double* acc_out = own(io.accel->impl(), k).as<double>();
   uint32_t* words = own(io.stats->impl(), k).as<uint32_t>();
-  const Dims dims(p.grid);
   const size_t chunks = chunk_count(pool_, p.n, 256);
   std::vector<ChunkStats> st(chunks);
+  // The lists sph_density left, if they belong to these positions and this grid; else new ones.
+  if (!sph_lists_.matches(in, chunks))
+    build_sph_lists(in, chunks, [](size_t, uint32_t, uint32_t, const double*) {});
+  // p / rho^2 once per particle rather than once per pair (the same bits: the shared function).
+  std::vector<double>& p_rho2 = sph_p_rho2_;
+  p_rho2.resize(p.n);
+  pool_.parallel_for(p.n, 8192, [&](size_t b, size_t e) {
+    for (size_t i = b; i < e; ++i) p_rho2[i] = sph::pressure_over_rho2(pr[i], rho[i]);
+  });
   auto fetch = [&](uint32_t j) {
-    return sph::Neighbor<double>{load3(pos, j), load3(vel, j), rho[j], pr[j]};
+    return sph::Neighbor<double>{load3(pos, j), load3(vel, j), rho[j], p_rho2[j]};
   };
-  // Same walk and pair terms as sph::force_at, in two passes per particle: the candidates'
-  // distance test without branches, compacting the neighbours into a list, then the pair
-  // terms over the list (the candidates that fail the test, ~85%, cost no branch misses).
-  const Soa& xyz = soa_positions(pool_, pos, p.n);
+  // sph::force_at's pair terms over the neighbour list (the same neighbours in the same order).
   pool_.run_chunks(p.n, chunks, [&](size_t chunk, size_t b, size_t e) {
     ChunkStats& s = st[chunk];
-    std::vector<uint32_t> list(p.max_candidates);
-    uint32_t* const out = list.data();
     for (size_t i = b; i < e; ++i) {
-      const auto me = fetch(uint32_t(i));
       const uint32_t self = uint32_t(i);
-      uint32_t count = 0;
-      bool overflow = false;
-      const uint32_t candidates = sph::walk_neighbor_rows(
-          cells[i], dims.d, start, end, p.max_candidates, overflow, [&](uint32_t f, uint32_t l) {
-            count += neighbors_row(&xyz.x[f], &xyz.y[f], &xyz.z[f], f, l - f, me.x.x, me.x.y,
-                                   me.x.z, c.h2, self, out + count);
-          });
-      const double pi_over_rho2 = me.p / (me.rho * me.rho);
+      const auto me = fetch(self);
+      const uint32_t* list = sph_lists_.list(chunk, self);
+      const uint32_t count = sph_lists_.count(self);
       V acc{0, 0, 0};
-      for (uint32_t k = 0; k < count; ++k) {
-        const uint32_t j = out[k];
+      for (uint32_t n = 0; n < count; ++n) {
+        const uint32_t j = list[n];
         const V d = me.x - load3(pos, j);
-        acc = acc + sph::pair_accel(me, pi_over_rho2, fetch(j), d, sph::dot(d, d), c);
+        acc = acc + sph::pair_accel(me, fetch(j), d, sph::dot(d, d), c);
       }
-      if (c.walls) acc = acc + sph::wall_accel(me, pi_over_rho2, c);
+      if (c.walls) acc = acc + sph::wall_accel(me, c);
       const double inv_mass = pos[4 * i + 3];
       const V a = sph::total_accel(acc, inv_mass, c);
       store3(acc_out, i, a, double(count));
-      s.max_candidates = std::max(s.max_candidates, candidates);
-      if (overflow) s.overflow = std::min(s.overflow, uint32_t(i));
+      s.max_candidates = std::max(s.max_candidates, sph_lists_.candidates(self));
+      if (sph_lists_.overflow(self)) s.overflow = std::min(s.overflow, self);
       if (!finite3(a))
-        s.non_finite = std::min(s.non_finite, uint32_t(i));
+        s.non_finite = std::min(s.non_finite, self);
       else if (inv_mass > 0)
         s.max_accel2 = std::max(s.max_accel2, sph::dot(a, a));
     }

@@ -1,20 +1,29 @@
 #pragma once
-// The CPU reference's inner neighbour loops over one contiguous row of sorted particles
-// (3 grid cells), on structure-of-arrays copies of the positions. Four independent lanes per
-// loop (a fixed summation order), so the compiler vectorises them without reassociating; built
-// for the default target and for AVX2 (chosen at run time).
+// The CPU reference's inner neighbour loops: the candidate test over one contiguous row of
+// sorted particles (3 grid cells) on structure-of-arrays copies of the positions, and the
+// density sum over a neighbour list. Branch-free, with a fixed summation order (four
+// independent lanes); the candidate test has an AVX2 path with the same bits (chosen at run
+// time), the density sum is vectorised by the compiler for both targets.
 #include <cstdint>
 
 namespace masav::cpu {
 
-// sum += sum over k < count of (1 - q^2)^3 for q^2 = |p - x_k|^2 inv_h2 < 1; within += those k.
-void density_row(const double* xs, const double* ys, const double* zs, uint32_t count, double px,
-                 double py, double pz, double inv_h2, double& sum, uint32_t& within);
-
-// Writes first + k to out for every k < count with |p - x_k|^2 < h2 and first + k != self;
-// returns how many were written.
+// For every k < count with r2 = |p - x_k|^2 < h2 and first + k != self, appends first + k to
+// out and r2 to out_r2, in increasing k; returns how many were appended. Both outputs must have
+// room for count + 4 entries (the AVX2 path stores four at a time).
 uint32_t neighbors_row(const double* xs, const double* ys, const double* zs, uint32_t first,
                        uint32_t count, double px, double py, double pz, double h2, uint32_t self,
-                       uint32_t* out);
+                       uint32_t* out, double* out_r2);
+
+// The same without the AVX2 path (what neighbors_row runs where AVX2 is absent; tests compare the
+// two), and whether neighbors_row takes the AVX2 path on this CPU.
+uint32_t neighbors_row_portable(const double* xs, const double* ys, const double* zs,
+                                uint32_t first, uint32_t count, double px, double py, double pz,
+                                double h2, uint32_t self, uint32_t* out, double* out_r2);
+bool neighbors_row_uses_avx2();
+
+// Sum over k < count of (1 - r2[k] inv_h2)^3, the poly6 terms of sph::density_term for
+// neighbours within h.
+double density_sum(const double* r2, uint32_t count, double inv_h2);
 
 }  // namespace masav::cpu

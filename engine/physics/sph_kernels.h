@@ -237,18 +237,29 @@ MASAV_HD inline DensityResult<T> density_at(V3<T> xi, uint32_t cell, const uint3
   return {rho, neighbors, candidates, overflow};
 }
 
-// What the force walk reads of a neighbour.
+// What the force walk reads of a neighbour: position, velocity, density and p / rho^2 (the
+// wcsph pressure term's per-particle factor, computed once per particle where a backend can).
 template <class T>
 struct Neighbor {
   V3<T> x, v;
-  T rho, p;
+  T rho, p_rho2;
 };
 
-// The acceleration neighbour o gives particle `me` (per unit SPH mass), for 0 <= r2 < h^2 with
-// d = me.x - o.x; pi_over_rho2 = me.p / me.rho^2 (wcsph). Formulas: see force_at.
 template <class T>
-MASAV_HD inline V3<T> pair_accel(const Neighbor<T>& me, T pi_over_rho2, const Neighbor<T>& o,
-                                 V3<T> d, T r2, const Coefficients<T>& c) {
+MASAV_HD inline T pressure_over_rho2(T p, T rho) {
+  return p / (rho * rho);
+}
+
+template <class T>
+MASAV_HD inline Neighbor<T> make_neighbor(V3<T> x, V3<T> v, T rho, T p) {
+  return Neighbor<T>{x, v, rho, pressure_over_rho2(p, rho)};
+}
+
+// The acceleration neighbour o gives particle `me` (per unit SPH mass), for 0 <= r2 < h^2 with
+// d = me.x - o.x. Formulas: see force_at.
+template <class T>
+MASAV_HD inline V3<T> pair_accel(const Neighbor<T>& me, const Neighbor<T>& o, V3<T> d, T r2,
+                                 const Coefficients<T>& c) {
   const bool thesis = c.model == kModelThesis;
   const T r = sqrt(r2);
   const T u = T(1) - r * c.inv_h;  // 1 - q
@@ -258,7 +269,7 @@ MASAV_HD inline V3<T> pair_accel(const Neighbor<T>& me, T pi_over_rho2, const Ne
     if (thesis)
       s = c.pressure * ((o.rho - me.rho) / o.rho) * (u * u * u);
     else
-      s = c.pressure * (pi_over_rho2 + o.p / (o.rho * o.rho)) * (u * u);
+      s = c.pressure * (me.p_rho2 + o.p_rho2) * (u * u);
     a = (s / r) * d;
   }
   const T w = thesis ? c.viscosity * u / o.rho : c.viscosity * u * (T(2) / (me.rho + o.rho));
@@ -286,12 +297,12 @@ MASAV_HD inline T wall_viscous_weight(V3<T> x, const Coefficients<T>& c) {
 }
 
 template <class T>
-MASAV_HD inline V3<T> wall_accel(const Neighbor<T>& me, T pi_over_rho2, const Coefficients<T>& c) {
+MASAV_HD inline V3<T> wall_accel(const Neighbor<T>& me, const Coefficients<T>& c) {
   V3<T> n{T(0), T(0), T(0)};
   wall_density(me.x, c, &n);
   const T damp = c.wall_viscosity * (T(2) * c.rest_density / (me.rho + c.rest_density)) *
                  wall_viscous_weight(me.x, c);
-  return (T(2) * pi_over_rho2 * c.rest_density * c.inv_h) * n - damp * me.v;
+  return (T(2) * me.p_rho2 * c.rest_density * c.inv_h) * n - damp * me.v;
 }
 
 template <class T>
@@ -320,7 +331,6 @@ MASAV_HD inline ForceResult<T> force_at(uint32_t self, const Neighbor<T>& me, ui
   V3<T> acc{T(0), T(0), T(0)};
   uint32_t neighbors = 0;
   bool overflow = false;
-  const T pi_over_rho2 = me.p / (me.rho * me.rho);
   const uint32_t candidates =
       walk_neighbors(cell, dims, cell_start, cell_end, max_candidates, overflow, [&](uint32_t j) {
         if (j == self) return;
@@ -328,9 +338,9 @@ MASAV_HD inline ForceResult<T> force_at(uint32_t self, const Neighbor<T>& me, ui
         const T r2 = dot(d, d);
         if (!(r2 < c.h2)) return;
         ++neighbors;
-        acc = acc + pair_accel(me, pi_over_rho2, fetch(j), d, r2, c);
+        acc = acc + pair_accel(me, fetch(j), d, r2, c);
       });
-  if (c.walls) acc = acc + wall_accel(me, pi_over_rho2, c);
+  if (c.walls) acc = acc + wall_accel(me, c);
   return {acc, neighbors, candidates, overflow};
 }
 

@@ -1,0 +1,57 @@
+#include "engine/cpu/cpu_sph_lists.h"
+
+#include <algorithm>
+#include <cstring>
+
+namespace masav::cpu {
+namespace {
+
+template <class T>
+bool same(const std::vector<T>& kept, const T* now, size_t count) {
+  return kept.size() == count && (count == 0 || std::memcmp(kept.data(), now, count * sizeof(T)) == 0);
+}
+
+}  // namespace
+
+void SphNeighborLists::reset(uint32_t n, size_t chunks) {
+  valid_ = false;
+  chunks_ = chunks;
+  index_.resize(chunks);
+  for (auto& l : index_) l.clear();
+  begin_.resize(n);
+  count_.resize(n);
+  candidates_.resize(n);
+  overflow_.resize(n);
+}
+
+void SphNeighborLists::remember(const SphListInputs& in) {
+  n_ = in.n;
+  max_candidates_ = in.max_candidates;
+  std::copy(in.dims, in.dims + 3, dims_);
+  h2_ = in.h2;
+  positions_.assign(in.positions, in.positions + 4 * size_t(in.n));
+  cells_.assign(in.cells, in.cells + in.n);
+  cell_start_.assign(in.cell_start, in.cell_start + in.cell_count);
+  cell_end_.assign(in.cell_end, in.cell_end + in.cell_count);
+  valid_ = true;
+}
+
+bool SphNeighborLists::matches(const SphListInputs& in, size_t chunks) const {
+  return valid_ && chunks == chunks_ && in.n == n_ && in.max_candidates == max_candidates_ &&
+         std::equal(in.dims, in.dims + 3, dims_) && in.h2 == h2_ &&
+         same(positions_, in.positions, 4 * size_t(in.n)) && same(cells_, in.cells, in.n) &&
+         same(cell_start_, in.cell_start, in.cell_count) &&
+         same(cell_end_, in.cell_end, in.cell_count);
+}
+
+void SphNeighborLists::append(size_t chunk, uint32_t i, const uint32_t* neighbors, uint32_t count,
+                              uint32_t candidates, bool overflow) {
+  std::vector<uint32_t>& l = index_[chunk];
+  begin_[i] = l.size();
+  l.insert(l.end(), neighbors, neighbors + count);
+  count_[i] = count;
+  candidates_[i] = candidates;
+  overflow_[i] = overflow ? 1 : 0;
+}
+
+}  // namespace masav::cpu
