@@ -2,7 +2,9 @@
 """Plots of the SPH benchmarks (masav bench sph | dambreak).
 
 usage: tools/plot_sph_bench.py OUT_PREFIX RECORD.json...
-  reads the records (each names its benchmark: sph or dambreak) and writes
+  reads the records (each names its benchmark: sph or dambreak; a later record's throughput row
+  replaces an earlier one of the same backend, integrator and count, and only the last record's
+  error sweep is drawn) and writes
   OUT_PREFIX_throughput.png  particle-steps/s per backend x integrator x particle count, with the
                              thesis's Table 4.1 (32,768 particles) for comparison;
   OUT_PREFIX_pareto.png      run time against error (integrator x dt against RK4 at dt0/16), the
@@ -32,7 +34,11 @@ def load(paths):
 
 
 def plot_throughput(prefix, sph_records):
-    rows = [r for rec in sph_records for r in rec.get("throughput", [])]
+    latest = {}
+    for rec in sph_records:
+        for r in rec.get("throughput", []):
+            latest[(r["backend"], r["integrator"], r["particles"])] = r
+    rows = list(latest.values())
     if not rows:
         return
     fig, ax = plt.subplots(figsize=(8, 4.8))
@@ -73,12 +79,13 @@ def pareto(points):
 
 
 def plot_pareto(prefix, sph_records):
-    rows = [
-        r for rec in sph_records for r in rec.get("error_sweep", {}).get("rows", []) if r["stable"]
-    ]
+    sweeps = [rec["error_sweep"] for rec in sph_records if "error_sweep" in rec]
+    if not sweeps:
+        return
+    sweep = sweeps[-1]
+    rows = [r for r in sweep.get("rows", []) if r["stable"]]
     if not rows:
         return
-    sweep = next(rec["error_sweep"] for rec in sph_records if "error_sweep" in rec)
     fig, ax = plt.subplots(figsize=(8, 4.8))
     markers = {"euler": "o", "symplectic-euler": "v", "leapfrog": "s", "rk4": "D"}
     for be in sorted({r["backend"] for r in rows}):
@@ -100,7 +107,7 @@ def plot_pareto(prefix, sph_records):
     ax.set_xlabel("wall time, ms")
     ax.set_ylabel("RMS position error / h")
     ax.set_title(f"run time against error: dam break, {sweep['particles']} particles, "
-                 f"{sweep['time_s']} s, ref. RK4 at dt0/16", fontsize=9)
+                 f"{sweep['time_s']:.4g} s, ref. RK4 at dt0/16", fontsize=9)
     ax.legend(fontsize=7)
     fig.tight_layout()
     fig.savefig(f"{prefix}_pareto.png", dpi=120)
