@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "engine/hash_grid.h"
+#include "engine/sph/sph_case_buffers.h"
 #include "engine/sph/sph_kernel_params.h"
 #include "engine/sph/sph_particles.h"
 
@@ -60,33 +61,9 @@ inline void with_walls(SphCase& c, bool on) {
 }
 
 // The case's buffers on one backend, sorted into cell order.
-struct SphBuffers {
-  HashGrid grid;
-  Buffer<Real4> pos, vel, sorted_pos, sorted_vel, accel;
-  Buffer<Real> density, pressure;
-  Buffer<uint32_t> stats;
-  SphGridView view() const { return {&grid.sorted_cells, &grid.cell_start, &grid.cell_end}; }
-};
-
+using SphBuffers = SphCaseBuffers;
 inline SphBuffers upload_sph_case(Backend& b, const SphCase& c) {
-  const uint32_t n = c.params.n;
-  SphBuffers s;
-  s.pos = b.create<Real4>(n, "positions");
-  s.vel = b.create<Real4>(n, "velocities");
-  s.sorted_pos = b.create<Real4>(n, "sorted positions");
-  s.sorted_vel = b.create<Real4>(n, "sorted velocities");
-  s.accel = b.create<Real4>(n, "accel");
-  s.density = b.create<Real>(n, "density");
-  s.pressure = b.create<Real>(n, "pressure");
-  s.stats = b.create<uint32_t>(kSphStatWords, "stats");
-  b.upload(s.pos, c.positions);
-  b.upload(s.vel, c.velocities);
-  s.grid = make_hash_grid(b, c.params.grid, n);
-  build_hash_grid(b, s.grid, s.pos);
-  reorder(b, s.grid, s.pos.impl(), s.sorted_pos.impl());
-  reorder(b, s.grid, s.vel.impl(), s.sorted_vel.impl());
-  b.fill(s.stats, 0u);
-  return s;
+  return masav::upload_sph_case(b, c.params, c.positions, c.velocities, "test sph");
 }
 
 }  // namespace masav::test

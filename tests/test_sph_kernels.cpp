@@ -20,22 +20,6 @@
 
 using namespace masav;
 
-namespace {
-
-std::vector<double> xyz(const std::vector<Vec4d>& v) {
-  std::vector<double> out;
-  for (const auto& a : v) out.insert(out.end(), {a.x, a.y, a.z});
-  return out;
-}
-
-double rms(const std::vector<double>& v) {
-  double s = 0;
-  for (double x : v) s += x * x;
-  return std::sqrt(s / double(std::max<size_t>(1, v.size())));
-}
-
-}  // namespace
-
 TEST_CASE("sph_density equals the CPU reference and a brute-force poly6 sum") {
   Backend& b = test::backend();
   Backend& r = test::reference();
@@ -111,7 +95,7 @@ TEST_CASE("sph_forces equals the CPU reference for both pressure models") {
       r.sph_forces(c.params, {&sr.sorted_pos, &sr.sorted_vel, &sr.density, &sr.pressure, sr.view(),
                               &sr.accel, &sr.stats});
       const auto got = b.download(sb.accel), want = r.download(sr.accel);
-      const auto g3 = xyz(got), w3 = xyz(want);
+      const auto g3 = xyz_components(got), w3 = xyz_components(want);
       const ErrorStats e = compare(g3, w3, rms(w3));
       INFO("accel: " << describe(e) << ", rms " << rms(w3));
       CHECK(e.rel_l2 < 2e-6);
@@ -281,13 +265,14 @@ TEST_CASE("sph_integrate: every stage and the walls equal the CPU reference") {
     };
     b.sph_integrate(p, io(sb));
     r.sph_integrate(p, io(sr));
-    const auto v_got = xyz(b.download(sb.vo)), v_want = xyz(r.download(sr.vo));
+    const auto v_got = xyz_components(b.download(sb.vo));
+    const auto v_want = xyz_components(r.download(sr.vo));
     const ErrorStats ev = compare(v_got, v_want, 1.0);
     INFO("velocity: " << describe(ev));
     CHECK(ev.max_abs < 5e-5);
     if (p.op != SphStageOp::kick) {
       const auto x_got = b.download(sb.xo), x_want = r.download(sr.xo);
-      const ErrorStats ex = compare(xyz(x_got), xyz(x_want), 1.0);
+      const ErrorStats ex = compare(xyz_components(x_got), xyz_components(x_want), 1.0);
       INFO("position: " << describe(ex));
       CHECK(ex.max_abs < 1e-6);
       for (size_t i = 0; i < n; ++i) REQUIRE(x_got[i].w == x_want[i].w);  // inverse mass kept
@@ -303,7 +288,8 @@ TEST_CASE("sph_integrate: every stage and the walls equal the CPU reference") {
       if (!ends) CHECK(outside > 0);  // the box does cut the particles
     }
     if (op >= uint32_t(SphStageOp::rk4_stage1) && op <= uint32_t(SphStageOp::rk4_stage3)) {
-      const ErrorStats es = compare(xyz(b.download(sb.sv)), xyz(r.download(sr.sv)), 1.0);
+      const ErrorStats es =
+          compare(xyz_components(b.download(sb.sv)), xyz_components(r.download(sr.sv)), 1.0);
       INFO("sum_v: " << describe(es));
       CHECK(es.max_abs < 1e-4);
     }

@@ -55,9 +55,7 @@ SphScene isolated_blob(uint32_t side, double density_ratio, double viscosity) {
 }
 
 std::vector<double> velocities_xyz(const SphState& st) {
-  std::vector<double> v;
-  for (const auto& a : st.velocities) v.insert(v.end(), {a.x, a.y, a.z});
-  return v;
+  return xyz_components(st.velocities);
 }
 
 }  // namespace

@@ -96,7 +96,7 @@ class CpuBackend final : public Backend {
   CpuBuffer& own(BufferImpl& b, std::string_view kernel);
   const CpuBuffer& own(const BufferImpl& b, std::string_view kernel) const;
   // The SPH neighbour lists sph_density builds and sph_forces reuses (cpu_sph.cpp).
-  SphListInputs sph_list_inputs(const SphStepParams& p, const SphGridView& grid,
+  SphListInputs sph_list_inputs(const SphStepParams& p, const SphGridView& grid, double h2,
                                 const char* kernel) const;
   template <class Found>
   void build_sph_lists(const SphListInputs& in, size_t chunks, Found&& found);

@@ -86,8 +86,7 @@ const Soa& soa_positions(ThreadPool& pool, const double* pos, size_t n) {
 }  // namespace
 
 SphListInputs CpuBackend::sph_list_inputs(const SphStepParams& p, const SphGridView& grid,
-                                          const char* kernel) const {
-  const auto c = make_coefficients(p);
+                                          double h2, const char* kernel) const {
   SphListInputs in{};
   in.cells = own(grid.cells->impl(), kernel).as<uint32_t>();
   in.cell_start = own(grid.cell_start->impl(), kernel).as<uint32_t>();
@@ -97,7 +96,7 @@ SphListInputs CpuBackend::sph_list_inputs(const SphStepParams& p, const SphGridV
   in.dims[0] = p.grid.dims.x;
   in.dims[1] = p.grid.dims.y;
   in.dims[2] = p.grid.dims.z;
-  in.h2 = c.h2;
+  in.h2 = h2;
   in.max_candidates = p.max_candidates;
   return in;
 }
@@ -137,7 +136,7 @@ void CpuBackend::sph_density(const SphStepParams& p, const SphDensityIO& io) {
   check_sph_density(*this, p, io);
   const char* k = "sph_density";
   const auto c = make_coefficients(p);
-  SphListInputs in = sph_list_inputs(p, io.grid, k);
+  SphListInputs in = sph_list_inputs(p, io.grid, c.h2, k);
   in.positions = own(io.positions->impl(), k).as<double>();
   double* rho = own(io.density->impl(), k).as<double>();
   double* pr = own(io.pressure->impl(), k).as<double>();
@@ -163,7 +162,7 @@ void CpuBackend::sph_forces(const SphStepParams& p, const SphForcesIO& io) {
   check_sph_forces(*this, p, io);
   const char* k = "sph_forces";
   const auto c = make_coefficients(p);
-  SphListInputs in = sph_list_inputs(p, io.grid, k);
+  SphListInputs in = sph_list_inputs(p, io.grid, c.h2, k);
   const double* pos = own(io.positions->impl(), k).as<double>();
   in.positions = pos;
   const double* vel = own(io.velocities->impl(), k).as<double>();

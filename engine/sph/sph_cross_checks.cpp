@@ -11,6 +11,7 @@
 #include <cmath>
 
 #include "engine/hash_grid.h"
+#include "engine/sph/sph_case_buffers.h"
 #include "engine/physics/philox.h"
 #include "engine/sph/sph_particles.h"
 #include "engine/util/error_metrics.h"
@@ -69,48 +70,6 @@ SphCheckCase make_case(const CheckInputs& in, SphPressureModel model) {
   p.box_min = {0.05 + 1.0 * dx, 0.05 + 0.5 * dx, 0.05 + 1.5 * dx};
   p.box_max = {0.05 + (side - 2.0) * dx, 0.05 + (side - 1.5) * dx, 0.05 + (side - 1.0) * dx};
   return c;
-}
-
-struct CaseBuffers {
-  HashGrid grid;
-  Buffer<Real4> sorted_pos, sorted_vel, accel;
-  Buffer<Real> density, pressure;
-  Buffer<uint32_t> stats;
-  SphGridView view() const { return {&grid.sorted_cells, &grid.cell_start, &grid.cell_end}; }
-};
-
-CaseBuffers upload_case(Backend& b, const SphCheckCase& c) {
-  const uint32_t n = c.params.n;
-  CaseBuffers s;
-  auto pos = b.create<Real4>(n, "check sph positions");
-  auto vel = b.create<Real4>(n, "check sph velocities");
-  s.sorted_pos = b.create<Real4>(n, "check sph sorted positions");
-  s.sorted_vel = b.create<Real4>(n, "check sph sorted velocities");
-  s.accel = b.create<Real4>(n, "check sph accel");
-  s.density = b.create<Real>(n, "check sph density");
-  s.pressure = b.create<Real>(n, "check sph pressure");
-  s.stats = b.create<uint32_t>(kSphStatWords, "check sph stats");
-  b.upload(pos, c.positions);
-  b.upload(vel, c.velocities);
-  s.grid = make_hash_grid(b, c.params.grid, n);
-  build_hash_grid(b, s.grid, pos);
-  reorder(b, s.grid, pos.impl(), s.sorted_pos.impl());
-  reorder(b, s.grid, vel.impl(), s.sorted_vel.impl());
-  b.fill(s.stats, 0u);
-  return s;
-}
-
-std::vector<double> xyz(const std::vector<Vec4d>& v) {
-  std::vector<double> out;
-  out.reserve(3 * v.size());
-  for (const auto& a : v) out.insert(out.end(), {a.x, a.y, a.z});
-  return out;
-}
-
-double rms(const std::vector<double>& v) {
-  double s = 0;
-  for (double x : v) s += x * x;
-  return std::sqrt(s / double(std::max<size_t>(1, v.size())));
 }
 
 // Outputs compared one by one, each with its tolerance; `scaled` tolerances measure errors
@@ -186,7 +145,8 @@ std::vector<KernelCheck> sph_checks() {
         CheckOutputs out;
         for (SphPressureModel model : kModels) {
           const SphCheckCase cs = make_case(in, model);
-          CaseBuffers s = upload_case(b, cs);
+          SphCaseBuffers s =
+              upload_sph_case(b, cs.params, cs.positions, cs.velocities, "check sph");
           b.sph_density(cs.params, {&s.sorted_pos, s.view(), &s.density, &s.pressure, &s.stats});
           const std::string m = to_string(model);
           out.push_back({"density " + m, {}, b.download(s.density)});
@@ -204,7 +164,8 @@ std::vector<KernelCheck> sph_checks() {
         CheckOutputs out;
         for (SphPressureModel model : kModels) {
           const SphCheckCase cs = make_case(in, model);
-          CaseBuffers s = upload_case(b, cs);
+          SphCaseBuffers s =
+              upload_sph_case(b, cs.params, cs.positions, cs.velocities, "check sph");
           // Identical density and pressure on both backends: the rest density everywhere plus
           // a smooth field, so the pressure force is not trivial.
           std::vector<double> rho(cs.params.n), pr(cs.params.n);
@@ -222,7 +183,7 @@ std::vector<KernelCheck> sph_checks() {
           for (size_t i = 0; i < a.size(); ++i) w[i] = a[i].w;
           const std::string m = to_string(model);
           out.push_back({"neighbours " + m, {}, w});
-          out.push_back({"accel " + m, {}, xyz(a)});
+          out.push_back({"accel " + m, {}, xyz_components(a)});
         }
         return out;
       }));
@@ -269,11 +230,11 @@ std::vector<KernelCheck> sph_checks() {
           const bool uses_vk =
               op >= uint32_t(SphStageOp::rk4_stage2) && op <= uint32_t(SphStageOp::rk4_final);
           b.sph_integrate(p, {&x0, &v0, uses_vk ? &vkb : nullptr, &a, &xo, &vo, &sx, &sv, &stats});
-          out.push_back({fmt::format("v op {}", op), {}, xyz(b.download(vo))});
+          out.push_back({fmt::format("v op {}", op), {}, xyz_components(b.download(vo))});
           if (p.op != SphStageOp::kick)
-            out.push_back({fmt::format("x op {}", op), {}, xyz(b.download(xo))});
+            out.push_back({fmt::format("x op {}", op), {}, xyz_components(b.download(xo))});
           if (op >= uint32_t(SphStageOp::rk4_stage1) && op <= uint32_t(SphStageOp::rk4_stage3))
-            out.push_back({fmt::format("sum_v op {}", op), {}, xyz(b.download(sv))});
+            out.push_back({fmt::format("sum_v op {}", op), {}, xyz_components(b.download(sv))});
         }
         return out;
       }));

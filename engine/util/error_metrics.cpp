@@ -44,4 +44,17 @@ std::string describe(const ErrorStats& e) {
                      e.non_finite ? fmt::format(", {} non-finite", e.non_finite) : "");
 }
 
+std::vector<double> xyz_components(std::span<const Vec4d> v) {
+  std::vector<double> out;
+  out.reserve(3 * v.size());
+  for (const auto& a : v) out.insert(out.end(), {a.x, a.y, a.z});
+  return out;
+}
+
+double rms(std::span<const double> v) {
+  double s = 0;
+  for (double x : v) s += x * x;
+  return std::sqrt(s / double(std::max<size_t>(1, v.size())));
+}
+
 }  // namespace masav

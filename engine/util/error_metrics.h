@@ -4,6 +4,9 @@
 #include <cstddef>
 #include <span>
 #include <string>
+#include <vector>
+
+#include "engine/types.h"
 
 namespace masav {
 
@@ -20,5 +23,10 @@ struct ErrorStats {
 ErrorStats compare(std::span<const double> got, std::span<const double> want, double rel_floor);
 ErrorStats compare(std::span<const float> got, std::span<const double> want, double rel_floor);
 std::string describe(const ErrorStats& e);
+
+// x, y, z of each vector, flattened (w dropped): what compare() takes for vector data.
+std::vector<double> xyz_components(std::span<const Vec4d> v);
+// Root mean square of the values (0 for none): the scale of a rel_floor.
+double rms(std::span<const double> v);
 
 }  // namespace masav

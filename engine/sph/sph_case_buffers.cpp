@@ -1,0 +1,30 @@
+#include "engine/sph/sph_case_buffers.h"
+
+#include <fmt/format.h>
+
+namespace masav {
+
+SphCaseBuffers upload_sph_case(Backend& b, const SphStepParams& p, std::span<const Vec4f> positions,
+                               std::span<const Vec4f> velocities, std::string_view label) {
+  const uint32_t n = p.n;
+  auto name = [&](const char* what) { return fmt::format("{} {}", label, what); };
+  SphCaseBuffers s;
+  s.pos = b.create<Real4>(n, name("positions"));
+  s.vel = b.create<Real4>(n, name("velocities"));
+  s.sorted_pos = b.create<Real4>(n, name("sorted positions"));
+  s.sorted_vel = b.create<Real4>(n, name("sorted velocities"));
+  s.accel = b.create<Real4>(n, name("accel"));
+  s.density = b.create<Real>(n, name("density"));
+  s.pressure = b.create<Real>(n, name("pressure"));
+  s.stats = b.create<uint32_t>(kSphStatWords, name("stats"));
+  b.upload(s.pos, positions);
+  b.upload(s.vel, velocities);
+  s.grid = make_hash_grid(b, p.grid, n);
+  build_hash_grid(b, s.grid, s.pos);
+  reorder(b, s.grid, s.pos.impl(), s.sorted_pos.impl());
+  reorder(b, s.grid, s.vel.impl(), s.sorted_vel.impl());
+  b.fill(s.stats, 0u);
+  return s;
+}
+
+}  // namespace masav

@@ -1,0 +1,25 @@
+#pragma once
+// The buffers of one SPH kernel case on a backend: host particles uploaded, sorted into the hash
+// grid there (positions and velocities reordered into cell order), and the kernels' outputs. The
+// cross-check (engine/sph/sph_cross_checks.cpp) and the kernel tests both run kernels on these.
+#include <span>
+#include <string_view>
+
+#include "engine/hash_grid.h"
+#include "engine/sph/sph_kernel_params.h"
+
+namespace masav {
+
+struct SphCaseBuffers {
+  HashGrid grid;
+  Buffer<Real4> pos, vel, sorted_pos, sorted_vel, accel;
+  Buffer<Real> density, pressure;
+  Buffer<uint32_t> stats;  // zeroed
+  SphGridView view() const { return {&grid.sorted_cells, &grid.cell_start, &grid.cell_end}; }
+};
+
+// p.n particles on p.grid; buffer labels start with `label`.
+SphCaseBuffers upload_sph_case(Backend& b, const SphStepParams& p, std::span<const Vec4f> positions,
+                               std::span<const Vec4f> velocities, std::string_view label);
+
+}  // namespace masav

@@ -1,0 +1,87 @@
+// The per-particle bodies the CUDA SPH kernels call (sph::density_at, sph::force_at in
+// engine/physics/sph_kernels.h), run on the host in double and in float, against the CPU
+// reference's kernels, which sum the same terms over neighbour lists (cpu_sph.cpp). CUDA cannot
+// run here; this is how its kernel bodies are exercised without it.
+#include <doctest/doctest.h>
+
+#include "engine/cpu/cpu_backend.h"
+#include "engine/physics/sph_kernels.h"
+#include "engine/sph/sph_coefficients.h"
+#include "engine/util/error_metrics.h"
+#include "tests/sph_fixture.h"
+
+using namespace masav;
+
+namespace {
+
+template <class T>
+sph::V3<T> v3(const Vec4d& a) {
+  return {T(a.x), T(a.y), T(a.z)};
+}
+
+// density_at and force_at over every sorted particle of the case, in precision T.
+template <class T>
+void host_bodies(const test::SphCase& c, const std::vector<Vec4d>& pos,
+                 const std::vector<Vec4d>& vel, const std::vector<double>& rho,
+                 const std::vector<double>& pr, const std::vector<uint32_t>& cells,
+                 const std::vector<uint32_t>& start, const std::vector<uint32_t>& end,
+                 const sph::Coefficients<T>& k, std::vector<double>& rho_out,
+                 std::vector<Vec4d>& acc_out) {
+  const SphStepParams& p = c.params;
+  const uint32_t dims[3] = {p.grid.dims.x, p.grid.dims.y, p.grid.dims.z};
+  auto pos_at = [&](uint32_t j) { return v3<T>(pos[j]); };
+  auto fetch = [&](uint32_t j) {
+    return sph::make_neighbor<T>(v3<T>(pos[j]), v3<T>(vel[j]), T(rho[j]), T(pr[j]));
+  };
+  rho_out.resize(p.n);
+  acc_out.resize(p.n);
+  for (uint32_t i = 0; i < p.n; ++i) {
+    const auto d = sph::density_at<T>(pos_at(i), cells[i], dims, start.data(), end.data(),
+                                      p.max_candidates, k, pos_at);
+    rho_out[i] = double(d.density);
+    const auto f = sph::force_at<T>(i, fetch(i), cells[i], dims, start.data(), end.data(),
+                                    p.max_candidates, k, pos_at, fetch);
+    const sph::V3<T> a = sph::total_accel(f.accel, T(pos[i].w), k);
+    acc_out[i] = {double(a.x), double(a.y), double(a.z), double(f.neighbors)};
+  }
+}
+
+}  // namespace
+
+TEST_CASE("sph::density_at and sph::force_at (the CUDA bodies) equal the CPU reference") {
+  cpu::CpuBackend r;
+  for (const bool walls : {false, true})
+    for (SphPressureModel model : {SphPressureModel::wcsph, SphPressureModel::thesis}) {
+      const std::string name = to_string(model);
+      CAPTURE(name);
+      CAPTURE(walls);
+      test::SphCase c = test::make_sph_case(10, model, 31);
+      test::with_walls(c, walls);
+      test::SphBuffers s = test::upload_sph_case(r, c);
+      r.sph_density(c.params, {&s.sorted_pos, s.view(), &s.density, &s.pressure, &s.stats});
+      r.sph_forces(c.params, {&s.sorted_pos, &s.sorted_vel, &s.density, &s.pressure, s.view(),
+                              &s.accel, &s.stats});
+      const auto pos = r.download(s.sorted_pos), vel = r.download(s.sorted_vel);
+      const auto rho = r.download(s.density), pr = r.download(s.pressure);
+      const auto acc = r.download(s.accel);
+      const auto cells = r.download(s.grid.sorted_cells);
+      const auto start = r.download(s.grid.cell_start), end = r.download(s.grid.cell_end);
+      const auto k = make_coefficients(c.params);
+
+      std::vector<double> rho_d, rho_f;
+      std::vector<Vec4d> acc_d, acc_f;
+      host_bodies<double>(c, pos, vel, rho, pr, cells, start, end, k, rho_d, acc_d);
+      host_bodies<float>(c, pos, vel, rho, pr, cells, start, end, to_float(k), rho_f, acc_f);
+      const double acc_scale = rms(xyz_components(acc));
+      // double: the same terms, summed in another order (lists vs the walk) -> rounding only.
+      CHECK(compare(rho_d, rho, 1.0).max_rel < 1e-12);
+      CHECK(compare(xyz_components(acc_d), xyz_components(acc), acc_scale).max_rel < 1e-10);
+      // float: the tolerances of the fp32 backends' kernel tests (test_sph_kernels.cpp).
+      CHECK(compare(rho_f, rho, 1.0).rel_l2 < 1e-6);
+      const ErrorStats ef = compare(xyz_components(acc_f), xyz_components(acc), acc_scale);
+      INFO("float accel: " << describe(ef));
+      CHECK(ef.rel_l2 < 2e-6);
+      CHECK(ef.max_rel < 2e-5);
+      for (uint32_t i = 0; i < c.params.n; ++i) REQUIRE(acc_d[i].w == acc[i].w);  // neighbours
+    }
+}
