@@ -7,7 +7,7 @@
 
 #include "app/bench_atom_common.h"
 #include "engine/atom/orbital_tables.h"
-#include "engine/error.h"
+#include "engine/core/error.h"
 
 namespace masav::app {
 

@@ -7,7 +7,7 @@
 #include <thread>
 
 #include "app/build_info.h"
-#include "engine/error.h"
+#include "engine/core/error.h"
 #include "engine/registry/registry.h"
 
 namespace masav::app {

@@ -11,7 +11,7 @@
 #include <sstream>
 
 #include "app/bench_common.h"
-#include "engine/error.h"
+#include "engine/core/error.h"
 #include "engine/io/csv_writer.h"
 #include "engine/registry/registry.h"
 #include "engine/sph/sph_diagnostics.h"

@@ -6,8 +6,8 @@
 #include <random>
 
 #include "app/bench_common.h"
-#include "engine/error.h"
-#include "engine/hash_grid.h"
+#include "engine/core/error.h"
+#include "engine/grid/hash_grid.h"
 
 namespace masav::app {
 

@@ -11,7 +11,7 @@
 #include "engine/atom/atom_checks.h"
 #include "engine/atom/atom_scene.h"
 #include "engine/atom/transfer_function.h"
-#include "engine/error.h"
+#include "engine/core/error.h"
 
 namespace masav::app {
 

@@ -8,9 +8,9 @@
 
 #include "app/bench_atom_common.h"
 #include "engine/atom/scatter_cache.h"
-#include "engine/atom/scatter_math.h"
+#include "engine/kernels/scatter_math.h"
 #include "engine/atom/scatter_reference.h"
-#include "engine/error.h"
+#include "engine/core/error.h"
 
 namespace masav::app {
 

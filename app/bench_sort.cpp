@@ -6,7 +6,7 @@
 #include <random>
 
 #include "app/bench_common.h"
-#include "engine/error.h"
+#include "engine/core/error.h"
 
 namespace masav::app {
 

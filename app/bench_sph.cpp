@@ -9,7 +9,7 @@
 
 #include "app/bench_common.h"
 #include "engine/cpu/cpu_backend.h"
-#include "engine/error.h"
+#include "engine/core/error.h"
 #include "engine/sph/sph_coefficients.h"
 #include "engine/sph/sph_diagnostics.h"
 #include "engine/sph/sph_presets.h"

@@ -11,7 +11,7 @@
 #include "engine/atom/atom_export.h"
 #include "engine/atom/transfer_function.h"
 #include "engine/atom/volume_io.h"
-#include "engine/error.h"
+#include "engine/core/error.h"
 #include "engine/io/png_writer.h"
 #include "engine/registry/registry.h"
 

@@ -9,8 +9,8 @@
 
 #include "app/commands.h"
 #include "engine/cpu/cpu_backend.h"
-#include "engine/error.h"
-#include "engine/hash_grid.h"
+#include "engine/core/error.h"
+#include "engine/grid/hash_grid.h"
 #include "engine/registry/registry.h"
 
 namespace masav::app {

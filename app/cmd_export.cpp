@@ -5,7 +5,7 @@
 
 #include "app/commands.h"
 #include "app/scene_options.h"
-#include "engine/error.h"
+#include "engine/core/error.h"
 #include "engine/io/csv_writer.h"
 #include "engine/io/vtk_writer.h"
 #include "engine/registry/registry.h"

@@ -3,7 +3,7 @@
 
 #include "app/build_info.h"
 #include "app/commands.h"
-#include "engine/error.h"
+#include "engine/core/error.h"
 #include "engine/registry/registry.h"
 
 namespace masav::app {

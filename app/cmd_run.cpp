@@ -11,7 +11,7 @@
 #include "app/interrupt.h"
 #include "app/progress.h"
 #include "app/scene_options.h"
-#include "engine/error.h"
+#include "engine/core/error.h"
 #include "engine/util/json_writer.h"
 #include "render/png_queue.h"
 #include "render/scene_player.h"

@@ -8,7 +8,7 @@
 #include <optional>
 
 #include "app/commands.h"
-#include "engine/error.h"
+#include "engine/core/error.h"
 #include "engine/io/csv_writer.h"
 #include "engine/registry/registry.h"
 #include "engine/sph/sph_diagnostics.h"

@@ -5,7 +5,7 @@
 
 #include "app/commands.h"
 #include "app/scene_options.h"
-#include "engine/error.h"
+#include "engine/core/error.h"
 #include "engine/registry/registry.h"
 #include "engine/util/json_writer.h"
 #include "engine/verify/cross_check.h"

@@ -4,7 +4,7 @@
 
 #include "app/build_info.h"
 #include "app/commands.h"
-#include "engine/error.h"
+#include "engine/core/error.h"
 
 int main(int argc, char** argv) {
   CLI::App app{"masav: GPU physics (hydrogen electron cloud, volume ray casting, SPH fluid) on "

@@ -7,7 +7,7 @@
 #include <filesystem>
 #include <sstream>
 
-#include "engine/error.h"
+#include "engine/core/error.h"
 #include "engine/util/json_writer.h"
 
 namespace masav::app {

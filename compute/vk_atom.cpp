@@ -5,7 +5,7 @@
 
 #include "compute/vk_backend.h"
 #include "engine/atom/atom_checks.h"
-#include "engine/error.h"
+#include "engine/core/error.h"
 
 namespace masav::vk {
 namespace {

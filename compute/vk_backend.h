@@ -8,7 +8,7 @@
 #include "compute/vk_memory.h"
 #include "compute/vk_pipelines.h"
 #include "compute/vk_stream.h"
-#include "engine/backend.h"
+#include "engine/core/backend.h"
 
 namespace masav::vk {
 

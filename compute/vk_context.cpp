@@ -9,7 +9,7 @@
 #include <cstring>
 #include <dlfcn.h>
 
-#include "engine/error.h"
+#include "engine/core/error.h"
 
 namespace masav::vk {
 namespace raii = ::vk::raii;

@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "compute/vk_common.h"
-#include "engine/capabilities.h"
+#include "engine/core/capabilities.h"
 
 namespace masav::vk {
 

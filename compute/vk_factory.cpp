@@ -1,7 +1,7 @@
 #include "compute/vk_factory.h"
 
 #include "compute/vk_backend.h"
-#include "engine/error.h"
+#include "engine/core/error.h"
 
 namespace masav::vk {
 

@@ -3,8 +3,8 @@
 #include <memory>
 #include <string_view>
 
-#include "engine/backend.h"
-#include "engine/backend_status.h"
+#include "engine/core/backend.h"
+#include "engine/core/backend_status.h"
 
 namespace masav::vk {
 

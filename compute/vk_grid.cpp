@@ -3,8 +3,8 @@
 #include <fmt/format.h>
 
 #include "compute/vk_backend.h"
-#include "engine/error.h"
-#include "engine/kernel_checks.h"
+#include "engine/core/error.h"
+#include "engine/core/kernel_checks.h"
 
 namespace masav::vk {
 namespace {

@@ -4,7 +4,7 @@
 
 #include <optional>
 
-#include "engine/error.h"
+#include "engine/core/error.h"
 
 namespace masav::vk {
 namespace {

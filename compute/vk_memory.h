@@ -5,7 +5,7 @@
 #include <string>
 
 #include "compute/vk_context.h"
-#include "engine/buffer.h"
+#include "engine/core/buffer.h"
 
 namespace masav::vk {
 

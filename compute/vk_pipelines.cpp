@@ -8,7 +8,7 @@
 #include <iterator>
 #include <unistd.h>
 
-#include "engine/error.h"
+#include "engine/core/error.h"
 #include "shaders/embedded.h"
 
 namespace masav::vk {

@@ -2,7 +2,7 @@
 // integer tallies (shaders/scatter_table.comp), then a pass that turns them into fractions.
 #include "compute/vk_backend.h"
 #include "engine/atom/atom_checks.h"
-#include "engine/atom/scatter_math.h"
+#include "engine/kernels/scatter_math.h"
 
 namespace masav::vk {
 namespace {

@@ -6,9 +6,9 @@
 #include <fmt/format.h>
 
 #include "compute/vk_backend.h"
-#include "engine/error.h"
-#include "engine/kernel_checks.h"
-#include "engine/physics/radix.h"
+#include "engine/core/error.h"
+#include "engine/core/kernel_checks.h"
+#include "engine/kernels/radix.h"
 
 namespace masav::vk {
 namespace {

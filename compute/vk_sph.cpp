@@ -4,7 +4,7 @@
 #include <fmt/format.h>
 
 #include "compute/vk_backend.h"
-#include "engine/error.h"
+#include "engine/core/error.h"
 #include "engine/sph/sph_checks.h"
 #include "engine/sph/sph_coefficients.h"
 

@@ -1,9 +1,9 @@
-// Electron cloud and nebula lighting: thin launches around engine/atom/orbital_math.h and
+// Electron cloud and nebula lighting: thin launches around engine/kernels/orbital_math.h and
 // nebula_math.h, the very functions the CPU reference runs (here with T = float).
 #include "cuda_ref/atom_launch.h"
 #include "cuda_ref/cuda_launch.h"
-#include "engine/atom/nebula_math.h"
-#include "engine/atom/orbital_math.h"
+#include "engine/kernels/nebula_math.h"
+#include "engine/kernels/orbital_math.h"
 
 namespace masav::cuda::launch {
 namespace {

@@ -8,7 +8,7 @@
 #include <cstdint>
 
 #include "engine/atom/atom_params.h"
-#include "engine/atom/volume_math.h"
+#include "engine/kernels/volume_math.h"
 
 namespace masav::cuda::launch {
 

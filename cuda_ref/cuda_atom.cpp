@@ -6,7 +6,7 @@
 #include "cuda_ref/cuda_check.h"
 #include "cuda_ref/cuda_launch.h"
 #include "engine/atom/atom_checks.h"
-#include "engine/atom/scatter_math.h"
+#include "engine/kernels/scatter_math.h"
 
 namespace masav::cuda {
 namespace {

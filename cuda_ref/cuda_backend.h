@@ -8,7 +8,7 @@
 #include <memory>
 #include <vector>
 
-#include "engine/backend.h"
+#include "engine/core/backend.h"
 
 namespace masav::cuda {
 

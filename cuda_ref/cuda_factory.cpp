@@ -9,7 +9,7 @@
 #include <cstdlib>
 
 #include "cuda_ref/cuda_backend.h"
-#include "engine/error.h"
+#include "engine/core/error.h"
 
 namespace masav::cuda {
 namespace {

@@ -4,8 +4,8 @@
 #include "cuda_ref/cuda_backend.h"
 #include "cuda_ref/cuda_check.h"
 #include "cuda_ref/cuda_launch.h"
-#include "engine/error.h"
-#include "engine/kernel_checks.h"
+#include "engine/core/error.h"
+#include "engine/core/kernel_checks.h"
 
 namespace masav::cuda {
 namespace {

@@ -4,9 +4,9 @@
 #include "cuda_ref/cuda_backend.h"
 #include "cuda_ref/cuda_check.h"
 #include "cuda_ref/cuda_launch.h"
-#include "engine/error.h"
-#include "engine/kernel_checks.h"
-#include "engine/physics/radix.h"
+#include "engine/core/error.h"
+#include "engine/core/kernel_checks.h"
+#include "engine/kernels/radix.h"
 
 namespace masav::cuda {
 

@@ -1,8 +1,8 @@
-// Hash-grid kernels: thin launches around engine/physics/grid_cell.h, the very functions the
+// Hash-grid kernels: thin launches around engine/kernels/grid_cell.h, the very functions the
 // CPU reference runs.
 #include "cuda_ref/cuda_launch.h"
-#include "engine/kernel_checks.h"
-#include "engine/physics/grid_cell.h"
+#include "engine/core/kernel_checks.h"
+#include "engine/kernels/grid_cell.h"
 
 namespace masav::cuda::launch {
 namespace {

@@ -1,7 +1,7 @@
-// drift_points: a thin wrapper around engine/physics/drift.h in fp32.
+// drift_points: a thin wrapper around engine/kernels/drift.h in fp32.
 #include "cuda_ref/cuda_launch.h"
 #include "cuda_ref/points_launch.h"
-#include "engine/physics/drift.h"
+#include "engine/kernels/drift.h"
 
 namespace masav::cuda::launch {
 namespace {

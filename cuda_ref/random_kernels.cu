@@ -1,6 +1,6 @@
-// Philox and fill kernels: thin wrappers around engine/physics/philox.h.
+// Philox and fill kernels: thin wrappers around engine/kernels/philox.h.
 #include "cuda_ref/cuda_launch.h"
-#include "engine/physics/philox.h"
+#include "engine/kernels/philox.h"
 
 namespace masav::cuda::launch {
 namespace {

@@ -1,8 +1,8 @@
-// scatter_table: one photon per thread (engine/atom/scatter_math.h with T = float); one tau row
+// scatter_table: one photon per thread (engine/kernels/scatter_math.h with T = float); one tau row
 // per block; fixed-point tallies in shared memory, then 64-bit integer atomics per block, so the
 // sums do not depend on the order of the atomics.
 #include "cuda_ref/atom_launch.h"
-#include "engine/atom/scatter_math.h"
+#include "engine/kernels/scatter_math.h"
 
 namespace masav::cuda::launch {
 namespace {

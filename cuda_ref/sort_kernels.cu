@@ -3,7 +3,7 @@
 #include <cub/device/device_radix_sort.cuh>
 
 #include "cuda_ref/cuda_launch.h"
-#include "engine/physics/radix.h"
+#include "engine/kernels/radix.h"
 
 namespace masav::cuda::launch {
 namespace {

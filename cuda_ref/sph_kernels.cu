@@ -1,4 +1,4 @@
-// SPH kernels on CUDA: thin wrappers around engine/physics/sph_kernels.h, the very bodies the
+// SPH kernels on CUDA: thin wrappers around engine/kernels/sph_kernels.h, the very bodies the
 // CPU reference runs. One thread per particle; neighbours are read in cell order (the arrays are
 // sorted by the hash grid every rebuild), no atomics in the neighbour loops; statistics are
 // reduced per warp and added with one atomic per warp.

@@ -5,7 +5,7 @@
 
 #include <cstdint>
 
-#include "engine/physics/sph_kernels.h"
+#include "engine/kernels/sph_kernels.h"
 
 namespace masav::cuda::launch {
 

@@ -1,9 +1,9 @@
-// Voxelization, brick ranges and ray casting: thin launches around engine/atom/volume_math.h
+// Voxelization, brick ranges and ray casting: thin launches around engine/kernels/volume_math.h
 // (T = float) and the hash grid's fp32 cell rule.
 #include "cuda_ref/atom_launch.h"
 #include "cuda_ref/cuda_launch.h"
-#include "engine/atom/volume_math.h"
-#include "engine/physics/grid_cell.h"
+#include "engine/kernels/volume_math.h"
+#include "engine/kernels/grid_cell.h"
 
 namespace masav::cuda::launch {
 namespace {

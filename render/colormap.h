@@ -5,7 +5,7 @@
 #include <array>
 #include <string_view>
 
-#include "engine/types.h"
+#include "engine/core/types.h"
 
 namespace masav::render {
 

@@ -4,7 +4,7 @@
 
 #include <vector>
 
-#include "engine/error.h"
+#include "engine/core/error.h"
 #include "shaders/embedded.h"
 
 namespace masav::render {

@@ -4,7 +4,7 @@
 #include <stb_image.h>
 #include <stb_image_write.h>
 
-#include "engine/error.h"
+#include "engine/core/error.h"
 #include "engine/util/json_writer.h"
 
 namespace masav::render {

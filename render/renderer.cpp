@@ -7,7 +7,7 @@
 #include <bit>
 #include <cstring>
 
-#include "engine/error.h"
+#include "engine/core/error.h"
 
 namespace masav::render {
 namespace {

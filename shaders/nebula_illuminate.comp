@@ -2,7 +2,7 @@
 #extension GL_GOOGLE_include_directive : require
 // nebula_illuminate (thesis Eq. 2.4): illumination[i] = Phi / (4 pi r^2) exp(-tau_opt), the
 // optical depth integrated through the density grid from the nucleus to particle i. Twin of
-// nebula::illumination (engine/atom/nebula_math.h).
+// nebula::illumination (engine/kernels/nebula_math.h).
 #include "kernel_base.glsl"
 #include "grid_cell.glsl"
 #include "slab.glsl"

@@ -2,7 +2,7 @@
 #extension GL_GOOGLE_include_directive : require
 // orbital_sample: particle i from Philox block i of the orbital stream, by inverting the
 // |psi|^2 factor tables (exact placement) or by site search and jitter (shell placement).
-// Twin of orbital::sample_particle (engine/atom/orbital_math.h).
+// Twin of orbital::sample_particle (engine/kernels/orbital_math.h).
 #include "kernel_base.glsl"
 #include "philox.glsl"
 

@@ -1,7 +1,7 @@
 #version 450
 #extension GL_GOOGLE_include_directive : require
 // raymarch: one pixel per invocation; the GLSL twin of volume::raymarch_pixel
-// (engine/atom/volume_math.h: segments, midpoint samples, opacity correction, early ray
+// (engine/kernels/volume_math.h: segments, midpoint samples, opacity correction, early ray
 // termination, empty-space skipping, the thesis's lerp mode).
 #include "kernel_base.glsl"
 #include "slab.glsl"

@@ -4,7 +4,7 @@
 // Density (poly6, thesis Eq. 4.4) and pressure of each sorted particle over the neighbours
 // within h in the 27 cells around cells[i], walked as 9 rows of 3 consecutive cells. The
 // candidates per invocation are capped (max_candidates) and an overflow is reported, never
-// silently truncated. Twin of sph::density_at (engine/physics/sph_kernels.h).
+// silently truncated. Twin of sph::density_at (engine/kernels/sph_kernels.h).
 #include "kernel_base.glsl"
 
 layout(std430, binding = 1) readonly buffer Positions { vec4 positions[]; };

@@ -4,7 +4,7 @@
 // Acceleration of each sorted particle: pressure (spiky gradient) and viscosity (its laplacian)
 // per the pressure model, times the inverse mass (positions' w), plus gravity. One invocation
 // per particle, no atomics in the neighbour loop, neighbours read in cell order. Twin of
-// sph::force_at (engine/physics/sph_kernels.h).
+// sph::force_at (engine/kernels/sph_kernels.h).
 #include "kernel_base.glsl"
 
 layout(std430, binding = 1) readonly buffer Positions { vec4 positions[]; };

@@ -3,7 +3,7 @@
 // reference it is compared with. Test bodies never know which backend they run on.
 #include <string>
 
-#include "engine/backend.h"
+#include "engine/core/backend.h"
 
 namespace masav::test {
 

@@ -5,7 +5,7 @@
 #include <random>
 #include <vector>
 
-#include "engine/hash_grid.h"
+#include "engine/grid/hash_grid.h"
 #include "engine/sph/sph_case_buffers.h"
 #include "engine/sph/sph_kernel_params.h"
 #include "engine/sph/sph_particles.h"

@@ -15,7 +15,7 @@
 #include "engine/atom/scatter_cache.h"
 #include "engine/atom/transfer_function.h"
 #include "engine/atom/volume_io.h"
-#include "engine/error.h"
+#include "engine/core/error.h"
 
 using namespace masav;
 using namespace masav::atom;

@@ -9,8 +9,8 @@
 #include "engine/atom/orbital.h"
 #include "engine/atom/orbital_tables.h"
 #include "engine/atom/quadrature.h"
-#include "engine/atom/scatter_math.h"
-#include "engine/error.h"
+#include "engine/kernels/scatter_math.h"
+#include "engine/core/error.h"
 
 using namespace masav;
 using namespace masav::atom;

@@ -11,7 +11,7 @@
 #include <functional>
 
 #include "engine/cpu/cpu_backend.h"
-#include "engine/error.h"
+#include "engine/core/error.h"
 #include "engine/scene/scene.h"
 #include "engine/scene/scene_file.h"
 

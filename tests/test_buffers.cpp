@@ -7,7 +7,7 @@
 #include <numeric>
 #include <vector>
 
-#include "engine/error.h"
+#include "engine/core/error.h"
 #include "tests/backend_fixture.h"
 
 using namespace masav;

@@ -10,13 +10,13 @@
 #include <limits>
 
 #include "engine/cpu/thread_pool.h"
-#include "engine/error.h"
+#include "engine/core/error.h"
 #include "engine/io/csv_writer.h"
 #include "engine/io/vtk_writer.h"
-#include "engine/kernel_params.h"
-#include "engine/physics/grid_cell.h"
-#include "engine/physics/philox.h"
-#include "engine/physics/radix.h"
+#include "engine/core/kernel_params.h"
+#include "engine/kernels/grid_cell.h"
+#include "engine/kernels/philox.h"
+#include "engine/kernels/radix.h"
 #include "engine/registry/registry.h"
 #include "engine/util/error_metrics.h"
 #include "engine/util/json_writer.h"

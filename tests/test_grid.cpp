@@ -7,9 +7,9 @@
 #include <random>
 #include <vector>
 
-#include "engine/error.h"
-#include "engine/hash_grid.h"
-#include "engine/physics/grid_cell.h"
+#include "engine/core/error.h"
+#include "engine/grid/hash_grid.h"
+#include "engine/kernels/grid_cell.h"
 #include "tests/backend_fixture.h"
 
 using namespace masav;

@@ -13,7 +13,7 @@
 #include <vector>
 
 #include "engine/cpu/cpu_backend.h"
-#include "engine/error.h"
+#include "engine/core/error.h"
 #include "engine/registry/registry.h"
 #include "tests/backend_fixture.h"
 #if MASAV_HAVE_VULKAN

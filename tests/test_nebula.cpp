@@ -11,10 +11,10 @@
 
 #include "engine/atom/orbital_tables.h"
 #include "engine/atom/scatter_cache.h"
-#include "engine/atom/volume_math.h"
-#include "engine/error.h"
-#include "engine/hash_grid.h"
-#include "engine/physics/grid_cell.h"
+#include "engine/kernels/volume_math.h"
+#include "engine/core/error.h"
+#include "engine/grid/hash_grid.h"
+#include "engine/kernels/grid_cell.h"
 #include "engine/util/error_metrics.h"
 #include "tests/backend_fixture.h"
 

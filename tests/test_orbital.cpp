@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "engine/atom/orbital_tables.h"
-#include "engine/error.h"
+#include "engine/core/error.h"
 #include "tests/backend_fixture.h"
 
 using namespace masav;

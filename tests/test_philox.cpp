@@ -8,7 +8,7 @@
 #include <cstring>
 #include <vector>
 
-#include "engine/physics/philox.h"
+#include "engine/kernels/philox.h"
 #include "tests/backend_fixture.h"
 
 using namespace masav;

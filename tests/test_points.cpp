@@ -6,7 +6,7 @@
 #include <cmath>
 #include <vector>
 
-#include "engine/error.h"
+#include "engine/core/error.h"
 #include "engine/points/drift_compare.h"
 #include "tests/backend_fixture.h"
 

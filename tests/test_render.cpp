@@ -13,7 +13,7 @@
 
 #include "compute/vk_factory.h"
 #include "engine/cpu/cpu_backend.h"
-#include "engine/error.h"
+#include "engine/core/error.h"
 #include "engine/scene/scene.h"
 #include "render/png.h"
 #include "render/renderer.h"

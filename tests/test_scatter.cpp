@@ -15,7 +15,7 @@
 #include "engine/atom/quadrature.h"
 #include "engine/atom/scatter_cache.h"
 #include "engine/atom/scatter_reference.h"
-#include "engine/error.h"
+#include "engine/core/error.h"
 #include "tests/backend_fixture.h"
 
 using namespace masav;

@@ -12,7 +12,7 @@
 #include <map>
 
 #include "engine/cpu/cpu_backend.h"
-#include "engine/error.h"
+#include "engine/core/error.h"
 #include "engine/scene/common_tables.h"
 #include "engine/scene/scene.h"
 #include "engine/scene/scene_file.h"

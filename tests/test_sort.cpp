@@ -8,7 +8,7 @@
 #include <random>
 #include <vector>
 
-#include "engine/error.h"
+#include "engine/core/error.h"
 #include "tests/backend_fixture.h"
 
 using namespace masav;

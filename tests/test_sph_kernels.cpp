@@ -10,9 +10,9 @@
 #include <cstring>
 #include <vector>
 
-#include "engine/error.h"
-#include "engine/physics/grid_cell.h"
-#include "engine/physics/sph_kernels.h"
+#include "engine/core/error.h"
+#include "engine/kernels/grid_cell.h"
+#include "engine/kernels/sph_kernels.h"
 #include "engine/sph/sph_coefficients.h"
 #include "engine/util/error_metrics.h"
 #include "tests/backend_fixture.h"

@@ -9,7 +9,7 @@
 #include <cmath>
 #include <vector>
 
-#include "engine/error.h"
+#include "engine/core/error.h"
 #include "engine/sph/sph_diagnostics.h"
 #include "engine/sph/sph_presets.h"
 #include "engine/sph/sph_simulation.h"

@@ -5,7 +5,7 @@
 #include <cmath>
 #include <limits>
 
-#include "engine/error.h"
+#include "engine/core/error.h"
 #include "engine/sph/sph_diagnostics.h"
 #include "engine/sph/sph_particles.h"
 #include "engine/sph/sph_presets.h"

@@ -7,7 +7,7 @@
 #include <filesystem>
 
 #include "engine/cpu/cpu_backend.h"
-#include "engine/error.h"
+#include "engine/core/error.h"
 #include "engine/scene/scene.h"
 #include "engine/scene/scene_file.h"
 #include "engine/sph/sph_presets.h"

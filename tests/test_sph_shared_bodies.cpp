@@ -1,11 +1,11 @@
 // The per-particle bodies the CUDA SPH kernels call (sph::density_at, sph::force_at in
-// engine/physics/sph_kernels.h), run on the host in double and in float, against the CPU
+// engine/kernels/sph_kernels.h), run on the host in double and in float, against the CPU
 // reference's kernels, which sum the same terms over neighbour lists (cpu_sph.cpp). CUDA cannot
 // run here; this is how its kernel bodies are exercised without it.
 #include <doctest/doctest.h>
 
 #include "engine/cpu/cpu_backend.h"
-#include "engine/physics/sph_kernels.h"
+#include "engine/kernels/sph_kernels.h"
 #include "engine/sph/sph_coefficients.h"
 #include "engine/util/error_metrics.h"
 #include "tests/sph_fixture.h"

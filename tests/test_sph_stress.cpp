@@ -10,7 +10,7 @@
 #include <cstdlib>
 #include <string>
 
-#include "engine/error.h"
+#include "engine/core/error.h"
 #include "engine/sph/sph_diagnostics.h"
 #include "engine/sph/sph_presets.h"
 #include "engine/sph/sph_simulation.h"

@@ -10,8 +10,8 @@
 #include <vector>
 
 #include "engine/atom/atom_checks.h"
-#include "engine/error.h"
-#include "engine/physics/grid_cell.h"
+#include "engine/core/error.h"
+#include "engine/kernels/grid_cell.h"
 #include "engine/util/error_metrics.h"
 #include "tests/backend_fixture.h"
 

@@ -13,10 +13,10 @@
 
 #include "compute/vk_backend.h"
 #include "compute/vk_factory.h"
-#include "engine/error.h"
+#include "engine/core/error.h"
 #include "engine/atom/atom_checks.h"
 #include "engine/atom/orbital_tables.h"
-#include "engine/hash_grid.h"
+#include "engine/grid/hash_grid.h"
 #include "engine/sph/sph_particles.h"
 
 using namespace masav;

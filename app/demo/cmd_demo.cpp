@@ -17,7 +17,7 @@
 #include "app/demo/demo_window.h"
 #include "app/interrupt.h"
 #include "app/scene_options.h"
-#include "engine/error.h"
+#include "engine/core/error.h"
 #include "engine/registry/registry.h"
 #include "render/png.h"
 #include "render/swapchain.h"

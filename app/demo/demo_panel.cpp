@@ -10,7 +10,7 @@
 #include "app/demo/atom_controls.h"
 #include "app/demo/param_widgets.h"
 #include "app/demo/sph_panel.h"
-#include "engine/error.h"
+#include "engine/core/error.h"
 
 namespace masav::app {
 namespace {

@@ -6,7 +6,7 @@
 
 #include <cstdlib>
 
-#include "engine/error.h"
+#include "engine/core/error.h"
 #include "render/render_device.h"
 
 namespace masav::app {

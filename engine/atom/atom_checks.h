@@ -1,8 +1,8 @@
 #pragma once
 // Validation of the electron-cloud, nebula and volume kernels, shared by every backend so that
 // each rejects the same inputs with the same message (field, value, allowed range).
-#include "engine/atom/volume_math.h"
-#include "engine/backend.h"
+#include "engine/kernels/volume_math.h"
+#include "engine/core/backend.h"
 
 namespace masav {
 

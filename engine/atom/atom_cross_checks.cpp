@@ -14,7 +14,7 @@
 #include "engine/atom/scatter_cache.h"
 #include "engine/atom/transfer_function.h"
 #include "engine/cpu/cpu_backend.h"
-#include "engine/hash_grid.h"
+#include "engine/grid/hash_grid.h"
 #include "engine/verify/check_registry.h"
 
 namespace masav::verify {

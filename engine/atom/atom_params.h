@@ -5,8 +5,8 @@
 // Bohr radii (a0) unless a name says otherwise.
 #include <cstdint>
 
-#include "engine/kernel_params.h"
-#include "engine/types.h"
+#include "engine/core/kernel_params.h"
+#include "engine/core/types.h"
 
 namespace masav {
 

@@ -7,8 +7,8 @@
 #include <cmath>
 
 #include "engine/atom/atom_checks.h"
-#include "engine/error.h"
-#include "engine/hash_grid.h"
+#include "engine/core/error.h"
+#include "engine/grid/hash_grid.h"
 
 namespace masav::atom {
 

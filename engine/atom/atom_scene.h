@@ -10,7 +10,7 @@
 
 #include "engine/atom/orbital_tables.h"
 #include "engine/atom/scatter_cache.h"
-#include "engine/backend.h"
+#include "engine/core/backend.h"
 
 namespace masav::atom {
 

@@ -9,7 +9,7 @@
 #include "engine/atom/atom_scene.h"
 #include "engine/atom/atom_schema.h"
 #include "engine/atom/transfer_function.h"
-#include "engine/error.h"
+#include "engine/core/error.h"
 #include "engine/scene/camera_pose.h"
 
 namespace masav::atom {

@@ -5,7 +5,7 @@
 #include "engine/atom/atom_scene_graph.h"
 #include "engine/atom/atom_schema.h"
 #include "engine/atom/orbital_tables.h"
-#include "engine/hash_grid.h"
+#include "engine/grid/hash_grid.h"
 
 namespace masav::atom {
 namespace {

@@ -3,7 +3,7 @@
 #include <fmt/format.h>
 
 #include "engine/atom/orbital.h"
-#include "engine/error.h"
+#include "engine/core/error.h"
 
 namespace masav::atom {
 

@@ -8,7 +8,7 @@
 //   N_nl^2 = (2/n)^3 (n-l-1)! / (2n (n+l)!)
 //   |Y_lm|^2 = Pbar_l^|m|(cos theta)^2 (complex, e^{i m phi}), times 2 cos^2(m phi) (real, m > 0)
 //   or 2 sin^2(|m| phi) (real, m < 0), with Pbar normalised so that 2 pi int Pbar^2 dx = 1.
-#include "engine/physics/hd.h"
+#include "engine/core/hd.h"
 
 namespace masav::hydrogen {
 

@@ -6,7 +6,7 @@
 #include <cmath>
 
 #include "engine/atom/hydrogen_math.h"
-#include "engine/error.h"
+#include "engine/core/error.h"
 
 namespace masav::atom {
 namespace {

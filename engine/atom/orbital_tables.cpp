@@ -8,7 +8,7 @@
 
 #include "engine/atom/hydrogen_math.h"
 #include "engine/atom/quadrature.h"
-#include "engine/error.h"
+#include "engine/core/error.h"
 
 namespace masav::atom {
 namespace {

@@ -8,7 +8,7 @@
 #include <fstream>
 #include <iterator>
 
-#include "engine/error.h"
+#include "engine/core/error.h"
 #include "engine/io/csv_writer.h"
 #include "engine/util/json_writer.h"
 

@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "engine/types.h"
+#include "engine/core/types.h"
 
 namespace masav::atom {
 

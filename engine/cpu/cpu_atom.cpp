@@ -3,8 +3,8 @@
 #include <cstring>
 
 #include "engine/atom/atom_checks.h"
-#include "engine/atom/nebula_math.h"
-#include "engine/atom/orbital_math.h"
+#include "engine/kernels/nebula_math.h"
+#include "engine/kernels/orbital_math.h"
 #include "engine/cpu/cpu_backend.h"
 
 namespace masav::cpu {

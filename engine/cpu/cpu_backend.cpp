@@ -8,9 +8,9 @@
 #include <fstream>
 #include <string>
 
-#include "engine/error.h"
-#include "engine/kernel_checks.h"
-#include "engine/physics/philox.h"
+#include "engine/core/error.h"
+#include "engine/core/kernel_checks.h"
+#include "engine/kernels/philox.h"
 
 namespace masav::cpu {
 namespace {

@@ -6,7 +6,7 @@
 #include <memory>
 #include <vector>
 
-#include "engine/backend.h"
+#include "engine/core/backend.h"
 #include "engine/cpu/cpu_sph_lists.h"
 #include "engine/cpu/thread_pool.h"
 

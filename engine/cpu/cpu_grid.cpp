@@ -7,9 +7,9 @@
 #include <cstring>
 
 #include "engine/cpu/cpu_backend.h"
-#include "engine/error.h"
-#include "engine/kernel_checks.h"
-#include "engine/physics/grid_cell.h"
+#include "engine/core/error.h"
+#include "engine/core/kernel_checks.h"
+#include "engine/kernels/grid_cell.h"
 
 namespace masav::cpu {
 namespace {

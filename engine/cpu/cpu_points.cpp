@@ -1,8 +1,8 @@
-// drift_points on the CPU reference, in double precision (engine/physics/drift.h).
+// drift_points on the CPU reference, in double precision (engine/kernels/drift.h).
 #include <cmath>
 
 #include "engine/cpu/cpu_backend.h"
-#include "engine/physics/drift.h"
+#include "engine/kernels/drift.h"
 #include "engine/points/drift_checks.h"
 
 namespace masav::cpu {

@@ -3,7 +3,7 @@
 #include <vector>
 
 #include "engine/atom/atom_checks.h"
-#include "engine/atom/scatter_math.h"
+#include "engine/kernels/scatter_math.h"
 #include "engine/cpu/cpu_backend.h"
 
 namespace masav::cpu {

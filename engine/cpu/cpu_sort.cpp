@@ -6,7 +6,7 @@
 #include <vector>
 
 #include "engine/cpu/cpu_backend.h"
-#include "engine/physics/radix.h"
+#include "engine/kernels/radix.h"
 
 namespace masav::cpu {
 

@@ -1,5 +1,5 @@
 // SPH kernels of the CPU reference: the shared per-particle bodies of
-// engine/physics/sph_kernels.h in double precision, one contiguous chunk of sorted particles per
+// engine/kernels/sph_kernels.h in double precision, one contiguous chunk of sorted particles per
 // task. Statistics are gathered per chunk and merged once, in chunk order. sph_density finds the
 // neighbour lists (cpu_sph_lists.h) that sph_forces then reuses; the candidate test runs on
 // structure-of-arrays positions (cpu_sph_rows.h).
@@ -10,7 +10,7 @@
 
 #include "engine/cpu/cpu_backend.h"
 #include "engine/cpu/cpu_sph_rows.h"
-#include "engine/physics/sph_kernels.h"
+#include "engine/kernels/sph_kernels.h"
 #include "engine/sph/sph_checks.h"
 #include "engine/sph/sph_coefficients.h"
 

@@ -3,9 +3,9 @@
 #include <vector>
 
 #include "engine/atom/atom_checks.h"
-#include "engine/atom/volume_math.h"
+#include "engine/kernels/volume_math.h"
 #include "engine/cpu/cpu_backend.h"
-#include "engine/physics/grid_cell.h"
+#include "engine/kernels/grid_cell.h"
 
 namespace masav::cpu {
 

@@ -5,7 +5,7 @@
 #include <string>
 #include <utility>
 
-#include "engine/error.h"
+#include "engine/core/error.h"
 
 namespace masav::cpu {
 

@@ -5,7 +5,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "engine/error.h"
+#include "engine/core/error.h"
 #include "engine/util/json_writer.h"
 
 #define STB_IMAGE_WRITE_IMPLEMENTATION

@@ -4,7 +4,7 @@
 
 #include <cstring>
 
-#include "engine/error.h"
+#include "engine/core/error.h"
 #include "engine/util/json_writer.h"
 
 namespace masav {

@@ -1,6 +1,6 @@
 #pragma once
 // Validation of drift_points' inputs, shared by every backend.
-#include "engine/backend.h"
+#include "engine/core/backend.h"
 
 namespace masav {
 

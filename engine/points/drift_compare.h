@@ -6,7 +6,7 @@
 #include <span>
 
 #include "engine/points/drift_params.h"
-#include "engine/types.h"
+#include "engine/core/types.h"
 
 namespace masav {
 

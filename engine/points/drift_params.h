@@ -4,7 +4,7 @@
 // between frames), so any frame can be rendered, paused or replayed without stepping.
 #include <cstdint>
 
-#include "engine/types.h"
+#include "engine/core/types.h"
 
 namespace masav {
 

@@ -4,8 +4,8 @@
 
 #include <cmath>
 
-#include "engine/error.h"
-#include "engine/hash_grid.h"
+#include "engine/core/error.h"
+#include "engine/grid/hash_grid.h"
 
 namespace masav::points {
 namespace {

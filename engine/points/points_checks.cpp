@@ -2,7 +2,7 @@
 // (drift_compare.h), compared across the periodic boundary.
 #include <fmt/format.h>
 
-#include "engine/physics/philox.h"
+#include "engine/kernels/philox.h"
 #include "engine/points/drift_compare.h"
 #include "engine/verify/check_registry.h"
 

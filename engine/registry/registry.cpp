@@ -3,7 +3,7 @@
 #include <fmt/format.h>
 
 #include "engine/cpu/cpu_backend.h"
-#include "engine/error.h"
+#include "engine/core/error.h"
 #if MASAV_HAVE_VULKAN
 #include "compute/vk_factory.h"
 #endif

@@ -6,8 +6,8 @@
 #include <string_view>
 #include <vector>
 
-#include "engine/backend.h"
-#include "engine/backend_status.h"
+#include "engine/core/backend.h"
+#include "engine/core/backend_status.h"
 
 namespace masav {
 

@@ -5,7 +5,7 @@
 #include <charconv>
 #include <cmath>
 
-#include "engine/error.h"
+#include "engine/core/error.h"
 
 namespace masav::scene {
 namespace {

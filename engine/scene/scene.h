@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "engine/backend.h"
+#include "engine/core/backend.h"
 #include "engine/scene/param_schema.h"
 #include "engine/scene/scene_view.h"
 #include "engine/scene/stage_graph.h"

@@ -6,8 +6,8 @@
 #include <optional>
 #include <string>
 
-#include "engine/buffer.h"
-#include "engine/types.h"
+#include "engine/core/buffer.h"
+#include "engine/core/types.h"
 
 namespace masav::scene {
 

@@ -2,8 +2,8 @@
 
 #include <fmt/format.h>
 
-#include "engine/backend.h"
-#include "engine/error.h"
+#include "engine/core/backend.h"
+#include "engine/core/error.h"
 
 namespace masav::scene {
 

@@ -5,7 +5,7 @@
 #include <span>
 #include <string_view>
 
-#include "engine/hash_grid.h"
+#include "engine/grid/hash_grid.h"
 #include "engine/sph/sph_kernel_params.h"
 
 namespace masav {

@@ -4,8 +4,8 @@
 
 #include <cmath>
 
-#include "engine/error.h"
-#include "engine/kernel_checks.h"
+#include "engine/core/error.h"
+#include "engine/core/kernel_checks.h"
 
 namespace masav {
 namespace {

@@ -1,7 +1,7 @@
 #pragma once
 // Validation of the SPH kernels' parameters and buffers, shared by every backend so that each
 // rejects the same input with the same message (field, value, allowed range).
-#include "engine/backend.h"
+#include "engine/core/backend.h"
 
 namespace masav {
 

@@ -1,7 +1,7 @@
 #pragma once
-// The SPH kernels' constants (engine/physics/sph_kernels.h), computed once on the host in double
+// The SPH kernels' constants (engine/kernels/sph_kernels.h), computed once on the host in double
 // from SphStepParams; GPU backends round them to fp32.
-#include "engine/physics/sph_kernels.h"
+#include "engine/kernels/sph_kernels.h"
 #include "engine/sph/sph_kernel_params.h"
 
 namespace masav {

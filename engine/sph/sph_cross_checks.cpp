@@ -10,9 +10,9 @@
 #include <algorithm>
 #include <cmath>
 
-#include "engine/hash_grid.h"
+#include "engine/grid/hash_grid.h"
 #include "engine/sph/sph_case_buffers.h"
-#include "engine/physics/philox.h"
+#include "engine/kernels/philox.h"
 #include "engine/sph/sph_particles.h"
 #include "engine/util/error_metrics.h"
 #include "engine/verify/check_registry.h"

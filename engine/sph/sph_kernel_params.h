@@ -1,11 +1,11 @@
 #pragma once
-// Parameters and buffers of the SPH kernels declared in engine/backend.h (sph_density,
+// Parameters and buffers of the SPH kernels declared in engine/core/backend.h (sph_density,
 // sph_forces, sph_integrate). Plain data in double precision; the GPU backends round to fp32.
 // The scene-level parameters (presets, integrators, time stepping) are in sph_params.h.
 #include <cstdint>
 
-#include "engine/buffer.h"
-#include "engine/kernel_params.h"
+#include "engine/core/buffer.h"
+#include "engine/core/kernel_params.h"
 
 namespace masav {
 
@@ -35,7 +35,7 @@ struct SphStepParams {
   double viscosity = 0.0;          // nu (m^2/s)
   Vec3d gravity{0.0, -9.81, 0.0};  // m/s^2
   // Box walls as a continuum of fluid beyond them (wcsph only): adds their density and pressure
-  // force to particles within h of a wall (see engine/physics/sph_kernels.h, wall_density).
+  // force to particles within h of a wall (see engine/kernels/sph_kernels.h, wall_density).
   bool walls = false;
   Vec3d box_min, box_max{1, 1, 1};
   // m: the wall continuum starts this far behind each wall, so that the first lattice layer
@@ -83,7 +83,7 @@ struct SphForcesIO {
   Buffer<uint32_t>* stats = nullptr;
 };
 
-// Integrator stages; numbers match engine/physics/sph_kernels.h (kOp*).
+// Integrator stages; numbers match engine/kernels/sph_kernels.h (kOp*).
 enum class SphStageOp : uint32_t {
   euler = 0,             // x1 = x0 + dt v0, v1 = v0 + dt a        (thesis Fig. 4.2)
   symplectic_euler = 1,  // v1 = v0 + dt a, x1 = x0 + dt v1        (Harada's update)

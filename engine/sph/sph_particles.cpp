@@ -5,9 +5,9 @@
 #include <cmath>
 #include <numbers>
 
-#include "engine/error.h"
-#include "engine/physics/philox.h"
-#include "engine/physics/sph_kernels.h"
+#include "engine/core/error.h"
+#include "engine/kernels/philox.h"
+#include "engine/kernels/sph_kernels.h"
 
 namespace masav {
 

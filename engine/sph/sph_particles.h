@@ -5,7 +5,7 @@
 #include <vector>
 
 #include "engine/sph/sph_params.h"
-#include "engine/types.h"
+#include "engine/core/types.h"
 
 namespace masav {
 

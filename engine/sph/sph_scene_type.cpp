@@ -6,8 +6,8 @@
 #include <cmath>
 #include <memory>
 
-#include "engine/error.h"
-#include "engine/hash_grid.h"
+#include "engine/core/error.h"
+#include "engine/grid/hash_grid.h"
 #include "engine/sph/sph_scene_schema.h"
 #include "engine/sph/sph_simulation.h"
 

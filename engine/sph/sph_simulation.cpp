@@ -7,8 +7,8 @@
 #include <cmath>
 #include <limits>
 
-#include "engine/error.h"
-#include "engine/kernel_checks.h"
+#include "engine/core/error.h"
+#include "engine/core/kernel_checks.h"
 #include "engine/sph/sph_coefficients.h"
 
 namespace masav {

@@ -32,8 +32,8 @@
 #include <string>
 #include <vector>
 
-#include "engine/backend.h"
-#include "engine/hash_grid.h"
+#include "engine/core/backend.h"
+#include "engine/grid/hash_grid.h"
 #include "engine/sph/sph_params.h"
 #include "engine/sph/sph_particles.h"
 

@@ -6,7 +6,7 @@
 #include <cmath>
 #include <vector>
 
-#include "engine/error.h"
+#include "engine/core/error.h"
 
 namespace masav {
 

@@ -7,7 +7,7 @@
 #include <cstdlib>
 
 #include "engine/cpu/cpu_backend.h"
-#include "engine/error.h"
+#include "engine/core/error.h"
 #include "engine/registry/registry.h"
 #include "engine/util/json_writer.h"
 

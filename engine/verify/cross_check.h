@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "engine/backend.h"
+#include "engine/core/backend.h"
 #include "engine/scene/scene.h"
 #include "engine/verify/kernel_check.h"
 

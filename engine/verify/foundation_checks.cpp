@@ -5,7 +5,7 @@
 #include <numeric>
 #include <random>
 
-#include "engine/hash_grid.h"
+#include "engine/grid/hash_grid.h"
 #include "engine/verify/check_registry.h"
 
 namespace masav::verify {

@@ -4,7 +4,7 @@
 
 #include <random>
 
-#include "engine/error.h"
+#include "engine/core/error.h"
 #include "engine/util/chi_square.h"
 #include "engine/util/error_metrics.h"
 

@@ -13,7 +13,7 @@
 #include <string>
 #include <vector>
 
-#include "engine/backend.h"
+#include "engine/core/backend.h"
 #include "engine/scene/scene.h"
 
 namespace masav::verify {

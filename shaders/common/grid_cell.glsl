@@ -1,5 +1,5 @@
 // Uniform-grid cell math and the 27-cell neighbour walk: the GLSL twin of
-// engine/physics/grid_cell.h. `precise` keeps one rounding per operation (no FMA), so a point
+// engine/kernels/grid_cell.h. `precise` keeps one rounding per operation (no FMA), so a point
 // lands in the same cell, and a distance compares the same, on every backend.
 
 uint grid_axis_cell(float p, float origin, float inv_cell, uint dim) {

@@ -13,7 +13,7 @@ layout(constant_id = 2) const bool COUNT_LOOP_TICKS = false;
 
 layout(std430, set = 0, binding = 0) buffer Diagnostics {
   uint max_loop_ticks;
-  uint flags;   // DiagFlag bits (engine/kernel_checks.h)
+  uint flags;   // DiagFlag bits (engine/core/kernel_checks.h)
   uint detail;  // smallest offending index
   uint reserved;
 } diag;

@@ -1,4 +1,4 @@
-// Nebula lighting: the GLSL twin of engine/atom/nebula_math.h (see there for the two
+// Nebula lighting: the GLSL twin of engine/kernels/nebula_math.h (see there for the two
 // discretisations of the optical-depth path integral and their errors). Needs slab.glsl and
 // grid_cell.glsl; the including kernel declares `density[]`, and with NEBULA_TABLE defined
 // `table_data[]` for nebula_phase().

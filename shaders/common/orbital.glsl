@@ -1,4 +1,4 @@
-// orbital_sample's per-particle body: the GLSL twin of engine/atom/orbital_math.h. Reads the
+// orbital_sample's per-particle body: the GLSL twin of engine/kernels/orbital_math.h. Reads the
 // tables from a buffer `tables[]` that the including kernel declares.
 const float ORBITAL_PI = 3.14159265358979323846;
 

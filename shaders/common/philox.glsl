@@ -1,4 +1,4 @@
-// Philox4x32-10, the GLSL twin of engine/physics/philox.h (bit-identical by construction and by
+// Philox4x32-10, the GLSL twin of engine/kernels/philox.h (bit-identical by construction and by
 // test against the Random123 known answers).
 const uint PHILOX_M0 = 0xD2511F53u, PHILOX_M1 = 0xCD9E8D57u;
 const uint PHILOX_W0 = 0x9E3779B9u, PHILOX_W1 = 0xBB67AE85u;

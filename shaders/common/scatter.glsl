@@ -1,4 +1,4 @@
-// One photon of scatter_table: the GLSL twin of engine/atom/scatter_math.h (see there for the
+// One photon of scatter_table: the GLSL twin of engine/kernels/scatter_math.h (see there for the
 // model, the corrected direction update and the fixed-point tallies). Needs philox.glsl.
 const float SCATTER_PI = 3.14159265358979323846;
 const uint SCATTER_CAPPED = 0u, SCATTER_THRESHOLD = 1u, SCATTER_UNSCATTERED = 2u;

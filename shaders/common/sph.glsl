@@ -1,4 +1,4 @@
-// SPH math: the GLSL twin of engine/physics/sph_kernels.h (smoothing kernels, Tait equation of
+// SPH math: the GLSL twin of engine/kernels/sph_kernels.h (smoothing kernels, Tait equation of
 // state, pair terms of both pressure models, the 27-cell walk by rows, walls, integrator stages).
 // Formulas and conventions are documented there; keep the two in step.
 
@@ -48,7 +48,7 @@ ivec3 sph_cell_coords(uint id, uvec3 dims) {
   return ivec3(int(id / yz), int((id % yz) / dims.z), int(id % dims.z));
 }
 
-// Semi-analytic box walls (sph::wall_density in engine/physics/sph_kernels.h).
+// Semi-analytic box walls (sph::wall_density in engine/kernels/sph_kernels.h).
 float sph_wall_density_fraction(float q) {
   const float q2 = q * q;
   const float f =

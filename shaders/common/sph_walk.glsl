@@ -1,5 +1,5 @@
 // The 27-cell neighbour walk of the SPH kernels, by rows: the GLSL twin of sph::row_range
-// (engine/physics/sph_kernels.h). The including kernel declares cell_start[] and cell_end[].
+// (engine/kernels/sph_kernels.h). The including kernel declares cell_start[] and cell_end[].
 // Sorted range of the row (x, y, z-1 .. z+1): 3 consecutive cell ids, contiguous points.
 uvec2 sph_row_range(int x, int y, int z, uvec3 dims) {
   const int z0 = max(z - 1, 0);

@@ -1,4 +1,4 @@
-// Ray casting pieces: the GLSL twin of engine/atom/volume_math.h (trilinear sampling,
+// Ray casting pieces: the GLSL twin of engine/kernels/volume_math.h (trilinear sampling,
 // transfer function; the slab test is in slab.glsl). The including kernel declares
 // `volume_data[]` and `tf[]`.
 float voxel(uvec3 i, uvec3 dims) { return volume_data[(i.z * dims.y + i.y) * dims.x + i.x]; }

@@ -8,7 +8,7 @@
 #include <string>
 #include <utility>
 
-#include "engine/types.h"
+#include "engine/core/types.h"
 
 namespace masav {
 

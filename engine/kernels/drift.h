@@ -4,7 +4,7 @@
 // shaders/common/drift.glsl is the GLSL twin.
 #include <cmath>
 
-#include "engine/physics/hd.h"
+#include "engine/core/hd.h"
 
 namespace masav::drift {
 

@@ -12,7 +12,7 @@
 #include <cstdint>
 
 #include "engine/atom/atom_params.h"
-#include "engine/atom/hd_vec.h"
+#include "engine/kernels/hd_vec.h"
 
 namespace masav::volume {
 

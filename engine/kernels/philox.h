@@ -3,7 +3,7 @@
 // only 32-bit multiplies, xors and adds. The GLSL twin is shaders/common/philox.glsl.
 #include <cstdint>
 
-#include "engine/physics/hd.h"
+#include "engine/core/hd.h"
 
 namespace masav::philox {
 

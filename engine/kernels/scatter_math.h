@@ -8,8 +8,8 @@
 #include <cstdint>
 
 #include "engine/atom/atom_params.h"
-#include "engine/atom/hd_vec.h"
-#include "engine/physics/philox.h"
+#include "engine/kernels/hd_vec.h"
+#include "engine/kernels/philox.h"
 
 namespace masav::scatter {
 

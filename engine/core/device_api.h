@@ -6,8 +6,8 @@
 #include <string_view>
 #include <vector>
 
-#include "engine/buffer.h"
-#include "engine/capabilities.h"
+#include "engine/core/buffer.h"
+#include "engine/core/capabilities.h"
 
 namespace masav {
 

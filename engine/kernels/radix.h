@@ -2,7 +2,7 @@
 // Digit arithmetic of the LSD radix sort, shared by every backend's sort.
 #include <cstdint>
 
-#include "engine/physics/hd.h"
+#include "engine/core/hd.h"
 
 namespace masav::radix {
 

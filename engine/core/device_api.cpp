@@ -1,11 +1,11 @@
-#include "engine/device_api.h"
+#include "engine/core/device_api.h"
 
 #include <fmt/format.h>
 
 #include <cstring>
 
-#include "engine/error.h"
-#include "engine/kernel_checks.h"
+#include "engine/core/error.h"
+#include "engine/core/kernel_checks.h"
 
 namespace masav {
 

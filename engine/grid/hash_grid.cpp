@@ -1,7 +1,7 @@
-#include "engine/hash_grid.h"
+#include "engine/grid/hash_grid.h"
 
-#include "engine/error.h"
-#include "engine/kernel_checks.h"
+#include "engine/core/error.h"
+#include "engine/core/kernel_checks.h"
 
 namespace masav {
 

@@ -2,8 +2,8 @@
 // The kernel set. Every backend (Vulkan, CUDA, CPU reference) implements each method; a kernel
 // missing from one backend is a build error. Buffers, ordering and timestamps: device_api.h.
 #include "engine/atom/atom_params.h"
-#include "engine/device_api.h"
-#include "engine/kernel_params.h"
+#include "engine/core/device_api.h"
+#include "engine/core/kernel_params.h"
 #include "engine/points/drift_params.h"
 #include "engine/sph/sph_kernel_params.h"
 

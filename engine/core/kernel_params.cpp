@@ -1,4 +1,4 @@
-#include "engine/kernel_params.h"
+#include "engine/core/kernel_params.h"
 
 #include <bit>
 

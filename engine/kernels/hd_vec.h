@@ -4,7 +4,7 @@
 // these, never std:: functions, so one body runs on both.
 #include <math.h>
 
-#include "engine/physics/hd.h"
+#include "engine/core/hd.h"
 
 namespace masav::hd {
 

@@ -13,7 +13,7 @@
 #include <cmath>
 #include <cstdint>
 
-#include "engine/physics/hd.h"
+#include "engine/core/hd.h"
 
 namespace masav::sph {
 

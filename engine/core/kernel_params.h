@@ -3,7 +3,7 @@
 // fields, and the shared validators (kernel_checks.h) reject bad values before any dispatch.
 #include <cstdint>
 
-#include "engine/types.h"
+#include "engine/core/types.h"
 
 namespace masav {
 

@@ -1,4 +1,4 @@
-#include "engine/buffer.h"
+#include "engine/core/buffer.h"
 
 namespace masav {
 

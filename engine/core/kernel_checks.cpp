@@ -1,10 +1,10 @@
-#include "engine/kernel_checks.h"
+#include "engine/core/kernel_checks.h"
 
 #include <fmt/format.h>
 
 #include <cmath>
 
-#include "engine/error.h"
+#include "engine/core/error.h"
 
 namespace masav {
 

@@ -3,7 +3,7 @@
 // backend rejects the same inputs with the same message.
 #include <string_view>
 
-#include "engine/backend.h"
+#include "engine/core/backend.h"
 
 namespace masav {
 

@@ -15,9 +15,9 @@
 #include <cstdint>
 
 #include "engine/atom/atom_params.h"
-#include "engine/atom/hd_vec.h"
-#include "engine/atom/volume_math.h"
-#include "engine/physics/grid_cell.h"
+#include "engine/kernels/hd_vec.h"
+#include "engine/kernels/volume_math.h"
+#include "engine/kernels/grid_cell.h"
 
 namespace masav::nebula {
 
