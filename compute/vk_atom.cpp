@@ -44,9 +44,8 @@ NebulaPush nebula_push(const NebulaLightParams& p) {
 
 }  // namespace
 
-void VulkanBackend::orbital_sample(const OrbitalSampleParams& p, const Buffer<uint32_t>& tables,
+void VulkanBackend::do_orbital_sample(const OrbitalSampleParams& p, uint64_t, const Buffer<uint32_t>& tables,
                                    Buffer<Real4>& positions) {
-  check_orbital_sample(*this, p, tables, positions);
   const OrbitalPush push{p.count,
                          uint32_t(p.placement),
                          {uint32_t(p.seed), uint32_t(p.seed >> 32)},
@@ -61,9 +60,8 @@ void VulkanBackend::orbital_sample(const OrbitalSampleParams& p, const Buffer<ui
       groups_for(p.count, options_.workgroup_size));
 }
 
-void VulkanBackend::cloud_density(const CloudDensityParams& p, const Buffer<uint32_t>& cell_start,
+void VulkanBackend::do_cloud_density(const CloudDensityParams& p, uint64_t, const Buffer<uint32_t>& cell_start,
                                   const Buffer<uint32_t>& cell_end, Buffer<Real>& density) {
-  check_cloud_density(*this, p, cell_start, cell_end, density);
   const uint64_t cells = grid_cell_count(p.grid);
   const double cell = p.grid.cell_size;
   const DensityPush push{uint32_t(cells), float(1.0 / (double(p.particles) * cell * cell * cell))};
@@ -73,22 +71,19 @@ void VulkanBackend::cloud_density(const CloudDensityParams& p, const Buffer<uint
       &push, groups_for(cells, options_.workgroup_size));
 }
 
-void VulkanBackend::nebula_illuminate(const NebulaLightParams& p, const Buffer<Real4>& positions,
+void VulkanBackend::do_nebula_illuminate(const NebulaLightParams& p, uint64_t, const Buffer<Real4>& positions,
                                       const Buffer<Real>& density, Buffer<Real>& illumination) {
   const char* k = "nebula_illuminate";
-  check_nebula(*this, p, positions, density, illumination, k);
   const NebulaPush push = nebula_push(p);
   run({k, 3, sizeof push, {}},
       {alloc(positions.impl(), k), alloc(density.impl(), k), alloc(illumination.impl(), k)}, &push,
       groups_for(p.grid.n, options_.workgroup_size));
 }
 
-void VulkanBackend::nebula_view(const NebulaLightParams& p, const Buffer<Real4>& positions,
+void VulkanBackend::do_nebula_view(const NebulaLightParams& p, uint64_t, const Buffer<Real4>& positions,
                                 const Buffer<Real>& density, const Buffer<Real>& table,
                                 const Buffer<Real>& illumination, Buffer<Real>& light) {
   const char* k = "nebula_view";
-  check_nebula(*this, p, positions, density, light, k);
-  check_nebula_view(*this, p, table, illumination);
   const NebulaPush push = nebula_push(p);
   run({k, 5, sizeof push, {}},
       {alloc(positions.impl(), k), alloc(density.impl(), k), alloc(table.impl(), k),

@@ -177,11 +177,11 @@ void VulkanBackend::philox(const PhiloxParams& p, BufferImpl& out, bool uniform)
   run({"philox_fill", 1, sizeof push, {uniform ? 1u : 0u}}, {a}, &push, (blocks + wg - 1) / wg);
 }
 
-void VulkanBackend::philox_u32(const PhiloxParams& p, Buffer<uint32_t>& out) {
+void VulkanBackend::do_philox_u32(const PhiloxParams& p, uint64_t, Buffer<uint32_t>& out) {
   philox(p, out.impl(), false);
 }
 
-void VulkanBackend::philox_uniform(const PhiloxParams& p, Buffer<float>& out) {
+void VulkanBackend::do_philox_uniform(const PhiloxParams& p, uint64_t, Buffer<float>& out) {
   philox(p, out.impl(), true);
 }
 

@@ -31,9 +31,8 @@ uint64_t groups_for(uint64_t items, uint32_t wg) { return (items + wg - 1) / wg;
 
 }  // namespace
 
-void VulkanBackend::grid_assign_cells(const GridParams& g, const Buffer<Real4>& positions,
+void VulkanBackend::do_grid_assign_cells(const GridParams& g, uint64_t, const Buffer<Real4>& positions,
                                       Buffer<uint32_t>& cells, Buffer<uint32_t>& indices) {
-  check_assign_cells(*this, g, positions, cells, indices);
   const GridPush push = grid_push(g);
   run({"grid_assign_cells", 3, sizeof push, {}},
       {alloc(positions.impl(), "grid_assign_cells"), alloc(cells.impl(), "grid_assign_cells"),
@@ -41,9 +40,8 @@ void VulkanBackend::grid_assign_cells(const GridParams& g, const Buffer<Real4>& 
       &push, groups_for(g.n, options_.workgroup_size));
 }
 
-void VulkanBackend::grid_cell_ranges(const GridParams& g, const Buffer<uint32_t>& sorted_cells,
+void VulkanBackend::do_grid_cell_ranges(const GridParams& g, uint64_t, const Buffer<uint32_t>& sorted_cells,
                                      Buffer<uint32_t>& cell_start, Buffer<uint32_t>& cell_end) {
-  check_cell_ranges(*this, g, sorted_cells, cell_start, cell_end);
   const auto& start = alloc(cell_start.impl(), "grid_cell_ranges");
   const auto& end = alloc(cell_end.impl(), "grid_cell_ranges");
   stream_.fill(start, 0);
@@ -54,28 +52,24 @@ void VulkanBackend::grid_cell_ranges(const GridParams& g, const Buffer<uint32_t>
       groups_for(g.n, options_.workgroup_size));
 }
 
-void VulkanBackend::gather(const Buffer<uint32_t>& order, const BufferImpl& src, BufferImpl& dst) {
-  check_gather(*this, order, src, dst);
+void VulkanBackend::do_gather(const GatherParams& p, uint64_t, const Buffer<uint32_t>& order,
+                              const BufferImpl& src, BufferImpl& dst) {
   const size_t eb = elem_bytes(src.kind(), real_bytes());
-  if (src.count() > UINT32_MAX || order.size() > UINT32_MAX)
-    throw_invalid("gather", "size", std::to_string(std::max<size_t>(src.count(), order.size())),
-                  "below 2^32");
-  const GatherPush push{uint32_t(order.size()), uint32_t(src.count())};
+  const GatherPush push{p.n, uint32_t(src.count())};
   const char* shader = eb == 16 ? "gather_u32x4" : "gather_u32";
   if (eb != 4 && eb != 16)
     throw Error("vulkan", "gather", fmt::format("no gather for {}-byte elements", eb),
                 "internal error: report it");
   run({shader, 3, sizeof push, {}},
       {alloc(order.impl(), "gather"), alloc(src, "gather"), alloc(dst, "gather")}, &push,
-      groups_for(order.size(), options_.workgroup_size));
+      groups_for(p.n, options_.workgroup_size));
 }
 
-void VulkanBackend::grid_count_neighbors(const NeighborParams& p,
+void VulkanBackend::do_grid_count_neighbors(const NeighborParams& p, uint64_t,
                                          const Buffer<Real4>& sorted_positions,
                                          const Buffer<uint32_t>& cell_start,
                                          const Buffer<uint32_t>& cell_end,
                                          Buffer<uint32_t>& counts) {
-  check_neighbors(*this, p, sorted_positions, cell_start, cell_end, counts);
   const NeighborPush push{grid_push(p.grid), p.radius2, p.max_candidates};
   pending_neighbor_limit_ = p.max_candidates;
   run({"grid_count_neighbors", 4, sizeof push, {}},

@@ -1,6 +1,5 @@
 // drift_points on Vulkan (shaders/drift_points.comp).
 #include "compute/vk_backend.h"
-#include "engine/points/drift_checks.h"
 
 namespace masav::vk {
 namespace {
@@ -13,9 +12,8 @@ struct DriftPush {
 
 }  // namespace
 
-void VulkanBackend::drift_points(const DriftParams& p, const Buffer<float>& start,
+void VulkanBackend::do_drift_points(const DriftParams& p, uint64_t, const Buffer<float>& start,
                                  const Buffer<float>& direction, Buffer<Real4>& positions) {
-  check_drift(*this, p, start, direction, positions);
   const DriftPush push{{p.box_lo.x, p.box_lo.y, p.box_lo.z, p.speed},
                        {p.box_extent.x, p.box_extent.y, p.box_extent.z, p.time_s},
                        p.n};

@@ -22,9 +22,8 @@ struct FinalizePush {
 
 }  // namespace
 
-void VulkanBackend::scatter_table(const ScatterTableParams& p, Buffer<Real>& table,
+void VulkanBackend::do_scatter_table(const ScatterTableParams& p, uint64_t, Buffer<Real>& table,
                                   Buffer<uint32_t>& hits) {
-  check_scatter_table(*this, p, table, hits);
   const uint32_t entries_per_row = p.bins + kScatterExtras;
   const uint64_t entries = uint64_t(p.rows) * entries_per_row;
   auto tallies = scratch("scatter_table tallies", entries * 8);

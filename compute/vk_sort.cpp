@@ -39,9 +39,8 @@ void VulkanBackend::exclusive_scan(const std::shared_ptr<Allocation>& data, uint
   }
 }
 
-void VulkanBackend::radix_sort(const RadixSortParams& p, Buffer<uint32_t>& keys,
+void VulkanBackend::do_radix_sort(const RadixSortParams& p, uint64_t, Buffer<uint32_t>& keys,
                                Buffer<uint32_t>* values) {
-  check_sort(*this, p, keys, values);
   if (p.n <= 1) return;
   // Tile geometry of the scatter variant; the histogram must use the same tiles.
   const bool by_subgroup = scatter_ == SortScatter::subgroup;

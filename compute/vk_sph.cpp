@@ -5,7 +5,6 @@
 
 #include "compute/vk_backend.h"
 #include "engine/core/error.h"
-#include "engine/sph/sph_checks.h"
 #include "engine/sph/sph_coefficients.h"
 
 namespace masav::vk {
@@ -64,8 +63,11 @@ uint64_t groups_for(uint64_t items, uint32_t wg) {
 
 }  // namespace
 
-void VulkanBackend::sph_density(const SphStepParams& p, const SphDensityIO& io) {
-  check_sph_density(*this, p, io);
+void VulkanBackend::do_sph_density(const SphStepParams& p, uint64_t, const Buffer<Real4>& positions,
+    const Buffer<uint32_t>& cells, const Buffer<uint32_t>& cell_start,
+    const Buffer<uint32_t>& cell_end, Buffer<Real>& density, Buffer<Real>& pressure,
+    Buffer<uint32_t>& stats) {
+  const SphDensityIO io{&positions, {&cells, &cell_start, &cell_end}, &density, &pressure, &stats};
   const char* k = "sph_density";
   const SphStepPush push = step_push(p);
   run({"sph_density", 7, sizeof push, {}},
@@ -75,8 +77,12 @@ void VulkanBackend::sph_density(const SphStepParams& p, const SphDensityIO& io) 
       &push, groups_for(p.n, options_.workgroup_size));
 }
 
-void VulkanBackend::sph_forces(const SphStepParams& p, const SphForcesIO& io) {
-  check_sph_forces(*this, p, io);
+void VulkanBackend::do_sph_forces(const SphStepParams& p, uint64_t, const Buffer<Real4>& positions,
+    const Buffer<Real4>& velocities, const Buffer<Real>& density, const Buffer<Real>& pressure,
+    const Buffer<uint32_t>& cells, const Buffer<uint32_t>& cell_start,
+    const Buffer<uint32_t>& cell_end, Buffer<Real4>& accel, Buffer<uint32_t>& stats) {
+  const SphForcesIO io{&positions, &velocities, &density, &pressure,
+                       {&cells, &cell_start, &cell_end}, &accel, &stats};
   const char* k = "sph_forces";
   const SphStepPush push = step_push(p);
   run({"sph_forces", 9, sizeof push, {}},
@@ -87,8 +93,11 @@ void VulkanBackend::sph_forces(const SphStepParams& p, const SphForcesIO& io) {
       &push, groups_for(p.n, options_.workgroup_size));
 }
 
-void VulkanBackend::sph_integrate(const SphIntegrateParams& p, const SphIntegrateIO& io) {
-  check_sph_integrate(*this, p, io);
+void VulkanBackend::do_sph_integrate(const SphIntegrateParams& p, uint64_t, const Buffer<Real4>* x0,
+    const Buffer<Real4>& v0, const Buffer<Real4>* vk, const Buffer<Real4>& accel,
+    Buffer<Real4>* x_out, Buffer<Real4>& v_out, Buffer<Real4>* sum_x, Buffer<Real4>* sum_v,
+    Buffer<uint32_t>& stats) {
+  const SphIntegrateIO io{x0, &v0, vk, &accel, x_out, &v_out, sum_x, sum_v, &stats};
   const char* k = "sph_integrate";
   const SphIntegratePush push{
       {float(p.box_min.x), float(p.box_min.y), float(p.box_min.z), float(p.dt)},
@@ -99,10 +108,10 @@ void VulkanBackend::sph_integrate(const SphIntegrateParams& p, const SphIntegrat
       p.n,
       io.vk ? 1u : 0u};
   // Bindings the op does not read or write get a buffer it does use (never accessed).
-  const auto& v0 = alloc(io.v0->impl(), k);
-  auto or_v0 = [&](const BufferImpl* b) { return b ? alloc(*b, k) : v0; };
+  const auto& v0_alloc = alloc(io.v0->impl(), k);
+  auto or_v0 = [&](const BufferImpl* b) { return b ? alloc(*b, k) : v0_alloc; };
   run({"sph_integrate", 9, sizeof push, {}},
-      {or_v0(io.x0 ? &io.x0->impl() : nullptr), v0, or_v0(io.vk ? &io.vk->impl() : nullptr),
+      {or_v0(io.x0 ? &io.x0->impl() : nullptr), v0_alloc, or_v0(io.vk ? &io.vk->impl() : nullptr),
        alloc(io.accel->impl(), k), or_v0(io.x_out ? &io.x_out->impl() : nullptr),
        alloc(io.v_out->impl(), k), or_v0(io.sum_x ? &io.sum_x->impl() : nullptr),
        or_v0(io.sum_v ? &io.sum_v->impl() : nullptr), alloc(io.stats->impl(), k)},

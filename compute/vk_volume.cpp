@@ -38,11 +38,10 @@ uint64_t groups_for(uint64_t items, uint32_t wg) { return (items + wg - 1) / wg;
 
 }  // namespace
 
-void VulkanBackend::voxelize(const VoxelizeParams& p, const Buffer<Real4>& positions,
+void VulkanBackend::do_voxelize(const VoxelizeParams& p, uint64_t, const Buffer<Real4>& positions,
                              const Buffer<Real>& light, Buffer<Real>& probability,
                              Buffer<Real>& mean_light, Buffer<Real>& sample) {
   const char* k = "voxelize";
-  check_voxelize(*this, p, positions, light, probability, mean_light, sample);
   const uint64_t cells = grid_cell_count(p.grid);
   auto tallies = scratch("voxelize tallies", (3 * cells + 1) * 4);
   stream_.fill(tallies, 0);
@@ -61,10 +60,9 @@ void VulkanBackend::voxelize(const VoxelizeParams& p, const Buffer<Real4>& posit
       &fin, groups_for(cells, options_.workgroup_size));
 }
 
-void VulkanBackend::volume_bricks(const VolumeBrickParams& p, const Buffer<Real>& volume,
+void VulkanBackend::do_volume_bricks(const VolumeBrickParams& p, uint64_t, const Buffer<Real>& volume,
                                   const Buffer<Real4>& tf, Buffer<Real4>& bricks) {
   const char* k = "volume_bricks";
-  check_volume_bricks(*this, p, volume, tf, bricks);
   const UVec3 nb = brick_dims(p.volume, p.brick);
   const BrickPush push{{p.volume.dims.x, p.volume.dims.y, p.volume.dims.z, p.tf_size},
                        p.brick,
@@ -74,11 +72,10 @@ void VulkanBackend::volume_bricks(const VolumeBrickParams& p, const Buffer<Real>
       &push, groups_for(uint64_t(nb.x) * nb.y * nb.z, options_.workgroup_size));
 }
 
-void VulkanBackend::raymarch(const RaymarchParams& p, const Buffer<Real>& volume,
+void VulkanBackend::do_raymarch(const RaymarchParams& p, uint64_t, const Buffer<Real>& volume,
                              const Buffer<Real4>& tf, const Buffer<Real4>& bricks,
                              Buffer<Real4>& image) {
   const char* k = "raymarch";
-  check_raymarch(*this, p, volume, tf, bricks, image);
   const volume::RayCamera c = make_ray_camera(p);
   const VolumeDesc& v = p.volume;
   const uint32_t flags = (p.mode == Compositing::lerp ? 1u : 0u) | (p.skip_empty ? 2u : 0u);

@@ -18,21 +18,18 @@ T* as(void* p) {
 
 }  // namespace
 
-void CudaBackend::orbital_sample(const OrbitalSampleParams& p, const Buffer<uint32_t>& tables,
+void CudaBackend::do_orbital_sample(const OrbitalSampleParams& p, uint64_t, const Buffer<uint32_t>& tables,
                                  Buffer<Real4>& positions) {
   const char* k = "orbital_sample";
-  check_orbital_sample(*this, p, tables, positions);
-  if (!p.count) return;
   check(launch::orbital_sample(stream_, grid_for_items(p.count, k), p,
                                as<const uint32_t>(ptr(tables.impl(), k)),
                                as<float4>(ptr(positions.impl(), k))),
         k, "launch");
 }
 
-void CudaBackend::cloud_density(const CloudDensityParams& p, const Buffer<uint32_t>& cell_start,
+void CudaBackend::do_cloud_density(const CloudDensityParams& p, uint64_t, const Buffer<uint32_t>& cell_start,
                                 const Buffer<uint32_t>& cell_end, Buffer<Real>& density) {
   const char* k = "cloud_density";
-  check_cloud_density(*this, p, cell_start, cell_end, density);
   const uint64_t cells = grid_cell_count(p.grid);
   const double cell = p.grid.cell_size;
   check(launch::cloud_density(stream_, grid_for_items(cells, k),
@@ -43,11 +40,9 @@ void CudaBackend::cloud_density(const CloudDensityParams& p, const Buffer<uint32
         k, "launch");
 }
 
-void CudaBackend::nebula_illuminate(const NebulaLightParams& p, const Buffer<Real4>& positions,
+void CudaBackend::do_nebula_illuminate(const NebulaLightParams& p, uint64_t, const Buffer<Real4>& positions,
                                     const Buffer<Real>& density, Buffer<Real>& illumination) {
   const char* k = "nebula_illuminate";
-  check_nebula(*this, p, positions, density, illumination, k);
-  if (!p.grid.n) return;
   check(launch::nebula_illuminate(stream_, grid_for_items(p.grid.n, k), p,
                                   as<const float4>(ptr(positions.impl(), k)),
                                   as<const float>(ptr(density.impl(), k)),
@@ -55,13 +50,10 @@ void CudaBackend::nebula_illuminate(const NebulaLightParams& p, const Buffer<Rea
         k, "launch");
 }
 
-void CudaBackend::nebula_view(const NebulaLightParams& p, const Buffer<Real4>& positions,
+void CudaBackend::do_nebula_view(const NebulaLightParams& p, uint64_t, const Buffer<Real4>& positions,
                               const Buffer<Real>& density, const Buffer<Real>& table,
                               const Buffer<Real>& illumination, Buffer<Real>& light) {
   const char* k = "nebula_view";
-  check_nebula(*this, p, positions, density, light, k);
-  check_nebula_view(*this, p, table, illumination);
-  if (!p.grid.n) return;
   check(launch::nebula_view(stream_, grid_for_items(p.grid.n, k), p,
                             as<const float4>(ptr(positions.impl(), k)),
                             as<const float>(ptr(density.impl(), k)),
@@ -71,10 +63,9 @@ void CudaBackend::nebula_view(const NebulaLightParams& p, const Buffer<Real4>& p
         k, "launch");
 }
 
-void CudaBackend::scatter_table(const ScatterTableParams& p, Buffer<Real>& table,
+void CudaBackend::do_scatter_table(const ScatterTableParams& p, uint64_t, Buffer<Real>& table,
                                 Buffer<uint32_t>& hits) {
   const char* k = "scatter_table";
-  check_scatter_table(*this, p, table, hits);
   const uint32_t entries_per_row = p.bins + kScatterExtras;
   const uint64_t entries = uint64_t(p.rows) * entries_per_row;
   auto* tallies = as<unsigned long long>(scratch_["scatter_table"].reserve(entries * 8, k));
@@ -93,11 +84,10 @@ void CudaBackend::scatter_table(const ScatterTableParams& p, Buffer<Real>& table
         k, "launch");
 }
 
-void CudaBackend::voxelize(const VoxelizeParams& p, const Buffer<Real4>& positions,
+void CudaBackend::do_voxelize(const VoxelizeParams& p, uint64_t, const Buffer<Real4>& positions,
                            const Buffer<Real>& light, Buffer<Real>& probability,
                            Buffer<Real>& mean_light, Buffer<Real>& sample) {
   const char* k = "voxelize";
-  check_voxelize(*this, p, positions, light, probability, mean_light, sample);
   const uint64_t cells = grid_cell_count(p.grid);
   auto* counts = as<uint32_t>(scratch_["voxelize counts"].reserve((cells + 1) * 4, k));
   auto* sums = as<unsigned long long>(scratch_["voxelize sums"].reserve(cells * 8, k));
@@ -114,10 +104,9 @@ void CudaBackend::voxelize(const VoxelizeParams& p, const Buffer<Real4>& positio
         k, "launch");
 }
 
-void CudaBackend::volume_bricks(const VolumeBrickParams& p, const Buffer<Real>& volume,
+void CudaBackend::do_volume_bricks(const VolumeBrickParams& p, uint64_t, const Buffer<Real>& volume,
                                 const Buffer<Real4>& tf, Buffer<Real4>& bricks) {
   const char* k = "volume_bricks";
-  check_volume_bricks(*this, p, volume, tf, bricks);
   const UVec3 nb = brick_dims(p.volume, p.brick);
   check(launch::volume_bricks(stream_, grid_for_items(uint64_t(nb.x) * nb.y * nb.z, k), p,
                               as<const float>(ptr(volume.impl(), k)),
@@ -126,11 +115,10 @@ void CudaBackend::volume_bricks(const VolumeBrickParams& p, const Buffer<Real>& 
         k, "launch");
 }
 
-void CudaBackend::raymarch(const RaymarchParams& p, const Buffer<Real>& volume,
+void CudaBackend::do_raymarch(const RaymarchParams& p, uint64_t, const Buffer<Real>& volume,
                            const Buffer<Real4>& tf, const Buffer<Real4>& bricks,
                            Buffer<Real4>& image) {
   const char* k = "raymarch";
-  check_raymarch(*this, p, volume, tf, bricks, image);
   check(launch::raymarch(stream_, grid_for_items(uint64_t(p.width) * p.height, k), p,
                          make_ray_camera(p), as<const float>(ptr(volume.impl(), k)),
                          as<const float4>(ptr(tf.impl(), k)),

@@ -168,22 +168,20 @@ double CudaBackend::timestamp_ns(TimestampId id) {
 
 void CudaBackend::reset_timestamps() { events_used_ = 0; }
 
-void CudaBackend::philox_u32(const PhiloxParams& p, Buffer<uint32_t>& out) {
+void CudaBackend::do_philox_u32(const PhiloxParams& p, uint64_t, Buffer<uint32_t>& out) {
   if (out.size() > UINT32_MAX - 3)
     throw_invalid("philox_u32", "count", std::to_string(out.size()), "below 2^32 - 3");
   const uint64_t blocks = (out.size() + 3) / 4;
-  if (!blocks) return;
   check(launch::philox(stream_, grid_for_items(blocks, "philox_u32"), p.seed, p.stream,
                        p.first_block, uint32_t(out.size()), false,
                        static_cast<uint32_t*>(ptr(out.impl(), "philox_u32"))),
         "philox_u32", "launch");
 }
 
-void CudaBackend::philox_uniform(const PhiloxParams& p, Buffer<float>& out) {
+void CudaBackend::do_philox_uniform(const PhiloxParams& p, uint64_t, Buffer<float>& out) {
   if (out.size() > UINT32_MAX - 3)
     throw_invalid("philox_uniform", "count", std::to_string(out.size()), "below 2^32 - 3");
   const uint64_t blocks = (out.size() + 3) / 4;
-  if (!blocks) return;
   check(launch::philox(stream_, grid_for_items(blocks, "philox_uniform"), p.seed, p.stream,
                        p.first_block, uint32_t(out.size()), true,
                        static_cast<uint32_t*>(ptr(out.impl(), "philox_uniform"))),

@@ -46,54 +46,16 @@ class CudaBackend final : public Backend {
   double timestamp_ns(TimestampId id) override;
   void reset_timestamps() override;
 
-  // ---- demo point cloud
-  void drift_points(const DriftParams& p, const Buffer<float>& start,
-                    const Buffer<float>& direction, Buffer<Real4>& positions) override;
-
-  void philox_u32(const PhiloxParams& p, Buffer<uint32_t>& out) override;
-  void philox_uniform(const PhiloxParams& p, Buffer<float>& out) override;
-  void radix_sort(const RadixSortParams& p, Buffer<uint32_t>& keys,
-                  Buffer<uint32_t>* values) override;
-  void grid_assign_cells(const GridParams& g, const Buffer<Real4>& positions,
-                         Buffer<uint32_t>& cells, Buffer<uint32_t>& indices) override;
-  void grid_cell_ranges(const GridParams& g, const Buffer<uint32_t>& sorted_cells,
-                        Buffer<uint32_t>& cell_start, Buffer<uint32_t>& cell_end) override;
-  void gather(const Buffer<uint32_t>& order, const BufferImpl& src, BufferImpl& dst) override;
-  void grid_count_neighbors(const NeighborParams& p, const Buffer<Real4>& sorted_positions,
-                            const Buffer<uint32_t>& cell_start, const Buffer<uint32_t>& cell_end,
-                            Buffer<uint32_t>& counts) override;
-
-  // ---- SPH fluid
-  void sph_density(const SphStepParams& p, const SphDensityIO& io) override;
-  void sph_forces(const SphStepParams& p, const SphForcesIO& io) override;
-  void sph_integrate(const SphIntegrateParams& p, const SphIntegrateIO& io) override;
-
-  // ---- electron cloud, nebula lighting, volume
-  void orbital_sample(const OrbitalSampleParams& p, const Buffer<uint32_t>& tables,
-                      Buffer<Real4>& positions) override;
-  void cloud_density(const CloudDensityParams& p, const Buffer<uint32_t>& cell_start,
-                     const Buffer<uint32_t>& cell_end, Buffer<Real>& density) override;
-  void scatter_table(const ScatterTableParams& p, Buffer<Real>& table,
-                     Buffer<uint32_t>& hits) override;
-  void nebula_illuminate(const NebulaLightParams& p, const Buffer<Real4>& positions,
-                         const Buffer<Real>& density, Buffer<Real>& illumination) override;
-  void nebula_view(const NebulaLightParams& p, const Buffer<Real4>& positions,
-                   const Buffer<Real>& density, const Buffer<Real>& table,
-                   const Buffer<Real>& illumination, Buffer<Real>& light) override;
-  void voxelize(const VoxelizeParams& p, const Buffer<Real4>& positions, const Buffer<Real>& light,
-                Buffer<Real>& probability, Buffer<Real>& mean_light,
-                Buffer<Real>& sample) override;
-  void volume_bricks(const VolumeBrickParams& p, const Buffer<Real>& volume,
-                     const Buffer<Real4>& tf, Buffer<Real4>& bricks) override;
-  void raymarch(const RaymarchParams& p, const Buffer<Real>& volume, const Buffer<Real4>& tf,
-                const Buffer<Real4>& bricks, Buffer<Real4>& image) override;
-
   cudaStream_t stream() const { return stream_; }
   uint32_t* diagnostics() const { return diag_; }  // {max_loop_ticks, flags, detail, reserved}
   dim3 grid_for(uint64_t blocks, const char* kernel) const;
   dim3 grid_for_items(uint64_t items, const char* kernel) const;
 
  protected:
+#define MASAV_KERNEL MASAV_KERNEL_OVERRIDE
+#include "engine/core/kernels.inc"
+#undef MASAV_KERNEL
+
   void write_bytes(BufferImpl& dst, const void* src, size_t bytes, size_t offset) override;
   void read_bytes(const BufferImpl& src, void* dst, size_t bytes, size_t offset) override;
   void copy_buffer(const BufferImpl& src, BufferImpl& dst, size_t bytes) override;

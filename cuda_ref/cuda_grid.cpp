@@ -17,10 +17,8 @@ launch::GridArgs grid_args(const GridParams& g) {
 
 }  // namespace
 
-void CudaBackend::grid_assign_cells(const GridParams& g, const Buffer<Real4>& positions,
+void CudaBackend::do_grid_assign_cells(const GridParams& g, uint64_t, const Buffer<Real4>& positions,
                                     Buffer<uint32_t>& cells, Buffer<uint32_t>& indices) {
-  check_assign_cells(*this, g, positions, cells, indices);
-  if (!g.n) return;
   check(launch::assign_cells(stream_, grid_for_items(g.n, "grid_assign_cells"), grid_args(g),
                              static_cast<const float4*>(ptr(positions.impl(), "grid_assign_cells")),
                              static_cast<uint32_t*>(ptr(cells.impl(), "grid_assign_cells")),
@@ -28,9 +26,8 @@ void CudaBackend::grid_assign_cells(const GridParams& g, const Buffer<Real4>& po
         "grid_assign_cells", "launch");
 }
 
-void CudaBackend::grid_cell_ranges(const GridParams& g, const Buffer<uint32_t>& sorted_cells,
+void CudaBackend::do_grid_cell_ranges(const GridParams& g, uint64_t, const Buffer<uint32_t>& sorted_cells,
                                    Buffer<uint32_t>& cell_start, Buffer<uint32_t>& cell_end) {
-  check_cell_ranges(*this, g, sorted_cells, cell_start, cell_end);
   auto* start = static_cast<uint32_t*>(ptr(cell_start.impl(), "grid_cell_ranges"));
   auto* end = static_cast<uint32_t*>(ptr(cell_end.impl(), "grid_cell_ranges"));
   check(cudaMemsetAsync(start, 0, cell_start.impl().bytes(), stream_), "grid_cell_ranges",
@@ -44,29 +41,24 @@ void CudaBackend::grid_cell_ranges(const GridParams& g, const Buffer<uint32_t>& 
         "grid_cell_ranges", "launch");
 }
 
-void CudaBackend::gather(const Buffer<uint32_t>& order, const BufferImpl& src, BufferImpl& dst) {
-  check_gather(*this, order, src, dst);
-  const size_t n = order.size();
-  if (!n) return;
-  if (n > UINT32_MAX || src.count() > UINT32_MAX)
-    throw_invalid("gather", "size", std::to_string(std::max(n, src.count())), "below 2^32");
+void CudaBackend::do_gather(const GatherParams& p, uint64_t, const Buffer<uint32_t>& order,
+                            const BufferImpl& src, BufferImpl& dst) {
+  const uint32_t n = p.n;
   const size_t eb = elem_bytes(src.kind(), real_bytes());
   if (eb != 4 && eb != 16)
     throw Error("cuda", "gather", fmt::format("no gather for {}-byte elements", eb),
                 "internal error: report it");
   check(launch::gather(stream_, grid_for_items(n, "gather"),
                        static_cast<const uint32_t*>(ptr(order.impl(), "gather")), ptr(src, "gather"),
-                       ptr(dst, "gather"), uint32_t(n), uint32_t(src.count()), uint32_t(eb), diag_),
+                       ptr(dst, "gather"), n, uint32_t(src.count()), uint32_t(eb), diag_),
         "gather", "launch");
 }
 
-void CudaBackend::grid_count_neighbors(const NeighborParams& p,
+void CudaBackend::do_grid_count_neighbors(const NeighborParams& p, uint64_t,
                                        const Buffer<Real4>& sorted_positions,
                                        const Buffer<uint32_t>& cell_start,
                                        const Buffer<uint32_t>& cell_end,
                                        Buffer<uint32_t>& counts) {
-  check_neighbors(*this, p, sorted_positions, cell_start, cell_end, counts);
-  if (!p.grid.n) return;
   pending_neighbor_limit_ = p.max_candidates;
   const char* k = "grid_count_neighbors";
   check(launch::count_neighbors(stream_, grid_for_items(p.grid.n, k), grid_args(p.grid),

@@ -2,14 +2,11 @@
 #include "cuda_ref/cuda_backend.h"
 #include "cuda_ref/cuda_check.h"
 #include "cuda_ref/points_launch.h"
-#include "engine/points/drift_checks.h"
 
 namespace masav::cuda {
 
-void CudaBackend::drift_points(const DriftParams& p, const Buffer<float>& start,
+void CudaBackend::do_drift_points(const DriftParams& p, uint64_t, const Buffer<float>& start,
                                const Buffer<float>& direction, Buffer<Real4>& positions) {
-  check_drift(*this, p, start, direction, positions);
-  if (!p.n) return;
   const launch::DriftArgs a{{p.box_lo.x, p.box_lo.y, p.box_lo.z},
                             {p.box_extent.x, p.box_extent.y, p.box_extent.z},
                             p.speed,

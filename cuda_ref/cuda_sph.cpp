@@ -3,7 +3,6 @@
 #include "cuda_ref/cuda_backend.h"
 #include "cuda_ref/cuda_check.h"
 #include "cuda_ref/sph_launch.h"
-#include "engine/sph/sph_checks.h"
 #include "engine/sph/sph_coefficients.h"
 
 namespace masav::cuda {
@@ -15,9 +14,11 @@ launch::SphGridArgs grid_args(const SphStepParams& p) {
 
 }  // namespace
 
-void CudaBackend::sph_density(const SphStepParams& p, const SphDensityIO& io) {
-  check_sph_density(*this, p, io);
-  if (!p.n) return;
+void CudaBackend::do_sph_density(const SphStepParams& p, uint64_t, const Buffer<Real4>& positions,
+    const Buffer<uint32_t>& cells, const Buffer<uint32_t>& cell_start,
+    const Buffer<uint32_t>& cell_end, Buffer<Real>& density, Buffer<Real>& pressure,
+    Buffer<uint32_t>& stats) {
+  const SphDensityIO io{&positions, {&cells, &cell_start, &cell_end}, &density, &pressure, &stats};
   const char* k = "sph_density";
   check(launch::sph_density(stream_, grid_for_items(p.n, k), grid_args(p),
                             to_float(make_coefficients(p)),
@@ -31,9 +32,12 @@ void CudaBackend::sph_density(const SphStepParams& p, const SphDensityIO& io) {
         k, "launch");
 }
 
-void CudaBackend::sph_forces(const SphStepParams& p, const SphForcesIO& io) {
-  check_sph_forces(*this, p, io);
-  if (!p.n) return;
+void CudaBackend::do_sph_forces(const SphStepParams& p, uint64_t, const Buffer<Real4>& positions,
+    const Buffer<Real4>& velocities, const Buffer<Real>& density, const Buffer<Real>& pressure,
+    const Buffer<uint32_t>& cells, const Buffer<uint32_t>& cell_start,
+    const Buffer<uint32_t>& cell_end, Buffer<Real4>& accel, Buffer<uint32_t>& stats) {
+  const SphForcesIO io{&positions, &velocities, &density, &pressure,
+                       {&cells, &cell_start, &cell_end}, &accel, &stats};
   const char* k = "sph_forces";
   check(launch::sph_forces(stream_, grid_for_items(p.n, k), grid_args(p),
                            to_float(make_coefficients(p)),
@@ -49,9 +53,11 @@ void CudaBackend::sph_forces(const SphStepParams& p, const SphForcesIO& io) {
         k, "launch");
 }
 
-void CudaBackend::sph_integrate(const SphIntegrateParams& p, const SphIntegrateIO& io) {
-  check_sph_integrate(*this, p, io);
-  if (!p.n) return;
+void CudaBackend::do_sph_integrate(const SphIntegrateParams& p, uint64_t, const Buffer<Real4>* x0,
+    const Buffer<Real4>& v0, const Buffer<Real4>* vk, const Buffer<Real4>& accel,
+    Buffer<Real4>* x_out, Buffer<Real4>& v_out, Buffer<Real4>* sum_x, Buffer<Real4>* sum_v,
+    Buffer<uint32_t>& stats) {
+  const SphIntegrateIO io{x0, &v0, vk, &accel, x_out, &v_out, sum_x, sum_v, &stats};
   const char* k = "sph_integrate";
   auto f4 = [&](const Buffer<Real4>* b) {
     return b ? static_cast<float4*>(ptr(b->impl(), k)) : nullptr;

@@ -132,7 +132,7 @@ TEST_CASE("reorder gathers per-point arrays into cell order, exactly") {
   auto src = b.create<uint32_t>(ids.size(), "ids");
   auto dst = b.create<uint32_t>(ids.size(), "ids sorted");
   b.upload(src, ids);
-  b.gather(gb.sorted_index, src.impl(), dst.impl());
+  b.gather({uint32_t(ids.size())}, gb.sorted_index, src.impl(), dst.impl());
   const auto moved = b.download(dst);
   for (size_t i = 0; i < moved.size(); ++i) REQUIRE(moved[i] == ids[index[i]]);
 }
@@ -193,7 +193,7 @@ TEST_CASE("neighbour search over its candidate cap and gathers past the source a
   b.upload(src, std::vector<uint32_t>{5, 6, 7});
   CHECK_THROWS_WITH_AS(
       {
-        b.gather(order, src.impl(), dst.impl());
+        b.gather({4}, order, src.impl(), dst.impl());
         b.finish();
       },
       doctest::Contains("order[2]"), Error);

@@ -17,6 +17,7 @@
 #include "engine/util/error_metrics.h"
 #include "tests/backend_fixture.h"
 #include "tests/sph_fixture.h"
+#include "engine/sph/sph_kernel_calls.h"
 
 using namespace masav;
 
@@ -32,8 +33,8 @@ TEST_CASE("sph_density equals the CPU reference and a brute-force poly6 sum") {
       test::with_walls(c, walls);
       test::SphBuffers sb = test::upload_sph_case(b, c), sr = test::upload_sph_case(r, c);
       REQUIRE(b.download(sb.grid.sorted_index) == r.download(sr.grid.sorted_index));
-      b.sph_density(c.params, {&sb.sorted_pos, sb.view(), &sb.density, &sb.pressure, &sb.stats});
-      r.sph_density(c.params, {&sr.sorted_pos, sr.view(), &sr.density, &sr.pressure, &sr.stats});
+      sph_density(b, c.params, {&sb.sorted_pos, sb.view(), &sb.density, &sb.pressure, &sb.stats});
+      sph_density(r, c.params, {&sr.sorted_pos, sr.view(), &sr.density, &sr.pressure, &sr.stats});
       const auto rho = b.download(sb.density), rho_ref = r.download(sr.density);
       const auto pr = b.download(sb.pressure), pr_ref = r.download(sr.pressure);
       const ErrorStats e_rho = compare(rho, rho_ref, 1.0);
@@ -86,13 +87,13 @@ TEST_CASE("sph_forces equals the CPU reference for both pressure models") {
       test::SphCase c = test::make_sph_case(14, model, 11);
       test::with_walls(c, walls);
       test::SphBuffers sb = test::upload_sph_case(b, c), sr = test::upload_sph_case(r, c);
-      r.sph_density(c.params, {&sr.sorted_pos, sr.view(), &sr.density, &sr.pressure, &sr.stats});
+      sph_density(r, c.params, {&sr.sorted_pos, sr.view(), &sr.density, &sr.pressure, &sr.stats});
       // The backend gets the reference's density and pressure: this tests the force kernel alone.
       b.upload(sb.density, r.download(sr.density));
       b.upload(sb.pressure, r.download(sr.pressure));
-      b.sph_forces(c.params, {&sb.sorted_pos, &sb.sorted_vel, &sb.density, &sb.pressure, sb.view(),
+      sph_forces(b, c.params, {&sb.sorted_pos, &sb.sorted_vel, &sb.density, &sb.pressure, sb.view(),
                               &sb.accel, &sb.stats});
-      r.sph_forces(c.params, {&sr.sorted_pos, &sr.sorted_vel, &sr.density, &sr.pressure, sr.view(),
+      sph_forces(r, c.params, {&sr.sorted_pos, &sr.sorted_vel, &sr.density, &sr.pressure, sr.view(),
                               &sr.accel, &sr.stats});
       const auto got = b.download(sb.accel), want = r.download(sr.accel);
       const auto g3 = xyz_components(got), w3 = xyz_components(want);
@@ -120,9 +121,9 @@ TEST_CASE("sph_forces equals the CPU reference for both pressure models") {
         for (auto& p : sym.positions) p.w = 1.0f;
         sym.params.gravity = {0, 0, 0};
         test::SphBuffers s2 = test::upload_sph_case(r, sym);
-        r.sph_density(sym.params,
-                      {&s2.sorted_pos, s2.view(), &s2.density, &s2.pressure, &s2.stats});
-        r.sph_forces(sym.params, {&s2.sorted_pos, &s2.sorted_vel, &s2.density, &s2.pressure,
+        sph_density(r, sym.params,
+                    {&s2.sorted_pos, s2.view(), &s2.density, &s2.pressure, &s2.stats});
+        sph_forces(r, sym.params, {&s2.sorted_pos, &s2.sorted_vel, &s2.density, &s2.pressure,
                                   s2.view(), &s2.accel, &s2.stats});
         double fx = 0, fy = 0, fz = 0, scale = 0;
         for (const auto& a : r.download(s2.accel)) {
@@ -145,10 +146,10 @@ TEST_CASE("sph_forces depends only on its inputs, whatever sph_density saw befor
   test::SphCase other = test::make_sph_case(9, SphPressureModel::wcsph, 22);
   test::SphBuffers s = test::upload_sph_case(b, c), o = test::upload_sph_case(b, other);
   auto density = [&](test::SphBuffers& x) {
-    b.sph_density(c.params, {&x.sorted_pos, x.view(), &x.density, &x.pressure, &x.stats});
+    sph_density(b, c.params, {&x.sorted_pos, x.view(), &x.density, &x.pressure, &x.stats});
   };
   auto forces = [&](test::SphBuffers& x) {
-    b.sph_forces(c.params, {&x.sorted_pos, &x.sorted_vel, &x.density, &x.pressure, x.view(),
+    sph_forces(b, c.params, {&x.sorted_pos, &x.sorted_vel, &x.density, &x.pressure, x.view(),
                             &x.accel, &x.stats});
     return b.download(x.accel);
   };
@@ -263,8 +264,8 @@ TEST_CASE("sph_integrate: every stage and the walls equal the CPU reference") {
       return SphIntegrateIO{&s.x0, &s.v0,   uses_vk ? &s.vk : nullptr, &s.a, &s.xo, &s.vo, &s.sx,
                             &s.sv, &s.stats};
     };
-    b.sph_integrate(p, io(sb));
-    r.sph_integrate(p, io(sr));
+    sph_integrate(b, p, io(sb));
+    sph_integrate(r, p, io(sr));
     const auto v_got = xyz_components(b.download(sb.vo));
     const auto v_want = xyz_components(r.download(sr.vo));
     const ErrorStats ev = compare(v_got, v_want, 1.0);
@@ -307,7 +308,7 @@ TEST_CASE("sph kernels report candidate overflow and non-finite values, never hi
   c.params.max_candidates = 40;  // far below the ~200 candidates of a lattice particle
   c.velocities[17].y = std::nanf("");
   test::SphBuffers s = test::upload_sph_case(b, c);
-  b.sph_density(c.params, {&s.sorted_pos, s.view(), &s.density, &s.pressure, &s.stats});
+  sph_density(b, c.params, {&s.sorted_pos, s.view(), &s.density, &s.pressure, &s.stats});
   auto w = b.download(s.stats);
   CHECK(w[kSphStatOverflow] != 0);
   CHECK(~w[kSphStatOverflow] < c.params.n);  // the smallest overflowing sorted index
@@ -315,8 +316,8 @@ TEST_CASE("sph kernels report candidate overflow and non-finite values, never hi
 
   c.params.max_candidates = 8192;
   b.fill(s.stats, 0u);
-  b.sph_density(c.params, {&s.sorted_pos, s.view(), &s.density, &s.pressure, &s.stats});
-  b.sph_forces(c.params, {&s.sorted_pos, &s.sorted_vel, &s.density, &s.pressure, s.view(), &s.accel,
+  sph_density(b, c.params, {&s.sorted_pos, s.view(), &s.density, &s.pressure, &s.stats});
+  sph_forces(b, c.params, {&s.sorted_pos, &s.sorted_vel, &s.density, &s.pressure, s.view(), &s.accel,
                           &s.stats});
   w = b.download(s.stats);
   CHECK(w[kSphStatOverflow] == 0);
@@ -334,7 +335,7 @@ TEST_CASE("sph kernel parameters out of range are rejected, naming the field") {
   const test::SphCase c = test::make_sph_case(4, SphPressureModel::wcsph, 1);
   test::SphBuffers s = test::upload_sph_case(b, c);
   auto density = [&](SphStepParams p) {
-    b.sph_density(p, {&s.sorted_pos, s.view(), &s.density, &s.pressure, &s.stats});
+    sph_density(b, p, {&s.sorted_pos, s.view(), &s.density, &s.pressure, &s.stats});
   };
   SphStepParams p = c.params;
   p.h = -1;
@@ -354,12 +355,12 @@ TEST_CASE("sph kernel parameters out of range are rejected, naming the field") {
   SphIntegrateParams ip;
   ip.n = c.params.n;
   ip.dt = 0;
-  CHECK_THROWS_WITH_AS(b.sph_integrate(ip, {&s.sorted_pos, &s.sorted_vel, nullptr, &s.accel, &s.pos,
+  CHECK_THROWS_WITH_AS(sph_integrate(b, ip, {&s.sorted_pos, &s.sorted_vel, nullptr, &s.accel, &s.pos,
                                             &s.vel, nullptr, nullptr, &s.stats}),
                        doctest::Contains("dt"), Error);
   ip.dt = 1e-3;
   ip.op = SphStageOp::rk4_stage2;
-  CHECK_THROWS_WITH_AS(b.sph_integrate(ip, {&s.sorted_pos, &s.sorted_vel, nullptr, &s.accel, &s.pos,
+  CHECK_THROWS_WITH_AS(sph_integrate(b, ip, {&s.sorted_pos, &s.sorted_vel, nullptr, &s.accel, &s.pos,
                                             &s.vel, nullptr, nullptr, &s.stats}),
                        doctest::Contains("vk"), Error);
 }

@@ -9,6 +9,7 @@
 #include "engine/sph/sph_coefficients.h"
 #include "engine/util/error_metrics.h"
 #include "tests/sph_fixture.h"
+#include "engine/sph/sph_kernel_calls.h"
 
 using namespace masav;
 
@@ -58,8 +59,8 @@ TEST_CASE("sph::density_at and sph::force_at (the CUDA bodies) equal the CPU ref
       test::SphCase c = test::make_sph_case(10, model, 31);
       test::with_walls(c, walls);
       test::SphBuffers s = test::upload_sph_case(r, c);
-      r.sph_density(c.params, {&s.sorted_pos, s.view(), &s.density, &s.pressure, &s.stats});
-      r.sph_forces(c.params, {&s.sorted_pos, &s.sorted_vel, &s.density, &s.pressure, s.view(),
+      sph_density(r, c.params, {&s.sorted_pos, s.view(), &s.density, &s.pressure, &s.stats});
+      sph_forces(r, c.params, {&s.sorted_pos, &s.sorted_vel, &s.density, &s.pressure, s.view(),
                               &s.accel, &s.stats});
       const auto pos = r.download(s.sorted_pos), vel = r.download(s.sorted_vel);
       const auto rho = r.download(s.density), pr = r.download(s.pressure);

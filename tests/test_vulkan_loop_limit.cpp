@@ -18,6 +18,7 @@
 #include "engine/atom/orbital_tables.h"
 #include "engine/grid/hash_grid.h"
 #include "engine/sph/sph_particles.h"
+#include "engine/sph/sph_kernel_calls.h"
 
 using namespace masav;
 namespace mvk = masav::vk;
@@ -284,17 +285,17 @@ TEST_CASE("sph kernels: loop ticks = rows + cells + candidates, capped below the
   b.fill(stats, 0u);
   (void)b.take_max_loop_ticks();
   const SphGridView view{&g.sorted_cells, &g.cell_start, &g.cell_end};
-  b.sph_density(p, {&pos, view, &rho, &pr, &stats});
+  sph_density(b, p, {&pos, view, &rho, &pr, &stats});
   // x loop 3 + y loop 3 (one x in the grid) + 1 cell in the row + n candidates + 48 wall ticks.
   const uint32_t walls = 6 + 6 * 7;
   CHECK(b.take_max_loop_ticks() == 3 + 3 + 1 + n + walls);
-  b.sph_forces(p, {&pos, &vel, &rho, &pr, view, &acc, &stats});
+  sph_forces(b, p, {&pos, &vel, &rho, &pr, view, &acc, &stats});
   CHECK(b.take_max_loop_ticks() == 3 + 3 + 1 + n + walls + 6);  // + the no-slip weight
   // The worst any SPH kernel can do: 3 + 9 row loops, 27 cells, the validated maximum of
   // candidates (65000) and the walls' 48 stay under lavapipe's limit; one more is refused.
   CHECK(3 + 9 + 27 + 65000 + walls + 6 < kLavapipeLoopLimit);
   p.max_candidates = 65001;
-  CHECK_THROWS_AS(b.sph_density(p, {&pos, view, &rho, &pr, &stats}), Error);
+  CHECK_THROWS_AS(sph_density(b, p, {&pos, view, &rho, &pr, &stats}), Error);
 
   // The integrator's only loops are the walls' (at most 3 + 3).
   SphIntegrateParams ip;
@@ -303,7 +304,7 @@ TEST_CASE("sph kernels: loop ticks = rows + cells + candidates, capped below the
   ip.tangential_damping = 0.1;
   ip.box_max = {0.5 * h, 0.5 * h, 0.5 * h};
   auto xo = b.create<Real4>(n, "xo"), vo = b.create<Real4>(n, "vo");
-  b.sph_integrate(ip, {&pos, &vel, nullptr, &acc, &xo, &vo, nullptr, nullptr, &stats});
+  sph_integrate(b, ip, {&pos, &vel, nullptr, &acc, &xo, &vo, nullptr, nullptr, &stats});
   CHECK(b.take_max_loop_ticks() <= 6);
 }
 

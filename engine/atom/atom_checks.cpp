@@ -23,100 +23,16 @@ void in_range(std::string_view where, std::string_view field, double v, double l
     throw_invalid(where, field, fmt::format("{}", v), fmt::format("in [{}, {}]", lo, hi));
 }
 
-void owners(const DeviceApi& dev, std::string_view kernel,
-            std::initializer_list<const BufferImpl*> bufs) {
-  for (const BufferImpl* b : bufs) check_owner(dev, *b, kernel);
-}
-
 void at_least(std::string_view kernel, std::string_view what, size_t have, uint64_t need) {
   if (have < need)
     throw_invalid(kernel, fmt::format("{} size", what), std::to_string(have),
                   fmt::format("at least {}", need));
 }
 
-}  // namespace
-
-size_t orbital_table_size(const OrbitalSampleParams& p) {
-  if (p.placement == OrbitalPlacement::shells)
-    return size_t(p.radial_bins) * p.polar_bins * p.azimuth_bins + 1;
-  return size_t(p.radial_bins) + 1 + p.polar_bins + 1 + (p.azimuth_bins ? p.azimuth_bins + 1 : 0);
-}
-
-void check_orbital_sample(const DeviceApi& dev, const OrbitalSampleParams& p,
-                          const Buffer<uint32_t>& tables, const Buffer<Real4>& positions) {
-  const char* k = "orbital_sample";
-  owners(dev, k, {&tables.impl(), &positions.impl()});
-  if (p.count > positions.size())
-    throw_invalid(k, "particles", std::to_string(p.count),
-                  fmt::format("at most the positions buffer's size {}", positions.size()));
-  check_fits(dev, ElemKind::real4, p.count, k, "the particle positions");
-  if (p.placement != OrbitalPlacement::exact && p.placement != OrbitalPlacement::shells)
-    throw_invalid(k, "placement", std::to_string(uint32_t(p.placement)), "exact or shells");
-  if (p.radial_bins < 1 || p.polar_bins < 1 || p.radial_bins > (1u << 24) ||
-      p.polar_bins > (1u << 24) || p.azimuth_bins > (1u << 24))
-    throw_invalid(k, "table bins",
-                  fmt::format("{}/{}/{}", p.radial_bins, p.polar_bins, p.azimuth_bins),
-                  "each in [1, 2^24] (build the tables with make_orbital_tables)");
-  if (p.placement == OrbitalPlacement::shells &&
-      (p.azimuth_bins < 1 || uint64_t(p.radial_bins) * p.polar_bins * p.azimuth_bins > (1u << 24)))
-    throw_invalid(k, "shell sites", std::to_string(uint64_t(p.radial_bins) * p.polar_bins *
-                                                   p.azimuth_bins),
-                  "in [1, 2^24]");
-  positive(k, "radial_max_a0", p.radial_max_a0);
-  if (p.placement == OrbitalPlacement::exact && p.azimuth_bins &&
-      (p.azimuth_periods < 2 || p.azimuth_periods > 256 || p.azimuth_periods % 2))
-    throw_invalid(k, "azimuth_periods", std::to_string(p.azimuth_periods),
-                  "2|m|: an even number in [2, 256]");
-  at_least(k, "tables", tables.size(), orbital_table_size(p));
-}
-
-void check_cloud_density(const DeviceApi& dev, const CloudDensityParams& p,
-                         const Buffer<uint32_t>& start, const Buffer<uint32_t>& end,
-                         const Buffer<Real>& density) {
-  const char* k = "cloud_density";
-  check_grid(p.grid, k);
-  owners(dev, k, {&start.impl(), &end.impl(), &density.impl()});
-  if (p.particles < 1)
-    throw_invalid(k, "particles", std::to_string(p.particles), "at least 1");
-  const uint64_t cells = grid_cell_count(p.grid);
-  at_least(k, "cell_start", start.size(), cells);
-  at_least(k, "cell_end", end.size(), cells);
-  at_least(k, "density", density.size(), cells);
-}
-
-void check_scatter_table(const DeviceApi& dev, const ScatterTableParams& p,
-                         const Buffer<Real>& table, const Buffer<uint32_t>& hits) {
-  const char* k = "scatter_table";
-  owners(dev, k, {&table.impl(), &hits.impl()});
-  in_range(k, "rows", p.rows, 1, 1u << 20);
-  in_range(k, "bins", p.bins, 2, 1024);
-  in_range(k, "photons_per_row", p.photons_per_row, 1, 1u << 24);
-  if (uint64_t(p.first_row) + p.rows > (1u << 24))
-    throw_invalid(k, "first_row", std::to_string(p.first_row), "first_row + rows <= 2^24");
-  positive(k, "tau_step", p.tau_step);
-  in_range(k, "g", p.g, -0.999, 0.999);
-  in_range(k, "albedo", p.albedo, 0, 1);
-  if (!std::isfinite(p.weight_threshold) || p.weight_threshold < 0 || p.weight_threshold >= 1)
-    throw_invalid(k, "weight_threshold", fmt::format("{}", p.weight_threshold), "in [0, 1)");
-  // lavapipe's loop limit: each event is one loop iteration plus Philox's ten rounds.
-  in_range(k, "max_scatterings", p.max_scatterings, 0, 5000);
-  if (p.start != ScatterStart::surface && p.start != ScatterStart::centre)
-    throw_invalid(k, "start", std::to_string(uint32_t(p.start)), "surface or centre");
-  const double len = std::sqrt(double(p.direction.x) * p.direction.x +
-                               double(p.direction.y) * p.direction.y +
-                               double(p.direction.z) * p.direction.z);
-  if (!finite3(p.direction) || std::abs(len - 1.0) > 1e-3)
-    throw_invalid(k, "direction", str3(p.direction), "a unit vector");
-  const uint64_t entries = uint64_t(p.rows) * (p.bins + kScatterExtras);
-  at_least(k, "table", table.size(), entries);
-  at_least(k, "hits", hits.size(), entries);
-  check_fits(dev, ElemKind::u32, entries * 2, k, "the 64-bit weight tallies");
-}
-
-void check_nebula(const DeviceApi& dev, const NebulaLightParams& p, const Buffer<Real4>& positions,
+// What both nebula kernels check; `out` is the per-particle output (illumination or light).
+void check_nebula(const NebulaLightParams& p, const Buffer<Real4>& positions,
                   const Buffer<Real>& density, const Buffer<Real>& out, std::string_view kernel) {
   check_grid(p.grid, kernel);
-  owners(dev, kernel, {&positions.impl(), &density.impl(), &out.impl()});
   at_least(kernel, "output", out.size(), p.grid.n);
   if (p.grid.n > positions.size())
     throw_invalid(kernel, "particles", std::to_string(p.grid.n),
@@ -148,10 +64,91 @@ void check_nebula(const DeviceApi& dev, const NebulaLightParams& p, const Buffer
     throw_invalid(kernel, "grid dims", std::to_string(dsum), "dims.x + dims.y + dims.z < 60000");
 }
 
-void check_nebula_view(const DeviceApi& dev, const NebulaLightParams& p, const Buffer<Real>& table,
-                       const Buffer<Real>& illumination) {
+}  // namespace
+
+size_t orbital_table_size(const OrbitalSampleParams& p) {
+  if (p.placement == OrbitalPlacement::shells)
+    return size_t(p.radial_bins) * p.polar_bins * p.azimuth_bins + 1;
+  return size_t(p.radial_bins) + 1 + p.polar_bins + 1 + (p.azimuth_bins ? p.azimuth_bins + 1 : 0);
+}
+
+void validate(const DeviceApi& dev, const OrbitalSampleParams& p, const Buffer<uint32_t>& tables,
+              const Buffer<Real4>& positions) {
+  const char* k = "orbital_sample";
+  if (p.count > positions.size())
+    throw_invalid(k, "particles", std::to_string(p.count),
+                  fmt::format("at most the positions buffer's size {}", positions.size()));
+  check_fits(dev, ElemKind::real4, p.count, k, "the particle positions");
+  if (p.placement != OrbitalPlacement::exact && p.placement != OrbitalPlacement::shells)
+    throw_invalid(k, "placement", std::to_string(uint32_t(p.placement)), "exact or shells");
+  if (p.radial_bins < 1 || p.polar_bins < 1 || p.radial_bins > (1u << 24) ||
+      p.polar_bins > (1u << 24) || p.azimuth_bins > (1u << 24))
+    throw_invalid(k, "table bins",
+                  fmt::format("{}/{}/{}", p.radial_bins, p.polar_bins, p.azimuth_bins),
+                  "each in [1, 2^24] (build the tables with make_orbital_tables)");
+  if (p.placement == OrbitalPlacement::shells &&
+      (p.azimuth_bins < 1 || uint64_t(p.radial_bins) * p.polar_bins * p.azimuth_bins > (1u << 24)))
+    throw_invalid(k, "shell sites", std::to_string(uint64_t(p.radial_bins) * p.polar_bins *
+                                                   p.azimuth_bins),
+                  "in [1, 2^24]");
+  positive(k, "radial_max_a0", p.radial_max_a0);
+  if (p.placement == OrbitalPlacement::exact && p.azimuth_bins &&
+      (p.azimuth_periods < 2 || p.azimuth_periods > 256 || p.azimuth_periods % 2))
+    throw_invalid(k, "azimuth_periods", std::to_string(p.azimuth_periods),
+                  "2|m|: an even number in [2, 256]");
+  at_least(k, "tables", tables.size(), orbital_table_size(p));
+}
+
+void validate(const DeviceApi&, const CloudDensityParams& p, const Buffer<uint32_t>& start,
+              const Buffer<uint32_t>& end, const Buffer<Real>& density) {
+  const char* k = "cloud_density";
+  check_grid(p.grid, k);
+  if (p.particles < 1)
+    throw_invalid(k, "particles", std::to_string(p.particles), "at least 1");
+  const uint64_t cells = grid_cell_count(p.grid);
+  at_least(k, "cell_start", start.size(), cells);
+  at_least(k, "cell_end", end.size(), cells);
+  at_least(k, "density", density.size(), cells);
+}
+
+void validate(const DeviceApi& dev, const ScatterTableParams& p, const Buffer<Real>& table,
+              const Buffer<uint32_t>& hits) {
+  const char* k = "scatter_table";
+  in_range(k, "rows", p.rows, 1, 1u << 20);
+  in_range(k, "bins", p.bins, 2, 1024);
+  in_range(k, "photons_per_row", p.photons_per_row, 1, 1u << 24);
+  if (uint64_t(p.first_row) + p.rows > (1u << 24))
+    throw_invalid(k, "first_row", std::to_string(p.first_row), "first_row + rows <= 2^24");
+  positive(k, "tau_step", p.tau_step);
+  in_range(k, "g", p.g, -0.999, 0.999);
+  in_range(k, "albedo", p.albedo, 0, 1);
+  if (!std::isfinite(p.weight_threshold) || p.weight_threshold < 0 || p.weight_threshold >= 1)
+    throw_invalid(k, "weight_threshold", fmt::format("{}", p.weight_threshold), "in [0, 1)");
+  // lavapipe's loop limit: each event is one loop iteration plus Philox's ten rounds.
+  in_range(k, "max_scatterings", p.max_scatterings, 0, 5000);
+  if (p.start != ScatterStart::surface && p.start != ScatterStart::centre)
+    throw_invalid(k, "start", std::to_string(uint32_t(p.start)), "surface or centre");
+  const double len = std::sqrt(double(p.direction.x) * p.direction.x +
+                               double(p.direction.y) * p.direction.y +
+                               double(p.direction.z) * p.direction.z);
+  if (!finite3(p.direction) || std::abs(len - 1.0) > 1e-3)
+    throw_invalid(k, "direction", str3(p.direction), "a unit vector");
+  const uint64_t entries = uint64_t(p.rows) * (p.bins + kScatterExtras);
+  at_least(k, "table", table.size(), entries);
+  at_least(k, "hits", hits.size(), entries);
+  check_fits(dev, ElemKind::u32, entries * 2, k, "the 64-bit weight tallies");
+}
+
+void validate(const DeviceApi&, const NebulaLightParams& p, const Buffer<Real4>& positions,
+              const Buffer<Real>& density, const Buffer<Real>& illumination) {
+  check_nebula(p, positions, density, illumination, "nebula_illuminate");
+}
+
+void validate(const DeviceApi&, const NebulaLightParams& p, const Buffer<Real4>& positions,
+              const Buffer<Real>& density, const Buffer<Real>& table,
+              const Buffer<Real>& illumination, const Buffer<Real>& light) {
   const char* k = "nebula_view";
-  owners(dev, k, {&table.impl(), &illumination.impl()});
+  check_nebula(p, positions, density, light, k);
   in_range(k, "table_rows", p.table_rows, 1, 1u << 20);
   in_range(k, "table_bins", p.table_bins, 2, 1024);
   positive(k, "table_tau_step", p.table_tau_step);
@@ -159,13 +156,12 @@ void check_nebula_view(const DeviceApi& dev, const NebulaLightParams& p, const B
   at_least(k, "illumination", illumination.size(), p.grid.n);
 }
 
-void check_voxelize(const DeviceApi& dev, const VoxelizeParams& p, const Buffer<Real4>& positions,
-                    const Buffer<Real>& light, const Buffer<Real>& probability,
-                    const Buffer<Real>& mean_light, const Buffer<Real>& sample) {
+
+void validate(const DeviceApi& dev, const VoxelizeParams& p, const Buffer<Real4>& positions,
+              const Buffer<Real>& light, const Buffer<Real>& probability,
+              const Buffer<Real>& mean_light, const Buffer<Real>& sample) {
   const char* k = "voxelize";
   check_grid(p.grid, k);
-  owners(dev, k, {&positions.impl(), &light.impl(), &probability.impl(), &mean_light.impl(),
-                  &sample.impl()});
   if (p.grid.n < 1) throw_invalid(k, "particles", "0", "at least 1");
   at_least(k, "positions", positions.size(), p.grid.n);
   at_least(k, "light", light.size(), p.grid.n);
@@ -198,12 +194,15 @@ UVec3 brick_dims(const VolumeDesc& v, uint32_t brick) {
           (v.dims.z + brick - 1) / brick};
 }
 
-void check_volume_bricks(const DeviceApi& dev, const VolumeBrickParams& p,
-                         const Buffer<Real>& volume, const Buffer<Real4>& tf,
-                         const Buffer<Real4>& bricks) {
+uint64_t brick_count(const VolumeBrickParams& p) {
+  const UVec3 b = brick_dims(p.volume, p.brick);
+  return uint64_t(b.x) * b.y * b.z;
+}
+
+void validate(const DeviceApi&, const VolumeBrickParams& p, const Buffer<Real>& volume,
+              const Buffer<Real4>& tf, const Buffer<Real4>& bricks) {
   const char* k = "volume_bricks";
   check_volume(p.volume, k);
-  owners(dev, k, {&volume.impl(), &tf.impl(), &bricks.impl()});
   in_range(k, "brick", p.brick, 2, 32);  // (brick + 1)^3 voxels per invocation
   in_range(k, "tf_size", p.tf_size, 2, 4096);
   at_least(k, "transfer function", tf.size(), p.tf_size);
@@ -254,12 +253,10 @@ uint64_t max_ray_segments(const RaymarchParams& p) {
   return uint64_t(std::ceil(std::sqrt(dx * dx + dy * dy + dz * dz) / p.step)) + 1;
 }
 
-void check_raymarch(const DeviceApi& dev, const RaymarchParams& p, const Buffer<Real>& volume,
-                    const Buffer<Real4>& tf, const Buffer<Real4>& bricks,
-                    const Buffer<Real4>& image) {
+void validate(const DeviceApi&, const RaymarchParams& p, const Buffer<Real>& volume,
+              const Buffer<Real4>& tf, const Buffer<Real4>& bricks, const Buffer<Real4>& image) {
   const char* k = "raymarch";
   check_volume(p.volume, k);
-  owners(dev, k, {&volume.impl(), &tf.impl(), &bricks.impl(), &image.impl()});
   in_range(k, "width", p.width, 1, 16384);
   in_range(k, "height", p.height, 1, 16384);
   if (!finite3(p.eye) || !finite3(p.target) || !finite3(p.up))

@@ -5,10 +5,13 @@
 // Bohr radii (a0) unless a name says otherwise.
 #include <cstdint>
 
+#include "engine/core/buffer.h"
 #include "engine/core/kernel_params.h"
 #include "engine/core/types.h"
 
 namespace masav {
+
+class DeviceApi;
 
 // ---- orbital_sample ---------------------------------------------------------------------------
 enum class OrbitalPlacement : uint32_t {
@@ -158,5 +161,27 @@ struct RaymarchParams {
   Compositing mode = Compositing::front_to_back;
 };
 constexpr uint32_t kMaxRaySteps = 60000;
+
+// ---- checks Backend runs before any backend sees a call (engine/atom/atom_checks.cpp) --------
+void validate(const DeviceApi& dev, const OrbitalSampleParams& p, const Buffer<uint32_t>& tables,
+              const Buffer<Real4>& positions);
+void validate(const DeviceApi& dev, const CloudDensityParams& p, const Buffer<uint32_t>& start,
+              const Buffer<uint32_t>& end, const Buffer<Real>& density);
+void validate(const DeviceApi& dev, const ScatterTableParams& p, const Buffer<Real>& table,
+              const Buffer<uint32_t>& hits);
+void validate(const DeviceApi& dev, const NebulaLightParams& p, const Buffer<Real4>& positions,
+              const Buffer<Real>& density, const Buffer<Real>& illumination);
+void validate(const DeviceApi& dev, const NebulaLightParams& p, const Buffer<Real4>& positions,
+              const Buffer<Real>& density, const Buffer<Real>& table,
+              const Buffer<Real>& illumination, const Buffer<Real>& light);
+void validate(const DeviceApi& dev, const VoxelizeParams& p, const Buffer<Real4>& positions,
+              const Buffer<Real>& light, const Buffer<Real>& probability,
+              const Buffer<Real>& mean_light, const Buffer<Real>& sample);
+void validate(const DeviceApi& dev, const VolumeBrickParams& p, const Buffer<Real>& volume,
+              const Buffer<Real4>& tf, const Buffer<Real4>& bricks);
+void validate(const DeviceApi& dev, const RaymarchParams& p, const Buffer<Real>& volume,
+              const Buffer<Real4>& tf, const Buffer<Real4>& bricks, const Buffer<Real4>& image);
+// Bricks of volume_bricks' output: its invocations.
+uint64_t brick_count(const VolumeBrickParams& p);
 
 }  // namespace masav

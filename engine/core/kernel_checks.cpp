@@ -29,20 +29,26 @@ void check_fits(const DeviceApi& dev, ElemKind kind, size_t count, std::string_v
                             limit / eb));
 }
 
-void check_sort(const DeviceApi& dev, const RadixSortParams& p, const Buffer<uint32_t>& keys,
-                const Buffer<uint32_t>* values) {
-  check_owner(dev, keys.impl(), "radix_sort");
+void validate(const DeviceApi&, const PhiloxParams&, const Buffer<uint32_t>& out) {
+  if (out.size() > UINT32_MAX - 3)
+    throw_invalid("philox_u32", "count", std::to_string(out.size()), "below 2^32 - 3");
+}
+
+void validate(const DeviceApi&, const PhiloxParams&, const Buffer<float>& out) {
+  if (out.size() > UINT32_MAX - 3)
+    throw_invalid("philox_uniform", "count", std::to_string(out.size()), "below 2^32 - 3");
+}
+
+void validate(const DeviceApi&, const RadixSortParams& p, const Buffer<uint32_t>& keys,
+              const Buffer<uint32_t>* values) {
   if (p.key_bits < 1 || p.key_bits > 32)
     throw_invalid("radix_sort", "key_bits", std::to_string(p.key_bits), "in [1, 32]");
   if (p.n > keys.size())
     throw_invalid("radix_sort", "n", std::to_string(p.n),
                   fmt::format("at most the key buffer's size {}", keys.size()));
-  if (values) {
-    check_owner(dev, values->impl(), "radix_sort");
-    if (p.n > values->size())
-      throw_invalid("radix_sort", "n", std::to_string(p.n),
-                    fmt::format("at most the value buffer's size {}", values->size()));
-  }
+  if (values && p.n > values->size())
+    throw_invalid("radix_sort", "n", std::to_string(p.n),
+                  fmt::format("at most the value buffer's size {}", values->size()));
 }
 
 void check_grid(const GridParams& g, std::string_view kernel) {
@@ -66,22 +72,18 @@ void check_grid(const GridParams& g, std::string_view kernel) {
                   "at most 2^31 cells in all; use a larger cell_size");
 }
 
-void check_assign_cells(const DeviceApi& dev, const GridParams& g, const Buffer<Real4>& positions,
-                        const Buffer<uint32_t>& cells, const Buffer<uint32_t>& indices) {
+void validate(const DeviceApi&, const GridParams& g, const Buffer<Real4>& positions,
+              const Buffer<uint32_t>& cells, const Buffer<uint32_t>& indices) {
   check_grid(g, "grid_assign_cells");
-  for (const BufferImpl* b : {&positions.impl(), &cells.impl(), &indices.impl()})
-    check_owner(dev, *b, "grid_assign_cells");
   if (g.n > positions.size() || g.n > cells.size() || g.n > indices.size())
     throw_invalid("grid_assign_cells", "n", std::to_string(g.n),
                   fmt::format("at most the buffers' sizes (positions {}, cells {}, indices {})",
                               positions.size(), cells.size(), indices.size()));
 }
 
-void check_cell_ranges(const DeviceApi& dev, const GridParams& g, const Buffer<uint32_t>& cells,
-                       const Buffer<uint32_t>& start, const Buffer<uint32_t>& end) {
+void validate(const DeviceApi&, const GridParams& g, const Buffer<uint32_t>& cells,
+              const Buffer<uint32_t>& start, const Buffer<uint32_t>& end) {
   check_grid(g, "grid_cell_ranges");
-  for (const BufferImpl* b : {&cells.impl(), &start.impl(), &end.impl()})
-    check_owner(dev, *b, "grid_cell_ranges");
   const uint64_t ncells = grid_cell_count(g);
   if (start.size() < ncells || end.size() < ncells)
     throw_invalid("grid_cell_ranges", "cell_start/cell_end size",
@@ -92,25 +94,26 @@ void check_cell_ranges(const DeviceApi& dev, const GridParams& g, const Buffer<u
                   fmt::format("at most the cell buffer's size {}", cells.size()));
 }
 
-void check_gather(const DeviceApi& dev, const Buffer<uint32_t>& order, const BufferImpl& src,
-                  const BufferImpl& dst) {
-  for (const BufferImpl* b : {&order.impl(), &src, &dst}) check_owner(dev, *b, "gather");
+void validate(const DeviceApi& dev, const GatherParams& p, const Buffer<uint32_t>& order,
+              const BufferImpl& src, const BufferImpl& dst) {
   if (src.kind() != dst.kind())
     throw Error(dev.name(), "gather",
                 fmt::format("source '{}' holds {} but destination '{}' holds {}", src.label(),
                             elem_kind_name(src.kind()), dst.label(), elem_kind_name(dst.kind())),
                 "gather between buffers of the same element type");
-  if (order.size() > dst.count())
-    throw_invalid("gather", "order size", std::to_string(order.size()),
-                  fmt::format("at most the destination's size {}", dst.count()));
+  if (p.n > order.size() || p.n > dst.count())
+    throw_invalid("gather", "n", std::to_string(p.n),
+                  fmt::format("at most the sizes of order ({}) and the destination ({})",
+                              order.size(), dst.count()));
+  if (src.count() > UINT32_MAX)
+    throw_invalid("gather", "source size", std::to_string(src.count()), "below 2^32");
+
 }
 
-void check_neighbors(const DeviceApi& dev, const NeighborParams& p, const Buffer<Real4>& pos,
-                     const Buffer<uint32_t>& start, const Buffer<uint32_t>& end,
-                     const Buffer<uint32_t>& counts) {
+void validate(const DeviceApi&, const NeighborParams& p, const Buffer<Real4>& pos,
+              const Buffer<uint32_t>& start, const Buffer<uint32_t>& end,
+              const Buffer<uint32_t>& counts) {
   check_grid(p.grid, "grid_count_neighbors");
-  for (const BufferImpl* b : {&pos.impl(), &start.impl(), &end.impl(), &counts.impl()})
-    check_owner(dev, *b, "grid_count_neighbors");
   if (!std::isfinite(p.radius) || !(p.radius > 0) || p.radius > p.grid.cell_size)
     throw_invalid("grid_count_neighbors", "radius", fmt::format("{}", p.radius),
                   fmt::format("in (0, cell_size = {}] so that 27 cells cover the search",

@@ -10,18 +10,7 @@ namespace masav {
 void check_owner(const DeviceApi& dev, const BufferImpl& b, std::string_view kernel);
 void check_fits(const DeviceApi& dev, ElemKind kind, size_t count, std::string_view kernel,
                 std::string_view what);
-void check_sort(const DeviceApi& dev, const RadixSortParams& p, const Buffer<uint32_t>& keys,
-                const Buffer<uint32_t>* values);
 void check_grid(const GridParams& g, std::string_view kernel);
-void check_assign_cells(const DeviceApi& dev, const GridParams& g, const Buffer<Real4>& positions,
-                        const Buffer<uint32_t>& cells, const Buffer<uint32_t>& indices);
-void check_cell_ranges(const DeviceApi& dev, const GridParams& g, const Buffer<uint32_t>& cells,
-                       const Buffer<uint32_t>& start, const Buffer<uint32_t>& end);
-void check_gather(const DeviceApi& dev, const Buffer<uint32_t>& order, const BufferImpl& src,
-                  const BufferImpl& dst);
-void check_neighbors(const DeviceApi& dev, const NeighborParams& p, const Buffer<Real4>& pos,
-                     const Buffer<uint32_t>& start, const Buffer<uint32_t>& end,
-                     const Buffer<uint32_t>& counts);
 
 // Diagnostics a kernel reports through its flags word (the same bits on every backend).
 enum DiagFlag : uint32_t {

@@ -3,9 +3,12 @@
 // fields, and the shared validators (kernel_checks.h) reject bad values before any dispatch.
 #include <cstdint>
 
+#include "engine/core/buffer.h"
 #include "engine/core/types.h"
 
 namespace masav {
+
+class DeviceApi;
 
 // Philox4x32-10 stream: word i of the output is word (i % 4) of the block with counter
 // (first_block + i / 4, stream) under key `seed`. Streams with different ids never overlap.
@@ -51,5 +54,26 @@ struct NeighborParams {
   uint32_t max_candidates = 60000;
 };
 NeighborParams make_neighbor_params(const GridParams& grid, float radius);
+
+// dst[i] = src[order[i]] for i < n.
+struct GatherParams {
+  uint32_t n = 0;
+};
+
+// The checks Backend runs before any backend sees a call (engine/core/kernel_checks.cpp); each
+// throws masav::Error naming the kernel, the field, its value and the allowed range.
+void validate(const DeviceApi& dev, const PhiloxParams& p, const Buffer<uint32_t>& out);
+void validate(const DeviceApi& dev, const PhiloxParams& p, const Buffer<float>& out);
+void validate(const DeviceApi& dev, const RadixSortParams& p, const Buffer<uint32_t>& keys,
+              const Buffer<uint32_t>* values);
+void validate(const DeviceApi& dev, const GridParams& g, const Buffer<Real4>& positions,
+              const Buffer<uint32_t>& cells, const Buffer<uint32_t>& indices);
+void validate(const DeviceApi& dev, const GridParams& g, const Buffer<uint32_t>& sorted_cells,
+              const Buffer<uint32_t>& cell_start, const Buffer<uint32_t>& cell_end);
+void validate(const DeviceApi& dev, const GatherParams& p, const Buffer<uint32_t>& order,
+              const BufferImpl& src, const BufferImpl& dst);
+void validate(const DeviceApi& dev, const NeighborParams& p, const Buffer<Real4>& positions,
+              const Buffer<uint32_t>& cell_start, const Buffer<uint32_t>& cell_end,
+              const Buffer<uint32_t>& counts);
 
 }  // namespace masav

@@ -9,9 +9,8 @@
 
 namespace masav::cpu {
 
-void CpuBackend::orbital_sample(const OrbitalSampleParams& p, const Buffer<uint32_t>& tables,
+void CpuBackend::do_orbital_sample(const OrbitalSampleParams& p, uint64_t, const Buffer<uint32_t>& tables,
                                 Buffer<Real4>& positions) {
-  check_orbital_sample(*this, p, tables, positions);
   const auto* cdf = own(tables.impl(), "orbital_sample").as<uint32_t>();
   auto* out = own(positions.impl(), "orbital_sample").as<double>();
   pool_.parallel_for(p.count, 4096, [&](size_t b, size_t e) {
@@ -25,9 +24,8 @@ void CpuBackend::orbital_sample(const OrbitalSampleParams& p, const Buffer<uint3
   });
 }
 
-void CpuBackend::cloud_density(const CloudDensityParams& p, const Buffer<uint32_t>& cell_start,
+void CpuBackend::do_cloud_density(const CloudDensityParams& p, uint64_t, const Buffer<uint32_t>& cell_start,
                                const Buffer<uint32_t>& cell_end, Buffer<Real>& density) {
-  check_cloud_density(*this, p, cell_start, cell_end, density);
   const auto* start = own(cell_start.impl(), "cloud_density").as<uint32_t>();
   const auto* end = own(cell_end.impl(), "cloud_density").as<uint32_t>();
   auto* out = own(density.impl(), "cloud_density").as<double>();
@@ -38,9 +36,8 @@ void CpuBackend::cloud_density(const CloudDensityParams& p, const Buffer<uint32_
   });
 }
 
-void CpuBackend::nebula_illuminate(const NebulaLightParams& p, const Buffer<Real4>& positions,
+void CpuBackend::do_nebula_illuminate(const NebulaLightParams& p, uint64_t, const Buffer<Real4>& positions,
                                    const Buffer<Real>& density, Buffer<Real>& illumination) {
-  check_nebula(*this, p, positions, density, illumination, "nebula_illuminate");
   const auto* pos = own(positions.impl(), "nebula_illuminate").as<double>();
   const auto* dens = own(density.impl(), "nebula_illuminate").as<double>();
   auto* out = own(illumination.impl(), "nebula_illuminate").as<double>();
@@ -51,11 +48,9 @@ void CpuBackend::nebula_illuminate(const NebulaLightParams& p, const Buffer<Real
   });
 }
 
-void CpuBackend::nebula_view(const NebulaLightParams& p, const Buffer<Real4>& positions,
+void CpuBackend::do_nebula_view(const NebulaLightParams& p, uint64_t, const Buffer<Real4>& positions,
                              const Buffer<Real>& density, const Buffer<Real>& table,
                              const Buffer<Real>& illumination, Buffer<Real>& light) {
-  check_nebula(*this, p, positions, density, light, "nebula_view");
-  check_nebula_view(*this, p, table, illumination);
   const auto* pos = own(positions.impl(), "nebula_view").as<double>();
   const auto* dens = own(density.impl(), "nebula_view").as<double>();
   const auto* tab = own(table.impl(), "nebula_view").as<double>();

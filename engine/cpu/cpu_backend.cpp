@@ -101,7 +101,7 @@ double CpuBackend::timestamp_ns(TimestampId id) {
   return std::chrono::duration<double, std::nano>(stamps_[id] - epoch_).count();
 }
 
-void CpuBackend::philox_u32(const PhiloxParams& p, Buffer<uint32_t>& out) {
+void CpuBackend::do_philox_u32(const PhiloxParams& p, uint64_t, Buffer<uint32_t>& out) {
   auto* o = own(out.impl(), "philox_u32").as<uint32_t>();
   const size_t n = out.size(), blocks = (n + 3) / 4;
   pool_.parallel_for(blocks, 4096, [&](size_t b, size_t e) {
@@ -112,7 +112,7 @@ void CpuBackend::philox_u32(const PhiloxParams& p, Buffer<uint32_t>& out) {
   });
 }
 
-void CpuBackend::philox_uniform(const PhiloxParams& p, Buffer<float>& out) {
+void CpuBackend::do_philox_uniform(const PhiloxParams& p, uint64_t, Buffer<float>& out) {
   auto* o = own(out.impl(), "philox_uniform").as<float>();
   const size_t n = out.size(), blocks = (n + 3) / 4;
   pool_.parallel_for(blocks, 4096, [&](size_t b, size_t e) {
@@ -123,9 +123,8 @@ void CpuBackend::philox_uniform(const PhiloxParams& p, Buffer<float>& out) {
   });
 }
 
-void CpuBackend::radix_sort(const RadixSortParams& p, Buffer<uint32_t>& keys,
+void CpuBackend::do_radix_sort(const RadixSortParams& p, uint64_t, Buffer<uint32_t>& keys,
                             Buffer<uint32_t>* values) {
-  check_sort(*this, p, keys, values);
   radix_sort_host(pool_, p.n, p.key_bits, own(keys.impl(), "radix_sort").as<uint32_t>(),
                   values ? own(values->impl(), "radix_sort").as<uint32_t>() : nullptr);
 }

@@ -23,9 +23,8 @@ struct GridArrays {
 
 }  // namespace
 
-void CpuBackend::grid_assign_cells(const GridParams& g, const Buffer<Real4>& positions,
+void CpuBackend::do_grid_assign_cells(const GridParams& g, uint64_t, const Buffer<Real4>& positions,
                                    Buffer<uint32_t>& cells, Buffer<uint32_t>& indices) {
-  check_assign_cells(*this, g, positions, cells, indices);
   const auto* pos = own(positions.impl(), "grid_assign_cells").as<double>();
   auto* c = own(cells.impl(), "grid_assign_cells").as<uint32_t>();
   auto* idx = own(indices.impl(), "grid_assign_cells").as<uint32_t>();
@@ -41,9 +40,8 @@ void CpuBackend::grid_assign_cells(const GridParams& g, const Buffer<Real4>& pos
   });
 }
 
-void CpuBackend::grid_cell_ranges(const GridParams& g, const Buffer<uint32_t>& sorted_cells,
+void CpuBackend::do_grid_cell_ranges(const GridParams& g, uint64_t, const Buffer<uint32_t>& sorted_cells,
                                   Buffer<uint32_t>& cell_start, Buffer<uint32_t>& cell_end) {
-  check_cell_ranges(*this, g, sorted_cells, cell_start, cell_end);
   const auto* c = own(sorted_cells.impl(), "grid_cell_ranges").as<uint32_t>();
   auto* start = own(cell_start.impl(), "grid_cell_ranges").as<uint32_t>();
   auto* end = own(cell_end.impl(), "grid_cell_ranges").as<uint32_t>();
@@ -58,14 +56,14 @@ void CpuBackend::grid_cell_ranges(const GridParams& g, const Buffer<uint32_t>& s
   });
 }
 
-void CpuBackend::gather(const Buffer<uint32_t>& order, const BufferImpl& src, BufferImpl& dst) {
-  check_gather(*this, order, src, dst);
+void CpuBackend::do_gather(const GatherParams& p, uint64_t, const Buffer<uint32_t>& order,
+                           const BufferImpl& src, BufferImpl& dst) {
   const auto* o = own(order.impl(), "gather").as<uint32_t>();
   const auto& s = own(src, "gather");
   auto& d = own(dst, "gather");
   const size_t eb = elem_bytes(src.kind(), real_bytes()), src_count = src.count();
   std::atomic<size_t> bad{SIZE_MAX};
-  pool_.parallel_for(order.size(), 8192, [&](size_t b, size_t e) {
+  pool_.parallel_for(p.n, 8192, [&](size_t b, size_t e) {
     for (size_t i = b; i < e; ++i) {
       if (o[i] >= src_count) {
         size_t expect = SIZE_MAX;
@@ -81,12 +79,11 @@ void CpuBackend::gather(const Buffer<uint32_t>& order, const BufferImpl& src, Bu
     raise_diagnostics(*this, "gather", kDiagGatherIndexOutOfRange, uint32_t(bad.load()), 0);
 }
 
-void CpuBackend::grid_count_neighbors(const NeighborParams& p,
+void CpuBackend::do_grid_count_neighbors(const NeighborParams& p, uint64_t,
                                       const Buffer<Real4>& sorted_positions,
                                       const Buffer<uint32_t>& cell_start,
                                       const Buffer<uint32_t>& cell_end,
                                       Buffer<uint32_t>& counts) {
-  check_neighbors(*this, p, sorted_positions, cell_start, cell_end, counts);
   const auto* pos = own(sorted_positions.impl(), "grid_count_neighbors").as<double>();
   const auto* start = own(cell_start.impl(), "grid_count_neighbors").as<uint32_t>();
   const auto* end = own(cell_end.impl(), "grid_count_neighbors").as<uint32_t>();

@@ -3,13 +3,11 @@
 
 #include "engine/cpu/cpu_backend.h"
 #include "engine/kernels/drift.h"
-#include "engine/points/drift_checks.h"
 
 namespace masav::cpu {
 
-void CpuBackend::drift_points(const DriftParams& p, const Buffer<float>& start,
+void CpuBackend::do_drift_points(const DriftParams& p, uint64_t, const Buffer<float>& start,
                               const Buffer<float>& direction, Buffer<Real4>& positions) {
-  check_drift(*this, p, start, direction, positions);
   const float* u = own(start.impl(), "drift_points").as<float>();
   const float* w = own(direction.impl(), "drift_points").as<float>();
   double* out = own(positions.impl(), "drift_points").as<double>();

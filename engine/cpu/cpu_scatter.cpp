@@ -8,9 +8,8 @@
 
 namespace masav::cpu {
 
-void CpuBackend::scatter_table(const ScatterTableParams& p, Buffer<Real>& table,
+void CpuBackend::do_scatter_table(const ScatterTableParams& p, uint64_t, Buffer<Real>& table,
                                Buffer<uint32_t>& hits) {
-  check_scatter_table(*this, p, table, hits);
   auto* tab = own(table.impl(), "scatter_table").as<double>();
   auto* cnt = own(hits.impl(), "scatter_table").as<uint32_t>();
   const uint32_t stride = p.bins + kScatterExtras;

@@ -11,7 +11,6 @@
 #include "engine/cpu/cpu_backend.h"
 #include "engine/cpu/cpu_sph_rows.h"
 #include "engine/kernels/sph_kernels.h"
-#include "engine/sph/sph_checks.h"
 #include "engine/sph/sph_coefficients.h"
 
 namespace masav::cpu {
@@ -132,8 +131,11 @@ void CpuBackend::build_sph_lists(const SphListInputs& in, size_t chunks, Found&&
   sph_lists_.remember(in);
 }
 
-void CpuBackend::sph_density(const SphStepParams& p, const SphDensityIO& io) {
-  check_sph_density(*this, p, io);
+void CpuBackend::do_sph_density(const SphStepParams& p, uint64_t, const Buffer<Real4>& positions,
+    const Buffer<uint32_t>& cells, const Buffer<uint32_t>& cell_start,
+    const Buffer<uint32_t>& cell_end, Buffer<Real>& density, Buffer<Real>& pressure,
+    Buffer<uint32_t>& stats) {
+  const SphDensityIO io{&positions, {&cells, &cell_start, &cell_end}, &density, &pressure, &stats};
   const char* k = "sph_density";
   const auto c = make_coefficients(p);
   SphListInputs in = sph_list_inputs(p, io.grid, c.h2, k);
@@ -158,8 +160,12 @@ void CpuBackend::sph_density(const SphStepParams& p, const SphDensityIO& io) {
   merge(words, st);
 }
 
-void CpuBackend::sph_forces(const SphStepParams& p, const SphForcesIO& io) {
-  check_sph_forces(*this, p, io);
+void CpuBackend::do_sph_forces(const SphStepParams& p, uint64_t, const Buffer<Real4>& positions,
+    const Buffer<Real4>& velocities, const Buffer<Real>& density, const Buffer<Real>& pressure,
+    const Buffer<uint32_t>& cells, const Buffer<uint32_t>& cell_start,
+    const Buffer<uint32_t>& cell_end, Buffer<Real4>& accel, Buffer<uint32_t>& stats) {
+  const SphForcesIO io{&positions, &velocities, &density, &pressure,
+                       {&cells, &cell_start, &cell_end}, &accel, &stats};
   const char* k = "sph_forces";
   const auto c = make_coefficients(p);
   SphListInputs in = sph_list_inputs(p, io.grid, c.h2, k);
@@ -213,8 +219,13 @@ void CpuBackend::sph_forces(const SphStepParams& p, const SphForcesIO& io) {
   merge(words, st);
 }
 
-void CpuBackend::sph_integrate(const SphIntegrateParams& p, const SphIntegrateIO& io) {
-  check_sph_integrate(*this, p, io);
+void CpuBackend::do_sph_integrate(const SphIntegrateParams& p, uint64_t,
+                                  const Buffer<Real4>* x0_in, const Buffer<Real4>& v0_in,
+                                  const Buffer<Real4>* vk_in, const Buffer<Real4>& accel,
+                                  Buffer<Real4>* x_out, Buffer<Real4>& v_out,
+                                  Buffer<Real4>* sum_x, Buffer<Real4>* sum_v,
+                                  Buffer<uint32_t>& stats) {
+  const SphIntegrateIO io{x0_in, &v0_in, vk_in, &accel, x_out, &v_out, sum_x, sum_v, &stats};
   const char* k = "sph_integrate";
   const uint32_t op = uint32_t(p.op);
   const bool kick = p.op == SphStageOp::kick;

@@ -9,10 +9,9 @@
 
 namespace masav::cpu {
 
-void CpuBackend::voxelize(const VoxelizeParams& p, const Buffer<Real4>& positions,
+void CpuBackend::do_voxelize(const VoxelizeParams& p, uint64_t, const Buffer<Real4>& positions,
                           const Buffer<Real>& light, Buffer<Real>& probability,
                           Buffer<Real>& mean_light, Buffer<Real>& sample) {
-  check_voxelize(*this, p, positions, light, probability, mean_light, sample);
   const auto* pos = own(positions.impl(), "voxelize").as<double>();
   const auto* lit = own(light.impl(), "voxelize").as<double>();
   auto* prob = own(probability.impl(), "voxelize").as<double>();
@@ -42,9 +41,8 @@ void CpuBackend::voxelize(const VoxelizeParams& p, const Buffer<Real4>& position
   }
 }
 
-void CpuBackend::volume_bricks(const VolumeBrickParams& p, const Buffer<Real>& volume,
+void CpuBackend::do_volume_bricks(const VolumeBrickParams& p, uint64_t, const Buffer<Real>& volume,
                                const Buffer<Real4>& tf, Buffer<Real4>& bricks) {
-  check_volume_bricks(*this, p, volume, tf, bricks);
   const auto* vol = own(volume.impl(), "volume_bricks").as<double>();
   const auto* t = own(tf.impl(), "volume_bricks").as<double>();
   auto* out = own(bricks.impl(), "volume_bricks").as<double>();
@@ -78,10 +76,9 @@ void CpuBackend::volume_bricks(const VolumeBrickParams& p, const Buffer<Real>& v
   });
 }
 
-void CpuBackend::raymarch(const RaymarchParams& p, const Buffer<Real>& volume,
+void CpuBackend::do_raymarch(const RaymarchParams& p, uint64_t, const Buffer<Real>& volume,
                           const Buffer<Real4>& tf, const Buffer<Real4>& bricks,
                           Buffer<Real4>& image) {
-  check_raymarch(*this, p, volume, tf, bricks, image);
   const auto* vol = own(volume.impl(), "raymarch").as<double>();
   const auto* t = own(tf.impl(), "raymarch").as<double>();
   const auto* br = own(bricks.impl(), "raymarch").as<double>();

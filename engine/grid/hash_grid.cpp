@@ -30,12 +30,7 @@ void build_hash_grid(Backend& backend, HashGrid& grid, const Buffer<Real4>& posi
 }
 
 void reorder(Backend& backend, const HashGrid& grid, const BufferImpl& src, BufferImpl& dst) {
-  if (grid.params.n == grid.sorted_index.size()) {
-    backend.gather(grid.sorted_index, src, dst);
-    return;
-  }
-  throw Error(backend.name(), "reorder", "grid capacity differs from its point count",
-              "build the grid with capacity == n, or gather with a buffer of n indices");
+  backend.gather({grid.params.n}, grid.sorted_index, src, dst);
 }
 
 }  // namespace masav

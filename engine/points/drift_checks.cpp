@@ -1,19 +1,16 @@
-#include "engine/points/drift_checks.h"
+#include "engine/points/drift_params.h"
 
 #include <fmt/format.h>
 
 #include <cmath>
 
 #include "engine/core/error.h"
-#include "engine/core/kernel_checks.h"
 
 namespace masav {
 
-void check_drift(const DeviceApi& dev, const DriftParams& p, const Buffer<float>& start,
-                 const Buffer<float>& direction, const Buffer<Real4>& positions) {
+void validate(const DeviceApi&, const DriftParams& p, const Buffer<float>& start,
+              const Buffer<float>& direction, const Buffer<Real4>& positions) {
   constexpr const char* k = "drift_points";
-  for (const BufferImpl* b : {&start.impl(), &direction.impl(), &positions.impl()})
-    check_owner(dev, *b, k);
   if (uint64_t(p.n) * 4 > start.size() || uint64_t(p.n) * 4 > direction.size() ||
       p.n > positions.size())
     throw_invalid(k, "n", std::to_string(p.n),

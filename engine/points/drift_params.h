@@ -4,9 +4,12 @@
 // between frames), so any frame can be rendered, paused or replayed without stepping.
 #include <cstdint>
 
+#include "engine/core/buffer.h"
 #include "engine/core/types.h"
 
 namespace masav {
+
+class DeviceApi;
 
 // Point i, axis k, with u = start[4i + k] and w = direction[4i + k] (uniforms in [0, 1)):
 //   f = u + (2w - 1) * speed * time_s,   position_k = box_lo_k + box_extent_k * (f - floor(f))
@@ -19,5 +22,9 @@ struct DriftParams {
   float speed = 0.05f;
   float time_s = 0.0f;
 };
+
+// Checked before any backend runs drift_points (engine/points/drift_checks.cpp).
+void validate(const DeviceApi& dev, const DriftParams& p, const Buffer<float>& start,
+              const Buffer<float>& direction, const Buffer<Real4>& positions);
 
 }  // namespace masav

@@ -1,11 +1,11 @@
-#include "engine/sph/sph_checks.h"
-
 #include <fmt/format.h>
 
 #include <cmath>
 
+#include "engine/core/device_api.h"
 #include "engine/core/error.h"
 #include "engine/core/kernel_checks.h"
+#include "engine/sph/sph_kernel_params.h"
 
 namespace masav {
 namespace {
@@ -16,26 +16,26 @@ void finite_positive(const char* kernel, const char* field, double v, bool allow
                   allow_zero ? "finite and >= 0" : "finite and > 0");
 }
 
+// A buffer the kernel needs at least `count` elements of (an optional one is null when not
+// passed, which is an error where the op reads or writes it).
 template <class B>
 void need(const DeviceApi& dev, const B* b, size_t count, const char* kernel, const char* field) {
   if (!b)
     throw Error(dev.name(), kernel, fmt::format("no '{}' buffer given", field),
                 "pass every buffer the kernel reads or writes");
-  check_owner(dev, b->impl(), kernel);
   if (b->size() < count)
     throw_invalid(kernel, fmt::format("{} size", field), std::to_string(b->size()),
                   fmt::format("at least {} elements", count));
 }
 
-void check_view(const DeviceApi& dev, const SphStepParams& p, const SphGridView& g,
+void check_view(const DeviceApi& dev, const SphStepParams& p, const Buffer<uint32_t>& cells,
+                const Buffer<uint32_t>& cell_start, const Buffer<uint32_t>& cell_end,
                 const char* kernel) {
-  const size_t cells = size_t(grid_cell_count(p.grid));
-  need(dev, g.cells, p.n, kernel, "cells");
-  need(dev, g.cell_start, cells, kernel, "cell_start");
-  need(dev, g.cell_end, cells, kernel, "cell_end");
+  const size_t n_cells = size_t(grid_cell_count(p.grid));
+  need(dev, &cells, p.n, kernel, "cells");
+  need(dev, &cell_start, n_cells, kernel, "cell_start");
+  need(dev, &cell_end, n_cells, kernel, "cell_end");
 }
-
-}  // namespace
 
 void check_sph_step(const DeviceApi& dev, const SphStepParams& p, const char* kernel) {
   check_grid(p.grid, kernel);
@@ -76,30 +76,41 @@ void check_sph_step(const DeviceApi& dev, const SphStepParams& p, const char* ke
   (void)dev;
 }
 
-void check_sph_density(const DeviceApi& dev, const SphStepParams& p, const SphDensityIO& io) {
+}  // namespace
+
+void validate(const DeviceApi& dev, const SphStepParams& p, const Buffer<Real4>& positions,
+              const Buffer<uint32_t>& cells, const Buffer<uint32_t>& cell_start,
+              const Buffer<uint32_t>& cell_end, const Buffer<Real>& density,
+              const Buffer<Real>& pressure, const Buffer<uint32_t>& stats) {
   const char* k = "sph_density";
   check_sph_step(dev, p, k);
-  need(dev, io.positions, p.n, k, "positions");
-  check_view(dev, p, io.grid, k);
-  need(dev, io.density, p.n, k, "density");
-  need(dev, io.pressure, p.n, k, "pressure");
-  need(dev, io.stats, kSphStatWords, k, "stats");
+  need(dev, &positions, p.n, k, "positions");
+  check_view(dev, p, cells, cell_start, cell_end, k);
+  need(dev, &density, p.n, k, "density");
+  need(dev, &pressure, p.n, k, "pressure");
+  need(dev, &stats, kSphStatWords, k, "stats");
 }
 
-void check_sph_forces(const DeviceApi& dev, const SphStepParams& p, const SphForcesIO& io) {
+void validate(const DeviceApi& dev, const SphStepParams& p, const Buffer<Real4>& positions,
+              const Buffer<Real4>& velocities, const Buffer<Real>& density,
+              const Buffer<Real>& pressure, const Buffer<uint32_t>& cells,
+              const Buffer<uint32_t>& cell_start, const Buffer<uint32_t>& cell_end,
+              const Buffer<Real4>& accel, const Buffer<uint32_t>& stats) {
   const char* k = "sph_forces";
   check_sph_step(dev, p, k);
-  need(dev, io.positions, p.n, k, "positions");
-  need(dev, io.velocities, p.n, k, "velocities");
-  need(dev, io.density, p.n, k, "density");
-  need(dev, io.pressure, p.n, k, "pressure");
-  check_view(dev, p, io.grid, k);
-  need(dev, io.accel, p.n, k, "accel");
-  need(dev, io.stats, kSphStatWords, k, "stats");
+  need(dev, &positions, p.n, k, "positions");
+  need(dev, &velocities, p.n, k, "velocities");
+  need(dev, &density, p.n, k, "density");
+  need(dev, &pressure, p.n, k, "pressure");
+  check_view(dev, p, cells, cell_start, cell_end, k);
+  need(dev, &accel, p.n, k, "accel");
+  need(dev, &stats, kSphStatWords, k, "stats");
 }
 
-void check_sph_integrate(const DeviceApi& dev, const SphIntegrateParams& p,
-                         const SphIntegrateIO& io) {
+void validate(const DeviceApi& dev, const SphIntegrateParams& p, const Buffer<Real4>* x0,
+              const Buffer<Real4>& v0, const Buffer<Real4>* vk, const Buffer<Real4>& accel,
+              const Buffer<Real4>* x_out, const Buffer<Real4>& v_out, const Buffer<Real4>* sum_x,
+              const Buffer<Real4>* sum_v, const Buffer<uint32_t>& stats) {
   const char* k = "sph_integrate";
   const uint32_t op = uint32_t(p.op);
   if (op > uint32_t(SphStageOp::kick)) throw_invalid(k, "op", std::to_string(op), "a SphStageOp");
@@ -119,20 +130,20 @@ void check_sph_integrate(const DeviceApi& dev, const SphIntegrateParams& p,
     throw_invalid(k, "tangential_damping", fmt::format("{}", p.tangential_damping), "in [0, 1]");
   const SphStageOp o = p.op;
   const bool rk4 = o >= SphStageOp::rk4_stage1 && o <= SphStageOp::rk4_final;
-  need(dev, io.v0, p.n, k, "v0");
-  need(dev, io.accel, p.n, k, "accel");
-  need(dev, io.v_out, p.n, k, "v_out");
-  need(dev, io.stats, kSphStatWords, k, "stats");
+  need(dev, &v0, p.n, k, "v0");
+  need(dev, &accel, p.n, k, "accel");
+  need(dev, &v_out, p.n, k, "v_out");
+  need(dev, &stats, kSphStatWords, k, "stats");
   if (o != SphStageOp::kick) {
-    need(dev, io.x0, p.n, k, "x0");
-    need(dev, io.x_out, p.n, k, "x_out");
+    need(dev, x0, p.n, k, "x0");
+    need(dev, x_out, p.n, k, "x_out");
   }
-  if (rk4 && o != SphStageOp::rk4_stage1) need(dev, io.vk, p.n, k, "vk");
+  if (rk4 && o != SphStageOp::rk4_stage1) need(dev, vk, p.n, k, "vk");
   if (rk4) {
-    need(dev, io.sum_x, p.n, k, "sum_x");
-    need(dev, io.sum_v, p.n, k, "sum_v");
+    need(dev, sum_x, p.n, k, "sum_x");
+    need(dev, sum_v, p.n, k, "sum_v");
   }
-  if (o == SphStageOp::kick_drift) need(dev, io.sum_v, p.n, k, "sum_v");
+  if (o == SphStageOp::kick_drift) need(dev, sum_v, p.n, k, "sum_v");
 }
 
 }  // namespace masav

@@ -16,6 +16,7 @@
 #include "engine/sph/sph_particles.h"
 #include "engine/util/error_metrics.h"
 #include "engine/verify/check_registry.h"
+#include "engine/sph/sph_kernel_calls.h"
 
 namespace masav::verify {
 namespace {
@@ -147,7 +148,7 @@ std::vector<KernelCheck> sph_checks() {
           const SphCheckCase cs = make_case(in, model);
           SphCaseBuffers s =
               upload_sph_case(b, cs.params, cs.positions, cs.velocities, "check sph");
-          b.sph_density(cs.params, {&s.sorted_pos, s.view(), &s.density, &s.pressure, &s.stats});
+          sph_density(b, cs.params, {&s.sorted_pos, s.view(), &s.density, &s.pressure, &s.stats});
           const std::string m = to_string(model);
           out.push_back({"density " + m, {}, b.download(s.density)});
           out.push_back({"pressure " + m, {}, b.download(s.pressure)});
@@ -176,7 +177,7 @@ std::vector<KernelCheck> sph_checks() {
           }
           b.upload(s.density, rho);
           b.upload(s.pressure, pr);
-          b.sph_forces(cs.params, {&s.sorted_pos, &s.sorted_vel, &s.density, &s.pressure,
+          sph_forces(b, cs.params, {&s.sorted_pos, &s.sorted_vel, &s.density, &s.pressure,
                                    s.view(), &s.accel, &s.stats});
           const auto a = b.download(s.accel);
           std::vector<double> w(a.size());
@@ -229,7 +230,7 @@ std::vector<KernelCheck> sph_checks() {
           p.tangential_damping = 0.1;
           const bool uses_vk =
               op >= uint32_t(SphStageOp::rk4_stage2) && op <= uint32_t(SphStageOp::rk4_final);
-          b.sph_integrate(p, {&x0, &v0, uses_vk ? &vkb : nullptr, &a, &xo, &vo, &sx, &sv, &stats});
+          sph_integrate(b, p, {&x0, &v0, uses_vk ? &vkb : nullptr, &a, &xo, &vo, &sx, &sv, &stats});
           out.push_back({fmt::format("v op {}", op), {}, xyz_components(b.download(vo))});
           if (p.op != SphStageOp::kick)
             out.push_back({fmt::format("x op {}", op), {}, xyz_components(b.download(xo))});

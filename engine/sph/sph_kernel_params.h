@@ -9,6 +9,8 @@
 
 namespace masav {
 
+class DeviceApi;
+
 enum class SphPressureModel : uint32_t {
   wcsph = 0,   // symmetric pressure force with the Tait equation of state (momentum-conserving)
   thesis = 1,  // thesis Eq. 4.5-4.7 as printed: density-difference pressure, not symmetric
@@ -118,5 +120,20 @@ struct SphIntegrateIO {
   Buffer<Real4>* sum_v = nullptr;  // RK4 running sums; kick_drift: predicted v1
   Buffer<uint32_t>* stats = nullptr;
 };
+
+// Checked before any backend runs the kernel (engine/sph/sph_checks.cpp).
+void validate(const DeviceApi& dev, const SphStepParams& p, const Buffer<Real4>& positions,
+              const Buffer<uint32_t>& cells, const Buffer<uint32_t>& cell_start,
+              const Buffer<uint32_t>& cell_end, const Buffer<Real>& density,
+              const Buffer<Real>& pressure, const Buffer<uint32_t>& stats);
+void validate(const DeviceApi& dev, const SphStepParams& p, const Buffer<Real4>& positions,
+              const Buffer<Real4>& velocities, const Buffer<Real>& density,
+              const Buffer<Real>& pressure, const Buffer<uint32_t>& cells,
+              const Buffer<uint32_t>& cell_start, const Buffer<uint32_t>& cell_end,
+              const Buffer<Real4>& accel, const Buffer<uint32_t>& stats);
+void validate(const DeviceApi& dev, const SphIntegrateParams& p, const Buffer<Real4>* x0,
+              const Buffer<Real4>& v0, const Buffer<Real4>* vk, const Buffer<Real4>& accel,
+              const Buffer<Real4>* x_out, const Buffer<Real4>& v_out, const Buffer<Real4>* sum_x,
+              const Buffer<Real4>* sum_v, const Buffer<uint32_t>& stats);
 
 }  // namespace masav

@@ -10,6 +10,7 @@
 #include "engine/core/error.h"
 #include "engine/core/kernel_checks.h"
 #include "engine/sph/sph_coefficients.h"
+#include "engine/sph/sph_kernel_calls.h"
 
 namespace masav {
 namespace {
@@ -204,9 +205,9 @@ void SphSimulation::sort_state() {
 
 void SphSimulation::evaluate(const Buffer<Real4>& x, const Buffer<Real4>& v) {
   const SphGridView view{&grid_.sorted_cells, &grid_.cell_start, &grid_.cell_end};
-  backend_.sph_density(step_params_, SphDensityIO{&x, view, &density_, &pressure_, &stats_buf_});
+  sph_density(backend_, step_params_, SphDensityIO{&x, view, &density_, &pressure_, &stats_buf_});
   mark(SphStage::density);
-  backend_.sph_forces(step_params_,
+  sph_forces(backend_, step_params_,
                       SphForcesIO{&x, &v, &density_, &pressure_, view, &accel_, &stats_buf_});
   mark(SphStage::forces);
 }
@@ -224,7 +225,7 @@ void SphSimulation::integrate(SphStageOp op, double dt, const Buffer<Real4>& x0,
   p.box_max = scene_.box_max;
   p.restitution = scene_.restitution;
   p.tangential_damping = scene_.tangential_damping;
-  backend_.sph_integrate(
+  sph_integrate(backend_, 
       p, SphIntegrateIO{&x0, &v0, vk, &accel_, x_out, &v_out, sum_x, sum_v, &stats_buf_});
   mark(SphStage::integrate);
 }
@@ -496,9 +497,9 @@ SphState SphSimulation::download() {
     reorder(backend_, grid_, ids_.impl(), ids_t_.impl());
     backend_.fill(stats_buf_, 0u);
     const SphGridView view{&grid_.sorted_cells, &grid_.cell_start, &grid_.cell_end};
-    backend_.sph_density(step_params_,
+    sph_density(backend_, step_params_,
                          SphDensityIO{&ta_, view, &density_, &pressure_, &stats_buf_});
-    backend_.sph_forces(step_params_,
+    sph_forces(backend_, step_params_,
                         SphForcesIO{&ta_, &tb_, &density_, &pressure_, view, &accel_, &stats_buf_});
     accel_valid_ = false;
     px = &ta_;

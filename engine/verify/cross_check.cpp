@@ -5,6 +5,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdlib>
+#include <optional>
 
 #include "engine/cpu/cpu_backend.h"
 #include "engine/core/error.h"
@@ -18,20 +19,28 @@ double ms_since(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
 }
 
-// Test hook (see cross_check.h): one word flipped or one value nudged by one ulp.
-void inject_fault(CheckOutputs& outs) {
-  for (auto& o : outs) {
-    if (!o.words.empty()) {
-      o.words[o.words.size() / 2] ^= 1u;
-      return;
-    }
-    if (!o.reals.empty()) {
-      double& v = o.reals[o.reals.size() / 2];
-      v = v == 0 ? 1.0 : v * (1.0 + 1e-3);
-      return;
-    }
-  }
+// The kernel MASAV_VERIFY_FAULT names (see cross_check.h), if any.
+std::optional<KernelId> fault_from_env() {
+  const char* env = std::getenv("MASAV_VERIFY_FAULT");
+  if (!env || !*env) return std::nullopt;
+  if (auto id = find_kernel(env)) return id;
+  throw_invalid("cross-check", "MASAV_VERIFY_FAULT", env,
+                fmt::format("a kernel name: {}", kernel_names_list()));
 }
+
+// Arms the backend's fault for the one check of that kernel, so no other row sees it.
+class ArmedFault {
+ public:
+  ArmedFault(Backend& b, std::optional<KernelId> fault, const std::string& kernel) : b_(b) {
+    if (fault && kernel_name(*fault) == kernel) b_.inject_fault(fault);
+  }
+  ~ArmedFault() { b_.inject_fault(std::nullopt); }
+  ArmedFault(const ArmedFault&) = delete;
+  ArmedFault& operator=(const ArmedFault&) = delete;
+
+ private:
+  Backend& b_;
+};
 
 }  // namespace
 
@@ -54,8 +63,7 @@ CrossCheckReport cross_check(Backend& backend, Backend& reference,
   rep.reference_device = reference.caps().device_name;
   rep.points = in.points;
   rep.seed = in.seed;
-  const char* fault_env = std::getenv("MASAV_VERIFY_FAULT");
-  const std::string fault = fault_env ? fault_env : "";
+  const std::optional<KernelId> fault = fault_from_env();
   for (const auto& kernel : kernels) {
     CheckRow row;
     row.kernel = kernel;
@@ -70,12 +78,14 @@ CrossCheckReport cross_check(Backend& backend, Backend& reference,
     row.kind = check->kind;
     try {
       auto t0 = std::chrono::steady_clock::now();
-      CheckOutputs got = check->run(backend, in);
+      CheckOutputs got = [&] {
+        const ArmedFault armed(backend, fault, kernel);
+        return check->run(backend, in);
+      }();
       row.ms_backend = ms_since(t0);
       t0 = std::chrono::steady_clock::now();
       const CheckOutputs want = check->run(reference, in);
       row.ms_reference = ms_since(t0);
-      if (fault == kernel) inject_fault(got);
       const Verdict v = check->compare(got, want, in);
       row.pass = v.pass;
       row.metrics = v.metrics;

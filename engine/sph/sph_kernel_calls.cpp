@@ -1,0 +1,45 @@
+#include "engine/sph/sph_kernel_calls.h"
+
+#include <fmt/format.h>
+
+#include "engine/core/error.h"
+
+namespace masav {
+namespace {
+
+template <class B>
+B& given(const Backend& b, B* buffer, const char* kernel, const char* field) {
+  if (!buffer)
+    throw Error(b.name(), kernel, fmt::format("no '{}' buffer given", field),
+                "pass every buffer the kernel reads or writes");
+  return *buffer;
+}
+
+}  // namespace
+
+void sph_density(Backend& b, const SphStepParams& p, const SphDensityIO& io) {
+  const char* k = "sph_density";
+  b.sph_density(p, given(b, io.positions, k, "positions"), given(b, io.grid.cells, k, "cells"),
+                given(b, io.grid.cell_start, k, "cell_start"),
+                given(b, io.grid.cell_end, k, "cell_end"), given(b, io.density, k, "density"),
+                given(b, io.pressure, k, "pressure"), given(b, io.stats, k, "stats"));
+}
+
+void sph_forces(Backend& b, const SphStepParams& p, const SphForcesIO& io) {
+  const char* k = "sph_forces";
+  b.sph_forces(p, given(b, io.positions, k, "positions"),
+               given(b, io.velocities, k, "velocities"), given(b, io.density, k, "density"),
+               given(b, io.pressure, k, "pressure"), given(b, io.grid.cells, k, "cells"),
+               given(b, io.grid.cell_start, k, "cell_start"),
+               given(b, io.grid.cell_end, k, "cell_end"), given(b, io.accel, k, "accel"),
+               given(b, io.stats, k, "stats"));
+}
+
+void sph_integrate(Backend& b, const SphIntegrateParams& p, const SphIntegrateIO& io) {
+  const char* k = "sph_integrate";
+  b.sph_integrate(p, io.x0, given(b, io.v0, k, "v0"), io.vk, given(b, io.accel, k, "accel"),
+                  io.x_out, given(b, io.v_out, k, "v_out"), io.sum_x, io.sum_v,
+                  given(b, io.stats, k, "stats"));
+}
+
+}  // namespace masav

@@ -1,0 +1,13 @@
+#pragma once
+// The SPH kernels called with their buffers grouped by role (SphDensityIO, SphForcesIO,
+// SphIntegrateIO), as the simulation, the cross-check and the tests hold them. A missing
+// required buffer is an error naming it, before the kernel's own checks.
+#include "engine/core/backend.h"
+
+namespace masav {
+
+void sph_density(Backend& b, const SphStepParams& p, const SphDensityIO& io);
+void sph_forces(Backend& b, const SphStepParams& p, const SphForcesIO& io);
+void sph_integrate(Backend& b, const SphIntegrateParams& p, const SphIntegrateIO& io);
+
+}  // namespace masav
