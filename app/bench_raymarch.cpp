@@ -46,14 +46,16 @@ Timed time_raymarch(Backend& b, const RaymarchParams& rp, const Buffer<Real>& vo
   auto bricks = b.create<Real4>(size_t(nb.x) * nb.y * nb.z, "bricks");
   b.volume_bricks({rp.volume, rp.brick, rp.tf_size}, vol, t, bricks);
   auto img = b.create<Real4>(size_t(rp.width) * rp.height, "image");
-  const TimingStats s =
-      summarize(time_on_device(b, 1, reps, [] {}, [&] { b.raymarch(rp, vol, t, bricks, img); }));
+  const TimingStats s = summarize(time_on_device(
+      b, 1, reps, [] {}, [&] { b.raymarch(rp, vol, t, bricks, img); }));
   return {s.median_ms, b.download(img)};
 }
 
 int run_raymarch_bench(const RaymarchBenchOptions& o) {
-  fmt::print("bench raymarch: the state1 cloud voxelized on 60^3 (front view, step 1/2 voxel, "
-             "empty-space skipping, ERT 0.99), median of {} runs\n", o.reps);
+  fmt::print(
+      "bench raymarch: the state1 cloud voxelized on 60^3 (front view, step 1/2 voxel, "
+      "empty-space skipping, ERT 0.99), median of {} runs\n",
+      o.reps);
   JsonWriter j;
   j.begin_object();
   write_record_header(j, "raymarch");
@@ -78,12 +80,14 @@ int run_raymarch_bench(const RaymarchBenchOptions& o) {
       for (Case c : {Case{512, 512}, Case{1024, 1024}}) {
         for (bool skip : {true, false}) {
           if (!skip && c.w > 512) continue;  // the effect of skipping shows at 512^2
-          RaymarchParams rp = atom::default_raymarch(scene.volume(), atom::ViewPreset::front, c.w, c.h);
+          RaymarchParams rp =
+              atom::default_raymarch(scene.volume(), atom::ViewPreset::front, c.w, c.h);
           rp.skip_empty = skip;
           const Timed t = time_raymarch(*b, rp, scene.sample, tf, o.reps);
           const double rays = double(c.w) * c.h / (t.ms * 1e-3);
           fmt::print("  {:<8} {:>10} {:>7}x{:<4} {:>10.2f} {:>8.1f} {:>12.1f}{}\n", b->name(),
-                     "60^3", c.w, c.h, t.ms, 1e3 / t.ms, rays * 1e-6, skip ? "" : "  (no skipping)");
+                     "60^3", c.w, c.h, t.ms, 1e3 / t.ms, rays * 1e-6,
+                     skip ? "" : "  (no skipping)");
           j.begin_object();
           write_device(j, *b);
           j.field("volume", "60^3").field("width", c.w).field("height", c.h);
@@ -103,7 +107,7 @@ int run_raymarch_bench(const RaymarchBenchOptions& o) {
             }
         auto vol = b->create<Real>(v.size(), "volume 256");
         b->upload(vol, std::span<const float>(v));
-        const VolumeDesc d{{n, n, n}, {-1, -1, -1}, {1, 1, 1}, 0.0f, 1.0f};
+        const VolumeDesc d = make_volume_desc({n, n, n}, {-1, -1, -1}, {1, 1, 1});
         RaymarchParams rp = atom::default_raymarch(d, atom::ViewPreset::front, 1920, 1080);
         const Timed t = time_raymarch(*b, rp, vol, tf, o.reps);
         const double rays = 1920.0 * 1080 / (t.ms * 1e-3);
@@ -129,7 +133,7 @@ int run_raymarch_bench(const RaymarchBenchOptions& o) {
   const double c = 1.5, ref = 0.01;
   std::vector<Vec4d> atf(4096);
   for (uint32_t k = 0; k < 4096; ++k) atf[k] = {1, 1, 1, 1 - std::exp(-c * (k / 4095.0) * ref)};
-  const VolumeDesc d{{n, n, n}, {-1, -1, -1}, {1, 1, 1}, 0.0f, 1.0f};
+  const VolumeDesc d = make_volume_desc({n, n, n}, {-1, -1, -1}, {1, 1, 1});
   RaymarchParams rp = atom::default_raymarch(d, atom::ViewPreset::front, 128, 128);
   rp.eye = {2.2f, -2.9f, 1.7f};
   rp.reference_step = float(ref);
@@ -147,12 +151,12 @@ int run_raymarch_bench(const RaymarchBenchOptions& o) {
       for (double sv : {2.0, 1.0, 0.5, 0.25, 0.125}) {
         rp.step = float(sv * spacing);
         const Timed t = time_raymarch(*b, rp, vol, atf, o.reps);
-        const volume::RayCamera cam = make_ray_camera(rp);
+        const RaymarchLayout cam = raymarch_layout(rp);
         double err = 0;
         for (uint32_t y = 0; y < rp.height; ++y)
           for (uint32_t x = 0; x < rp.width; ++x) {
             const hd::V3<double> eye = volume::v3<double>(cam.eye);
-            const hd::V3<double> dir = volume::pixel_direction<double>(rp, cam, x, y);
+            const hd::V3<double> dir = volume::pixel_direction<double>(cam, x, y);
             double t0 = 0, t1 = 1e30, integral = 0;
             if (volume::slab(eye, dir, hd::V3<double>{-1, -1, -1}, hd::V3<double>{1, 1, 1}, t0, t1))
               for (int a = 0; a < 3; ++a)

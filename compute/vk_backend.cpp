@@ -19,19 +19,16 @@ struct Diagnostics {
 };
 constexpr Diagnostics kCleanDiagnostics{0, 0, UINT32_MAX, 0};
 
-struct PhiloxPush {
-  uint32_t seed[2], stream[2], first_block[2];
-  uint32_t count;
-};
-
 }  // namespace
 
 SortScatter VulkanBackend::choose_sort_scatter(SortScatter wanted) const {
   if (wanted == SortScatter::automatic) {
     if (const char* env = std::getenv("MASAV_VK_SORT")) {
       const std::string v = env;
-      if (v == "tiled") wanted = SortScatter::tiled;
-      else if (v == "subgroup") wanted = SortScatter::subgroup;
+      if (v == "tiled")
+        wanted = SortScatter::tiled;
+      else if (v == "subgroup")
+        wanted = SortScatter::subgroup;
       else if (!v.empty() && v != "auto")
         throw_invalid("vulkan", "MASAV_VK_SORT", v, "auto, tiled or subgroup");
     }
@@ -40,11 +37,13 @@ SortScatter VulkanBackend::choose_sort_scatter(SortScatter wanted) const {
   const bool fixed = ctx_.caps().min_subgroup_size == ctx_.caps().subgroup_size;
   const bool ballot = ctx_.subgroup_ballot();
   if (wanted == SortScatter::subgroup && !(fixed && ballot))
-    throw Error("vulkan", "radix_sort", "the subgroup scatter needs a fixed subgroup size and "
-                "subgroup ballots, which this device lacks", "use MASAV_VK_SORT=tiled");
+    throw Error("vulkan", "radix_sort",
+                "the subgroup scatter needs a fixed subgroup size and "
+                "subgroup ballots, which this device lacks",
+                "use MASAV_VK_SORT=tiled");
   if (wanted == SortScatter::automatic)
     wanted = ctx_.caps().device_type == "cpu" && fixed && ballot ? SortScatter::subgroup
-                                                                  : SortScatter::tiled;
+                                                                 : SortScatter::tiled;
   return wanted;
 }
 
@@ -81,16 +80,18 @@ std::unique_ptr<BufferImpl> VulkanBackend::create_buffer(ElemKind kind, size_t c
                                                          std::string_view label) {
   check_fits(*this, kind, count, "create_buffer", fmt::format("buffer '{}'", label));
   const size_t bytes = count * elem_bytes(kind, real_bytes());
-  return std::make_unique<VulkanBuffer>(this, kind, count, bytes, std::string(label),
-                                        allocate(ctx_, bytes, MemoryUse::device, std::string(label)));
+  return std::make_unique<VulkanBuffer>(
+      this, kind, count, bytes, std::string(label),
+      allocate(ctx_, bytes, MemoryUse::device, std::string(label)));
 }
 
 std::shared_ptr<Allocation> VulkanBackend::scratch(const std::string& slot, size_t bytes) {
   auto& a = scratch_[slot];
   if (!a || a->bytes < bytes) {
     if (ctx_.caps().max_buffer_bytes && bytes > ctx_.caps().max_buffer_bytes)
-      throw Error("vulkan", slot, fmt::format("scratch of {} MiB exceeds the {} MiB per buffer",
-                                              bytes >> 20, ctx_.caps().max_buffer_bytes >> 20),
+      throw Error("vulkan", slot,
+                  fmt::format("scratch of {} MiB exceeds the {} MiB per buffer", bytes >> 20,
+                              ctx_.caps().max_buffer_bytes >> 20),
                   "use fewer elements");
     a = allocate(ctx_, bytes, MemoryUse::device, slot);  // the stream keeps the old one alive
   }
@@ -145,7 +146,7 @@ void VulkanBackend::check_diagnostics() {
   d->flags = 0;
   d->detail = UINT32_MAX;
   raise_diagnostics(*this, seen.flags & kDiagNeighborOverflow ? "grid_count_neighbors" : "gather",
-                    seen.flags, seen.detail, pending_neighbor_limit_);
+                    seen.flags, seen.detail, pending_diag_limit_);
 }
 
 uint32_t VulkanBackend::take_max_loop_ticks() {
@@ -164,25 +165,16 @@ void VulkanBackend::run(const KernelSpec& spec,
                    push, groups);
 }
 
-void VulkanBackend::philox(const PhiloxParams& p, BufferImpl& out, bool uniform) {
-  const auto& a = alloc(out, uniform ? "philox_uniform" : "philox_u32");
-  if (out.count() > UINT32_MAX - 3)
-    throw_invalid("philox", "count", std::to_string(out.count()), "below 2^32 - 3");
-  PhiloxPush push{{uint32_t(p.seed), uint32_t(p.seed >> 32)},
-                  {uint32_t(p.stream), uint32_t(p.stream >> 32)},
-                  {uint32_t(p.first_block), uint32_t(p.first_block >> 32)},
-                  uint32_t(out.count())};
-  const uint64_t blocks = (out.count() + 3) / 4;
+void VulkanBackend::dispatch_kernel(KernelId kernel, std::span<const BufferImpl* const> buffers,
+                                    const void* push, uint32_t push_bytes, uint64_t items) {
+  const std::string_view name = kernel_name(kernel);
+  const BufferImpl* any = nullptr;
+  for (const BufferImpl* b : buffers) any = any ? any : b;
+  std::vector<std::shared_ptr<Allocation>> allocs;
+  for (const BufferImpl* b : buffers) allocs.push_back(alloc(b ? *b : *any, name));
   const uint32_t wg = options_.workgroup_size;
-  run({"philox_fill", 1, sizeof push, {uniform ? 1u : 0u}}, {a}, &push, (blocks + wg - 1) / wg);
-}
-
-void VulkanBackend::do_philox_u32(const PhiloxParams& p, uint64_t, Buffer<uint32_t>& out) {
-  philox(p, out.impl(), false);
-}
-
-void VulkanBackend::do_philox_uniform(const PhiloxParams& p, uint64_t, Buffer<float>& out) {
-  philox(p, out.impl(), true);
+  stream_.dispatch(pipelines_.get({name.data(), uint32_t(allocs.size()), push_bytes, {}}), diag_,
+                   allocs, push, (items + wg - 1) / wg);
 }
 
 }  // namespace masav::vk

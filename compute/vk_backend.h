@@ -27,6 +27,13 @@ struct BackendOptions {
   uint32_t items_per_thread = 8;  // sort and scan tile = workgroup_size * items_per_thread
 };
 
+// The kernels the Vulkan backend runs in more than one dispatch, or with a shader chosen per call
+// (run_own in vk_*.cpp); every other kernel is one dispatch of shaders/<name>.comp.
+constexpr bool runs_own(KernelId k) {
+  return k == KernelId::radix_sort || k == KernelId::grid_cell_ranges || k == KernelId::gather ||
+         k == KernelId::scatter_table || k == KernelId::voxelize;
+}
+
 class VulkanBackend final : public Backend {
  public:
   explicit VulkanBackend(const BackendOptions& options);
@@ -56,6 +63,13 @@ class VulkanBackend final : public Backend {
 #include "engine/core/kernels.inc"
 #undef MASAV_KERNEL
 
+  // Every kernel: its shared body where it has one, else run_own (see run_kernel's definition).
+  template <KernelId K, class Params, class... Buffers>
+  void run_kernel(const Params& p, uint64_t items, Buffers&... buffers);
+#define MASAV_KERNEL MASAV_KERNEL_OWN
+#include "engine/core/kernels.inc"
+#undef MASAV_KERNEL
+
   void write_bytes(BufferImpl& dst, const void* src, size_t bytes, size_t offset) override;
   void read_bytes(const BufferImpl& src, void* dst, size_t bytes, size_t offset) override;
   void copy_buffer(const BufferImpl& src, BufferImpl& dst, size_t bytes) override;
@@ -65,7 +79,11 @@ class VulkanBackend final : public Backend {
   std::shared_ptr<Allocation> scratch(const std::string& slot, size_t bytes);
   void run(const KernelSpec& spec, std::initializer_list<std::shared_ptr<Allocation>> buffers,
            const void* push, uint64_t groups);
-  void philox(const PhiloxParams& p, BufferImpl& out, bool uniform);
+  // One dispatch of shaders/<kernel>.comp over `items` invocations: `buffers` bound at 1..n in
+  // the order of kernels.inc (a null one, unused by the call, gets the first non-null one's
+  // memory), `push` the kernel's layout.
+  void dispatch_kernel(KernelId kernel, std::span<const BufferImpl* const> buffers,
+                       const void* push, uint32_t push_bytes, uint64_t items);
   void exclusive_scan(const std::shared_ptr<Allocation>& data, uint32_t count, uint32_t level);
   void check_diagnostics();
   SortScatter choose_sort_scatter(SortScatter wanted) const;
@@ -76,7 +94,7 @@ class VulkanBackend final : public Backend {
   Stream stream_;
   std::shared_ptr<Allocation> diag_;
   std::map<std::string, std::shared_ptr<Allocation>> scratch_;
-  uint32_t pending_neighbor_limit_ = 0;
+  uint32_t pending_diag_limit_ = 0;  // the limit a pending diagnostic's message names
   SortScatter scatter_ = SortScatter::tiled;
 };
 

@@ -9,16 +9,11 @@
 #include "engine/core/error.h"
 #include "engine/core/kernel_checks.h"
 #include "engine/kernels/radix.h"
+#include "engine/kernels/sort_params.h"
 
 namespace masav::vk {
 namespace {
 
-struct PassPush {
-  uint32_t n, shift, bits, num_tiles;
-};
-struct ScanPush {
-  uint32_t n, num_tiles;
-};
 // Rounds of one subgroup per tile in the subgroup scatter: 2048 keys per tile at subgroup 8.
 constexpr uint32_t kSubgroupRounds = 256;
 
@@ -31,7 +26,7 @@ void VulkanBackend::exclusive_scan(const std::shared_ptr<Allocation>& data, uint
   const uint32_t tile = tile_size(), items = options_.items_per_thread;
   const uint32_t tiles = (count + tile - 1) / tile;
   auto sums = scratch(fmt::format("radix_sort scan level {}", level), size_t(tiles) * 4);
-  ScanPush push{count, tiles};
+  const ScanParams push{count, tiles};
   run({"scan_tiles", 2, sizeof push, {items}}, {data, sums}, &push, tiles);
   if (tiles > 1) {
     exclusive_scan(sums, tiles, level + 1);
@@ -39,8 +34,8 @@ void VulkanBackend::exclusive_scan(const std::shared_ptr<Allocation>& data, uint
   }
 }
 
-void VulkanBackend::do_radix_sort(const RadixSortParams& p, uint64_t, Buffer<uint32_t>& keys,
-                               Buffer<uint32_t>* values) {
+void VulkanBackend::run_own(KernelTag<KernelId::radix_sort>, const RadixSortParams& p, uint64_t,
+                            Buffer<uint32_t>& keys, Buffer<uint32_t>* values) {
   if (p.n <= 1) return;
   // Tile geometry of the scatter variant; the histogram must use the same tiles.
   const bool by_subgroup = scatter_ == SortScatter::subgroup;
@@ -55,18 +50,21 @@ void VulkanBackend::do_radix_sort(const RadixSortParams& p, uint64_t, Buffer<uin
   std::shared_ptr<Allocation> k_src = alloc(keys.impl(), "radix_sort");
   std::shared_ptr<Allocation> v_src = has_values ? alloc(values->impl(), "radix_sort") : k_src;
   std::shared_ptr<Allocation> k_dst = scratch("radix_sort keys", size_t(p.n) * 4);
-  std::shared_ptr<Allocation> v_dst = has_values ? scratch("radix_sort values", size_t(p.n) * 4)
-                                                 : k_dst;
+  std::shared_ptr<Allocation> v_dst =
+      has_values ? scratch("radix_sort values", size_t(p.n) * 4) : k_dst;
   auto hist = scratch("radix_sort histogram", hist_entries * 4);
 
   const uint32_t passes = radix::pass_count(p.key_bits);
   for (uint32_t pass = 0; pass < passes; ++pass) {
     const uint32_t bits = radix::pass_bits(p.key_bits, pass);
-    PassPush push{p.n, pass * radix::kDigitBits, bits, num_tiles};
+    const RadixPassParams push{p.n, pass * radix::kDigitBits, bits, num_tiles};
     run({"radix_histogram", 2, sizeof push, {items}, wg}, {k_src, hist}, &push, num_tiles);
     exclusive_scan(hist, (1u << bits) * num_tiles, 0);
-    run({by_subgroup ? "radix_scatter_subgroup" : "radix_scatter", 5, sizeof push,
-         {items, has_values ? 1u : 0u}, wg},
+    run({by_subgroup ? "radix_scatter_subgroup" : "radix_scatter",
+         5,
+         sizeof push,
+         {items, has_values ? 1u : 0u},
+         wg},
         {k_src, v_src, k_dst, v_dst, hist}, &push, num_tiles);
     std::swap(k_src, k_dst);
     std::swap(v_src, v_dst);

@@ -1,4 +1,4 @@
-// CUDA backend, host side: device set-up, buffers, ordering, timestamps, diagnostics, Philox.
+// CUDA backend, host side: device set-up, buffers, ordering, timestamps, diagnostics.
 #include "cuda_ref/cuda_backend.h"
 
 #include <fmt/format.h>
@@ -46,8 +46,8 @@ CudaBackend::CudaBackend(int device) : device_(device) {
   caps_.vendor = "NVIDIA";
   caps_.device_type = prop.integrated ? "integrated" : "discrete";
   caps_.driver = fmt::format("CUDA runtime {}.{}, driver {}.{}, sm_{}{}", runtime / 1000,
-                             (runtime % 1000) / 10, driver / 1000, (driver % 1000) / 10,
-                             prop.major, prop.minor);
+                             (runtime % 1000) / 10, driver / 1000, (driver % 1000) / 10, prop.major,
+                             prop.minor);
   caps_.subgroup_size = caps_.min_subgroup_size = uint32_t(prop.warpSize);
   caps_.max_workgroup_size = uint32_t(prop.maxThreadsPerBlock);
   caps_.max_workgroups_x = uint32_t(prop.maxGridSize[0]);
@@ -57,7 +57,8 @@ CudaBackend::CudaBackend(int device) : device_(device) {
   caps_.timestamp_period_ns = 500.0;  // cudaEventElapsedTime resolves about 0.5 us
   caps_.real_is_double = false;
   check(cudaStreamCreateWithFlags(&stream_, cudaStreamNonBlocking), "init", "cudaStreamCreate");
-  check(cudaMalloc(reinterpret_cast<void**>(&diag_), sizeof kCleanDiagnostics), "init", "cudaMalloc(diagnostics)");
+  check(cudaMalloc(reinterpret_cast<void**>(&diag_), sizeof kCleanDiagnostics), "init",
+        "cudaMalloc(diagnostics)");
   check(cudaMemcpy(diag_, kCleanDiagnostics, sizeof kCleanDiagnostics, cudaMemcpyHostToDevice),
         "init", "cudaMemcpy(diagnostics)");
 }
@@ -111,18 +112,21 @@ std::unique_ptr<BufferImpl> CudaBackend::create_buffer(ElemKind kind, size_t cou
 void CudaBackend::write_bytes(BufferImpl& dst, const void* src, size_t bytes, size_t offset) {
   // Ordered on the stream; from pageable memory the call returns once `src` has been staged.
   check(cudaMemcpyAsync(static_cast<char*>(ptr(dst, "upload")) + offset, src, bytes,
-                        cudaMemcpyHostToDevice, stream_), "upload", "cudaMemcpyAsync");
+                        cudaMemcpyHostToDevice, stream_),
+        "upload", "cudaMemcpyAsync");
 }
 
 void CudaBackend::read_bytes(const BufferImpl& src, void* dst, size_t bytes, size_t offset) {
   check(cudaMemcpyAsync(dst, static_cast<const char*>(ptr(src, "download")) + offset, bytes,
-                        cudaMemcpyDeviceToHost, stream_), "download", "cudaMemcpyAsync");
+                        cudaMemcpyDeviceToHost, stream_),
+        "download", "cudaMemcpyAsync");
   finish();
 }
 
 void CudaBackend::copy_buffer(const BufferImpl& src, BufferImpl& dst, size_t bytes) {
-  check(cudaMemcpyAsync(ptr(dst, "copy"), ptr(src, "copy"), bytes, cudaMemcpyDeviceToDevice,
-                        stream_), "copy", "cudaMemcpyAsync");
+  check(
+      cudaMemcpyAsync(ptr(dst, "copy"), ptr(src, "copy"), bytes, cudaMemcpyDeviceToDevice, stream_),
+      "copy", "cudaMemcpyAsync");
 }
 
 void CudaBackend::fill_u32(BufferImpl& dst, uint32_t value) {
@@ -136,12 +140,13 @@ void CudaBackend::fill_u32(BufferImpl& dst, uint32_t value) {
 void CudaBackend::finish() {
   check(cudaStreamSynchronize(stream_), "finish", "cudaStreamSynchronize");
   uint32_t d[4];
-  check(cudaMemcpy(d, diag_, sizeof d, cudaMemcpyDeviceToHost), "finish", "cudaMemcpy(diagnostics)");
+  check(cudaMemcpy(d, diag_, sizeof d, cudaMemcpyDeviceToHost), "finish",
+        "cudaMemcpy(diagnostics)");
   if (d[1] == 0) return;
   check(cudaMemcpy(diag_, kCleanDiagnostics, sizeof kCleanDiagnostics, cudaMemcpyHostToDevice),
         "finish", "cudaMemcpy(diagnostics)");
   raise_diagnostics(*this, d[1] & kDiagNeighborOverflow ? "grid_count_neighbors" : "gather", d[1],
-                    d[2], pending_neighbor_limit_);
+                    d[2], pending_diag_limit_);
 }
 
 TimestampId CudaBackend::timestamp() {
@@ -166,26 +171,8 @@ double CudaBackend::timestamp_ns(TimestampId id) {
   return double(ms) * 1e6;
 }
 
-void CudaBackend::reset_timestamps() { events_used_ = 0; }
-
-void CudaBackend::do_philox_u32(const PhiloxParams& p, uint64_t, Buffer<uint32_t>& out) {
-  if (out.size() > UINT32_MAX - 3)
-    throw_invalid("philox_u32", "count", std::to_string(out.size()), "below 2^32 - 3");
-  const uint64_t blocks = (out.size() + 3) / 4;
-  check(launch::philox(stream_, grid_for_items(blocks, "philox_u32"), p.seed, p.stream,
-                       p.first_block, uint32_t(out.size()), false,
-                       static_cast<uint32_t*>(ptr(out.impl(), "philox_u32"))),
-        "philox_u32", "launch");
-}
-
-void CudaBackend::do_philox_uniform(const PhiloxParams& p, uint64_t, Buffer<float>& out) {
-  if (out.size() > UINT32_MAX - 3)
-    throw_invalid("philox_uniform", "count", std::to_string(out.size()), "below 2^32 - 3");
-  const uint64_t blocks = (out.size() + 3) / 4;
-  check(launch::philox(stream_, grid_for_items(blocks, "philox_uniform"), p.seed, p.stream,
-                       p.first_block, uint32_t(out.size()), true,
-                       static_cast<uint32_t*>(ptr(out.impl(), "philox_uniform"))),
-        "philox_uniform", "launch");
+void CudaBackend::reset_timestamps() {
+  events_used_ = 0;
 }
 
 }  // namespace masav::cuda

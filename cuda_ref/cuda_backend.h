@@ -56,12 +56,24 @@ class CudaBackend final : public Backend {
 #include "engine/core/kernels.inc"
 #undef MASAV_KERNEL
 
+  // Every kernel: its shared body where it has one, else run_own (see run_kernel's definition).
+  template <KernelId K, class Params, class... Buffers>
+  void run_kernel(const Params& p, uint64_t items, Buffers&... buffers);
+#define MASAV_KERNEL MASAV_KERNEL_OWN
+#include "engine/core/kernels.inc"
+#undef MASAV_KERNEL
+
   void write_bytes(BufferImpl& dst, const void* src, size_t bytes, size_t offset) override;
   void read_bytes(const BufferImpl& src, void* dst, size_t bytes, size_t offset) override;
   void copy_buffer(const BufferImpl& src, BufferImpl& dst, size_t bytes) override;
 
  private:
   void* ptr(const BufferImpl& b, const char* kernel) const;
+  // The device address of a buffer, as the element type the kernel reads (float4 -> hd::V4).
+  template <class T, class E>
+  T* device_ptr(const Buffer<E>& b, const char* kernel) const {
+    return static_cast<T*>(ptr(b.impl(), kernel));
+  }
   void sort_portable(uint32_t n, uint32_t key_bits, uint32_t* keys, uint32_t* values);
   void sort_cub(uint32_t n, uint32_t key_bits, uint32_t* keys, uint32_t* values);
   void exclusive_scan(uint32_t* data, uint32_t count, uint32_t level);
@@ -72,7 +84,7 @@ class CudaBackend final : public Backend {
   uint32_t* diag_ = nullptr;
   std::vector<cudaEvent_t> events_;
   uint32_t events_used_ = 0;
-  uint32_t pending_neighbor_limit_ = 0;
+  uint32_t pending_diag_limit_ = 0;
   std::map<std::string, DeviceScratch> scratch_;
 };
 

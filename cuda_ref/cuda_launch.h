@@ -7,49 +7,36 @@
 #include <cstddef>
 #include <cstdint>
 
+#include "engine/kernels/grid_params.h"
+#include "engine/kernels/sort_params.h"
+
 namespace masav::cuda::launch {
 
-constexpr uint32_t kBlock = 256;       // threads per block of the element-wise kernels
+constexpr uint32_t kBlock = 256;  // threads per block of the element-wise kernels
 constexpr uint32_t kSortThreads = 256;
 constexpr uint32_t kSortItems = 8;
 constexpr uint32_t kSortTile = kSortThreads * kSortItems;  // < 65536 (16-bit packed counts)
 
-struct GridArgs {
-  float origin[3];
-  float inv_cell;
-  uint32_t dims[3];
-  uint32_t n;
-};
-
 // Diagnostics words: {max_loop_ticks, flags, detail, reserved}.
-cudaError_t philox(cudaStream_t s, dim3 grid, uint64_t seed, uint64_t stream,
-                   uint64_t first_block, uint32_t count, bool uniform, uint32_t* out);
 cudaError_t fill_u32(cudaStream_t s, dim3 grid, uint32_t* dst, size_t words, uint32_t value);
 
 cudaError_t radix_histogram(cudaStream_t s, dim3 grid, const uint32_t* keys, uint32_t* hist,
-                            uint32_t n, uint32_t shift, uint32_t bits, uint32_t num_tiles);
-cudaError_t scan_tiles(cudaStream_t s, dim3 grid, uint32_t* data, uint32_t* sums, uint32_t n,
-                       uint32_t num_tiles);
-cudaError_t scan_add(cudaStream_t s, dim3 grid, uint32_t* data, const uint32_t* sums, uint32_t n,
-                     uint32_t num_tiles);
+                            RadixPassParams pass);
+cudaError_t scan_tiles(cudaStream_t s, dim3 grid, uint32_t* data, uint32_t* sums, ScanParams scan);
+cudaError_t scan_add(cudaStream_t s, dim3 grid, uint32_t* data, const uint32_t* sums,
+                     ScanParams scan);
 cudaError_t radix_scatter(cudaStream_t s, dim3 grid, const uint32_t* keys_in,
                           const uint32_t* vals_in, uint32_t* keys_out, uint32_t* vals_out,
-                          const uint32_t* offsets, uint32_t n, uint32_t shift, uint32_t bits,
-                          uint32_t num_tiles);
+                          const uint32_t* offsets, RadixPassParams pass);
 // CUB DeviceRadixSort over bits [0, key_bits). temp == nullptr queries temp_bytes. The result
 // lies in the *_alt buffers when result_in_alt is set. vals may be null (keys only).
 cudaError_t cub_sort(cudaStream_t s, void* temp, size_t& temp_bytes, uint32_t* keys,
                      uint32_t* keys_alt, uint32_t* vals, uint32_t* vals_alt, uint32_t n,
                      uint32_t key_bits, bool& result_in_alt);
 
-cudaError_t assign_cells(cudaStream_t s, dim3 grid, GridArgs g, const float4* pos,
-                         uint32_t* cells, uint32_t* indices);
-cudaError_t cell_ranges(cudaStream_t s, dim3 grid, const uint32_t* cells, uint32_t n,
+cudaError_t cell_ranges(cudaStream_t s, dim3 grid, const GridParams& g, const uint32_t* cells,
                         uint32_t* start, uint32_t* end);
-cudaError_t gather(cudaStream_t s, dim3 grid, const uint32_t* order, const void* src, void* dst,
-                   uint32_t n, uint32_t src_count, uint32_t elem_bytes, uint32_t* diag);
-cudaError_t count_neighbors(cudaStream_t s, dim3 grid, GridArgs g, const float4* pos,
-                            const uint32_t* start, const uint32_t* end, float radius2,
-                            uint32_t max_candidates, uint32_t* counts, uint32_t* diag);
+cudaError_t gather(cudaStream_t s, dim3 grid, const GatherLayout& p, const uint32_t* order,
+                   const void* src, void* dst, uint32_t elem_bytes, uint32_t* diag);
 
 }  // namespace masav::cuda::launch

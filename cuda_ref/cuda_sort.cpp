@@ -16,10 +16,11 @@ void CudaBackend::exclusive_scan(uint32_t* data, uint32_t count, uint32_t level)
   auto* sums = static_cast<uint32_t*>(
       scratch_[fmt::format("scan level {}", level)].reserve(size_t(tiles) * 4, "radix_sort"));
   const dim3 grid = grid_for(tiles, "radix_sort");
-  check(launch::scan_tiles(stream_, grid, data, sums, count, tiles), "radix_sort", "scan_tiles");
+  const ScanParams scan{count, tiles};
+  check(launch::scan_tiles(stream_, grid, data, sums, scan), "radix_sort", "scan_tiles");
   if (tiles > 1) {
     exclusive_scan(sums, tiles, level + 1);
-    check(launch::scan_add(stream_, grid, data, sums, count, tiles), "radix_sort", "scan_add");
+    check(launch::scan_add(stream_, grid, data, sums, scan), "radix_sort", "scan_add");
   }
 }
 
@@ -36,12 +37,11 @@ void CudaBackend::sort_portable(uint32_t n, uint32_t key_bits, uint32_t* keys, u
   const dim3 grid = grid_for(num_tiles, "radix_sort");
   const uint32_t passes = radix::pass_count(key_bits);
   for (uint32_t pass = 0; pass < passes; ++pass) {
-    const uint32_t shift = pass * radix::kDigitBits, bits = radix::pass_bits(key_bits, pass);
-    check(launch::radix_histogram(stream_, grid, k_src, hist, n, shift, bits, num_tiles),
-          "radix_sort", "histogram");
-    exclusive_scan(hist, (1u << bits) * num_tiles, 0);
-    check(launch::radix_scatter(stream_, grid, k_src, v_src, k_dst, v_dst, hist, n, shift, bits,
-                                num_tiles),
+    const RadixPassParams step{n, pass * radix::kDigitBits, radix::pass_bits(key_bits, pass),
+                               num_tiles};
+    check(launch::radix_histogram(stream_, grid, k_src, hist, step), "radix_sort", "histogram");
+    exclusive_scan(hist, (1u << step.bits) * num_tiles, 0);
+    check(launch::radix_scatter(stream_, grid, k_src, v_src, k_dst, v_dst, hist, step),
           "radix_sort", "scatter");
     std::swap(k_src, k_dst);
     std::swap(v_src, v_dst);
@@ -66,9 +66,9 @@ void CudaBackend::sort_cub(uint32_t n, uint32_t key_bits, uint32_t* keys, uint32
                          in_alt),
         "radix_sort", "cub sort (temporary size)");
   void* temp = scratch_["cub temp"].reserve(temp_bytes, "radix_sort");
-  check(launch::cub_sort(stream_, temp, temp_bytes, keys, k_alt, values, v_alt, n, key_bits,
-                         in_alt),
-        "radix_sort", "cub sort");
+  check(
+      launch::cub_sort(stream_, temp, temp_bytes, keys, k_alt, values, v_alt, n, key_bits, in_alt),
+      "radix_sort", "cub sort");
   if (in_alt) {
     check(cudaMemcpyAsync(keys, k_alt, size_t(n) * 4, cudaMemcpyDeviceToDevice, stream_),
           "radix_sort", "cudaMemcpyAsync");
@@ -78,8 +78,8 @@ void CudaBackend::sort_cub(uint32_t n, uint32_t key_bits, uint32_t* keys, uint32
   }
 }
 
-void CudaBackend::do_radix_sort(const RadixSortParams& p, uint64_t, Buffer<uint32_t>& keys,
-                             Buffer<uint32_t>* values) {
+void CudaBackend::run_own(KernelTag<KernelId::radix_sort>, const RadixSortParams& p, uint64_t,
+                          Buffer<uint32_t>& keys, Buffer<uint32_t>* values) {
   if (p.n <= 1) return;
   auto* k = static_cast<uint32_t*>(ptr(keys.impl(), "radix_sort"));
   auto* v = values ? static_cast<uint32_t*>(ptr(values->impl(), "radix_sort")) : nullptr;

@@ -38,10 +38,10 @@ __global__ void scatter_kernel(ScatterTableParams p, uint32_t blocks_per_row,
   }
 }
 
-__global__ void finalize_kernel(const unsigned long long* tallies, uint32_t entries, double scale,
+__global__ void finalize_kernel(ScatterFinalizeParams p, const unsigned long long* tallies,
                                 float* table) {
   const uint64_t i = (uint64_t(blockIdx.y) * gridDim.x + blockIdx.x) * blockDim.x + threadIdx.x;
-  if (i < entries) table[i] = float(double(tallies[i]) * scale);
+  if (i < p.entries) table[i] = float(double(tallies[i]) * double(p.scale));
 }
 
 }  // namespace
@@ -53,9 +53,9 @@ cudaError_t scatter_table(cudaStream_t s, dim3 grid, uint32_t threads, const Sca
   return cudaGetLastError();
 }
 
-cudaError_t scatter_finalize(cudaStream_t s, dim3 grid, const unsigned long long* tallies,
-                             uint32_t entries, double scale, float* table) {
-  finalize_kernel<<<grid, 256, 0, s>>>(tallies, entries, scale, table);
+cudaError_t scatter_finalize(cudaStream_t s, dim3 grid, const ScatterFinalizeParams& p,
+                             const unsigned long long* tallies, float* table) {
+  finalize_kernel<<<grid, 256, 0, s>>>(p, tallies, table);
   return cudaGetLastError();
 }
 

@@ -11,7 +11,9 @@ namespace {
 constexpr uint32_t kThreads = kSortThreads, kItems = kSortItems, kTile = kSortTile;
 constexpr uint32_t kWarps = kThreads / 32;
 
-__device__ uint32_t flat_block() { return blockIdx.y * gridDim.x + blockIdx.x; }
+__device__ uint32_t flat_block() {
+  return blockIdx.y * gridDim.x + blockIdx.x;
+}
 
 // Exclusive block-wide scan of a uint2 in thread order (warp shuffles, then warp totals).
 // Ends with __syncthreads, so shared memory read before the call may be written after it.
@@ -43,29 +45,28 @@ __device__ uint2 block_exclusive_scan(uint2 v, uint2& total) {
   return make_uint2(base.x + inc.x - v.x, base.y + inc.y - v.y);
 }
 
-__global__ void histogram_kernel(const uint32_t* keys, uint32_t* hist, uint32_t n, uint32_t shift,
-                                 uint32_t bits, uint32_t num_tiles) {
+__global__ void histogram_kernel(const uint32_t* keys, uint32_t* hist, RadixPassParams pass) {
   __shared__ uint32_t s_hist[radix::kRadix];
   const uint32_t tile = flat_block();
-  if (tile >= num_tiles) return;
-  const uint32_t radix_size = 1u << bits;
+  if (tile >= pass.num_tiles) return;
+  const uint32_t radix_size = 1u << pass.bits;
   for (uint32_t d = threadIdx.x; d < radix_size; d += kThreads) s_hist[d] = 0;
   __syncthreads();
   const uint32_t base = tile * kTile;
   for (uint32_t i = 0; i < kItems; ++i) {
     const uint32_t idx = base + i * kThreads + threadIdx.x;
-    if (idx < n) atomicAdd(&s_hist[radix::digit(keys[idx], shift, bits)], 1u);
+    if (idx < pass.n) atomicAdd(&s_hist[radix::digit(keys[idx], pass.shift, pass.bits)], 1u);
   }
   __syncthreads();
   for (uint32_t d = threadIdx.x; d < radix_size; d += kThreads)
-    hist[d * num_tiles + tile] = s_hist[d];
+    hist[d * pass.num_tiles + tile] = s_hist[d];
 }
 
-__global__ void scan_tiles_kernel(uint32_t* data, uint32_t* sums, uint32_t n, uint32_t num_tiles) {
+__global__ void scan_tiles_kernel(uint32_t* data, uint32_t* sums, ScanParams scan) {
   __shared__ uint32_t s_data[kTile];
   const uint32_t tile = flat_block();
-  if (tile >= num_tiles) return;
-  const uint32_t base = tile * kTile, valid = min(kTile, n - base);
+  if (tile >= scan.num_tiles) return;
+  const uint32_t base = tile * kTile, valid = min(kTile, scan.n - base);
   for (uint32_t i = 0; i < kItems; ++i) {
     const uint32_t p = i * kThreads + threadIdx.x;
     s_data[p] = p < valid ? data[base + p] : 0u;
@@ -84,14 +85,13 @@ __global__ void scan_tiles_kernel(uint32_t* data, uint32_t* sums, uint32_t n, ui
   if (threadIdx.x == 0) sums[tile] = total.x;
 }
 
-__global__ void scan_add_kernel(uint32_t* data, const uint32_t* sums, uint32_t n,
-                                uint32_t num_tiles) {
+__global__ void scan_add_kernel(uint32_t* data, const uint32_t* sums, ScanParams scan) {
   const uint32_t tile = flat_block();
-  if (tile >= num_tiles) return;
+  if (tile >= scan.num_tiles) return;
   const uint32_t add = sums[tile], base = tile * kTile;
   for (uint32_t i = 0; i < kItems; ++i) {
     const uint32_t p = base + i * kThreads + threadIdx.x;
-    if (p < n) data[p] += add;
+    if (p < scan.n) data[p] += add;
   }
 }
 
@@ -102,14 +102,13 @@ __device__ uint2 split_one(uint32_t sd) {
 
 template <bool kHasValues>
 __global__ void scatter_kernel(const uint32_t* keys_in, const uint32_t* vals_in, uint32_t* keys_out,
-                               uint32_t* vals_out, const uint32_t* offsets, uint32_t n,
-                               uint32_t shift, uint32_t bits, uint32_t num_tiles) {
+                               uint32_t* vals_out, const uint32_t* offsets, RadixPassParams pass) {
   __shared__ uint32_t s_keys[kTile];
   __shared__ uint32_t s_vals[kHasValues ? kTile : 1];
   __shared__ uint32_t s_digit_start[radix::kRadix];
   const uint32_t tile = flat_block();
-  if (tile >= num_tiles) return;
-  const uint32_t base = tile * kTile, valid = min(kTile, n - base), rank = threadIdx.x;
+  if (tile >= pass.num_tiles) return;
+  const uint32_t base = tile * kTile, valid = min(kTile, pass.n - base), rank = threadIdx.x;
   for (uint32_t i = 0; i < kItems; ++i) {
     const uint32_t p = i * kThreads + threadIdx.x;
     s_keys[p] = p < valid ? keys_in[base + p] : 0xFFFFFFFFu;  // padding sorts last (stable)
@@ -121,8 +120,8 @@ __global__ void scatter_kernel(const uint32_t* keys_in, const uint32_t* vals_in,
     k[i] = s_keys[rank * kItems + i];
     v[i] = kHasValues ? s_vals[rank * kItems + i] : 0u;
   }
-  for (uint32_t b = 0; b < bits; b += 2) {
-    const uint32_t sh = shift + b, mask = bits - b >= 2 ? 3u : 1u;
+  for (uint32_t b = 0; b < pass.bits; b += 2) {
+    const uint32_t sh = pass.shift + b, mask = pass.bits - b >= 2 ? 3u : 1u;
     uint2 count = make_uint2(0, 0);
     for (uint32_t i = 0; i < kItems; ++i) {
       const uint2 one = split_one((k[i] >> sh) & mask);
@@ -147,16 +146,16 @@ __global__ void scatter_kernel(const uint32_t* keys_in, const uint32_t* vals_in,
   for (uint32_t i = 0; i < kItems; ++i) {
     const uint32_t p = rank * kItems + i;
     if (p < valid) {
-      const uint32_t d = radix::digit(k[i], shift, bits);
-      if (p == 0 || radix::digit(s_keys[p - 1], shift, bits) != d) s_digit_start[d] = p;
+      const uint32_t d = radix::digit(k[i], pass.shift, pass.bits);
+      if (p == 0 || radix::digit(s_keys[p - 1], pass.shift, pass.bits) != d) s_digit_start[d] = p;
     }
   }
   __syncthreads();
   for (uint32_t i = 0; i < kItems; ++i) {
     const uint32_t p = i * kThreads + threadIdx.x;
     if (p < valid) {
-      const uint32_t key = s_keys[p], d = radix::digit(key, shift, bits);
-      const uint32_t dst = offsets[d * num_tiles + tile] + (p - s_digit_start[d]);
+      const uint32_t key = s_keys[p], d = radix::digit(key, pass.shift, pass.bits);
+      const uint32_t dst = offsets[d * pass.num_tiles + tile] + (p - s_digit_start[d]);
       keys_out[dst] = key;
       if (kHasValues) vals_out[dst] = s_vals[p];
     }
@@ -166,33 +165,31 @@ __global__ void scatter_kernel(const uint32_t* keys_in, const uint32_t* vals_in,
 }  // namespace
 
 cudaError_t radix_histogram(cudaStream_t s, dim3 grid, const uint32_t* keys, uint32_t* hist,
-                            uint32_t n, uint32_t shift, uint32_t bits, uint32_t num_tiles) {
-  histogram_kernel<<<grid, kThreads, 0, s>>>(keys, hist, n, shift, bits, num_tiles);
+                            RadixPassParams pass) {
+  histogram_kernel<<<grid, kThreads, 0, s>>>(keys, hist, pass);
   return cudaGetLastError();
 }
 
-cudaError_t scan_tiles(cudaStream_t s, dim3 grid, uint32_t* data, uint32_t* sums, uint32_t n,
-                       uint32_t num_tiles) {
-  scan_tiles_kernel<<<grid, kThreads, 0, s>>>(data, sums, n, num_tiles);
+cudaError_t scan_tiles(cudaStream_t s, dim3 grid, uint32_t* data, uint32_t* sums, ScanParams scan) {
+  scan_tiles_kernel<<<grid, kThreads, 0, s>>>(data, sums, scan);
   return cudaGetLastError();
 }
 
-cudaError_t scan_add(cudaStream_t s, dim3 grid, uint32_t* data, const uint32_t* sums, uint32_t n,
-                     uint32_t num_tiles) {
-  scan_add_kernel<<<grid, kThreads, 0, s>>>(data, sums, n, num_tiles);
+cudaError_t scan_add(cudaStream_t s, dim3 grid, uint32_t* data, const uint32_t* sums,
+                     ScanParams scan) {
+  scan_add_kernel<<<grid, kThreads, 0, s>>>(data, sums, scan);
   return cudaGetLastError();
 }
 
 cudaError_t radix_scatter(cudaStream_t s, dim3 grid, const uint32_t* keys_in,
                           const uint32_t* vals_in, uint32_t* keys_out, uint32_t* vals_out,
-                          const uint32_t* offsets, uint32_t n, uint32_t shift, uint32_t bits,
-                          uint32_t num_tiles) {
+                          const uint32_t* offsets, RadixPassParams pass) {
   if (vals_in)
-    scatter_kernel<true><<<grid, kThreads, 0, s>>>(keys_in, vals_in, keys_out, vals_out, offsets,
-                                                   n, shift, bits, num_tiles);
+    scatter_kernel<true>
+        <<<grid, kThreads, 0, s>>>(keys_in, vals_in, keys_out, vals_out, offsets, pass);
   else
-    scatter_kernel<false><<<grid, kThreads, 0, s>>>(keys_in, nullptr, keys_out, nullptr, offsets,
-                                                    n, shift, bits, num_tiles);
+    scatter_kernel<false>
+        <<<grid, kThreads, 0, s>>>(keys_in, nullptr, keys_out, nullptr, offsets, pass);
   return cudaGetLastError();
 }
 

@@ -4,6 +4,7 @@
 // (hist[digit * num_tiles + tile]) so that one exclusive scan of hist gives every tile's output
 // offset for every digit (reduce-then-scan: no workgroup waits on another).
 #include "kernel_base.glsl"
+#include "engine/kernels/sort_params.h"
 #include "radix.glsl"
 
 layout(constant_id = 3) const uint ITEMS = 8u;
@@ -11,20 +12,15 @@ const uint TILE = WG_SIZE * ITEMS;
 
 layout(std430, binding = 1) readonly buffer Keys { uint keys[]; };
 layout(std430, binding = 2) writeonly buffer Hist { uint hist[]; };
-layout(push_constant) uniform Push {
-  uint n;
-  uint shift;
-  uint bits;
-  uint num_tiles;
-} pc;
+MASAV_PUSH(RadixPassParams);
 
 shared uint s_hist[256];
 
 void run() {
   const uint tile = flat_group_id();
-  if (tile >= pc.num_tiles) return;  // whole workgroup leaves together
+  if (tile >= p.num_tiles) return;  // whole workgroup leaves together
   const uint lid = gl_LocalInvocationID.x;
-  const uint radix = 1u << pc.bits;
+  const uint radix = 1u << p.bits;
   for (uint d = lid; d < radix; d += WG_SIZE) {
     LOOP_TICK();
     s_hist[d] = 0u;
@@ -34,12 +30,12 @@ void run() {
   for (uint i = 0u; i < ITEMS; ++i) {
     LOOP_TICK();
     const uint idx = base + i * WG_SIZE + lid;
-    if (idx < pc.n) atomicAdd(s_hist[radix_digit(keys[idx], pc.shift, pc.bits)], 1u);
+    if (idx < p.n) atomicAdd(s_hist[radix_digit(keys[idx], p.shift, p.bits)], 1u);
   }
   barrier();
   for (uint d = lid; d < radix; d += WG_SIZE) {
     LOOP_TICK();
-    hist[d * pc.num_tiles + tile] = s_hist[d];
+    hist[d * p.num_tiles + tile] = s_hist[d];
   }
 }
 

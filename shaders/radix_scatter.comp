@@ -4,6 +4,7 @@
 // shared memory (2-bit splits, each one workgroup scan), then writes every element to
 // offset[digit][tile] + its rank among the tile's elements of that digit.
 #include "kernel_base.glsl"
+#include "engine/kernels/sort_params.h"
 #include "workgroup_scan.glsl"
 #include "radix.glsl"
 
@@ -16,12 +17,7 @@ layout(std430, binding = 2) readonly buffer ValsIn { uint vals_in[]; };
 layout(std430, binding = 3) writeonly buffer KeysOut { uint keys_out[]; };
 layout(std430, binding = 4) writeonly buffer ValsOut { uint vals_out[]; };
 layout(std430, binding = 5) readonly buffer Offsets { uint offsets[]; };
-layout(push_constant) uniform Push {
-  uint n;
-  uint shift;
-  uint bits;
-  uint num_tiles;
-} pc;
+MASAV_PUSH(RadixPassParams);
 
 shared uint s_keys[TILE];
 shared uint s_vals[TILE];
@@ -33,19 +29,19 @@ uvec2 split_one(uint sd) { return uvec2(sd == 0u ? 1u : (sd == 1u ? 65536u : 0u)
 
 void run() {
   const uint tile = flat_group_id();
-  if (tile >= pc.num_tiles) return;  // whole workgroup leaves together
+  if (tile >= p.num_tiles) return;  // whole workgroup leaves together
   const uint lid = gl_LocalInvocationID.x;
   const uint base = tile * TILE;
-  const uint valid = min(TILE, pc.n - base);
+  const uint valid = min(TILE, p.n - base);
   const uint rank = wg_rank();
 
   // Coalesced load; padding keys of all ones sort after every real key (the sort is stable
   // and padding sits at the end of the tile).
   for (uint i = 0u; i < ITEMS; ++i) {
     LOOP_TICK();
-    const uint p = i * WG_SIZE + lid;
-    s_keys[p] = p < valid ? keys_in[base + p] : 0xFFFFFFFFu;
-    if (HAS_VALUES) s_vals[p] = p < valid ? vals_in[base + p] : 0u;
+    const uint pos = i * WG_SIZE + lid;
+    s_keys[pos] = pos < valid ? keys_in[base + pos] : 0xFFFFFFFFu;
+    if (HAS_VALUES) s_vals[pos] = pos < valid ? vals_in[base + pos] : 0u;
   }
   barrier();
   uint k[ITEMS];
@@ -56,10 +52,10 @@ void run() {
     v[i] = HAS_VALUES ? s_vals[rank * ITEMS + i] : 0u;
   }
 
-  for (uint b = 0u; b < pc.bits; b += 2u) {
+  for (uint b = 0u; b < p.bits; b += 2u) {
     LOOP_TICK();
-    const uint sh = pc.shift + b;
-    const uint mask = pc.bits - b >= 2u ? 3u : 1u;
+    const uint sh = p.shift + b;
+    const uint mask = p.bits - b >= 2u ? 3u : 1u;
     uvec2 count = uvec2(0u);
     for (uint i = 0u; i < ITEMS; ++i) {
       LOOP_TICK();
@@ -90,22 +86,22 @@ void run() {
   // First position of each digit present in the sorted tile.
   for (uint i = 0u; i < ITEMS; ++i) {
     LOOP_TICK();
-    const uint p = rank * ITEMS + i;
-    if (p < valid) {
-      const uint d = radix_digit(k[i], pc.shift, pc.bits);
-      if (p == 0u || radix_digit(s_keys[p - 1u], pc.shift, pc.bits) != d) s_digit_start[d] = p;
+    const uint pos = rank * ITEMS + i;
+    if (pos < valid) {
+      const uint d = radix_digit(k[i], p.shift, p.bits);
+      if (pos == 0u || radix_digit(s_keys[pos - 1u], p.shift, p.bits) != d) s_digit_start[d] = pos;
     }
   }
   barrier();
   for (uint i = 0u; i < ITEMS; ++i) {
     LOOP_TICK();
-    const uint p = i * WG_SIZE + lid;
-    if (p < valid) {
-      const uint key = s_keys[p];
-      const uint d = radix_digit(key, pc.shift, pc.bits);
-      const uint dst = offsets[d * pc.num_tiles + tile] + (p - s_digit_start[d]);
+    const uint pos = i * WG_SIZE + lid;
+    if (pos < valid) {
+      const uint key = s_keys[pos];
+      const uint d = radix_digit(key, p.shift, p.bits);
+      const uint dst = offsets[d * p.num_tiles + tile] + (pos - s_digit_start[d]);
       keys_out[dst] = key;
-      if (HAS_VALUES) vals_out[dst] = s_vals[p];
+      if (HAS_VALUES) vals_out[dst] = s_vals[pos];
     }
   }
 }

@@ -8,6 +8,7 @@
 // about thirty; lavapipe executes each such access lane by lane.
 // Precondition (checked by the host): the workgroup is exactly one full subgroup.
 #include "kernel_base.glsl"
+#include "engine/kernels/sort_params.h"
 #include "radix.glsl"
 
 layout(constant_id = 3) const uint ITEMS = 256u;  // rounds per tile
@@ -19,12 +20,7 @@ layout(std430, binding = 2) readonly buffer ValsIn { uint vals_in[]; };
 layout(std430, binding = 3) writeonly buffer KeysOut { uint keys_out[]; };
 layout(std430, binding = 4) writeonly buffer ValsOut { uint vals_out[]; };
 layout(std430, binding = 5) readonly buffer Offsets { uint offsets[]; };
-layout(push_constant) uniform Push {
-  uint n;
-  uint shift;
-  uint bits;
-  uint num_tiles;
-} pc;
+MASAV_PUSH(RadixPassParams);
 
 shared uint s_next[256];  // next output position of each digit in this tile
 
@@ -32,23 +28,23 @@ uint count_bits(uvec4 m) { return bitCount(m.x) + bitCount(m.y) + bitCount(m.z) 
 
 void run() {
   const uint tile = flat_group_id();
-  if (tile >= pc.num_tiles) return;
+  if (tile >= p.num_tiles) return;
   const uint lane = gl_SubgroupInvocationID;
-  const uint radix = 1u << pc.bits;
+  const uint radix = 1u << p.bits;
   for (uint d = lane; d < radix; d += WG_SIZE) {
     LOOP_TICK();
-    s_next[d] = offsets[d * pc.num_tiles + tile];
+    s_next[d] = offsets[d * p.num_tiles + tile];
   }
   barrier();
   const uint base = tile * TILE;
   for (uint r = 0u; r < ITEMS; ++r) {
     LOOP_TICK();
     const uint idx = base + r * WG_SIZE + lane;  // lane order = index order within a round
-    const bool valid = idx < pc.n;
+    const bool valid = idx < p.n;
     const uint key = valid ? keys_in[idx] : 0u;
-    const uint d = radix_digit(key, pc.shift, pc.bits);
+    const uint d = radix_digit(key, p.shift, p.bits);
     uvec4 same = subgroupBallot(valid);
-    for (uint b = 0u; b < pc.bits; ++b) {
+    for (uint b = 0u; b < p.bits; ++b) {
       LOOP_TICK();
       const bool set = ((d >> b) & 1u) != 0u;
       const uvec4 ones = subgroupBallot(set);

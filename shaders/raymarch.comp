@@ -5,45 +5,37 @@
 // termination, empty-space skipping, the thesis's lerp mode).
 #include "kernel_base.glsl"
 #include "slab.glsl"
+#include "engine/kernels/atom_params.h"
 
 layout(std430, binding = 1) readonly buffer Volume { float volume_data[]; };
 layout(std430, binding = 2) readonly buffer Tf { vec4 tf[]; };
 layout(std430, binding = 3) readonly buffer Bricks { vec4 bricks[]; };
 layout(std430, binding = 4) writeonly buffer Image { vec4 image[]; };
-layout(push_constant) uniform Push {
-  vec4 eye_step;
-  vec4 forward_ref;
-  vec4 right_term;
-  vec4 up_vmin;
-  vec4 box_min_vscale;
-  vec4 box_max;
-  uvec4 dims_tf;
-  uvec4 wh_brick_flags;  // width, height, brick, flags (1: lerp, 2: skip empty)
-} pc;
+MASAV_PUSH(RaymarchLayout);
 
 #include "volume.glsl"
 
 void brick_bounds(int a, uint b, uint nb, vec3 spacing, out float lo, out float hi) {
-  const uint brick = pc.wh_brick_flags.z;
-  lo = b == 0u ? pc.box_min_vscale[a] : pc.box_min_vscale[a] + (float(b * brick) + 0.5) * spacing[a];
-  hi = b + 1u == nb ? pc.box_max[a] : pc.box_min_vscale[a] + (float((b + 1u) * brick) + 0.5) * spacing[a];
+  const uint brick = p.brick;
+  lo = b == 0u ? p.box_min[a] : p.box_min[a] + (float(b * brick) + 0.5) * spacing[a];
+  hi = b + 1u == nb ? p.box_max[a] : p.box_min[a] + (float((b + 1u) * brick) + 0.5) * spacing[a];
 }
 
 vec4 march(uint px, uint py) {
   vec4 acc = vec4(0.0);
-  const uint width = pc.wh_brick_flags.x, height = pc.wh_brick_flags.y, brick = pc.wh_brick_flags.z;
-  const bool lerp_mode = (pc.wh_brick_flags.w & 1u) != 0u;
-  const bool skip = (pc.wh_brick_flags.w & 2u) != 0u && !lerp_mode;
-  const vec3 eye = pc.eye_step.xyz;
+  const uint width = p.width, height = p.height, brick = p.brick;
+  const bool lerp_mode = p.mode == Compositing_lerp;
+  const bool skip = p.skip_empty != 0u && !lerp_mode;
+  const vec3 eye = p.eye;
   const float nx = (float(px) + 0.5) / float(width) * 2.0 - 1.0;
   const float ny = 1.0 - (float(py) + 0.5) / float(height) * 2.0;
-  const vec3 dir = normalize(pc.forward_ref.xyz + pc.right_term.xyz * nx + pc.up_vmin.xyz * ny);
-  const vec3 lo = pc.box_min_vscale.xyz, hi = pc.box_max.xyz;
+  const vec3 dir = normalize(p.forward + p.right * nx + p.up * ny);
+  const vec3 lo = p.box_min, hi = p.box_max;
   float tn = 0.0, tfar = VOLUME_FAR;
   if (!slab(eye, dir, lo, hi, tn, tfar)) return acc;
-  const float step_len = pc.eye_step.w, len = tfar - tn;
+  const float step_len = p.step, len = tfar - tn;
   const uint n = uint(ceil(len / step_len));
-  const uvec3 dims = pc.dims_tf.xyz;
+  const uvec3 dims = p.dims;
   const vec3 spacing = (hi - lo) / vec3(dims);
   const uvec3 nb = (dims + brick - 1u) / brick;
   // No loop may nest in this one (see slab.glsl): lavapipe would count each sample twice.
@@ -78,17 +70,17 @@ vec4 march(uint px, uint py) {
     }
     if (!skipped) {
       const float v = trilinear(u, dims);
-      const vec4 col = transfer((v - pc.up_vmin.w) * pc.box_min_vscale.w, pc.dims_tf.w);
+      const vec4 col = transfer((v - p.value_min) * p.value_scale, p.tf_size);
       if (lerp_mode) {
         acc.rgb += (col.rgb - acc.rgb) * col.a;
         acc.a += (1.0 - acc.a) * col.a;
       } else {
         const float h = s1 - s0;
-        const float alpha = 1.0 - pow(max(0.0, 1.0 - col.a), h / pc.forward_ref.w);
+        const float alpha = 1.0 - pow(max(0.0, 1.0 - col.a), h / p.reference_step);
         const float w = (1.0 - acc.a) * alpha;
         acc.rgb += w * col.rgb;
         acc.a += w;
-        done = acc.a >= pc.right_term.w;
+        done = acc.a >= p.termination_alpha;
       }
       ++i;
     }
@@ -98,8 +90,8 @@ vec4 march(uint px, uint py) {
 
 void run() {
   const uint id = flat_invocation_id();
-  const uint width = pc.wh_brick_flags.x;
-  if (id >= width * pc.wh_brick_flags.y) return;
+  const uint width = p.width;
+  if (id >= width * p.height) return;
   image[id] = march(id % width, id / width);
 }
 

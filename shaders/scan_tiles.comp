@@ -3,6 +3,7 @@
 // Exclusive prefix sum, level step: each workgroup scans one tile in place and writes the
 // tile's total to sums[tile]; the host scans the sums (recursively) and scan_add adds them back.
 #include "kernel_base.glsl"
+#include "engine/kernels/sort_params.h"
 #include "workgroup_scan.glsl"
 
 layout(constant_id = 3) const uint ITEMS = 8u;
@@ -10,24 +11,21 @@ const uint TILE = WG_SIZE * ITEMS;
 
 layout(std430, binding = 1) buffer Data { uint data[]; };
 layout(std430, binding = 2) writeonly buffer Sums { uint sums[]; };
-layout(push_constant) uniform Push {
-  uint n;
-  uint num_tiles;
-} pc;
+MASAV_PUSH(ScanParams);
 
 shared uint s_data[TILE];
 
 void run() {
   const uint tile = flat_group_id();
-  if (tile >= pc.num_tiles) return;
+  if (tile >= p.num_tiles) return;
   const uint lid = gl_LocalInvocationID.x;
   const uint base = tile * TILE;
-  const uint valid = min(TILE, pc.n - base);
+  const uint valid = min(TILE, p.n - base);
   const uint rank = wg_rank();
   for (uint i = 0u; i < ITEMS; ++i) {
     LOOP_TICK();
-    const uint p = i * WG_SIZE + lid;
-    s_data[p] = p < valid ? data[base + p] : 0u;
+    const uint pos = i * WG_SIZE + lid;
+    s_data[pos] = pos < valid ? data[base + pos] : 0u;
   }
   barrier();
   uint x[ITEMS];
@@ -47,8 +45,8 @@ void run() {
   barrier();
   for (uint i = 0u; i < ITEMS; ++i) {
     LOOP_TICK();
-    const uint p = i * WG_SIZE + lid;
-    if (p < valid) data[base + p] = s_data[p];
+    const uint pos = i * WG_SIZE + lid;
+    if (pos < valid) data[base + pos] = s_data[pos];
   }
   if (lid == 0u) sums[tile] = total;
 }

@@ -6,24 +6,17 @@
 // does not change the result.
 #include "kernel_base.glsl"
 #include "philox.glsl"
+#include "engine/kernels/atom_params.h"
 #include "scatter.glsl"
 
 layout(constant_id = 3) const uint ENTRIES = 75u;  // bins + 3 extras
 
 layout(std430, binding = 1) buffer Tallies { uint tallies[]; };  // (lo, hi) per row and entry
 layout(std430, binding = 2) buffer Hits { uint hits[]; };
-layout(push_constant) uniform Push {
-  uint rows, first_row, bins, photons_per_row;
-  uint groups_per_row, max_scatterings, from_centre, pad;
-  vec4 dir_tau_step;  // d0.xyz, tau_step
-  float g, albedo, threshold, pad2;
-  uvec2 seed;
-} pc;
+MASAV_PUSH(ScatterTableParams);
 
 shared uint s_weight[ENTRIES];
 shared uint s_hits[ENTRIES];
-
-const uvec2 SCATTER_STREAM = uvec2(0u, 0x5CA70000u);  // kScatterStream
 
 uvec2 add64(uvec2 a, uvec2 b) {
   uint carry;
@@ -40,33 +33,34 @@ void main() {
   }
   barrier();
   const uint group = flat_group_id();
-  const uint row = group / pc.groups_per_row;
-  const uint photon = (group % pc.groups_per_row) * WG_SIZE + lid;
-  if (row < pc.rows && photon < pc.photons_per_row) {
+  const uint groups_per_row = (p.photons_per_row + WG_SIZE - 1u) / WG_SIZE;
+  const uint row = group / groups_per_row;
+  const uint photon = (group % groups_per_row) * WG_SIZE + lid;
+  if (row < p.rows && photon < p.photons_per_row) {
     PhotonSetup s;
-    s.d0 = normalize(pc.dir_tau_step.xyz);
-    s.from_centre = pc.from_centre != 0u;
-    s.g = pc.g;
-    s.albedo = pc.albedo;
-    s.threshold = pc.threshold;
-    s.max_scatterings = pc.max_scatterings;
-    s.bins = pc.bins;
-    s.seed = pc.seed;
+    s.d0 = normalize(p.direction);
+    s.from_centre = p.start == ScatterStart_centre;
+    s.g = p.g;
+    s.albedo = p.albedo;
+    s.threshold = p.weight_threshold;
+    s.max_scatterings = p.max_scatterings;
+    s.bins = p.bins;
+    s.seed = p.seed;
     uvec2 prod;
-    umulExtended(pc.first_row + row, pc.photons_per_row, prod.y, prod.x);
-    const uvec2 stream = add64(add64(SCATTER_STREAM, prod), uvec2(photon, 0u));
-    const float tau = float(pc.first_row + row) * pc.dir_tau_step.w;
+    umulExtended(p.first_row + row, p.photons_per_row, prod.y, prod.x);
+    const uvec2 stream = add64(add64(kScatterStream, prod), uvec2(photon, 0u));
+    const float tau = float(p.first_row + row) * p.tau_step;
     const PhotonOutcome o = trace_photon(s, tau, stream);
     const uint fw = fixed_weight(o.weight);
     atomicAdd(s_weight[o.entry], fw);
     atomicAdd(s_hits[o.entry], 1u);
-    if (o.entry < pc.bins && o.scatterings == 0u) {
-      atomicAdd(s_weight[pc.bins + SCATTER_UNSCATTERED], fw);
-      atomicAdd(s_hits[pc.bins + SCATTER_UNSCATTERED], 1u);
+    if (o.entry < p.bins && o.scatterings == 0u) {
+      atomicAdd(s_weight[p.bins + kScatterUnscattered], fw);
+      atomicAdd(s_hits[p.bins + kScatterUnscattered], 1u);
     }
   }
   barrier();
-  if (row < pc.rows) {
+  if (row < p.rows) {
     for (uint e = lid; e < ENTRIES; e += WG_SIZE) {
       LOOP_TICK();
       const uint n = s_hits[e];

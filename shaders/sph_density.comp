@@ -18,20 +18,16 @@ layout(std430, binding = 7) buffer Stats { uint stats[]; };
 #include "sph.glsl"
 #include "sph_walk.glsl"
 
-layout(push_constant) uniform Push {
-  vec4 origin_inv_cell;
-  uvec4 dims_n;
-  SphCoefs c;
-} pc;
+MASAV_PUSH(SphStepLayout);
 
 void main() {
   const uint i = flat_invocation_id();
-  const bool live = i < pc.dims_n.w;
+  const bool live = i < p.n;
   uint candidates = 0u, within = 0u;
   bool overflow = false, bad = false;
   if (live) {
-    const vec3 p = positions[i].xyz;
-    const uvec3 dims = pc.dims_n.xyz;
+    const vec3 xi = positions[i].xyz;
+    const uvec3 dims = p.dims;
     const ivec3 cc = sph_cell_coords(cells[i], dims);
     float sum = 0.0;
     for (int dx = -1; dx <= 1 && !overflow; ++dx) {
@@ -43,26 +39,26 @@ void main() {
         const int y = cc.y + dy;
         if (y < 0 || y >= int(dims.y)) continue;
         const uvec2 r = sph_row_range(x, y, cc.z, dims);
-        if (r.y - r.x > pc.c.max_candidates - candidates) {
+        if (r.y - r.x > p.max_candidates - candidates) {
           overflow = true;
           break;
         }
         candidates += r.y - r.x;
         for (uint j = r.x; j < r.y; ++j) {
           LOOP_TICK();
-          const vec3 d = p - positions[j].xyz;
+          const vec3 d = xi - positions[j].xyz;
           const float r2 = dot(d, d);
-          sum += sph_density_term(r2, pc.c);
-          within += r2 < pc.c.h2 ? 1u : 0u;
+          sum += sph_density_term(r2, p);
+          within += r2 < p.h2 ? 1u : 0u;
         }
       }
     }
-    float rho = pc.c.density * sum;
-    if (pc.c.walls != 0u) {
+    float rho = p.density * sum;
+    if (p.walls != 0u) {
       vec3 unused;
-      rho += pc.c.rest_density * sph_wall_density(p, pc.c, unused);
+      rho += p.rest_density * sph_wall_density(xi, p, unused);
     }
-    const float pr = sph_pressure_of(rho, pc.c);
+    const float pr = sph_pressure_of(rho, p);
     density[i] = rho;
     pressure[i] = pr;
     bad = !sph_finite(rho) || !sph_finite(pr);
@@ -73,10 +69,10 @@ void main() {
   const uint over = subgroupMax(overflow ? ~i : 0u);
   const uint nonfinite = subgroupMax(bad ? ~i : 0u);
   if (subgroupElect()) {
-    atomicMax(stats[SPH_STAT_MAX_CANDIDATES], max_cand);
-    atomicMax(stats[SPH_STAT_MAX_NEIGHBORS], max_within);
-    if (over != 0u) atomicMax(stats[SPH_STAT_OVERFLOW], over);
-    if (nonfinite != 0u) atomicMax(stats[SPH_STAT_NON_FINITE], nonfinite);
+    atomicMax(stats[kSphStatMaxCandidates], max_cand);
+    atomicMax(stats[kSphStatMaxNeighbors], max_within);
+    if (over != 0u) atomicMax(stats[kSphStatOverflow], over);
+    if (nonfinite != 0u) atomicMax(stats[kSphStatNonFinite], nonfinite);
   }
   report_loop_ticks();
 }

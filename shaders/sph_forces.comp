@@ -20,25 +20,21 @@ layout(std430, binding = 9) buffer Stats { uint stats[]; };
 #include "sph.glsl"
 #include "sph_walk.glsl"
 
-layout(push_constant) uniform Push {
-  vec4 origin_inv_cell;
-  uvec4 dims_n;
-  SphCoefs c;
-} pc;
+MASAV_PUSH(SphStepLayout);
 
 void main() {
   const uint i = flat_invocation_id();
-  const bool live = i < pc.dims_n.w;
+  const bool live = i < p.n;
   uint candidates = 0u;
   bool overflow = false, bad = false;
   float accel2 = 0.0;
   if (live) {
     const vec4 pw = positions[i];
-    const vec3 p = pw.xyz;
+    const vec3 xi = pw.xyz;
     const vec3 v = velocities[i].xyz;
     const float rho = density[i];
     const float pi_over_rho2 = pressure[i] / (rho * rho);
-    const uvec3 dims = pc.dims_n.xyz;
+    const uvec3 dims = p.dims;
     const ivec3 cc = sph_cell_coords(cells[i], dims);
     vec3 acc = vec3(0.0);
     uint neighbors = 0u;
@@ -51,7 +47,7 @@ void main() {
         const int y = cc.y + dy;
         if (y < 0 || y >= int(dims.y)) continue;
         const uvec2 r = sph_row_range(x, y, cc.z, dims);
-        if (r.y - r.x > pc.c.max_candidates - candidates) {
+        if (r.y - r.x > p.max_candidates - candidates) {
           overflow = true;
           break;
         }
@@ -59,23 +55,23 @@ void main() {
         for (uint j = r.x; j < r.y; ++j) {
           LOOP_TICK();
           if (j == i) continue;
-          const vec3 d = p - positions[j].xyz;
+          const vec3 d = xi - positions[j].xyz;
           const float r2 = dot(d, d);
-          if (!(r2 < pc.c.h2)) continue;
+          if (!(r2 < p.h2)) continue;
           ++neighbors;
           acc += sph_pair_accel(v, rho, pi_over_rho2, velocities[j].xyz, density[j], pressure[j],
-                                d, r2, pc.c);
+                                d, r2, p);
         }
       }
     }
-    if (pc.c.walls != 0u) {
+    if (p.walls != 0u) {
       vec3 n;
-      sph_wall_density(p, pc.c, n);
-      const float damp = pc.c.lo.w * (2.0 * pc.c.rest_density / (rho + pc.c.rest_density)) *
-                         sph_wall_viscous_weight(p, pc.c);
-      acc += (2.0 * pi_over_rho2 * pc.c.rest_density * pc.c.inv_h) * n - damp * v;
+      sph_wall_density(xi, p, n);
+      const float damp = p.wall_viscosity * (2.0 * p.rest_density / (rho + p.rest_density)) *
+                         sph_wall_viscous_weight(xi, p);
+      acc += (2.0 * pi_over_rho2 * p.rest_density * p.inv_h) * n - damp * v;
     }
-    const vec3 a = sph_total_accel(acc, pw.w, pc.c);
+    const vec3 a = sph_total_accel(acc, pw.w, p);
     accel[i] = vec4(a, float(neighbors));
     bad = !sph_finite(a);
     if (!bad && pw.w > 0.0) accel2 = dot(a, a);
@@ -85,10 +81,10 @@ void main() {
   const uint nonfinite = subgroupMax(bad ? ~i : 0u);
   const uint max_a2 = subgroupMax(floatBitsToUint(accel2));
   if (subgroupElect()) {
-    atomicMax(stats[SPH_STAT_MAX_CANDIDATES], max_cand);
-    atomicMax(stats[SPH_STAT_MAX_ACCEL2], max_a2);
-    if (over != 0u) atomicMax(stats[SPH_STAT_OVERFLOW], over);
-    if (nonfinite != 0u) atomicMax(stats[SPH_STAT_NON_FINITE], nonfinite);
+    atomicMax(stats[kSphStatMaxCandidates], max_cand);
+    atomicMax(stats[kSphStatMaxAccel2], max_a2);
+    if (over != 0u) atomicMax(stats[kSphStatOverflow], over);
+    if (nonfinite != 0u) atomicMax(stats[kSphStatNonFinite], nonfinite);
   }
   report_loop_ticks();
 }

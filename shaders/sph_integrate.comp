@@ -19,42 +19,34 @@ layout(std430, binding = 9) buffer Stats { uint stats[]; };
 
 #include "sph.glsl"
 
-layout(push_constant) uniform Push {
-  vec4 lo_dt;          // box min, dt
-  vec4 hi_restitution; // box max, restitution
-  float tangential_damping;
-  uint op;
-  uint walls;
-  uint n;
-  uint use_vk;         // 1: read vk (RK4 stages 2-4); 0: the stage velocity is v0
-} pc;
+MASAV_PUSH(SphIntegrateLayout);
 
 void main() {
   const uint i = flat_invocation_id();
-  const bool live = i < pc.n;
-  const uint op = pc.op;
-  const bool kick = op == SPH_OP_KICK;
-  const bool rk4 = op >= SPH_OP_RK4_STAGE1 && op <= SPH_OP_RK4_FINAL;
+  const bool live = i < p.n;
+  const uint op = p.op;
+  const bool kick = op == SphStageOp_kick;
+  const bool rk4 = op >= SphStageOp_rk4_stage1 && op <= SphStageOp_rk4_final;
   float speed2 = 0.0, disp2 = 0.0;
   bool bad = false, outside = false;
   if (live) {
     const vec4 xw = kick ? vec4(0.0) : x0[i];
     const vec3 x = xw.xyz;
     const vec3 v = v0[i].xyz;
-    const vec3 kv = pc.use_vk != 0u ? vk[i].xyz : v;
+    const vec3 kv = rk4 && op != SphStageOp_rk4_stage1 ? vk[i].xyz : v;
     const vec3 a = accel[i].xyz;
     vec3 sx = rk4 ? sum_x[i].xyz : vec3(0.0);
     vec3 sv = rk4 ? sum_v[i].xyz : vec3(0.0);
     vec3 xn, vn;
-    sph_integrate_stage(op, pc.lo_dt.w, x, v, kv, a, xn, vn, sx, sv);
-    const vec3 lo = pc.lo_dt.xyz, hi = pc.hi_restitution.xyz;
-    if (sph_op_ends_step(op) && pc.walls != 0u)
-      sph_wall_response(xn, vn, lo, hi, pc.hi_restitution.w, pc.tangential_damping);
-    if (op == SPH_OP_KICK_DRIFT) sv = vn + (0.5 * pc.lo_dt.w) * a;
+    sph_integrate_stage(op, p.dt, x, v, kv, a, xn, vn, sx, sv);
+    const vec3 lo = vec3(p.lo[0], p.lo[1], p.lo[2]), hi = vec3(p.hi[0], p.hi[1], p.hi[2]);
+    if (sph_op_ends_step(op) && p.walls != 0u)
+      sph_wall_response(xn, vn, lo, hi, p.restitution, p.tangential_damping);
+    if (op == SphStageOp_kick_drift) sv = vn + (0.5 * p.dt) * a;
     if (!kick) x_out[i] = vec4(xn, xw.w);
     v_out[i] = vec4(vn, 0.0);
     if (rk4) sum_x[i] = vec4(sx, 0.0);
-    if (rk4 || op == SPH_OP_KICK_DRIFT) sum_v[i] = vec4(sv, 0.0);
+    if (rk4 || op == SphStageOp_kick_drift) sum_v[i] = vec4(sv, 0.0);
     bad = !sph_finite(vn) || (!kick && !sph_finite(xn));
     if (!bad) {
       speed2 = dot(vn, vn);
@@ -71,10 +63,10 @@ void main() {
   const uint nonfinite = subgroupMax(bad ? ~i : 0u);
   const uint out_count = subgroupAdd(outside ? 1u : 0u);
   if (subgroupElect()) {
-    atomicMax(stats[SPH_STAT_MAX_SPEED2], max_s2);
-    atomicMax(stats[SPH_STAT_MAX_DISP2], max_d2);
-    if (nonfinite != 0u) atomicMax(stats[SPH_STAT_NON_FINITE], nonfinite);
-    if (out_count != 0u) atomicAdd(stats[SPH_STAT_OUTSIDE], out_count);
+    atomicMax(stats[kSphStatMaxSpeed2], max_s2);
+    atomicMax(stats[kSphStatMaxDisp2], max_d2);
+    if (nonfinite != 0u) atomicMax(stats[kSphStatNonFinite], nonfinite);
+    if (out_count != 0u) atomicAdd(stats[kSphStatOutside], out_count);
   }
   report_loop_ticks();
 }

@@ -6,8 +6,8 @@
 #include <vector>
 
 #include "engine/grid/hash_grid.h"
+#include "engine/kernels/sph_kernel_params.h"
 #include "engine/sph/sph_case_buffers.h"
-#include "engine/sph/sph_kernel_params.h"
 #include "engine/sph/sph_particles.h"
 
 namespace masav::test {

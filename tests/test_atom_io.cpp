@@ -1,7 +1,6 @@
 // Files of the electron-cloud scene (no backend): volume loaders (raw, NRRD, VTI) and their
 // errors, the .vti export read back, transfer-function files, the scattering-table cache key.
 #include <doctest/doctest.h>
-
 #include <unistd.h>
 
 #include <cmath>
@@ -24,14 +23,17 @@ namespace {
 
 struct TempDir {
   std::filesystem::path path;
-  TempDir() : path(std::filesystem::temp_directory_path() / ("masav_atom_io_" + std::to_string(::getpid()))) {
+  TempDir()
+      : path(std::filesystem::temp_directory_path() /
+             ("masav_atom_io_" + std::to_string(::getpid()))) {
     std::filesystem::create_directories(path);
   }
   ~TempDir() { std::filesystem::remove_all(path); }
   std::string file(const std::string& name) const { return (path / name).string(); }
 };
 
-void write_bytes(const std::string& path, const void* data, size_t n, const std::string& head = "") {
+void write_bytes(const std::string& path, const void* data, size_t n,
+                 const std::string& head = "") {
   std::ofstream out(path, std::ios::binary);
   out << head;
   out.write(static_cast<const char*>(data), std::streamsize(n));
@@ -61,7 +63,8 @@ TEST_CASE("raw volumes: dims and type given; a size that does not match the dims
                        doctest::Contains("invalid dims = 4x3x3"), Error);
   CHECK_THROWS_WITH_AS(load_raw(t.file("a.raw"), d, SampleType::f32),
                        doctest::Contains("the dims need 24"), Error);
-  CHECK_THROWS_WITH_AS(parse_sample_type("uint12"), doctest::Contains("invalid type = uint12"), Error);
+  CHECK_THROWS_WITH_AS(parse_sample_type("uint12"), doctest::Contains("invalid type = uint12"),
+                       Error);
   CHECK_THROWS_WITH_AS(load_raw(t.file("missing.raw"), d, SampleType::u8),
                        doctest::Contains("cannot read"), Error);
   // Big-endian samples.
@@ -105,7 +108,7 @@ TEST_CASE("NRRD volumes: attached and detached data, raw and ASCII; bad headers 
 
 TEST_CASE("VTI volumes: the .vti export reads back; a short array is an error") {
   TempDir t;
-  const VolumeDesc d{{5, 4, 3}, {-1, -2, -3}, {1, 2, 3}, 0.0f, 1.0f};
+  const VolumeDesc d = make_volume_desc({5, 4, 3}, {-1, -2, -3}, {1, 2, 3});
   std::vector<double> values(60);
   for (size_t i = 0; i < values.size(); ++i) values[i] = 0.25 * double(i);
   write_scalar_vti(d, values, "density", t.file("a.vti"));
@@ -135,29 +138,30 @@ TEST_CASE("transfer functions: default blue -> green -> red, files, and errors n
   CHECK(tf[255].x == 1.0);  // red at the top
   CHECK(tf[255].y == 0.0);
   CHECK(tf[0].w == 0.0);
-  const auto pts = parse_transfer_points("# comment\n0 0 0 0 0\n0.5 1 0 0 0.5 # mid\n1 1 1 1 1\n", "x");
+  const auto pts =
+      parse_transfer_points("# comment\n0 0 0 0 0\n0.5 1 0 0 0.5 # mid\n1 1 1 1 1\n", "x");
   CHECK(pts.size() == 3);
   const auto r = resample_transfer(pts, 5);
   CHECK(r[1].x == doctest::Approx(0.5));
   CHECK(r[1].w == doctest::Approx(0.25));
   CHECK_THROWS_WITH_AS(parse_transfer_points("# nothing\n\n", "tf.txt"),
                        doctest::Contains("no entries"), Error);
-  CHECK_THROWS_WITH_AS(parse_transfer_points("0 0 0 0\n", "tf.txt"),
-                       doctest::Contains("line 1"), Error);
-  CHECK_THROWS_WITH_AS(parse_transfer_points("0 0 0 0 2\n", "tf.txt"),
-                       doctest::Contains("field a"), Error);
+  CHECK_THROWS_WITH_AS(parse_transfer_points("0 0 0 0\n", "tf.txt"), doctest::Contains("line 1"),
+                       Error);
+  CHECK_THROWS_WITH_AS(parse_transfer_points("0 0 0 0 2\n", "tf.txt"), doctest::Contains("field a"),
+                       Error);
   CHECK_THROWS_WITH_AS(parse_transfer_points("0.5 0 0 0 0\n0.2 0 0 0 0\n", "tf.txt"),
                        doctest::Contains("line 2 field value"), Error);
-  CHECK_THROWS_WITH_AS(load_transfer_points("/nonexistent/tf.txt"), doctest::Contains("cannot read"),
-                       Error);
+  CHECK_THROWS_WITH_AS(load_transfer_points("/nonexistent/tf.txt"),
+                       doctest::Contains("cannot read"), Error);
 }
 
 TEST_CASE("the scattering-table cache key names every parameter") {
   ScatterTableParams p;
   const std::string key = scatter_cache_key(p);
-  for (const char* field : {"rows=", "first_row=", "bins=", "tau_step=", "g=", "albedo=",
-                            "threshold=", "photons_per_row=", "max_scatterings=", "start=",
-                            "direction=", "seed="})
+  for (const char* field :
+       {"rows=", "first_row=", "bins=", "tau_step=", "g=", "albedo=", "threshold=",
+        "photons_per_row=", "max_scatterings=", "start=", "direction=", "seed="})
     CHECK(key.find(field) != std::string::npos);
   ScatterTableParams q = p;
   q.weight_threshold = std::nextafter(q.weight_threshold, 1.0f);  // one ulp apart

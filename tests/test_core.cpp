@@ -9,12 +9,12 @@
 #include <fstream>
 #include <limits>
 
-#include "engine/cpu/thread_pool.h"
 #include "engine/core/error.h"
+#include "engine/cpu/thread_pool.h"
 #include "engine/io/csv_writer.h"
 #include "engine/io/vtk_writer.h"
-#include "engine/core/kernel_params.h"
 #include "engine/kernels/grid_cell.h"
+#include "engine/kernels/grid_params.h"
 #include "engine/kernels/philox.h"
 #include "engine/kernels/radix.h"
 #include "engine/registry/registry.h"
@@ -117,9 +117,10 @@ TEST_CASE("thread pool runs chunks in order of position and propagates exception
   std::atomic<size_t> sum{0};
   pool.parallel_for(100000, 100, [&](size_t b, size_t e) { sum += e - b; });
   CHECK(sum == 100000);
-  CHECK_THROWS_AS(pool.parallel_for(100, 1, [](size_t b, size_t) {
-    if (b == 0) throw std::runtime_error("boom");
-  }),
+  CHECK_THROWS_AS(pool.parallel_for(100, 1,
+                                    [](size_t b, size_t) {
+                                      if (b == 0) throw std::runtime_error("boom");
+                                    }),
                   std::runtime_error);
 }
 

@@ -69,9 +69,9 @@ TEST_CASE("hash grid equals the CPU reference and a brute-force grouping") {
     UVec3 dims;
     float cell;
   };
-  const Case cases[] = {{0, {4, 4, 4}, 0.5f},      {1, {4, 4, 4}, 0.5f},
-                        {2, {1, 1, 1}, 3.0f},      {1000, {13, 7, 29}, 0.1f},
-                        {100003, {64, 32, 48}, 0.03f}, {5000, {1, 1, 1}, 1.0f},
+  const Case cases[] = {{0, {4, 4, 4}, 0.5f},           {1, {4, 4, 4}, 0.5f},
+                        {2, {1, 1, 1}, 3.0f},           {1000, {13, 7, 29}, 0.1f},
+                        {100003, {64, 32, 48}, 0.03f},  {5000, {1, 1, 1}, 1.0f},
                         {20000, {512, 256, 64}, 0.001f}};
   uint64_t seed = 11;
   for (const auto& c : cases) {
@@ -216,7 +216,7 @@ TEST_CASE("grid parameters out of range are rejected, naming the field") {
   const GridParams ok = make_grid_params({0, 0, 0}, 1.0f, {4, 4, 4}, 4);
   auto start = b.create<uint32_t>(64, "start");
   auto end = b.create<uint32_t>(64, "end");
-  CHECK_THROWS_WITH_AS(b.grid_count_neighbors(make_neighbor_params(ok, 1.5f), pos, start, end,
-                                              cells),
-                       doctest::Contains("radius"), Error);
+  CHECK_THROWS_WITH_AS(
+      b.grid_count_neighbors(make_neighbor_params(ok, 1.5f), pos, start, end, cells),
+      doctest::Contains("radius"), Error);
 }

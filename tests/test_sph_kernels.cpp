@@ -14,10 +14,10 @@
 #include "engine/kernels/grid_cell.h"
 #include "engine/kernels/sph_kernels.h"
 #include "engine/sph/sph_coefficients.h"
+#include "engine/sph/sph_kernel_calls.h"
 #include "engine/util/error_metrics.h"
 #include "tests/backend_fixture.h"
 #include "tests/sph_fixture.h"
-#include "engine/sph/sph_kernel_calls.h"
 
 using namespace masav;
 
@@ -49,7 +49,7 @@ TEST_CASE("sph_density equals the CPU reference and a brute-force poly6 sum") {
       // Brute force over all pairs in double, at the fp32 positions both backends hold.
       const auto sp = r.download_f32(sr.sorted_pos);
       const double h2 = c.params.h * c.params.h;
-      const auto coef = make_coefficients(c.params);
+      const auto coef = device_params<double>(c.params);
       double worst = 0;
       for (size_t i = 0; i < sp.size(); i += 7) {
         double sum = 0;
@@ -91,10 +91,12 @@ TEST_CASE("sph_forces equals the CPU reference for both pressure models") {
       // The backend gets the reference's density and pressure: this tests the force kernel alone.
       b.upload(sb.density, r.download(sr.density));
       b.upload(sb.pressure, r.download(sr.pressure));
-      sph_forces(b, c.params, {&sb.sorted_pos, &sb.sorted_vel, &sb.density, &sb.pressure, sb.view(),
-                              &sb.accel, &sb.stats});
-      sph_forces(r, c.params, {&sr.sorted_pos, &sr.sorted_vel, &sr.density, &sr.pressure, sr.view(),
-                              &sr.accel, &sr.stats});
+      sph_forces(b, c.params,
+                 {&sb.sorted_pos, &sb.sorted_vel, &sb.density, &sb.pressure, sb.view(), &sb.accel,
+                  &sb.stats});
+      sph_forces(r, c.params,
+                 {&sr.sorted_pos, &sr.sorted_vel, &sr.density, &sr.pressure, sr.view(), &sr.accel,
+                  &sr.stats});
       const auto got = b.download(sb.accel), want = r.download(sr.accel);
       const auto g3 = xyz_components(got), w3 = xyz_components(want);
       const ErrorStats e = compare(g3, w3, rms(w3));
@@ -123,8 +125,9 @@ TEST_CASE("sph_forces equals the CPU reference for both pressure models") {
         test::SphBuffers s2 = test::upload_sph_case(r, sym);
         sph_density(r, sym.params,
                     {&s2.sorted_pos, s2.view(), &s2.density, &s2.pressure, &s2.stats});
-        sph_forces(r, sym.params, {&s2.sorted_pos, &s2.sorted_vel, &s2.density, &s2.pressure,
-                                  s2.view(), &s2.accel, &s2.stats});
+        sph_forces(r, sym.params,
+                   {&s2.sorted_pos, &s2.sorted_vel, &s2.density, &s2.pressure, s2.view(), &s2.accel,
+                    &s2.stats});
         double fx = 0, fy = 0, fz = 0, scale = 0;
         for (const auto& a : r.download(s2.accel)) {
           fx += a.x, fy += a.y, fz += a.z;
@@ -149,8 +152,9 @@ TEST_CASE("sph_forces depends only on its inputs, whatever sph_density saw befor
     sph_density(b, c.params, {&x.sorted_pos, x.view(), &x.density, &x.pressure, &x.stats});
   };
   auto forces = [&](test::SphBuffers& x) {
-    sph_forces(b, c.params, {&x.sorted_pos, &x.sorted_vel, &x.density, &x.pressure, x.view(),
-                            &x.accel, &x.stats});
+    sph_forces(
+        b, c.params,
+        {&x.sorted_pos, &x.sorted_vel, &x.density, &x.pressure, x.view(), &x.accel, &x.stats});
     return b.download(x.accel);
   };
   auto same = [](const std::vector<Vec4d>& a, const std::vector<Vec4d>& z) {
@@ -277,7 +281,7 @@ TEST_CASE("sph_integrate: every stage and the walls equal the CPU reference") {
       INFO("position: " << describe(ex));
       CHECK(ex.max_abs < 1e-6);
       for (size_t i = 0; i < n; ++i) REQUIRE(x_got[i].w == x_want[i].w);  // inverse mass kept
-      const bool ends = sph::op_ends_step(op);
+      const bool ends = sph::op_ends_step(p.op);
       size_t outside = 0;
       for (const auto& x : x_want)
         outside += x.x < p.box_min.x || x.x > p.box_max.x || x.y < p.box_min.y ||
@@ -317,8 +321,8 @@ TEST_CASE("sph kernels report candidate overflow and non-finite values, never hi
   c.params.max_candidates = 8192;
   b.fill(s.stats, 0u);
   sph_density(b, c.params, {&s.sorted_pos, s.view(), &s.density, &s.pressure, &s.stats});
-  sph_forces(b, c.params, {&s.sorted_pos, &s.sorted_vel, &s.density, &s.pressure, s.view(), &s.accel,
-                          &s.stats});
+  sph_forces(b, c.params,
+             {&s.sorted_pos, &s.sorted_vel, &s.density, &s.pressure, s.view(), &s.accel, &s.stats});
   w = b.download(s.stats);
   CHECK(w[kSphStatOverflow] == 0);
   REQUIRE(w[kSphStatNonFinite] != 0);  // the NaN velocity reaches its neighbours' viscosity
@@ -355,12 +359,14 @@ TEST_CASE("sph kernel parameters out of range are rejected, naming the field") {
   SphIntegrateParams ip;
   ip.n = c.params.n;
   ip.dt = 0;
-  CHECK_THROWS_WITH_AS(sph_integrate(b, ip, {&s.sorted_pos, &s.sorted_vel, nullptr, &s.accel, &s.pos,
-                                            &s.vel, nullptr, nullptr, &s.stats}),
+  CHECK_THROWS_WITH_AS(sph_integrate(b, ip,
+                                     {&s.sorted_pos, &s.sorted_vel, nullptr, &s.accel, &s.pos,
+                                      &s.vel, nullptr, nullptr, &s.stats}),
                        doctest::Contains("dt"), Error);
   ip.dt = 1e-3;
   ip.op = SphStageOp::rk4_stage2;
-  CHECK_THROWS_WITH_AS(sph_integrate(b, ip, {&s.sorted_pos, &s.sorted_vel, nullptr, &s.accel, &s.pos,
-                                            &s.vel, nullptr, nullptr, &s.stats}),
+  CHECK_THROWS_WITH_AS(sph_integrate(b, ip,
+                                     {&s.sorted_pos, &s.sorted_vel, nullptr, &s.accel, &s.pos,
+                                      &s.vel, nullptr, nullptr, &s.stats}),
                        doctest::Contains("vk"), Error);
 }

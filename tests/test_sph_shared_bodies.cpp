@@ -7,9 +7,9 @@
 #include "engine/cpu/cpu_backend.h"
 #include "engine/kernels/sph_kernels.h"
 #include "engine/sph/sph_coefficients.h"
+#include "engine/sph/sph_kernel_calls.h"
 #include "engine/util/error_metrics.h"
 #include "tests/sph_fixture.h"
-#include "engine/sph/sph_kernel_calls.h"
 
 using namespace masav;
 
@@ -26,7 +26,7 @@ void host_bodies(const test::SphCase& c, const std::vector<Vec4d>& pos,
                  const std::vector<Vec4d>& vel, const std::vector<double>& rho,
                  const std::vector<double>& pr, const std::vector<uint32_t>& cells,
                  const std::vector<uint32_t>& start, const std::vector<uint32_t>& end,
-                 const sph::Coefficients<T>& k, std::vector<double>& rho_out,
+                 const SphStepLayout<T>& k, std::vector<double>& rho_out,
                  std::vector<Vec4d>& acc_out) {
   const SphStepParams& p = c.params;
   const uint32_t dims[3] = {p.grid.dims.x, p.grid.dims.y, p.grid.dims.z};
@@ -60,19 +60,21 @@ TEST_CASE("sph::density_at and sph::force_at (the CUDA bodies) equal the CPU ref
       test::with_walls(c, walls);
       test::SphBuffers s = test::upload_sph_case(r, c);
       sph_density(r, c.params, {&s.sorted_pos, s.view(), &s.density, &s.pressure, &s.stats});
-      sph_forces(r, c.params, {&s.sorted_pos, &s.sorted_vel, &s.density, &s.pressure, s.view(),
-                              &s.accel, &s.stats});
+      sph_forces(
+          r, c.params,
+          {&s.sorted_pos, &s.sorted_vel, &s.density, &s.pressure, s.view(), &s.accel, &s.stats});
       const auto pos = r.download(s.sorted_pos), vel = r.download(s.sorted_vel);
       const auto rho = r.download(s.density), pr = r.download(s.pressure);
       const auto acc = r.download(s.accel);
       const auto cells = r.download(s.grid.sorted_cells);
       const auto start = r.download(s.grid.cell_start), end = r.download(s.grid.cell_end);
-      const auto k = make_coefficients(c.params);
+      const auto k = device_params<double>(c.params);
 
       std::vector<double> rho_d, rho_f;
       std::vector<Vec4d> acc_d, acc_f;
       host_bodies<double>(c, pos, vel, rho, pr, cells, start, end, k, rho_d, acc_d);
-      host_bodies<float>(c, pos, vel, rho, pr, cells, start, end, to_float(k), rho_f, acc_f);
+      host_bodies<float>(c, pos, vel, rho, pr, cells, start, end, device_params<float>(c.params),
+                         rho_f, acc_f);
       const double acc_scale = rms(xyz_components(acc));
       // double: the same terms, summed in another order (lists vs the walk) -> rounding only.
       CHECK(compare(rho_d, rho, 1.0).max_rel < 1e-12);

@@ -30,7 +30,8 @@ Voxels voxelize_on(Backend& b, const VoxelizeParams& vp, const std::vector<Vec4f
   auto lit = b.create<Real>(light.size(), "light");
   b.upload(lit, light);
   const size_t cells = grid_cell_count(vp.grid);
-  auto p = b.create<Real>(cells, "p"), g = b.create<Real>(cells, "g"), s = b.create<Real>(cells, "s");
+  auto p = b.create<Real>(cells, "p"), g = b.create<Real>(cells, "g"),
+       s = b.create<Real>(cells, "s");
   b.voxelize(vp, pos, lit, p, g, s);
   return {b.download(p), b.download(g), b.download(s)};
 }
@@ -43,7 +44,7 @@ struct Volume {
 // v = a . (voxel coordinates) + d: trilinear interpolation reproduces it exactly between the
 // outermost voxel centres (and clamps beyond them).
 Volume ramp_volume(UVec3 dims, Vec3f lo, Vec3f hi) {
-  Volume v{{dims, lo, hi, 0.0f, 1.0f}, {}};
+  Volume v{make_volume_desc(dims, lo, hi, 0.0f, 1.0f), {}};
   const double total = double(dims.x - 1) + (dims.y - 1) + (dims.z - 1);
   for (uint32_t k = 0; k < dims.z; ++k)
     for (uint32_t j = 0; j < dims.y; ++j)
@@ -155,7 +156,8 @@ TEST_CASE("volume_bricks: value range over each brick and its apron, largest alp
       for (uint32_t x = 0; x < nb.x; ++x) {
         const auto& br = got[(z * nb.y + y) * nb.x + x];
         const double lo = (4.0 * (x + y + z)) / total;
-        const double hi = (std::min(4 * x + 4, 18u) + std::min(4 * y + 4, 9u) + std::min(4 * z + 4, 6u)) / total;
+        const double hi =
+            (std::min(4 * x + 4, 18u) + std::min(4 * y + 4, 9u) + std::min(4 * z + 4, 6u)) / total;
         CHECK(br.x == doctest::Approx(lo).epsilon(1e-6));
         CHECK(br.y == doctest::Approx(hi).epsilon(1e-6));
         double amax = 0;
@@ -179,16 +181,17 @@ TEST_CASE("raymarch: opacity equals the analytic line integral; error falls with
   rp.termination_alpha = 1.0f;
   rp.tf_size = 4096;
   rp.skip_empty = false;
-  const volume::RayCamera cam = make_ray_camera(rp);
+  const RaymarchLayout cam = raymarch_layout(rp);
   const double total = 3.0 * 23, spacing = 2.0 / 24;
   // Analytic: v along the ray = sum over axes of clamp(voxel coordinate, 0, 23) / total.
   std::vector<double> want(size_t(rp.width) * rp.height, 0.0);
   for (uint32_t y = 0; y < rp.height; ++y)
     for (uint32_t x = 0; x < rp.width; ++x) {
       const hd::V3<double> eye = volume::v3<double>(cam.eye);
-      const hd::V3<double> d = volume::pixel_direction<double>(rp, cam, x, y);
+      const hd::V3<double> d = volume::pixel_direction<double>(cam, x, y);
       double t0 = 0, t1 = 1e30;
-      if (!volume::slab(eye, d, hd::V3<double>{-1, -1, -1}, hd::V3<double>{1, 1, 1}, t0, t1)) continue;
+      if (!volume::slab(eye, d, hd::V3<double>{-1, -1, -1}, hd::V3<double>{1, 1, 1}, t0, t1))
+        continue;
       double integral = 0;
       for (int a = 0; a < 3; ++a) {
         const double o = (hd::comp(eye, a) + 1) / spacing - 0.5, du = hd::comp(d, a) / spacing;
@@ -215,7 +218,7 @@ TEST_CASE("raymarch: opacity equals the analytic line integral; error falls with
 TEST_CASE("raymarch: skipping empty bricks and early termination keep the image") {
   // A blob in one corner of an otherwise empty volume; the transfer function is 0 below 0.2.
   const UVec3 dims{32, 32, 32};
-  Volume vol{{dims, {0, 0, 0}, {1, 1, 1}, 0.0f, 1.0f}, {}};
+  Volume vol{make_volume_desc(dims, {0, 0, 0}, {1, 1, 1}, 0.0f, 1.0f), {}};
   for (uint32_t k = 0; k < dims.z; ++k)
     for (uint32_t j = 0; j < dims.y; ++j)
       for (uint32_t i = 0; i < dims.x; ++i) {
@@ -257,7 +260,8 @@ TEST_CASE("raymarch: skipping empty bricks and early termination keep the image"
 }
 
 TEST_CASE("raymarch: the thesis's lerp compositing of n samples of a uniform volume") {
-  Volume vol{{{8, 8, 8}, {-1, -1, -1}, {1, 1, 1}, 0.0f, 1.0f}, std::vector<double>(512, 0.5)};
+  Volume vol{make_volume_desc({8, 8, 8}, {-1, -1, -1}, {1, 1, 1}, 0.0f, 1.0f),
+             std::vector<double>(512, 0.5)};
   std::vector<Vec4d> tf = {{0.2, 0.4, 0.6, 0.1}, {0.2, 0.4, 0.6, 0.1}};
   RaymarchParams rp;
   rp.volume = vol.desc;
@@ -276,7 +280,7 @@ TEST_CASE("raymarch: the thesis's lerp compositing of n samples of a uniform vol
 
 TEST_CASE("raymarch matches the CPU reference on a smooth volume with the default colours") {
   const UVec3 dims{20, 24, 16};
-  Volume vol{{dims, {-1, -1.2f, -0.8f}, {1, 1.2f, 0.8f}, -0.2f, 1.1f}, {}};
+  Volume vol{make_volume_desc(dims, {-1, -1.2f, -0.8f}, {1, 1.2f, 0.8f}, -0.2f, 1.1f), {}};
   for (uint32_t k = 0; k < dims.z; ++k)
     for (uint32_t j = 0; j < dims.y; ++j)
       for (uint32_t i = 0; i < dims.x; ++i)
@@ -296,7 +300,8 @@ TEST_CASE("raymarch matches the CPU reference on a smooth volume with the defaul
   rp.tf_size = 128;
   for (Compositing mode : {Compositing::front_to_back, Compositing::lerp}) {
     rp.mode = mode;
-    const auto got = render(test::backend(), rp, vol, tf), want = render(test::reference(), rp, vol, tf);
+    const auto got = render(test::backend(), rp, vol, tf),
+               want = render(test::reference(), rp, vol, tf);
     double err = 0;
     for (size_t i = 0; i < got.size(); ++i)
       err = std::max({err, std::abs(got[i].x - want[i].x), std::abs(got[i].y - want[i].y),
@@ -308,7 +313,8 @@ TEST_CASE("raymarch matches the CPU reference on a smooth volume with the defaul
 
 TEST_CASE("voxelize and raymarch reject bad input, naming the field") {
   Backend& b = test::backend();
-  Volume vol{{{8, 8, 8}, {0, 0, 0}, {1, 1, 1}, 0.0f, 1.0f}, std::vector<double>(512, 0.5)};
+  Volume vol{make_volume_desc({8, 8, 8}, {0, 0, 0}, {1, 1, 1}, 0.0f, 1.0f),
+             std::vector<double>(512, 0.5)};
   RaymarchParams rp;
   rp.volume = vol.desc;
   rp.width = rp.height = 4;
@@ -335,8 +341,10 @@ TEST_CASE("voxelize and raymarch reject bad input, naming the field") {
   auto pos = b.create<Real4>(4, "pos");
   auto lit = b.create<Real>(4, "light");
   auto out = b.create<Real>(8, "out");
-  CHECK_THROWS_WITH_AS(b.voxelize(vp, pos, lit, out, out, out), doctest::Contains("particles"), Error);
+  CHECK_THROWS_WITH_AS(b.voxelize(vp, pos, lit, out, out, out), doctest::Contains("particles"),
+                       Error);
   vp.grid.n = 4;
   vp.s = 2;
-  CHECK_THROWS_WITH_AS(b.voxelize(vp, pos, lit, out, out, out), doctest::Contains("invalid s"), Error);
+  CHECK_THROWS_WITH_AS(b.voxelize(vp, pos, lit, out, out, out), doctest::Contains("invalid s"),
+                       Error);
 }

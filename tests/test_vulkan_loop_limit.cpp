@@ -13,12 +13,12 @@
 
 #include "compute/vk_backend.h"
 #include "compute/vk_factory.h"
-#include "engine/core/error.h"
 #include "engine/atom/atom_checks.h"
 #include "engine/atom/orbital_tables.h"
+#include "engine/core/error.h"
 #include "engine/grid/hash_grid.h"
-#include "engine/sph/sph_particles.h"
 #include "engine/sph/sph_kernel_calls.h"
+#include "engine/sph/sph_particles.h"
 
 using namespace masav;
 namespace mvk = masav::vk;
@@ -156,16 +156,18 @@ TEST_CASE("nebula paths: voxel traversal and the smallest midpoint step stay bel
   auto ill = b.create<Real>(2, "illumination"), light = b.create<Real>(2, "light");
   for (OpticalPath path : {OpticalPath::exact, OpticalPath::midpoint}) {
     p.path = path;
-    p.step_a0 = path == OpticalPath::midpoint ? float(16 * std::sqrt(3.0) / kMaxPathSteps) * 1.0001f
-                                              : 0.1f;
+    p.step_a0 =
+        path == OpticalPath::midpoint ? float(16 * std::sqrt(3.0) / kMaxPathSteps) * 1.0001f : 0.1f;
     (void)b.take_max_loop_ticks();
     b.nebula_illuminate(p, pos, density, ill);
     b.nebula_view(p, pos, density, table, ill, light);
     const uint32_t ticks = b.take_max_loop_ticks();
     MESSAGE("nebula path " << int(path) << ": " << ticks << " loop iterations");
     CHECK(ticks < kLavapipeLoopLimit);
-    if (path == OpticalPath::exact) CHECK(ticks <= 3 * 64 + 3 + 6);
-    else CHECK(ticks > 50000);  // the diagonal at the smallest step
+    if (path == OpticalPath::exact)
+      CHECK(ticks <= 3 * 64 + 3 + 6);
+    else
+      CHECK(ticks > 50000);  // the diagonal at the smallest step
   }
   p.step_a0 *= 0.5f;  // below the validated step: refused before dispatch
   CHECK_THROWS_AS(b.nebula_view(p, pos, density, table, ill, light), Error);
@@ -183,7 +185,7 @@ TEST_CASE("voxelize does not loop; volume_bricks at the largest brick stays belo
   (void)b.take_max_loop_ticks();
   b.voxelize(vp, pos, light, p, g, s);
   CHECK(b.take_max_loop_ticks() == 0);
-  const VolumeDesc vol{{64, 64, 64}, {0, 0, 0}, {1, 1, 1}, 0.0f, 1.0f};
+  const VolumeDesc vol = make_volume_desc({64, 64, 64}, {0, 0, 0}, {1, 1, 1});
   auto v = b.create<Real>(64 * 64 * 64, "volume");
   b.upload(v, std::vector<double>(64 * 64 * 64, 0.5));
   auto tf = b.create<Real4>(4096, "tf");
@@ -199,7 +201,7 @@ TEST_CASE("voxelize does not loop; volume_bricks at the largest brick stays belo
 
 TEST_CASE("raymarch: the smallest validated step stays below the limit; skipping and ERT cut it") {
   auto& b = *g_vk;
-  const VolumeDesc vol{{64, 64, 64}, {0, 0, 0}, {1, 1, 1}, 0.0f, 1.0f};
+  const VolumeDesc vol = make_volume_desc({64, 64, 64}, {0, 0, 0}, {1, 1, 1});
   auto v = b.create<Real>(64 * 64 * 64, "volume");
   auto tf = b.create<Real4>(2, "tf");
   auto bricks = b.create<Real4>(512, "bricks");

@@ -10,8 +10,12 @@
 namespace masav {
 namespace {
 
-bool finite3(Vec3f v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
-std::string str3(Vec3f v) { return fmt::format("({}, {}, {})", v.x, v.y, v.z); }
+bool finite3(Vec3f v) {
+  return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
+}
+std::string str3(Vec3f v) {
+  return fmt::format("({}, {}, {})", v.x, v.y, v.z);
+}
 
 void positive(std::string_view where, std::string_view field, float v) {
   if (!std::isfinite(v) || !(v > 0))
@@ -49,10 +53,9 @@ void check_nebula(const NebulaLightParams& p, const Buffer<Real4>& positions,
     throw_invalid(kernel, "path", std::to_string(uint32_t(p.path)), "exact or midpoint");
   positive(kernel, "step_a0", p.step_a0);
   if (p.path == OpticalPath::midpoint) {
-    const double diag = double(p.grid.cell_size) *
-                        std::sqrt(double(p.grid.dims.x) * p.grid.dims.x +
-                                  double(p.grid.dims.y) * p.grid.dims.y +
-                                  double(p.grid.dims.z) * p.grid.dims.z);
+    const double diag = double(p.grid.cell_size) * std::sqrt(double(p.grid.dims.x) * p.grid.dims.x +
+                                                             double(p.grid.dims.y) * p.grid.dims.y +
+                                                             double(p.grid.dims.z) * p.grid.dims.z);
     if (diag / p.step_a0 > kMaxPathSteps)
       throw_invalid(kernel, "step_a0", fmt::format("{}", p.step_a0),
                     fmt::format("at least {:.4g} (the grid's diagonal / {} steps, lavapipe's "
@@ -88,8 +91,8 @@ void validate(const DeviceApi& dev, const OrbitalSampleParams& p, const Buffer<u
                   "each in [1, 2^24] (build the tables with make_orbital_tables)");
   if (p.placement == OrbitalPlacement::shells &&
       (p.azimuth_bins < 1 || uint64_t(p.radial_bins) * p.polar_bins * p.azimuth_bins > (1u << 24)))
-    throw_invalid(k, "shell sites", std::to_string(uint64_t(p.radial_bins) * p.polar_bins *
-                                                   p.azimuth_bins),
+    throw_invalid(k, "shell sites",
+                  std::to_string(uint64_t(p.radial_bins) * p.polar_bins * p.azimuth_bins),
                   "in [1, 2^24]");
   positive(k, "radial_max_a0", p.radial_max_a0);
   if (p.placement == OrbitalPlacement::exact && p.azimuth_bins &&
@@ -103,8 +106,7 @@ void validate(const DeviceApi&, const CloudDensityParams& p, const Buffer<uint32
               const Buffer<uint32_t>& end, const Buffer<Real>& density) {
   const char* k = "cloud_density";
   check_grid(p.grid, k);
-  if (p.particles < 1)
-    throw_invalid(k, "particles", std::to_string(p.particles), "at least 1");
+  if (p.particles < 1) throw_invalid(k, "particles", std::to_string(p.particles), "at least 1");
   const uint64_t cells = grid_cell_count(p.grid);
   at_least(k, "cell_start", start.size(), cells);
   at_least(k, "cell_end", end.size(), cells);
@@ -128,9 +130,9 @@ void validate(const DeviceApi& dev, const ScatterTableParams& p, const Buffer<Re
   in_range(k, "max_scatterings", p.max_scatterings, 0, 5000);
   if (p.start != ScatterStart::surface && p.start != ScatterStart::centre)
     throw_invalid(k, "start", std::to_string(uint32_t(p.start)), "surface or centre");
-  const double len = std::sqrt(double(p.direction.x) * p.direction.x +
-                               double(p.direction.y) * p.direction.y +
-                               double(p.direction.z) * p.direction.z);
+  const double len =
+      std::sqrt(double(p.direction.x) * p.direction.x + double(p.direction.y) * p.direction.y +
+                double(p.direction.z) * p.direction.z);
   if (!finite3(p.direction) || std::abs(len - 1.0) > 1e-3)
     throw_invalid(k, "direction", str3(p.direction), "a unit vector");
   const uint64_t entries = uint64_t(p.rows) * (p.bins + kScatterExtras);
@@ -155,7 +157,6 @@ void validate(const DeviceApi&, const NebulaLightParams& p, const Buffer<Real4>&
   at_least(k, "table", table.size(), uint64_t(p.table_rows) * p.table_bins);
   at_least(k, "illumination", illumination.size(), p.grid.n);
 }
-
 
 void validate(const DeviceApi& dev, const VoxelizeParams& p, const Buffer<Real4>& positions,
               const Buffer<Real>& light, const Buffer<Real>& probability,
@@ -212,7 +213,7 @@ void validate(const DeviceApi&, const VolumeBrickParams& p, const Buffer<Real>& 
   at_least(k, "bricks", bricks.size(), uint64_t(b.x) * b.y * b.z);
 }
 
-volume::RayCamera make_ray_camera(const RaymarchParams& p) {
+RaymarchLayout raymarch_layout(const RaymarchParams& p) {
   const double e[3] = {p.eye.x, p.eye.y, p.eye.z}, t[3] = {p.target.x, p.target.y, p.target.z};
   const double u[3] = {p.up.x, p.up.y, p.up.z};
   double f[3] = {t[0] - e[0], t[1] - e[1], t[2] - e[2]};
@@ -227,22 +228,27 @@ volume::RayCamera make_ray_camera(const RaymarchParams& p) {
                         r[0] * f[1] - r[1] * f[0]};
   const double th = std::tan(0.5 * double(p.fov_y_deg) * 3.14159265358979323846 / 180.0);
   const double aspect = double(p.width) / double(p.height);
-  volume::RayCamera c{};
-  for (int i = 0; i < 3; ++i) {
-    c.eye[i] = float(e[i]);
-    c.forward[i] = float(f[i]);
-    c.right[i] = float(r[i] * th * aspect);
-    c.up[i] = float(up[i] * th);
-  }
+  auto vec = [](double x, double y, double z) { return Vec3f{float(x), float(y), float(z)}; };
   const VolumeDesc& v = p.volume;
-  c.spacing[0] = (v.box_max.x - v.box_min.x) / float(v.dims.x);
-  c.spacing[1] = (v.box_max.y - v.box_min.y) / float(v.dims.y);
-  c.spacing[2] = (v.box_max.z - v.box_min.z) / float(v.dims.z);
+  RaymarchLayout c{};
+  c.eye = vec(e[0], e[1], e[2]);
+  c.forward = vec(f[0], f[1], f[2]);
+  c.right = vec(r[0] * th * aspect, r[1] * th * aspect, r[2] * th * aspect);
+  c.up = vec(up[0] * th, up[1] * th, up[2] * th);
+  c.step = p.step;
+  c.reference_step = p.reference_step;
+  c.termination_alpha = p.termination_alpha;
+  c.value_min = v.value_min;
   c.value_scale = 1.0f / (v.value_max - v.value_min);
-  const UVec3 b = brick_dims(v, p.brick);
-  c.bricks[0] = b.x;
-  c.bricks[1] = b.y;
-  c.bricks[2] = b.z;
+  c.box_min = v.box_min;
+  c.box_max = v.box_max;
+  c.mode = p.mode;
+  c.dims = v.dims;
+  c.tf_size = p.tf_size;
+  c.width = p.width;
+  c.height = p.height;
+  c.brick = p.brick;
+  c.skip_empty = p.skip_empty ? 1u : 0u;
   return c;
 }
 
@@ -286,7 +292,8 @@ void validate(const DeviceApi&, const RaymarchParams& p, const Buffer<Real>& vol
                               "lavapipe stops a shader invocation after 65,535 iterations",
                               kMaxRaySteps, segs));
   at_least(k, "transfer function", tf.size(), p.tf_size);
-  at_least(k, "volume", volume.size(), uint64_t(p.volume.dims.x) * p.volume.dims.y * p.volume.dims.z);
+  at_least(k, "volume", volume.size(),
+           uint64_t(p.volume.dims.x) * p.volume.dims.y * p.volume.dims.z);
   at_least(k, "bricks", bricks.size(), uint64_t(nb.x) * nb.y * nb.z);
   at_least(k, "image", image.size(), uint64_t(p.width) * p.height);
 }

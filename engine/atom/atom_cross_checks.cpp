@@ -165,7 +165,7 @@ CheckVolume check_volume(const CheckInputs& in) {
   CheckVolume v;
   const uint32_t d = uint32_t(std::min<int64_t>(p.get_int("volume.dims"), 32));
   const float h = half_width(p);
-  v.desc = {{d, d, d}, {-h, -h, -h}, {h, h, h}, 0.0f, 1.0f};
+  v.desc = make_volume_desc({d, d, d}, {-h, -h, -h}, {h, h, h});
   for (uint32_t k = 0; k < d; ++k)
     for (uint32_t j = 0; j < d; ++j)
       for (uint32_t i = 0; i < d; ++i)

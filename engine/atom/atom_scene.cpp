@@ -21,14 +21,19 @@ ViewPreset parse_view(const std::string& name) {
 
 Vec3f view_eye(ViewPreset v, float d) {
   switch (v) {
-    case ViewPreset::top: return {0, 0, d};
-    case ViewPreset::left: return {-d, 0, 0};
-    case ViewPreset::front: return {0, -d, 0};
+    case ViewPreset::top:
+      return {0, 0, d};
+    case ViewPreset::left:
+      return {-d, 0, 0};
+    case ViewPreset::front:
+      return {0, -d, 0};
   }
   return {0, -d, 0};
 }
 
-Vec3f view_up(ViewPreset v) { return v == ViewPreset::top ? Vec3f{0, 1, 0} : Vec3f{0, 0, 1}; }
+Vec3f view_up(ViewPreset v) {
+  return v == ViewPreset::top ? Vec3f{0, 1, 0} : Vec3f{0, 0, 1};
+}
 
 AtomScene::AtomScene(Backend& b, AtomSceneOptions o) : b_(b) {
   reconfigure(std::move(o));
@@ -45,7 +50,8 @@ void AtomScene::reconfigure(AtomSceneOptions o) {
     throw_invalid("atom", "particles", std::to_string(o_.particles),
                   fmt::format("at most {} on {} (one buffer holds {} MiB)",
                               limit / (4 * b_.real_bytes()), b_.caps().device_name, limit >> 20));
-  for (auto [name, v] : {std::pair{"density_dims", o_.density_dims}, {"volume_dims", o_.volume_dims}})
+  for (auto [name, v] :
+       {std::pair{"density_dims", o_.density_dims}, {"volume_dims", o_.volume_dims}})
     if (v < 2 || v > 512) throw_invalid("atom", name, std::to_string(v), "in [2, 512]");
   if (!(o_.box_probability >= 0.9 && o_.box_probability < 1 - 1e-9))
     throw_invalid("atom", "box_probability", fmt::format("{}", o_.box_probability), "in [0.9, 1)");
@@ -53,8 +59,9 @@ void AtomScene::reconfigure(AtomSceneOptions o) {
     throw_invalid("atom", "tau_peak", fmt::format("{}", o_.tau_peak), "finite and >= 0");
   half_ = atom::box_half_width(o_.state, o_.box_probability);
   const float h = float(half_);
-  density_grid_ = make_grid_params({-h, -h, -h}, 2 * h / float(o_.density_dims),
-                                   {o_.density_dims, o_.density_dims, o_.density_dims}, o_.particles);
+  density_grid_ =
+      make_grid_params({-h, -h, -h}, 2 * h / float(o_.density_dims),
+                       {o_.density_dims, o_.density_dims, o_.density_dims}, o_.particles);
   volume_grid_ = make_grid_params({-h, -h, -h}, 2 * h / float(o_.volume_dims),
                                   {o_.volume_dims, o_.volume_dims, o_.volume_dims}, o_.particles);
   // sigma_sct = kappa * density: tau_peak at the state's largest |psi|^2 over one cell.
@@ -129,8 +136,8 @@ void AtomScene::illuminate() {
 
 void AtomScene::view() {
   if (light.size() != o_.particles) light = b_.create<Real>(o_.particles, "light");
-  times_.view_ms =
-      timed([&] { b_.nebula_view(light_params(), positions, density, phase, illumination, light); });
+  times_.view_ms = timed(
+      [&] { b_.nebula_view(light_params(), positions, density, phase, illumination, light); });
   if (exposure_ <= 0) {
     // Automatic exposure, fixed once: the 90th percentile of the light at the reference power
     // maps to full green, so a change of Phi brightens or darkens as in the thesis.
@@ -142,7 +149,9 @@ void AtomScene::view() {
   }
 }
 
-void AtomScene::voxelize() { voxelize(exposure_); }
+void AtomScene::voxelize() {
+  voxelize(exposure_);
+}
 
 void AtomScene::voxelize(float light_to_unit) {
   const size_t cells = grid_cell_count(volume_grid_);
@@ -156,7 +165,8 @@ void AtomScene::voxelize(float light_to_unit) {
   vp.s = o_.s;
   vp.t = o_.t;
   vp.light_to_unit = light_to_unit;
-  times_.voxelize_ms = timed([&] { b_.voxelize(vp, positions, light, probability, mean_light, sample); });
+  times_.voxelize_ms =
+      timed([&] { b_.voxelize(vp, positions, light, probability, mean_light, sample); });
 }
 
 void AtomScene::run_all() {
@@ -170,7 +180,7 @@ void AtomScene::run_all() {
 
 VolumeDesc AtomScene::volume() const {
   const float h = float(half_);
-  return VolumeDesc{volume_grid_.dims, {-h, -h, -h}, {h, h, h}, 0.0f, 1.0f};
+  return make_volume_desc(volume_grid_.dims, {-h, -h, -h}, {h, h, h});
 }
 
 RaymarchParams default_raymarch(const VolumeDesc& d, ViewPreset view, uint32_t width,

@@ -23,8 +23,8 @@
 #include <cstdint>
 #include <vector>
 
-#include "engine/atom/atom_params.h"
 #include "engine/atom/orbital.h"
+#include "engine/kernels/atom_params.h"
 
 namespace masav::atom {
 
@@ -42,11 +42,11 @@ struct TableOptions {
 struct OrbitalTables {
   OrbitalSampleParams params;  // the geometry; count and seed as given
   std::vector<uint32_t> cdf;
-  double truncated_mass = 0;   // radial mass beyond radial_max_a0
+  double truncated_mass = 0;  // radial mass beyond radial_max_a0
 };
 
-OrbitalTables make_orbital_tables(const OrbitalState& s, OrbitalPlacement placement,
-                                  uint32_t count, uint64_t seed, const TableOptions& o = {});
+OrbitalTables make_orbital_tables(const OrbitalState& s, OrbitalPlacement placement, uint32_t count,
+                                  uint64_t seed, const TableOptions& o = {});
 
 // r such that the probability of |x| <= r is `p` (p < 1 - 1e-12).
 double radial_quantile(const OrbitalState& s, double p);

@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "engine/atom/atom_params.h"
+#include "engine/kernels/atom_params.h"
 
 namespace masav::atom {
 
@@ -18,8 +18,8 @@ size_t sample_bytes(SampleType t);
 
 struct ScalarVolume {
   UVec3 dims{1, 1, 1};
-  Vec3f origin{0, 0, 0};   // corner of the box (box_min)
-  Vec3f spacing{1, 1, 1};  // voxel size
+  Vec3f origin{0, 0, 0};      // corner of the box (box_min)
+  Vec3f spacing{1, 1, 1};     // voxel size
   std::vector<float> values;  // x fastest
   float min = 0, max = 0;
 };

@@ -33,9 +33,8 @@ void Backend::perturb(BufferImpl* out) {
   if (!out || out->count() == 0) return;
   // The middle scalar of the buffer: 32-bit words get their lowest bit flipped, reals move by
   // 1e-3 relative (to 1 from 0), enough for any stated tolerance to catch.
-  const size_t scalar_bytes = out->kind() == ElemKind::real || out->kind() == ElemKind::real4
-                                  ? real_bytes()
-                                  : 4;
+  const size_t scalar_bytes =
+      out->kind() == ElemKind::real || out->kind() == ElemKind::real4 ? real_bytes() : 4;
   const size_t offset = out->bytes() / scalar_bytes / 2 * scalar_bytes;
   if (scalar_bytes == 8) {
     double v = 0;

@@ -14,13 +14,12 @@
 #include <type_traits>
 #include <vector>
 
-#include "engine/atom/atom_params.h"
 #include "engine/core/device_api.h"
 #include "engine/core/kernel_id.h"
 #include "engine/core/kernel_macros.h"
-#include "engine/core/kernel_params.h"
-#include "engine/points/drift_params.h"
-#include "engine/sph/sph_kernel_params.h"
+#define MASAV_KERNEL_PARAMS
+#include "engine/core/kernels.inc"
+#undef MASAV_KERNEL_PARAMS
 
 namespace masav {
 
@@ -32,24 +31,30 @@ struct KernelTiming {
 
 class Backend : public DeviceApi {
  public:
-#define MASAV_KERNEL(name, Params, items, ...)                                             \
-  void name(const Params& p MASAV_BUFFER_PARAMS(__VA_ARGS__)) {                            \
-    static constexpr const char* kBufferNames[] = {MASAV_BUFFER_NAMES(__VA_ARGS__)};        \
-    enforce(KernelId::name, p, kBufferNames, [&] { return uint64_t(items); },              \
-            [&](uint64_t n) { do_##name(p, n MASAV_BUFFER_ARGS(__VA_ARGS__)); }            \
-                MASAV_BUFFER_ARGS(__VA_ARGS__));                                           \
+#define MASAV_KERNEL(name, Params, items, ...)                                       \
+  void name(const Params& p MASAV_BUFFER_PARAMS(__VA_ARGS__)) {                      \
+    static constexpr const char* kBufferNames[] = {MASAV_BUFFER_NAMES(__VA_ARGS__)}; \
+    enforce(                                                                         \
+        KernelId::name, p, kBufferNames, [&] { return uint64_t(items); },            \
+        [&](uint64_t n) {                                                            \
+          do_##name(p, n MASAV_BUFFER_ARGS(__VA_ARGS__));                            \
+        } MASAV_BUFFER_ARGS(__VA_ARGS__));                                           \
   }
 #include "engine/core/kernels.inc"
 #undef MASAV_KERNEL
 
   // Record each kernel's device time from now on (off by default: two timestamps per call).
-  void set_kernel_timing(bool on) { kernel_timing_ = on; }
+  void set_kernel_timing(bool on) {
+    kernel_timing_ = on;
+  }
   // Calls recorded since the last take, in call order; read their times after finish().
   std::vector<KernelTiming> take_kernel_timings();
 
   // Test hook: perturb the first output of every later call of `kernel` (one word flipped, or
   // one value changed by 1e-3 relative), so a cross-check can prove it catches a mismatch.
-  void inject_fault(std::optional<KernelId> kernel) { fault_ = kernel; }
+  void inject_fault(std::optional<KernelId> kernel) {
+    fault_ = kernel;
+  }
 
  protected:
 #define MASAV_KERNEL(name, Params, items, ...) \
@@ -68,23 +73,17 @@ class Backend : public DeviceApi {
     validate(*this, p, buffers...);
     const uint64_t n = items();
     if (n == 0) return;
-    const std::optional<TimestampId> begin = kernel_timing_ ? std::optional(timestamp()) : std::nullopt;
+    const std::optional<TimestampId> begin =
+        kernel_timing_ ? std::optional(timestamp()) : std::nullopt;
     run(n);
     if (begin) timings_.push_back({id, *begin, timestamp()});
     if (fault_ == id) perturb(first_output(buffers...));
   }
 
-  template <class T>
-  static const BufferImpl* impl_of(const Buffer<T>& b) {
-    return b.valid() ? &b.impl() : nullptr;
-  }
-  template <class T>
-  static const BufferImpl* impl_of(const Buffer<T>* b) {
-    return b && b->valid() ? &b->impl() : nullptr;
-  }
-  static const BufferImpl* impl_of(const BufferImpl& b) { return &b; }
   // The first buffer the kernel writes (a non-const argument), or null.
-  static BufferImpl* first_output() { return nullptr; }
+  static BufferImpl* first_output() {
+    return nullptr;
+  }
   template <class T, class... Rest>
   static BufferImpl* first_output(T& b, Rest&... rest) {
     if constexpr (std::is_const_v<T>) {

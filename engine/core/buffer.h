@@ -82,4 +82,18 @@ class Buffer {
   std::unique_ptr<BufferImpl> impl_;
 };
 
+// The storage behind a kernel's buffer argument of any kind: a buffer, an optional one (null when
+// absent or never created), or untyped storage.
+template <class T>
+const BufferImpl* impl_of(const Buffer<T>& b) {
+  return b.valid() ? &b.impl() : nullptr;
+}
+template <class T>
+const BufferImpl* impl_of(const Buffer<T>* b) {
+  return b && b->valid() ? &b->impl() : nullptr;
+}
+inline const BufferImpl* impl_of(const BufferImpl& b) {
+  return &b;
+}
+
 }  // namespace masav

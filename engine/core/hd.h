@@ -8,6 +8,8 @@
 #define MASAV_HD
 #endif
 
+#include <math.h>
+
 namespace masav::hd {
 
 MASAV_HD inline float add_rn(float a, float b) {
@@ -31,5 +33,19 @@ MASAV_HD inline float mul_rn(float a, float b) {
   return a * b;
 #endif
 }
+MASAV_HD inline float sqrt_rn(float a) {
+#if defined(__CUDA_ARCH__)
+  return __fsqrt_rn(a);
+#else
+  return sqrtf(a);
+#endif
+}
+
+// One element of a Real4 buffer as a kernel body sees it: four F (double on the CPU reference,
+// float on CUDA, where the 16-byte alignment gives one vector load like float4).
+template <class F>
+struct alignas(16) V4 {
+  F x, y, z, w;
+};
 
 }  // namespace masav::hd

@@ -20,13 +20,13 @@ void check_fits(const DeviceApi& dev, ElemKind kind, size_t count, std::string_v
   const size_t eb = elem_bytes(kind, dev.real_bytes());
   const uint64_t limit = dev.caps().max_buffer_bytes;
   if (limit != 0 && uint64_t(count) * eb > limit)
-    throw Error(dev.name(), std::string(kernel),
-                fmt::format("{} needs {} elements of {} bytes ({} MiB), over this device's "
-                            "{} MiB per buffer ({})",
-                            what, count, eb, (uint64_t(count) * eb) >> 20, limit >> 20,
-                            dev.caps().device_name),
-                fmt::format("use at most {} elements here, or a device with larger buffers",
-                            limit / eb));
+    throw Error(
+        dev.name(), std::string(kernel),
+        fmt::format("{} needs {} elements of {} bytes ({} MiB), over this device's "
+                    "{} MiB per buffer ({})",
+                    what, count, eb, (uint64_t(count) * eb) >> 20, limit >> 20,
+                    dev.caps().device_name),
+        fmt::format("use at most {} elements here, or a device with larger buffers", limit / eb));
 }
 
 void validate(const DeviceApi&, const PhiloxParams&, const Buffer<uint32_t>& out) {
@@ -107,7 +107,6 @@ void validate(const DeviceApi& dev, const GatherParams& p, const Buffer<uint32_t
                               order.size(), dst.count()));
   if (src.count() > UINT32_MAX)
     throw_invalid("gather", "source size", std::to_string(src.count()), "below 2^32");
-
 }
 
 void validate(const DeviceApi&, const NeighborParams& p, const Buffer<Real4>& pos,
@@ -115,9 +114,9 @@ void validate(const DeviceApi&, const NeighborParams& p, const Buffer<Real4>& po
               const Buffer<uint32_t>& counts) {
   check_grid(p.grid, "grid_count_neighbors");
   if (!std::isfinite(p.radius) || !(p.radius > 0) || p.radius > p.grid.cell_size)
-    throw_invalid("grid_count_neighbors", "radius", fmt::format("{}", p.radius),
-                  fmt::format("in (0, cell_size = {}] so that 27 cells cover the search",
-                              p.grid.cell_size));
+    throw_invalid(
+        "grid_count_neighbors", "radius", fmt::format("{}", p.radius),
+        fmt::format("in (0, cell_size = {}] so that 27 cells cover the search", p.grid.cell_size));
   if (p.radius2 != p.radius * p.radius)
     throw_invalid("grid_count_neighbors", "radius2", fmt::format("{}", p.radius2),
                   "radius*radius in fp32 (use make_neighbor_params)");
@@ -143,11 +142,11 @@ void raise_diagnostics(const DeviceApi& dev, std::string_view kernel, uint32_t f
                 fmt::format("order[{}] points past the source buffer", detail),
                 "pass indices below the source buffer's size");
   if (flags & kDiagNeighborOverflow)
-    throw Error(dev.name(), std::string(kernel),
-                fmt::format("sorted point {} has more than {} candidates in its 27 cells", detail,
-                            limit),
-                "use smaller cells (or fewer points per cell): a GPU invocation must stay under "
-                "lavapipe's 65,535-iteration loop limit");
+    throw Error(
+        dev.name(), std::string(kernel),
+        fmt::format("sorted point {} has more than {} candidates in its 27 cells", detail, limit),
+        "use smaller cells (or fewer points per cell): a GPU invocation must stay under "
+        "lavapipe's 65,535-iteration loop limit");
 }
 
 }  // namespace masav

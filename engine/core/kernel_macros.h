@@ -16,7 +16,8 @@
 #define MASAV_PP_COUNT(...) MASAV_PP_COUNT_I(__VA_ARGS__, 12, 11, 10, 9, 8, 7, 6, 5, 4, 3, 2, 1, 0)
 #define MASAV_PP_COUNT_I(a1, a2, a3, a4, a5, a6, a7, a8, a9, a10, a11, a12, n, ...) n
 // m applied to each parenthesised tuple: MASAV_PP_EACH(m, (a, b), (c, d)) -> m(a, b) m(c, d).
-#define MASAV_PP_EACH(m, ...) MASAV_PP_CAT(MASAV_PP_EACH_, MASAV_PP_COUNT(__VA_ARGS__))(m, __VA_ARGS__)
+#define MASAV_PP_EACH(m, ...) \
+  MASAV_PP_CAT(MASAV_PP_EACH_, MASAV_PP_COUNT(__VA_ARGS__))(m, __VA_ARGS__)
 #define MASAV_PP_EACH_1(m, x) m x
 #define MASAV_PP_EACH_2(m, x, ...) m x MASAV_PP_EACH_1(m, __VA_ARGS__)
 #define MASAV_PP_EACH_3(m, x, ...) m x MASAV_PP_EACH_2(m, __VA_ARGS__)
@@ -52,5 +53,19 @@
 //   #define MASAV_KERNEL MASAV_KERNEL_OVERRIDE
 //   #include "engine/core/kernels.inc"
 //   #undef MASAV_KERNEL
+// and define them in one file with MASAV_KERNEL_FORWARD(Class), which hands each call to the
+// backend's member template run_kernel<KernelId::name>(p, items, buffers...).
 #define MASAV_KERNEL_OVERRIDE(name, Params, items, ...) \
   void do_##name(const Params& p, uint64_t items_ MASAV_BUFFER_PARAMS(__VA_ARGS__)) override;
+#define MASAV_KERNEL_FORWARD(Class, name, Params, ...)                                       \
+  void Class::do_##name(const Params& p, uint64_t items_ MASAV_BUFFER_PARAMS(__VA_ARGS__)) { \
+    run_kernel<KernelId::name>(p, items_ MASAV_BUFFER_ARGS(__VA_ARGS__));                    \
+  }
+
+// A backend's own implementation of one kernel, run_own(KernelTag<KernelId::name>, p, items,
+// buffers...). Backends declare one for every kernel and define only those they implement
+// themselves (a kernel without a shared body, or a multi-pass one); run_kernel calls it only for
+// those, so the others need no definition.
+#define MASAV_KERNEL_OWN(name, Params, items, ...)         \
+  void run_own(KernelTag<KernelId::name>, const Params& p, \
+               uint64_t items_ MASAV_BUFFER_PARAMS(__VA_ARGS__));

@@ -82,7 +82,8 @@ void CpuBackend::read_bytes(const BufferImpl& src, void* dst, size_t bytes, size
 }
 
 void CpuBackend::copy_buffer(const BufferImpl& src, BufferImpl& dst, size_t bytes) {
-  std::memcpy(static_cast<CpuBuffer&>(dst).data(), static_cast<const CpuBuffer&>(src).data(), bytes);
+  std::memcpy(static_cast<CpuBuffer&>(dst).data(), static_cast<const CpuBuffer&>(src).data(),
+              bytes);
 }
 
 void CpuBackend::fill_u32(BufferImpl& dst, uint32_t value) {
@@ -97,34 +98,13 @@ TimestampId CpuBackend::timestamp() {
 
 double CpuBackend::timestamp_ns(TimestampId id) {
   if (id >= stamps_.size())
-    throw Error("cpu", "timestamp", fmt::format("no timestamp {}", id), "use an id from timestamp()");
+    throw Error("cpu", "timestamp", fmt::format("no timestamp {}", id),
+                "use an id from timestamp()");
   return std::chrono::duration<double, std::nano>(stamps_[id] - epoch_).count();
 }
 
-void CpuBackend::do_philox_u32(const PhiloxParams& p, uint64_t, Buffer<uint32_t>& out) {
-  auto* o = own(out.impl(), "philox_u32").as<uint32_t>();
-  const size_t n = out.size(), blocks = (n + 3) / 4;
-  pool_.parallel_for(blocks, 4096, [&](size_t b, size_t e) {
-    for (size_t blk = b; blk < e; ++blk) {
-      const philox::Block r = philox::stream_block(p.seed, p.stream, p.first_block + blk);
-      for (size_t j = 0; j < 4 && 4 * blk + j < n; ++j) o[4 * blk + j] = r.w[j];
-    }
-  });
-}
-
-void CpuBackend::do_philox_uniform(const PhiloxParams& p, uint64_t, Buffer<float>& out) {
-  auto* o = own(out.impl(), "philox_uniform").as<float>();
-  const size_t n = out.size(), blocks = (n + 3) / 4;
-  pool_.parallel_for(blocks, 4096, [&](size_t b, size_t e) {
-    for (size_t blk = b; blk < e; ++blk) {
-      const philox::Block r = philox::stream_block(p.seed, p.stream, p.first_block + blk);
-      for (size_t j = 0; j < 4 && 4 * blk + j < n; ++j) o[4 * blk + j] = philox::u01(r.w[j]);
-    }
-  });
-}
-
-void CpuBackend::do_radix_sort(const RadixSortParams& p, uint64_t, Buffer<uint32_t>& keys,
-                            Buffer<uint32_t>* values) {
+void CpuBackend::run_own(KernelTag<KernelId::radix_sort>, const RadixSortParams& p, uint64_t,
+                         Buffer<uint32_t>& keys, Buffer<uint32_t>* values) {
   radix_sort_host(pool_, p.n, p.key_bits, own(keys.impl(), "radix_sort").as<uint32_t>(),
                   values ? own(values->impl(), "radix_sort").as<uint32_t>() : nullptr);
 }

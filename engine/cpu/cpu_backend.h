@@ -50,6 +50,13 @@ class CpuBackend final : public Backend {
 #include "engine/core/kernels.inc"
 #undef MASAV_KERNEL
 
+  // Every kernel: its shared body where it has one, else run_own (see run_kernel's definition).
+  template <KernelId K, class Params, class... Buffers>
+  void run_kernel(const Params& p, uint64_t items, Buffers&... buffers);
+#define MASAV_KERNEL MASAV_KERNEL_OWN
+#include "engine/core/kernels.inc"
+#undef MASAV_KERNEL
+
   void write_bytes(BufferImpl& dst, const void* src, size_t bytes, size_t offset) override;
   void read_bytes(const BufferImpl& src, void* dst, size_t bytes, size_t offset) override;
   void copy_buffer(const BufferImpl& src, BufferImpl& dst, size_t bytes) override;
@@ -58,7 +65,9 @@ class CpuBackend final : public Backend {
   CpuBuffer& own(BufferImpl& b, std::string_view kernel);
   const CpuBuffer& own(const BufferImpl& b, std::string_view kernel) const;
   // The SPH neighbour lists sph_density builds and sph_forces reuses (cpu_sph.cpp).
-  SphListInputs sph_list_inputs(const SphStepParams& p, const SphGridView& grid, double h2,
+  SphListInputs sph_list_inputs(const SphStepParams& p, const Buffer<uint32_t>& cells,
+                                const Buffer<uint32_t>& cell_start,
+                                const Buffer<uint32_t>& cell_end, double h2,
                                 const char* kernel) const;
   template <class Found>
   void build_sph_lists(const SphListInputs& in, size_t chunks, Found&& found);

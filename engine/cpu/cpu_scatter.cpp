@@ -3,13 +3,13 @@
 #include <vector>
 
 #include "engine/atom/atom_checks.h"
-#include "engine/kernels/scatter_math.h"
 #include "engine/cpu/cpu_backend.h"
+#include "engine/kernels/scatter_math.h"
 
 namespace masav::cpu {
 
-void CpuBackend::do_scatter_table(const ScatterTableParams& p, uint64_t, Buffer<Real>& table,
-                               Buffer<uint32_t>& hits) {
+void CpuBackend::run_own(KernelTag<KernelId::scatter_table>, const ScatterTableParams& p, uint64_t,
+                         Buffer<Real>& table, Buffer<uint32_t>& hits) {
   auto* tab = own(table.impl(), "scatter_table").as<double>();
   auto* cnt = own(hits.impl(), "scatter_table").as<uint32_t>();
   const uint32_t stride = p.bins + kScatterExtras;

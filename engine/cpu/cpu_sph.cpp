@@ -84,12 +84,14 @@ const Soa& soa_positions(ThreadPool& pool, const double* pos, size_t n) {
 
 }  // namespace
 
-SphListInputs CpuBackend::sph_list_inputs(const SphStepParams& p, const SphGridView& grid,
-                                          double h2, const char* kernel) const {
+SphListInputs CpuBackend::sph_list_inputs(const SphStepParams& p, const Buffer<uint32_t>& cells,
+                                          const Buffer<uint32_t>& cell_start,
+                                          const Buffer<uint32_t>& cell_end, double h2,
+                                          const char* kernel) const {
   SphListInputs in{};
-  in.cells = own(grid.cells->impl(), kernel).as<uint32_t>();
-  in.cell_start = own(grid.cell_start->impl(), kernel).as<uint32_t>();
-  in.cell_end = own(grid.cell_end->impl(), kernel).as<uint32_t>();
+  in.cells = own(cells.impl(), kernel).as<uint32_t>();
+  in.cell_start = own(cell_start.impl(), kernel).as<uint32_t>();
+  in.cell_end = own(cell_end.impl(), kernel).as<uint32_t>();
   in.cell_count = grid_cell_count(p.grid);
   in.n = p.n;
   in.dims[0] = p.grid.dims.x;
@@ -131,18 +133,17 @@ void CpuBackend::build_sph_lists(const SphListInputs& in, size_t chunks, Found&&
   sph_lists_.remember(in);
 }
 
-void CpuBackend::do_sph_density(const SphStepParams& p, uint64_t, const Buffer<Real4>& positions,
-    const Buffer<uint32_t>& cells, const Buffer<uint32_t>& cell_start,
-    const Buffer<uint32_t>& cell_end, Buffer<Real>& density, Buffer<Real>& pressure,
-    Buffer<uint32_t>& stats) {
-  const SphDensityIO io{&positions, {&cells, &cell_start, &cell_end}, &density, &pressure, &stats};
+void CpuBackend::run_own(KernelTag<KernelId::sph_density>, const SphStepParams& p, uint64_t,
+                         const Buffer<Real4>& positions, const Buffer<uint32_t>& cells,
+                         const Buffer<uint32_t>& cell_start, const Buffer<uint32_t>& cell_end,
+                         Buffer<Real>& density, Buffer<Real>& pressure, Buffer<uint32_t>& stats) {
   const char* k = "sph_density";
-  const auto c = make_coefficients(p);
-  SphListInputs in = sph_list_inputs(p, io.grid, c.h2, k);
-  in.positions = own(io.positions->impl(), k).as<double>();
-  double* rho = own(io.density->impl(), k).as<double>();
-  double* pr = own(io.pressure->impl(), k).as<double>();
-  uint32_t* words = own(io.stats->impl(), k).as<uint32_t>();
+  const auto c = device_params<double>(p);
+  SphListInputs in = sph_list_inputs(p, cells, cell_start, cell_end, c.h2, k);
+  in.positions = own(positions.impl(), k).as<double>();
+  double* rho = own(density.impl(), k).as<double>();
+  double* pr = own(pressure.impl(), k).as<double>();
+  uint32_t* words = own(stats.impl(), k).as<uint32_t>();
   const size_t chunks = chunk_count(pool_, p.n, 256);
   std::vector<ChunkStats> st(chunks);
   // sph::density_at's sum over the neighbour list: the particle itself (r = 0, term 1) first,
@@ -150,7 +151,8 @@ void CpuBackend::do_sph_density(const SphStepParams& p, uint64_t, const Buffer<R
   build_sph_lists(in, chunks, [&](size_t chunk, uint32_t i, uint32_t count, const double* r2) {
     ChunkStats& s = st[chunk];
     rho[i] = c.density * (1.0 + density_sum(r2, count, c.inv_h2));
-    if (c.walls) rho[i] += c.rest_density * sph::wall_density(load3(in.positions, i), c, (V*)nullptr);
+    if (c.walls)
+      rho[i] += c.rest_density * sph::wall_density(load3(in.positions, i), c, (V*)nullptr);
     pr[i] = sph::pressure_of(rho[i], c);
     s.max_candidates = std::max(s.max_candidates, sph_lists_.candidates(i));
     s.max_neighbors = std::max(s.max_neighbors, count + 1);
@@ -160,22 +162,22 @@ void CpuBackend::do_sph_density(const SphStepParams& p, uint64_t, const Buffer<R
   merge(words, st);
 }
 
-void CpuBackend::do_sph_forces(const SphStepParams& p, uint64_t, const Buffer<Real4>& positions,
-    const Buffer<Real4>& velocities, const Buffer<Real>& density, const Buffer<Real>& pressure,
-    const Buffer<uint32_t>& cells, const Buffer<uint32_t>& cell_start,
-    const Buffer<uint32_t>& cell_end, Buffer<Real4>& accel, Buffer<uint32_t>& stats) {
-  const SphForcesIO io{&positions, &velocities, &density, &pressure,
-                       {&cells, &cell_start, &cell_end}, &accel, &stats};
+void CpuBackend::run_own(KernelTag<KernelId::sph_forces>, const SphStepParams& p, uint64_t,
+                         const Buffer<Real4>& positions, const Buffer<Real4>& velocities,
+                         const Buffer<Real>& density, const Buffer<Real>& pressure,
+                         const Buffer<uint32_t>& cells, const Buffer<uint32_t>& cell_start,
+                         const Buffer<uint32_t>& cell_end, Buffer<Real4>& accel,
+                         Buffer<uint32_t>& stats) {
   const char* k = "sph_forces";
-  const auto c = make_coefficients(p);
-  SphListInputs in = sph_list_inputs(p, io.grid, c.h2, k);
-  const double* pos = own(io.positions->impl(), k).as<double>();
+  const auto c = device_params<double>(p);
+  SphListInputs in = sph_list_inputs(p, cells, cell_start, cell_end, c.h2, k);
+  const double* pos = own(positions.impl(), k).as<double>();
   in.positions = pos;
-  const double* vel = own(io.velocities->impl(), k).as<double>();
-  const double* rho = own(io.density->impl(), k).as<double>();
-  const double* pr = own(io.pressure->impl(), k).as<double>();
-  double* acc_out = own(io.accel->impl(), k).as<double>();
-  uint32_t* words = own(io.stats->impl(), k).as<uint32_t>();
+  const double* vel = own(velocities.impl(), k).as<double>();
+  const double* rho = own(density.impl(), k).as<double>();
+  const double* pr = own(pressure.impl(), k).as<double>();
+  double* acc_out = own(accel.impl(), k).as<double>();
+  uint32_t* words = own(stats.impl(), k).as<uint32_t>();
   const size_t chunks = chunk_count(pool_, p.n, 256);
   std::vector<ChunkStats> st(chunks);
   // The lists sph_density left, if they belong to these positions and this grid; else new ones.
@@ -219,64 +221,36 @@ void CpuBackend::do_sph_forces(const SphStepParams& p, uint64_t, const Buffer<Re
   merge(words, st);
 }
 
-void CpuBackend::do_sph_integrate(const SphIntegrateParams& p, uint64_t,
-                                  const Buffer<Real4>* x0_in, const Buffer<Real4>& v0_in,
-                                  const Buffer<Real4>* vk_in, const Buffer<Real4>& accel,
-                                  Buffer<Real4>* x_out, Buffer<Real4>& v_out,
-                                  Buffer<Real4>* sum_x, Buffer<Real4>* sum_v,
-                                  Buffer<uint32_t>& stats) {
-  const SphIntegrateIO io{x0_in, &v0_in, vk_in, &accel, x_out, &v_out, sum_x, sum_v, &stats};
-  const char* k = "sph_integrate";
-  const uint32_t op = uint32_t(p.op);
-  const bool kick = p.op == SphStageOp::kick;
-  const bool rk4 = op >= sph::kOpRk4Stage1 && op <= sph::kOpRk4Final;
-  const double* x0 = kick ? nullptr : own(io.x0->impl(), k).as<double>();
-  const double* v0 = own(io.v0->impl(), k).as<double>();
-  const double* vk = io.vk ? own(io.vk->impl(), k).as<double>() : nullptr;
-  const double* acc = own(io.accel->impl(), k).as<double>();
-  double* xo = kick ? nullptr : own(io.x_out->impl(), k).as<double>();
-  double* vo = own(io.v_out->impl(), k).as<double>();
-  double* sx = rk4 ? own(io.sum_x->impl(), k).as<double>() : nullptr;
-  double* sv = io.sum_v ? own(io.sum_v->impl(), k).as<double>() : nullptr;
-  uint32_t* words = own(io.stats->impl(), k).as<uint32_t>();
-  sph::StageParams<double> sp{op,
-                              p.dt,
-                              p.walls ? 1u : 0u,
-                              {p.box_min.x, p.box_min.y, p.box_min.z},
-                              {p.box_max.x, p.box_max.y, p.box_max.z},
-                              p.restitution,
-                              p.tangential_damping};
-  const bool ends_step = sph::op_ends_step(op);
+void CpuBackend::run_own(KernelTag<KernelId::sph_integrate>, const SphIntegrateParams& p, uint64_t,
+                         const Buffer<Real4>* x0, const Buffer<Real4>& v0, const Buffer<Real4>* vk,
+                         const Buffer<Real4>& accel, Buffer<Real4>* x_out, Buffer<Real4>& v_out,
+                         Buffer<Real4>* sum_x, Buffer<Real4>* sum_v, Buffer<uint32_t>& stats) {
+  using V4 = hd::V4<double>;
+  auto in = [](const Buffer<Real4>* b) {
+    return b ? static_cast<const CpuBuffer&>(b->impl()).as<V4>() : nullptr;
+  };
+  auto out = [](Buffer<Real4>* b) {
+    return b ? static_cast<CpuBuffer&>(b->impl()).as<V4>() : nullptr;
+  };
+  const auto layout = device_params<double>(p);
   const size_t chunks = chunk_count(pool_, p.n, 2048);
   std::vector<ChunkStats> st(chunks);
   pool_.run_chunks(p.n, chunks, [&](size_t chunk, size_t b, size_t e) {
     ChunkStats& s = st[chunk];
     for (size_t i = b; i < e; ++i) {
-      const V x = kick ? V{0, 0, 0} : load3(x0, i);
-      const V v = load3(v0, i);
-      const V kv = vk ? load3(vk, i) : v;
-      const V a = load3(acc, i);
-      V xn{}, vn{};
-      V sxi = rk4 ? load3(sx, i) : V{0, 0, 0};
-      V svi = rk4 ? load3(sv, i) : V{0, 0, 0};
-      const bool inside = sph::stage_particle(sp, x, v, kv, a, xn, vn, sxi, svi);
-      if (!kick) store3(xo, i, xn, x0[4 * i + 3]);
-      store3(vo, i, vn, 0.0);
-      if (rk4) store3(sx, i, sxi, 0.0);
-      if (rk4 || p.op == SphStageOp::kick_drift) store3(sv, i, svi, 0.0);
-      if (!finite3(vn) || (!kick && !finite3(xn))) {
+      const auto r =
+          sph::integrate_particle(uint32_t(i), layout, in(x0), in(&v0), in(vk), in(&accel),
+                                  out(x_out), out(&v_out), out(sum_x), out(sum_v));
+      if (r.non_finite) {
         s.non_finite = std::min(s.non_finite, uint32_t(i));
         continue;
       }
-      s.max_speed2 = std::max(s.max_speed2, sph::dot(vn, vn));
-      if (!kick) {
-        const V d = xn - x;
-        s.max_disp2 = std::max(s.max_disp2, sph::dot(d, d));
-        if (ends_step && !inside) ++s.outside;
-      }
+      s.max_speed2 = std::max(s.max_speed2, r.speed2);
+      s.max_disp2 = std::max(s.max_disp2, r.disp2);
+      s.outside += r.outside ? 1u : 0u;
     }
   });
-  merge(words, st);
+  merge(static_cast<CpuBuffer&>(stats.impl()).as<uint32_t>(), st);
 }
 
 }  // namespace masav::cpu

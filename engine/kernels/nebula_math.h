@@ -14,10 +14,10 @@
 // Against the smooth |psi|^2 itself, the grid's own error falls with the cell size l.
 #include <cstdint>
 
-#include "engine/atom/atom_params.h"
+#include "engine/kernels/atom_params.h"
+#include "engine/kernels/grid_cell.h"
 #include "engine/kernels/hd_vec.h"
 #include "engine/kernels/volume_math.h"
-#include "engine/kernels/grid_cell.h"
 
 namespace masav::nebula {
 
@@ -32,7 +32,8 @@ struct Grid {
 
 template <class T>
 MASAV_HD inline Grid<T> grid_of(const GridParams& g) {
-  return Grid<T>{{T(g.origin.x), T(g.origin.y), T(g.origin.z)}, T(g.cell_size),
+  return Grid<T>{{T(g.origin.x), T(g.origin.y), T(g.origin.z)},
+                 T(g.cell_size),
                  {g.dims.x, g.dims.y, g.dims.z}};
 }
 
@@ -87,7 +88,8 @@ MASAV_HD inline T path_integral(const Grid<T>& g, hd::V3<T> a, hd::V3<T> b, Opti
   T t = t0;
   const uint32_t max_pieces = g.dims[0] + g.dims[1] + g.dims[2] + 3u;
   for (uint32_t it = 0; it < max_pieces; ++it) {
-    const int ax = tnext[0] < tnext[1] ? (tnext[0] < tnext[2] ? 0 : 2) : (tnext[1] < tnext[2] ? 1 : 2);
+    const int ax =
+        tnext[0] < tnext[1] ? (tnext[0] < tnext[2] ? 0 : 2) : (tnext[1] < tnext[2] ? 1 : 2);
     const T tn = hd::min_t(tnext[ax], t1);
     if (tn > t) sum += density(id_of(c)) * (tn - t);
     if (tnext[ax] >= t1) break;
@@ -125,8 +127,7 @@ MASAV_HD inline T illumination(const NebulaLightParams& p, hd::V3<T> x, Density&
   const Grid<T> g = grid_of<T>(p.grid);
   const hd::V3<T> c{T(p.nucleus.x), T(p.nucleus.y), T(p.nucleus.z)};
   const T r = hd::max_t(hd::length(x - c), T(p.core_radius_a0));
-  const T tau = path_integral(g, c, x, p.path, T(p.step_a0), density) * T(p.kappa_a2) /
-                T(p.albedo);
+  const T tau = path_integral(g, c, x, p.path, T(p.step_a0), density) * T(p.kappa_a2) / T(p.albedo);
   return T(p.source_power_lm) / (T(4) * T(kPi) * r * r) * hd::exp_t(-tau);
 }
 
@@ -142,13 +143,13 @@ MASAV_HD inline T view_light(const NebulaLightParams& p, hd::V3<T> x, T illum, D
   const uint32_t dims[3] = {p.grid.dims.x, p.grid.dims.y, p.grid.dims.z};
   const grid::CellCoord cc =
       grid::point_cell(float(x.x), float(x.y), float(x.z), origin, p.grid.inv_cell, dims);
-  const T tau_sct = T(p.kappa_a2) * density(grid::cell_id(cc.x, cc.y, cc.z, dims[1], dims[2])) *
-                    g.cell;
+  const T tau_sct =
+      T(p.kappa_a2) * density(grid::cell_id(cc.x, cc.y, cc.z, dims[1], dims[2])) * g.cell;
   const hd::V3<T> to_x = x - c, to_v = v - x;
   const T lx = hd::length(to_x), lv = hd::length(to_v);
   const T mu = lx > T(0) && lv > T(0) ? hd::dot(to_x, to_v) / (lx * lv) : T(1);
-  const T tau_view = path_integral(g, x, v, p.path, T(p.step_a0), density) * T(p.kappa_a2) /
-                     T(p.albedo);
+  const T tau_view =
+      path_integral(g, x, v, p.path, T(p.step_a0), density) * T(p.kappa_a2) / T(p.albedo);
   return illum * phase(p, tau_sct, mu, table) * hd::exp_t(-tau_view);
 }
 

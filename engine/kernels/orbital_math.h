@@ -4,7 +4,7 @@
 // analysis: engine/atom/orbital_tables.h.
 #include <cstdint>
 
-#include "engine/atom/atom_params.h"
+#include "engine/kernels/atom_params.h"
 #include "engine/kernels/hd_vec.h"
 #include "engine/kernels/philox.h"
 
@@ -18,8 +18,10 @@ MASAV_HD inline uint32_t cdf_search(const uint32_t* cdf, uint32_t bins, uint32_t
   uint32_t lo = 0, hi = bins;
   for (int it = 0; it < 32 && hi - lo > 1u; ++it) {
     const uint32_t mid = (lo + hi) >> 1;
-    if (cdf[mid] <= u) lo = mid;
-    else hi = mid;
+    if (cdf[mid] <= u)
+      lo = mid;
+    else
+      hi = mid;
   }
   return lo;
 }

@@ -7,7 +7,7 @@
 // same photons; paths differ between backends only by float rounding.
 #include <cstdint>
 
-#include "engine/atom/atom_params.h"
+#include "engine/kernels/atom_params.h"
 #include "engine/kernels/hd_vec.h"
 #include "engine/kernels/philox.h"
 
@@ -76,7 +76,8 @@ MASAV_HD inline Outcome<T> trace_photon(const ScatterTableParams& p, T tau, uint
   for (uint32_t k = 0; k <= p.max_scatterings; ++k) {
     const philox::Block b = philox::stream_block(p.seed, stream, k);
     const T optical = -hd::log_t(T(1) - T(philox::u01(b.w[0])));
-    if (optical >= tau * sphere_exit(x, d)) return Outcome<T>{cos_bin(hd::dot(d, d0), p.bins), k, w};
+    if (optical >= tau * sphere_exit(x, d))
+      return Outcome<T>{cos_bin(hd::dot(d, d0), p.bins), k, w};
     if (k == p.max_scatterings) return Outcome<T>{p.bins + kScatterCapped, k, w};
     x = x + d * (optical / tau);
     w *= T(p.albedo);

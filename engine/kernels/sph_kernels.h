@@ -9,11 +9,13 @@
 //   thesis grad  grad W(r) = -45/(pi h^3) (1 - q)^3 r_hat            (Eq. 4.7 as printed)
 //   viscosity    lap W(r)  =  45/(pi h^5) (1 - q)                    (Eq. 4.5)
 // r_hat points from the neighbour j to the particle i. Every coefficient that holds a mass,
-// a viscosity or a pressure constant is computed once on the host in double (SphCoefficients).
+// a viscosity or a pressure constant is computed once on the host in double (SphStepLayout,
+// device_params in engine/kernels/sph_kernel_params.h).
 #include <cmath>
 #include <cstdint>
 
 #include "engine/core/hd.h"
+#include "engine/kernels/sph_kernel_params.h"
 
 namespace masav::sph {
 
@@ -38,34 +40,11 @@ MASAV_HD inline T dot(V3<T> a, V3<T> b) {
   return (a.x * b.x + a.y * b.y) + a.z * b.z;
 }
 
-// Pressure models (SphStepParams::model): 0 = wcsph, 1 = thesis.
-constexpr uint32_t kModelWcsph = 0;
-constexpr uint32_t kModelThesis = 1;
-
-// The kernels' constants, in the precision of the backend (see make_coefficients in
-// engine/sph/sph_coefficients.h for their definitions).
-template <class T>
-struct Coefficients {
-  T h2, inv_h, inv_h2;
-  T density;    // m * 315 / (64 pi h^3)
-  T pressure;   // wcsph: m * 45 / (pi h^4); thesis: kp * m * 45 / (pi h^3) / 2
-  T viscosity;  // nu * m * 45 / (pi h^5)
-  T rest_density, inv_rest_density;
-  T eos;  // wcsph: Tait B = rho0 c0^2 / 7 (Pa); thesis: c^2 of the reported pressure
-  T gravity[3];
-  T lo[3], hi[3];    // box walls (semi-analytic, wcsph only)
-  T wall_viscosity;  // nu * 7.5 / h^2: no-slip walls (see wall_accel)
-  T wall_offset;     // m: the continuum starts this far behind each wall (lattice calibration)
-  uint32_t model;
-  uint32_t clamp_negative_pressure;
-  uint32_t walls;
-};
-
 // Pressure from density. wcsph: Tait, p = B ((rho/rho0)^7 - 1), clamped at 0 when asked (free
 // surfaces). thesis: the force needs no pressure; p = c^2 (rho - rho0) is reported for output.
 template <class T>
-MASAV_HD inline T pressure_of(T rho, const Coefficients<T>& c) {
-  if (c.model == kModelThesis) return c.eos * (rho - c.rest_density);
+MASAV_HD inline T pressure_of(T rho, const SphStepLayout<T>& c) {
+  if (c.model == SphPressureModel::thesis) return c.eos * (rho - c.rest_density);
   const T x = rho * c.inv_rest_density;
   const T x2 = x * x;
   T p = c.eos * (x2 * x2 * x2 * x - T(1));
@@ -100,7 +79,7 @@ MASAV_HD inline T wall_density_slope(T q) {  // -d(fraction)/dq
 // them is 1 - prod_k (1 - f_k) (exact for a separable kernel; 7/8 in a corner, where a plain
 // sum would count 3/2 and blow the corner apart).
 template <class T>
-MASAV_HD inline T wall_density(V3<T> x, const Coefficients<T>& c, V3<T>* push) {
+MASAV_HD inline T wall_density(V3<T> x, const SphStepLayout<T>& c, V3<T>* push) {
   const T xs[3] = {x.x, x.y, x.z};
   T f[6], slope[6];
   T keep = T(1);  // prod_k (1 - f_k)
@@ -201,7 +180,7 @@ MASAV_HD inline uint32_t walk_neighbors(uint32_t cell, const uint32_t dims[3],
 
 // (1 - q^2)^3 for r^2 < h^2, else 0, without a branch: the density sum's term.
 template <class T>
-MASAV_HD inline T density_term(T r2, const Coefficients<T>& c) {
+MASAV_HD inline T density_term(T r2, const SphStepLayout<T>& c) {
   T u = T(1) - r2 * c.inv_h2;
   u = u > T(0) ? u : T(0);
   return u * u * u;
@@ -220,7 +199,7 @@ struct DensityResult {
 template <class T, class PosAt>
 MASAV_HD inline DensityResult<T> density_at(V3<T> xi, uint32_t cell, const uint32_t dims[3],
                                             const uint32_t* cell_start, const uint32_t* cell_end,
-                                            uint32_t max_candidates, const Coefficients<T>& c,
+                                            uint32_t max_candidates, const SphStepLayout<T>& c,
                                             PosAt&& pos_at) {
   T sum = T(0);
   uint32_t neighbors = 0;
@@ -259,8 +238,8 @@ MASAV_HD inline Neighbor<T> make_neighbor(V3<T> x, V3<T> v, T rho, T p) {
 // d = me.x - o.x. Formulas: see force_at.
 template <class T>
 MASAV_HD inline V3<T> pair_accel(const Neighbor<T>& me, const Neighbor<T>& o, V3<T> d, T r2,
-                                 const Coefficients<T>& c) {
-  const bool thesis = c.model == kModelThesis;
+                                 const SphStepLayout<T>& c) {
+  const bool thesis = c.model == SphPressureModel::thesis;
   const T r = sqrt(r2);
   const T u = T(1) - r * c.inv_h;  // 1 - q
   V3<T> a{T(0), T(0), T(0)};
@@ -281,7 +260,7 @@ MASAV_HD inline V3<T> pair_accel(const Neighbor<T>& me, const Neighbor<T>& o, V3
 // velocity (no-slip walls): -nu v_i 2 rho0/(rho_i + rho0) int_beyond lap W, and for the
 // viscosity kernel int_{z > d} lap W = 7.5/h^2 (1 - q)^3 (1 + q) per wall.
 template <class T>
-MASAV_HD inline T wall_viscous_weight(V3<T> x, const Coefficients<T>& c) {
+MASAV_HD inline T wall_viscous_weight(V3<T> x, const SphStepLayout<T>& c) {
   const T xs[3] = {x.x, x.y, x.z};
   T w = T(0);
   for (int k = 0; k < 6; ++k) {
@@ -297,7 +276,7 @@ MASAV_HD inline T wall_viscous_weight(V3<T> x, const Coefficients<T>& c) {
 }
 
 template <class T>
-MASAV_HD inline V3<T> wall_accel(const Neighbor<T>& me, const Coefficients<T>& c) {
+MASAV_HD inline V3<T> wall_accel(const Neighbor<T>& me, const SphStepLayout<T>& c) {
   V3<T> n{T(0), T(0), T(0)};
   wall_density(me.x, c, &n);
   const T damp = c.wall_viscosity * (T(2) * c.rest_density / (me.rho + c.rest_density)) *
@@ -327,7 +306,7 @@ template <class T, class PosAt, class Fetch>
 MASAV_HD inline ForceResult<T> force_at(uint32_t self, const Neighbor<T>& me, uint32_t cell,
                                         const uint32_t dims[3], const uint32_t* cell_start,
                                         const uint32_t* cell_end, uint32_t max_candidates,
-                                        const Coefficients<T>& c, PosAt&& pos_at, Fetch&& fetch) {
+                                        const SphStepLayout<T>& c, PosAt&& pos_at, Fetch&& fetch) {
   V3<T> acc{T(0), T(0), T(0)};
   uint32_t neighbors = 0;
   bool overflow = false;
@@ -347,7 +326,7 @@ MASAV_HD inline ForceResult<T> force_at(uint32_t self, const Neighbor<T>& me, ui
 // Total acceleration: pair forces scaled by the inverse inertial mass (1 fluid, 1/ratio heavy
 // obstacle, 0 pinned), plus gravity for everything that can move.
 template <class T>
-MASAV_HD inline V3<T> total_accel(V3<T> pair, T inv_mass, const Coefficients<T>& c) {
+MASAV_HD inline V3<T> total_accel(V3<T> pair, T inv_mass, const SphStepLayout<T>& c) {
   if (!(inv_mass > T(0))) return {T(0), T(0), T(0)};
   return V3<T>{inv_mass * pair.x + c.gravity[0], inv_mass * pair.y + c.gravity[1],
                inv_mass * pair.z + c.gravity[2]};
@@ -382,65 +361,65 @@ MASAV_HD inline bool wall_response(V3<T>& x, V3<T>& v, const T lo[3], const T hi
   return any;
 }
 
-// Integrator stages (SphIntegrateParams::op), as numbers shared with GLSL.
-constexpr uint32_t kOpEuler = 0;            // x1 = x0 + dt v0, v1 = v0 + dt a(x0, v0)
-constexpr uint32_t kOpSymplecticEuler = 1;  // v1 = v0 + dt a, x1 = x0 + dt v1
-constexpr uint32_t kOpRk4Stage1 = 2;        // k1 = (v0, a); stage 2 state y0 + dt/2 k1
-constexpr uint32_t kOpRk4Stage2 = 3;        // k2 = (vk, a); stage 3 state y0 + dt/2 k2
-constexpr uint32_t kOpRk4Stage3 = 4;        // k3 = (vk, a); stage 4 state y0 + dt k3
-constexpr uint32_t kOpRk4Final = 5;         // y1 = y0 + dt/6 (k1 + 2 k2 + 2 k3 + k4)
-constexpr uint32_t kOpKickDrift = 6;        // v_half = v0 + dt/2 a, x1 = x0 + dt v_half
-constexpr uint32_t kOpKick = 7;             // v1 = v_half + dt/2 a(x1)
-
-MASAV_HD inline bool op_ends_step(uint32_t op) {
-  return op == kOpEuler || op == kOpSymplecticEuler || op == kOpRk4Final || op == kOpKickDrift;
+// Integrator stages (SphStageOp):
+//   euler             x1 = x0 + dt v0, v1 = v0 + dt a(x0, v0)
+//   symplectic_euler  v1 = v0 + dt a, x1 = x0 + dt v1
+//   rk4_stage1        k1 = (v0, a); stage 2 state y0 + dt/2 k1
+//   rk4_stage2        k2 = (vk, a); stage 3 state y0 + dt/2 k2
+//   rk4_stage3        k3 = (vk, a); stage 4 state y0 + dt k3
+//   rk4_final         y1 = y0 + dt/6 (k1 + 2 k2 + 2 k3 + k4)
+//   kick_drift        v_half = v0 + dt/2 a, x1 = x0 + dt v_half
+//   kick              v1 = v_half + dt/2 a(x1)
+MASAV_HD inline bool op_ends_step(SphStageOp op) {
+  return op == SphStageOp::euler || op == SphStageOp::symplectic_euler ||
+         op == SphStageOp::rk4_final || op == SphStageOp::kick_drift;
 }
 
 // One particle's stage update. x0/v0: step-start state; vk: stage velocity (RK4); a: stage
 // acceleration; sx/sv: RK4 running sums (in: previous, out: updated) or, for kick_drift, sv
 // receives the predicted end-of-step velocity v_half + dt/2 a that the viscosity term uses.
 template <class T>
-MASAV_HD inline void integrate_stage(uint32_t op, T dt, V3<T> x0, V3<T> v0, V3<T> vk, V3<T> a,
+MASAV_HD inline void integrate_stage(SphStageOp op, T dt, V3<T> x0, V3<T> v0, V3<T> vk, V3<T> a,
                                      V3<T>& x_out, V3<T>& v_out, V3<T>& sx, V3<T>& sv) {
   const T half = T(0.5) * dt;
   switch (op) {
-    case kOpEuler:
+    case SphStageOp::euler:
       x_out = x0 + dt * v0;
       v_out = v0 + dt * a;
       break;
-    case kOpSymplecticEuler:
+    case SphStageOp::symplectic_euler:
       v_out = v0 + dt * a;
       x_out = x0 + dt * v_out;
       break;
-    case kOpRk4Stage1:
+    case SphStageOp::rk4_stage1:
       sx = v0;
       sv = a;
       x_out = x0 + half * v0;
       v_out = v0 + half * a;
       break;
-    case kOpRk4Stage2:
+    case SphStageOp::rk4_stage2:
       sx = sx + T(2) * vk;
       sv = sv + T(2) * a;
       x_out = x0 + half * vk;
       v_out = v0 + half * a;
       break;
-    case kOpRk4Stage3:
+    case SphStageOp::rk4_stage3:
       sx = sx + T(2) * vk;
       sv = sv + T(2) * a;
       x_out = x0 + dt * vk;
       v_out = v0 + dt * a;
       break;
-    case kOpRk4Final: {
+    case SphStageOp::rk4_final: {
       const T sixth = dt / T(6);
       x_out = x0 + sixth * (sx + vk);
       v_out = v0 + sixth * (sv + a);
       break;
     }
-    case kOpKickDrift:
+    case SphStageOp::kick_drift:
       v_out = v0 + half * a;
       x_out = x0 + dt * v_out;
       break;
-    case kOpKick:
+    case SphStageOp::kick:
     default:
       x_out = x0;
       v_out = v0 + half * a;
@@ -452,23 +431,70 @@ MASAV_HD inline void integrate_stage(uint32_t op, T dt, V3<T> x0, V3<T> v0, V3<T
 // also predicts the end-of-step velocity into sv. Returns false if the particle lies outside
 // the box afterwards (walls off, or a non-finite position).
 template <class T>
-struct StageParams {
-  uint32_t op;
-  T dt;
-  uint32_t walls;
-  T lo[3], hi[3];
-  T restitution, tangential_damping;
-};
-
-template <class T>
-MASAV_HD inline bool stage_particle(const StageParams<T>& p, V3<T> x0, V3<T> v0, V3<T> vk, V3<T> a,
-                                    V3<T>& x_out, V3<T>& v_out, V3<T>& sx, V3<T>& sv) {
+MASAV_HD inline bool stage_particle(const SphIntegrateLayout<T>& p, V3<T> x0, V3<T> v0, V3<T> vk,
+                                    V3<T> a, V3<T>& x_out, V3<T>& v_out, V3<T>& sx, V3<T>& sv) {
   integrate_stage(p.op, p.dt, x0, v0, vk, a, x_out, v_out, sx, sv);
   if (op_ends_step(p.op) && p.walls)
     wall_response(x_out, v_out, p.lo, p.hi, p.restitution, p.tangential_damping);
-  if (p.op == kOpKickDrift) sv = v_out + (T(0.5) * p.dt) * a;
+  if (p.op == SphStageOp::kick_drift) sv = v_out + (T(0.5) * p.dt) * a;
   return x_out.x >= p.lo[0] && x_out.x <= p.hi[0] && x_out.y >= p.lo[1] && x_out.y <= p.hi[1] &&
          x_out.z >= p.lo[2] && x_out.z <= p.hi[2];
+}
+
+template <class T>
+MASAV_HD inline V3<T> xyz(const hd::V4<T>& v) {
+  return V3<T>{v.x, v.y, v.z};
+}
+template <class T>
+MASAV_HD inline bool finite3(V3<T> v) {
+  return isfinite(v.x) && isfinite(v.y) && isfinite(v.z);
+}
+
+// What one particle's stage adds to the step statistics (SphStat).
+template <class T>
+struct StageReport {
+  T speed2 = T(0);  // |v_out|^2
+  T disp2 = T(0);   // |x_out - x0|^2
+  bool non_finite = false;
+  bool outside = false;  // outside the box after a step-ending stage
+};
+
+// sph_integrate's whole per-particle body: reads particle i's state, runs stage_particle, writes
+// the outputs. Buffers the op does not use may be null (x0 and x_out for kick, vk outside RK4
+// stages 2-4, the sums outside RK4 and kick_drift).
+template <class T>
+MASAV_HD inline StageReport<T> integrate_particle(uint32_t i, const SphIntegrateLayout<T>& p,
+                                                  const hd::V4<T>* x0, const hd::V4<T>* v0,
+                                                  const hd::V4<T>* vk, const hd::V4<T>* accel,
+                                                  hd::V4<T>* x_out, hd::V4<T>* v_out,
+                                                  hd::V4<T>* sum_x, hd::V4<T>* sum_v) {
+  const bool kick = p.op == SphStageOp::kick;
+  const bool rk4 = p.op >= SphStageOp::rk4_stage1 && p.op <= SphStageOp::rk4_final;
+  const bool uses_vk = rk4 && p.op != SphStageOp::rk4_stage1;
+  const hd::V4<T> xw = kick ? hd::V4<T>{T(0), T(0), T(0), T(0)} : x0[i];
+  const V3<T> x = xyz(xw), v = xyz(v0[i]);
+  const V3<T> kv = uses_vk ? xyz(vk[i]) : v;
+  const V3<T> a = xyz(accel[i]);
+  V3<T> sx = rk4 ? xyz(sum_x[i]) : V3<T>{T(0), T(0), T(0)};
+  V3<T> sv = rk4 ? xyz(sum_v[i]) : V3<T>{T(0), T(0), T(0)};
+  V3<T> xn{}, vn{};
+  const bool inside = stage_particle(p, x, v, kv, a, xn, vn, sx, sv);
+  if (!kick) x_out[i] = hd::V4<T>{xn.x, xn.y, xn.z, xw.w};
+  v_out[i] = hd::V4<T>{vn.x, vn.y, vn.z, T(0)};
+  if (rk4) sum_x[i] = hd::V4<T>{sx.x, sx.y, sx.z, T(0)};
+  if (rk4 || p.op == SphStageOp::kick_drift) sum_v[i] = hd::V4<T>{sv.x, sv.y, sv.z, T(0)};
+  StageReport<T> r;
+  if (!finite3(vn) || (!kick && !finite3(xn))) {
+    r.non_finite = true;
+    return r;
+  }
+  r.speed2 = dot(vn, vn);
+  if (!kick) {
+    const V3<T> d = xn - x;
+    r.disp2 = dot(d, d);
+    r.outside = op_ends_step(p.op) && !inside;
+  }
+  return r;
 }
 
 }  // namespace masav::sph

@@ -11,7 +11,7 @@
 // is the midpoint rule for 1 - exp(-int kappa ds): error O(step^2) (tests: test_raymarch.cpp).
 #include <cstdint>
 
-#include "engine/atom/atom_params.h"
+#include "engine/kernels/atom_params.h"
 #include "engine/kernels/hd_vec.h"
 
 namespace masav::volume {
@@ -70,7 +70,8 @@ MASAV_HD inline T trilinear(hd::V3<T> u, const uint32_t dims[3], At&& at) {
   return c0 * (T(1) - f[2]) + c1 * f[2];
 }
 
-// Transfer function: `size` RGBA entries over [0, 1], linear between entries. tf(k) returns entry k.
+// Transfer function: `size` RGBA entries over [0, 1], linear between entries. tf(k) returns entry
+// k.
 template <class T, class Tf>
 MASAV_HD inline V4<T> transfer(T v, uint32_t size, Tf&& tf) {
   const T x = hd::clamp_t(v, T(0), T(1)) * T(size - 1u);
@@ -82,57 +83,67 @@ MASAV_HD inline V4<T> transfer(T v, uint32_t size, Tf&& tf) {
                a.a + (b.a - a.a) * w};
 }
 
-// Pinhole camera, computed once on the host in float so that every backend casts the same rays:
-// pixel (x, y) looks along normalize(forward + ndc_x * right + ndc_y * up), y = 0 the top row.
-struct RayCamera {
-  float eye[3], forward[3], right[3], up[3];
+// What every pixel derives from the layout, in float as the host would: voxel spacing and the
+// brick grid.
+struct RayGeometry {
   float spacing[3];
-  float value_scale;  // 1 / (value_max - value_min)
   uint32_t bricks[3];
 };
 
-template <class T>
-MASAV_HD inline hd::V3<T> v3(const float a[3]) {
-  return hd::V3<T>{T(a[0]), T(a[1]), T(a[2])};
+MASAV_HD inline RayGeometry ray_geometry(const RaymarchLayout& c) {
+  RayGeometry g{};
+  const float lo[3] = {c.box_min.x, c.box_min.y, c.box_min.z};
+  const float hi[3] = {c.box_max.x, c.box_max.y, c.box_max.z};
+  const uint32_t dims[3] = {c.dims.x, c.dims.y, c.dims.z};
+  for (int a = 0; a < 3; ++a) {
+    g.spacing[a] = (hi[a] - lo[a]) / float(dims[a]);
+    g.bricks[a] = (dims[a] + c.brick - 1u) / c.brick;
+  }
+  return g;
 }
 
 template <class T>
-MASAV_HD inline hd::V3<T> pixel_direction(const RaymarchParams& p, const RayCamera& c, uint32_t x,
-                                          uint32_t y) {
-  const T nx = (T(x) + T(0.5)) / T(p.width) * T(2) - T(1);
-  const T ny = T(1) - (T(y) + T(0.5)) / T(p.height) * T(2);
+MASAV_HD inline hd::V3<T> v3(Vec3f a) {
+  return hd::V3<T>{T(a.x), T(a.y), T(a.z)};
+}
+
+// Pixel (x, y) looks along normalize(forward + ndc_x * right + ndc_y * up), y = 0 the top row.
+template <class T>
+MASAV_HD inline hd::V3<T> pixel_direction(const RaymarchLayout& c, uint32_t x, uint32_t y) {
+  const T nx = (T(x) + T(0.5)) / T(c.width) * T(2) - T(1);
+  const T ny = T(1) - (T(y) + T(0.5)) / T(c.height) * T(2);
   return hd::normalize(v3<T>(c.forward) + v3<T>(c.right) * nx + v3<T>(c.up) * ny);
 }
 
 // World bounds of brick b along axis a (the first and last bricks reach the box faces).
 template <class T>
-MASAV_HD inline void brick_bounds(const RaymarchParams& p, const RayCamera& c, int a, uint32_t b,
+MASAV_HD inline void brick_bounds(const RaymarchLayout& c, const RayGeometry& g, int a, uint32_t b,
                                   T& lo, T& hi) {
-  const T bmin = a == 0 ? T(p.volume.box_min.x) : (a == 1 ? T(p.volume.box_min.y) : T(p.volume.box_min.z));
-  const T bmax = a == 0 ? T(p.volume.box_max.x) : (a == 1 ? T(p.volume.box_max.y) : T(p.volume.box_max.z));
-  const T sp = T(c.spacing[a]);
-  lo = b == 0u ? bmin : bmin + (T(b * p.brick) + T(0.5)) * sp;
-  hi = b + 1u == c.bricks[a] ? bmax : bmin + (T((b + 1u) * p.brick) + T(0.5)) * sp;
+  const T bmin = T(a == 0 ? c.box_min.x : (a == 1 ? c.box_min.y : c.box_min.z));
+  const T bmax = T(a == 0 ? c.box_max.x : (a == 1 ? c.box_max.y : c.box_max.z));
+  const T sp = T(g.spacing[a]);
+  lo = b == 0u ? bmin : bmin + (T(b * c.brick) + T(0.5)) * sp;
+  hi = b + 1u == g.bricks[a] ? bmax : bmin + (T((b + 1u) * c.brick) + T(0.5)) * sp;
 }
 
 // One pixel. vol(i, j, k): voxel value; tf(k): transfer entry; brick_alpha(bx, by, bz): the
 // brick's largest alpha (0 = empty). Iterations <= the segment count (validated on the host
 // below kMaxRaySteps): a skip always advances at least one segment.
 template <class T, class Vol, class Tf, class BrickAlpha>
-MASAV_HD inline V4<T> raymarch_pixel(const RaymarchParams& p, const RayCamera& c, uint32_t px,
-                                     uint32_t py, Vol&& vol, Tf&& tf, BrickAlpha&& brick_alpha) {
+MASAV_HD inline V4<T> raymarch_pixel(const RaymarchLayout& c, uint32_t px, uint32_t py, Vol&& vol,
+                                     Tf&& tf, BrickAlpha&& brick_alpha) {
   V4<T> acc{T(0), T(0), T(0), T(0)};
-  const hd::V3<T> eye = v3<T>(c.eye), dir = pixel_direction<T>(p, c, px, py);
-  const hd::V3<T> lo{T(p.volume.box_min.x), T(p.volume.box_min.y), T(p.volume.box_min.z)};
-  const hd::V3<T> hi{T(p.volume.box_max.x), T(p.volume.box_max.y), T(p.volume.box_max.z)};
+  const RayGeometry g = ray_geometry(c);
+  const hd::V3<T> eye = v3<T>(c.eye), dir = pixel_direction<T>(c, px, py);
+  const hd::V3<T> lo = v3<T>(c.box_min), hi = v3<T>(c.box_max);
   T tn = T(0), tf_ = T(kFar);
   if (!slab(eye, dir, lo, hi, tn, tf_)) return acc;
-  const T step = T(p.step), len = tf_ - tn;
+  const T step = T(c.step), len = tf_ - tn;
   const uint32_t n = uint32_t(hd::ceil_t(len / step));
-  const uint32_t dims[3] = {p.volume.dims.x, p.volume.dims.y, p.volume.dims.z};
-  const T vmin = T(p.volume.value_min), vscale = T(c.value_scale);
-  const bool lerp = p.mode == Compositing::lerp;
-  const bool skip = p.skip_empty && !lerp;
+  const uint32_t dims[3] = {c.dims.x, c.dims.y, c.dims.z};
+  const T vmin = T(c.value_min), vscale = T(c.value_scale);
+  const bool lerp = c.mode == Compositing::lerp;
+  const bool skip = c.skip_empty && !lerp;
   uint32_t i = 0;
   for (uint32_t it = 0; it < n && i < n; ++it) {
     const uint32_t seg = lerp ? n - 1u - i : i;
@@ -140,20 +151,20 @@ MASAV_HD inline V4<T> raymarch_pixel(const RaymarchParams& p, const RayCamera& c
     const T s1 = hd::min_t(s0 + step, tf_);
     const T tm = T(0.5) * (s0 + s1);
     const hd::V3<T> pos = eye + dir * tm;
-    const hd::V3<T> u{(pos.x - lo.x) / T(c.spacing[0]) - T(0.5),
-                      (pos.y - lo.y) / T(c.spacing[1]) - T(0.5),
-                      (pos.z - lo.z) / T(c.spacing[2]) - T(0.5)};
+    const hd::V3<T> u{(pos.x - lo.x) / T(g.spacing[0]) - T(0.5),
+                      (pos.y - lo.y) / T(g.spacing[1]) - T(0.5),
+                      (pos.z - lo.z) / T(g.spacing[2]) - T(0.5)};
     if (skip) {
       uint32_t bi[3];
       for (int a = 0; a < 3; ++a) {
-        const T fb = hd::floor_t(hd::comp(u, a) / T(p.brick));
-        bi[a] = fb <= T(0) ? 0u : (fb >= T(c.bricks[a] - 1u) ? c.bricks[a] - 1u : uint32_t(fb));
+        const T fb = hd::floor_t(hd::comp(u, a) / T(c.brick));
+        bi[a] = fb <= T(0) ? 0u : (fb >= T(g.bricks[a] - 1u) ? g.bricks[a] - 1u : uint32_t(fb));
       }
       if (brick_alpha(bi[0], bi[1], bi[2]) <= T(0)) {
         hd::V3<T> blo, bhi;
-        brick_bounds<T>(p, c, 0, bi[0], blo.x, bhi.x);
-        brick_bounds<T>(p, c, 1, bi[1], blo.y, bhi.y);
-        brick_bounds<T>(p, c, 2, bi[2], blo.z, bhi.z);
+        brick_bounds<T>(c, g, 0, bi[0], blo.x, bhi.x);
+        brick_bounds<T>(c, g, 1, bi[1], blo.y, bhi.y);
+        brick_bounds<T>(c, g, 2, bi[2], blo.z, bhi.z);
         T t0 = tm, t1 = T(kFar);
         uint32_t next = i + 1u;
         if (slab(eye, dir, blo, bhi, t0, t1)) {
@@ -165,7 +176,7 @@ MASAV_HD inline V4<T> raymarch_pixel(const RaymarchParams& p, const RayCamera& c
       }
     }
     const T v = trilinear(u, dims, vol);
-    const V4<T> col = transfer((v - vmin) * vscale, p.tf_size, tf);
+    const V4<T> col = transfer((v - vmin) * vscale, c.tf_size, tf);
     if (lerp) {
       acc.r += (col.r - acc.r) * col.a;
       acc.g += (col.g - acc.g) * col.a;
@@ -173,13 +184,13 @@ MASAV_HD inline V4<T> raymarch_pixel(const RaymarchParams& p, const RayCamera& c
       acc.a += (T(1) - acc.a) * col.a;
     } else {
       const T h = s1 - s0;
-      const T alpha = T(1) - hd::pow_t(hd::max_t(T(0), T(1) - col.a), h / T(p.reference_step));
+      const T alpha = T(1) - hd::pow_t(hd::max_t(T(0), T(1) - col.a), h / T(c.reference_step));
       const T wgt = (T(1) - acc.a) * alpha;
       acc.r += wgt * col.r;
       acc.g += wgt * col.g;
       acc.b += wgt * col.b;
       acc.a += wgt;
-      if (acc.a >= T(p.termination_alpha)) break;
+      if (acc.a >= T(c.termination_alpha)) break;
     }
     ++i;
   }

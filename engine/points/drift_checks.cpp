@@ -1,10 +1,9 @@
-#include "engine/points/drift_params.h"
-
 #include <fmt/format.h>
 
 #include <cmath>
 
 #include "engine/core/error.h"
+#include "engine/kernels/drift_params.h"
 
 namespace masav {
 

@@ -5,8 +5,8 @@
 // within rounding of 0 or 1) is compared by its periodic distance, which is tiny.
 #include <span>
 
-#include "engine/points/drift_params.h"
 #include "engine/core/types.h"
+#include "engine/kernels/drift_params.h"
 
 namespace masav {
 

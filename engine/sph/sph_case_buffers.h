@@ -6,7 +6,7 @@
 #include <string_view>
 
 #include "engine/grid/hash_grid.h"
-#include "engine/sph/sph_kernel_params.h"
+#include "engine/kernels/sph_kernel_params.h"
 
 namespace masav {
 

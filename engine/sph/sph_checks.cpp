@@ -5,7 +5,7 @@
 #include "engine/core/device_api.h"
 #include "engine/core/error.h"
 #include "engine/core/kernel_checks.h"
-#include "engine/sph/sph_kernel_params.h"
+#include "engine/kernels/sph_kernel_params.h"
 
 namespace masav {
 namespace {

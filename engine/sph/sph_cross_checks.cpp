@@ -11,12 +11,12 @@
 #include <cmath>
 
 #include "engine/grid/hash_grid.h"
-#include "engine/sph/sph_case_buffers.h"
 #include "engine/kernels/philox.h"
+#include "engine/sph/sph_case_buffers.h"
+#include "engine/sph/sph_kernel_calls.h"
 #include "engine/sph/sph_particles.h"
 #include "engine/util/error_metrics.h"
 #include "engine/verify/check_registry.h"
-#include "engine/sph/sph_kernel_calls.h"
 
 namespace masav::verify {
 namespace {
@@ -107,12 +107,11 @@ KernelCheck per_output_check(std::string kernel, std::vector<OutputTolerance> to
           if (g.name == w.name) g1.push_back(g);
         v = compare_tolerance(g1, {w}, tol);
         if (described.find(t->prefix + ":") == std::string::npos) {
-          std::string rel = t->rms_floor ? fmt::format(" (relative to {:.3g} x RMS{})",
-                                                       t->tol.rel_floor,
-                                                       t->floor_abs > 0
-                                                           ? fmt::format(" + {:.3g}", t->floor_abs)
-                                                           : std::string())
-                                         : std::string();
+          std::string rel =
+              t->rms_floor ? fmt::format(" (relative to {:.3g} x RMS{})", t->tol.rel_floor,
+                                         t->floor_abs > 0 ? fmt::format(" + {:.3g}", t->floor_abs)
+                                                          : std::string())
+                           : std::string();
           described += fmt::format("{}{}: {}{}", described.empty() ? "" : "; ", t->prefix,
                                    t->tol.describe(), rel);
         }
@@ -159,8 +158,7 @@ std::vector<KernelCheck> sph_checks() {
   // neighbour counts (accel w) exactly. Both backends get the same density and pressure
   // (a smooth field made on the host), so this checks the force kernel alone.
   c.push_back(per_output_check(
-      "sph_forces",
-      {{"accel", {2e-6, 0, 2e-5, 1.0}, true}, {"neighbours", {0, 0, 0, 1.0}}},
+      "sph_forces", {{"accel", {2e-6, 0, 2e-5, 1.0}, true}, {"neighbours", {0, 0, 0, 1.0}}},
       [](Backend& b, const CheckInputs& in) {
         CheckOutputs out;
         for (SphPressureModel model : kModels) {
@@ -177,8 +175,9 @@ std::vector<KernelCheck> sph_checks() {
           }
           b.upload(s.density, rho);
           b.upload(s.pressure, pr);
-          sph_forces(b, cs.params, {&s.sorted_pos, &s.sorted_vel, &s.density, &s.pressure,
-                                   s.view(), &s.accel, &s.stats});
+          sph_forces(b, cs.params,
+                     {&s.sorted_pos, &s.sorted_vel, &s.density, &s.pressure, s.view(), &s.accel,
+                      &s.stats});
           const auto a = b.download(s.accel);
           std::vector<double> w(a.size());
           for (size_t i = 0; i < a.size(); ++i) w[i] = a[i].w;
@@ -192,7 +191,9 @@ std::vector<KernelCheck> sph_checks() {
   // velocity sums within 1e-4 (dt = 2 ms, accelerations up to 30 m/s^2), walls on.
   c.push_back(per_output_check(
       "sph_integrate",
-      {{"v ", {1e-5, 5e-5, 0, 1.0}}, {"x ", {1e-6, 1e-6, 0, 1.0}}, {"sum_v ", {1e-5, 1e-4, 0, 1.0}}},
+      {{"v ", {1e-5, 5e-5, 0, 1.0}},
+       {"x ", {1e-6, 1e-6, 0, 1.0}},
+       {"sum_v ", {1e-5, 1e-4, 0, 1.0}}},
       [](Backend& b, const CheckInputs& in) {
         const SphCheckCase cs = make_case(in, SphPressureModel::wcsph);
         const uint32_t n = cs.params.n;

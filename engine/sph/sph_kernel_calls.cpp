@@ -27,10 +27,9 @@ void sph_density(Backend& b, const SphStepParams& p, const SphDensityIO& io) {
 
 void sph_forces(Backend& b, const SphStepParams& p, const SphForcesIO& io) {
   const char* k = "sph_forces";
-  b.sph_forces(p, given(b, io.positions, k, "positions"),
-               given(b, io.velocities, k, "velocities"), given(b, io.density, k, "density"),
-               given(b, io.pressure, k, "pressure"), given(b, io.grid.cells, k, "cells"),
-               given(b, io.grid.cell_start, k, "cell_start"),
+  b.sph_forces(p, given(b, io.positions, k, "positions"), given(b, io.velocities, k, "velocities"),
+               given(b, io.density, k, "density"), given(b, io.pressure, k, "pressure"),
+               given(b, io.grid.cells, k, "cells"), given(b, io.grid.cell_start, k, "cell_start"),
                given(b, io.grid.cell_end, k, "cell_end"), given(b, io.accel, k, "accel"),
                given(b, io.stats, k, "stats"));
 }

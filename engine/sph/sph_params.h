@@ -8,7 +8,7 @@
 #include <string>
 #include <string_view>
 
-#include "engine/sph/sph_kernel_params.h"
+#include "engine/kernels/sph_kernel_params.h"
 
 namespace masav {
 

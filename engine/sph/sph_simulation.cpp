@@ -208,7 +208,7 @@ void SphSimulation::evaluate(const Buffer<Real4>& x, const Buffer<Real4>& v) {
   sph_density(backend_, step_params_, SphDensityIO{&x, view, &density_, &pressure_, &stats_buf_});
   mark(SphStage::density);
   sph_forces(backend_, step_params_,
-                      SphForcesIO{&x, &v, &density_, &pressure_, view, &accel_, &stats_buf_});
+             SphForcesIO{&x, &v, &density_, &pressure_, view, &accel_, &stats_buf_});
   mark(SphStage::forces);
 }
 
@@ -225,8 +225,8 @@ void SphSimulation::integrate(SphStageOp op, double dt, const Buffer<Real4>& x0,
   p.box_max = scene_.box_max;
   p.restitution = scene_.restitution;
   p.tangential_damping = scene_.tangential_damping;
-  sph_integrate(backend_, 
-      p, SphIntegrateIO{&x0, &v0, vk, &accel_, x_out, &v_out, sum_x, sum_v, &stats_buf_});
+  sph_integrate(backend_, p,
+                SphIntegrateIO{&x0, &v0, vk, &accel_, x_out, &v_out, sum_x, sum_v, &stats_buf_});
   mark(SphStage::integrate);
 }
 
@@ -498,9 +498,9 @@ SphState SphSimulation::download() {
     backend_.fill(stats_buf_, 0u);
     const SphGridView view{&grid_.sorted_cells, &grid_.cell_start, &grid_.cell_end};
     sph_density(backend_, step_params_,
-                         SphDensityIO{&ta_, view, &density_, &pressure_, &stats_buf_});
+                SphDensityIO{&ta_, view, &density_, &pressure_, &stats_buf_});
     sph_forces(backend_, step_params_,
-                        SphForcesIO{&ta_, &tb_, &density_, &pressure_, view, &accel_, &stats_buf_});
+               SphForcesIO{&ta_, &tb_, &density_, &pressure_, view, &accel_, &stats_buf_});
     accel_valid_ = false;
     px = &ta_;
     pv = &tb_;

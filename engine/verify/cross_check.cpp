@@ -7,8 +7,8 @@
 #include <cstdlib>
 #include <optional>
 
-#include "engine/cpu/cpu_backend.h"
 #include "engine/core/error.h"
+#include "engine/cpu/cpu_backend.h"
 #include "engine/registry/registry.h"
 #include "engine/util/json_writer.h"
 

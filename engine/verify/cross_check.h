@@ -33,9 +33,9 @@ struct CrossCheckReport {
 };
 
 // Runs the checks of `kernels` on `backend` and `reference`. A kernel without a registered check
-// fails (every kernel a scene uses must be checked). MASAV_VERIFY_FAULT=<kernel> makes `backend` perturb
-// that kernel's output during its own check (Backend::inject_fault): how the tests prove a mismatch is
-// caught and stops the run.
+// fails (every kernel a scene uses must be checked). MASAV_VERIFY_FAULT=<kernel> makes `backend`
+// perturb that kernel's output during its own check (Backend::inject_fault): how the tests prove a
+// mismatch is caught and stops the run.
 CrossCheckReport cross_check(Backend& backend, Backend& reference,
                              const std::vector<std::string>& kernels, const CheckInputs& in,
                              const std::vector<KernelCheck>& checks = kernel_checks());

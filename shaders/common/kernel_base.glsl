@@ -13,7 +13,7 @@ layout(constant_id = 2) const bool COUNT_LOOP_TICKS = false;
 
 layout(std430, set = 0, binding = 0) buffer Diagnostics {
   uint max_loop_ticks;
-  uint flags;   // DiagFlag bits (engine/core/kernel_checks.h)
+  uint flags;   // kDiag* bits (engine/kernels/grid_params.h)
   uint detail;  // smallest offending index
   uint reserved;
 } diag;
@@ -36,6 +36,3 @@ void report_diagnostic(uint flag, uint detail) {
 // Dispatches wider than maxComputeWorkGroupCount[0] spill into y.
 uint flat_group_id() { return gl_WorkGroupID.x + gl_WorkGroupID.y * gl_NumWorkGroups.x; }
 uint flat_invocation_id() { return flat_group_id() * WG_SIZE + gl_LocalInvocationID.x; }
-
-const uint DIAG_GATHER_INDEX_OUT_OF_RANGE = 1u;
-const uint DIAG_NEIGHBOR_OVERFLOW = 2u;

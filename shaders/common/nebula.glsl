@@ -3,8 +3,6 @@
 // grid_cell.glsl; the including kernel declares `density[]`, and with NEBULA_TABLE defined
 // `table_data[]` for nebula_phase().
 const float NEBULA_PI = 3.14159265358979323846;
-const uint PATH_EXACT = 0u, PATH_MIDPOINT = 1u;
-const uint MAX_PATH_STEPS = 60000u;
 
 struct NebulaGrid {
   vec3 origin;
@@ -12,8 +10,8 @@ struct NebulaGrid {
   uvec3 dims;
 };
 
-int nebula_cell_of(NebulaGrid g, vec3 p, int ax) {
-  const float f = floor((p[ax] - g.origin[ax]) / g.cell);
+int nebula_cell_of(NebulaGrid g, vec3 x, int ax) {
+  const float f = floor((x[ax] - g.origin[ax]) / g.cell);
   return f <= 0.0 ? 0 : (f >= float(g.dims[ax] - 1u) ? int(g.dims[ax] - 1u) : int(f));
 }
 
@@ -28,14 +26,14 @@ float path_integral(NebulaGrid g, vec3 a, vec3 b, uint mode, float step_len) {
   float t0 = 0.0, t1 = len;
   if (!slab(a, dir, g.origin, hi, t0, t1)) return 0.0;
   float sum = 0.0;
-  if (mode == PATH_MIDPOINT) {
+  if (mode == OpticalPath_midpoint) {
     uint n = uint(ceil((t1 - t0) / step_len));
-    n = n < 1u ? 1u : (n > MAX_PATH_STEPS ? MAX_PATH_STEPS : n);
+    n = n < 1u ? 1u : (n > kMaxPathSteps ? kMaxPathSteps : n);
     const float h = (t1 - t0) / float(n);
     for (uint i = 0u; i < n; ++i) {
       LOOP_TICK();
-      const vec3 p = a + dir * (t0 + (float(i) + 0.5) * h);
-      const ivec3 c = ivec3(nebula_cell_of(g, p, 0), nebula_cell_of(g, p, 1), nebula_cell_of(g, p, 2));
+      const vec3 q = a + dir * (t0 + (float(i) + 0.5) * h);
+      const ivec3 c = ivec3(nebula_cell_of(g, q, 0), nebula_cell_of(g, q, 1), nebula_cell_of(g, q, 2));
       sum += density[nebula_id(g, c)] * h;
     }
     return sum;

@@ -1,7 +1,7 @@
 // One photon of scatter_table: the GLSL twin of engine/kernels/scatter_math.h (see there for the
-// model, the corrected direction update and the fixed-point tallies). Needs philox.glsl.
+// model, the corrected direction update and the fixed-point tallies). Needs philox.glsl and
+// engine/kernels/atom_params.h.
 const float SCATTER_PI = 3.14159265358979323846;
-const uint SCATTER_CAPPED = 0u, SCATTER_THRESHOLD = 1u, SCATTER_UNSCATTERED = 2u;
 
 float hg_cos_theta(float g, float v) {
   if (abs(g) < 1e-6) return 2.0 * v - 1.0;
@@ -55,14 +55,14 @@ PhotonOutcome trace_photon(PhotonSetup s, float tau, uvec2 stream) {
     const float optical = -log(1.0 - philox_u01(b.x));
     if (optical >= tau * sphere_exit(x, d))
       return PhotonOutcome(cos_bin(dot(d, s.d0), s.bins), k, w);
-    if (k == s.max_scatterings) return PhotonOutcome(s.bins + SCATTER_CAPPED, k, w);
+    if (k == s.max_scatterings) return PhotonOutcome(s.bins + kScatterCapped, k, w);
     x += d * (optical / tau);
     w *= s.albedo;
-    if (w < s.threshold) return PhotonOutcome(s.bins + SCATTER_THRESHOLD, k + 1u, w);
+    if (w < s.threshold) return PhotonOutcome(s.bins + kScatterThreshold, k + 1u, w);
     const float ct = hg_cos_theta(s.g, philox_u01(b.y));
     d = scatter_direction(d, ct, 2.0 * SCATTER_PI * philox_u01(b.z));
   }
-  return PhotonOutcome(s.bins + SCATTER_CAPPED, s.max_scatterings, w);
+  return PhotonOutcome(s.bins + kScatterCapped, s.max_scatterings, w);
 }
 
 uint fixed_weight(float w) { return uint(w * 1048576.0 + 0.5); }  // 2^20, as scatter_math.h

@@ -2,44 +2,14 @@
 // state, pair terms of both pressure models, the 27-cell walk by rows, walls, integrator stages).
 // Formulas and conventions are documented there; keep the two in step.
 
-const uint SPH_MODEL_WCSPH = 0u;
-const uint SPH_MODEL_THESIS = 1u;
+#include "engine/kernels/sph_kernel_params.h"
 
-const uint SPH_OP_EULER = 0u;
-const uint SPH_OP_SYMPLECTIC_EULER = 1u;
-const uint SPH_OP_RK4_STAGE1 = 2u;
-const uint SPH_OP_RK4_STAGE2 = 3u;
-const uint SPH_OP_RK4_STAGE3 = 4u;
-const uint SPH_OP_RK4_FINAL = 5u;
-const uint SPH_OP_KICK_DRIFT = 6u;
-const uint SPH_OP_KICK = 7u;
-
-// Stats words (engine/sph/sph_kernel_params.h, SphStat).
-const uint SPH_STAT_MAX_CANDIDATES = 0u;
-const uint SPH_STAT_OVERFLOW = 1u;
-const uint SPH_STAT_NON_FINITE = 2u;
-const uint SPH_STAT_MAX_SPEED2 = 3u;
-const uint SPH_STAT_MAX_ACCEL2 = 4u;
-const uint SPH_STAT_MAX_DISP2 = 5u;
-const uint SPH_STAT_OUTSIDE = 6u;
-const uint SPH_STAT_MAX_NEIGHBORS = 7u;
-
-// The kernels' constants (sph::Coefficients), as push constants of sph_density / sph_forces.
-struct SphCoefs {
-  float h2, inv_h, inv_h2, density;
-  float pressure, viscosity, rest_density, inv_rest_density;
-  float eos, gx, gy, gz;
-  uint model, clamp_negative, max_candidates, walls;
-  vec4 lo;  // box walls (semi-analytic, wcsph only); w: wall viscosity nu 7.5 / h^2
-  vec4 hi;  // w: wall offset (m), the continuum starts that far behind each wall
-};
-
-float sph_pressure_of(float rho, SphCoefs c) {
-  if (c.model == SPH_MODEL_THESIS) return c.eos * (rho - c.rest_density);
+float sph_pressure_of(float rho, SphStepLayout c) {
+  if (c.model == SphPressureModel_thesis) return c.eos * (rho - c.rest_density);
   const float x = rho * c.inv_rest_density;
   const float x2 = x * x;
   float p = c.eos * (x2 * x2 * x2 * x - 1.0);
-  if (c.clamp_negative != 0u && p < 0.0) p = 0.0;
+  if (c.clamp_negative_pressure != 0u && p < 0.0) p = 0.0;
   return p;
 }
 
@@ -59,14 +29,14 @@ float sph_wall_density_slope(float q) {
   const float u = 1.0 - q * q;
   return (315.0 / 256.0) * (u * u) * (u * u);
 }
-float sph_wall_density(vec3 x, SphCoefs c, out vec3 push) {
+float sph_wall_density(vec3 x, SphStepLayout c, out vec3 push) {
   float f[6], slope[6];
   float keep = 1.0;
   for (int k = 0; k < 6; ++k) {
     LOOP_TICK();
     const int a = k >> 1;
     const float d = (k & 1) != 0 ? c.hi[a] - x[a] : x[a] - c.lo[a];
-    const float q = (max(d, 0.0) + c.hi.w) * c.inv_h;
+    const float q = (max(d, 0.0) + c.wall_offset) * c.inv_h;
     f[k] = q < 1.0 ? sph_wall_density_fraction(q) : 0.0;
     slope[k] = q < 1.0 ? sph_wall_density_slope(q) : 0.0;
     keep *= 1.0 - f[k];
@@ -85,13 +55,13 @@ float sph_wall_density(vec3 x, SphCoefs c, out vec3 push) {
 }
 
 // No-slip walls (sph::wall_viscous_weight).
-float sph_wall_viscous_weight(vec3 x, SphCoefs c) {
+float sph_wall_viscous_weight(vec3 x, SphStepLayout c) {
   float w = 0.0;
   for (int k = 0; k < 6; ++k) {
     LOOP_TICK();
     const int a = k >> 1;
     const float d = (k & 1) != 0 ? c.hi[a] - x[a] : x[a] - c.lo[a];
-    const float q = (max(d, 0.0) + c.hi.w) * c.inv_h;
+    const float q = (max(d, 0.0) + c.wall_offset) * c.inv_h;
     if (q < 1.0) {
       const float u = 1.0 - q;
       w += u * u * u * (1.0 + q);
@@ -100,15 +70,15 @@ float sph_wall_viscous_weight(vec3 x, SphCoefs c) {
   return w;
 }
 
-float sph_density_term(float r2, SphCoefs c) {
+float sph_density_term(float r2, SphStepLayout c) {
   const float u = max(1.0 - r2 * c.inv_h2, 0.0);
   return u * u * u;
 }
 
 // Pair acceleration from neighbour (xo, vo, rho_o, p_o) on (xi, vi, rho_i), d = xi - xo.
 vec3 sph_pair_accel(vec3 vi, float rho_i, float pi_over_rho2, vec3 vo, float rho_o, float p_o,
-                    vec3 d, float r2, SphCoefs c) {
-  const bool thesis = c.model == SPH_MODEL_THESIS;
+                    vec3 d, float r2, SphStepLayout c) {
+  const bool thesis = c.model == SphPressureModel_thesis;
   const float r = sqrt(r2);
   const float u = 1.0 - r * c.inv_h;
   vec3 a = vec3(0.0);
@@ -122,9 +92,9 @@ vec3 sph_pair_accel(vec3 vi, float rho_i, float pi_over_rho2, vec3 vo, float rho
   return a + w * (vo - vi);
 }
 
-vec3 sph_total_accel(vec3 pair, float inv_mass, SphCoefs c) {
+vec3 sph_total_accel(vec3 pair, float inv_mass, SphStepLayout c) {
   if (!(inv_mass > 0.0)) return vec3(0.0);
-  return inv_mass * pair + vec3(c.gx, c.gy, c.gz);
+  return inv_mass * pair + vec3(c.gravity[0], c.gravity[1], c.gravity[2]);
 }
 
 bool sph_wall_response(inout vec3 x, inout vec3 v, vec3 lo, vec3 hi, float restitution,
@@ -154,39 +124,39 @@ bool sph_wall_response(inout vec3 x, inout vec3 v, vec3 lo, vec3 hi, float resti
 }
 
 bool sph_op_ends_step(uint op) {
-  return op == SPH_OP_EULER || op == SPH_OP_SYMPLECTIC_EULER || op == SPH_OP_RK4_FINAL ||
-         op == SPH_OP_KICK_DRIFT;
+  return op == SphStageOp_euler || op == SphStageOp_symplectic_euler || op == SphStageOp_rk4_final ||
+         op == SphStageOp_kick_drift;
 }
 
 void sph_integrate_stage(uint op, float dt, vec3 x0, vec3 v0, vec3 vk, vec3 a, out vec3 x_out,
                          out vec3 v_out, inout vec3 sx, inout vec3 sv) {
   const float half_dt = 0.5 * dt;
-  if (op == SPH_OP_EULER) {
+  if (op == SphStageOp_euler) {
     x_out = x0 + dt * v0;
     v_out = v0 + dt * a;
-  } else if (op == SPH_OP_SYMPLECTIC_EULER) {
+  } else if (op == SphStageOp_symplectic_euler) {
     v_out = v0 + dt * a;
     x_out = x0 + dt * v_out;
-  } else if (op == SPH_OP_RK4_STAGE1) {
+  } else if (op == SphStageOp_rk4_stage1) {
     sx = v0;
     sv = a;
     x_out = x0 + half_dt * v0;
     v_out = v0 + half_dt * a;
-  } else if (op == SPH_OP_RK4_STAGE2) {
+  } else if (op == SphStageOp_rk4_stage2) {
     sx = sx + 2.0 * vk;
     sv = sv + 2.0 * a;
     x_out = x0 + half_dt * vk;
     v_out = v0 + half_dt * a;
-  } else if (op == SPH_OP_RK4_STAGE3) {
+  } else if (op == SphStageOp_rk4_stage3) {
     sx = sx + 2.0 * vk;
     sv = sv + 2.0 * a;
     x_out = x0 + dt * vk;
     v_out = v0 + dt * a;
-  } else if (op == SPH_OP_RK4_FINAL) {
+  } else if (op == SphStageOp_rk4_final) {
     const float sixth = dt / 6.0;
     x_out = x0 + sixth * (sx + vk);
     v_out = v0 + sixth * (sv + a);
-  } else if (op == SPH_OP_KICK_DRIFT) {
+  } else if (op == SphStageOp_kick_drift) {
     v_out = v0 + half_dt * a;
     x_out = x0 + dt * v_out;
   } else {

@@ -44,4 +44,38 @@ MASAV_HD inline F axis_velocity(F w, F speed, F extent) {
   return mul(mul(sub(mul(F(2), w), F(1)), speed), extent);
 }
 
+MASAV_HD inline float sqrt_rn(float a) {
+  return hd::sqrt_rn(a);
+}
+MASAV_HD inline double sqrt_rn(double a) {
+  return sqrt(a);
+}
+
 }  // namespace masav::drift
+
+namespace masav {
+
+template <>
+struct KernelBody<KernelId::drift_points> {
+  static constexpr uint32_t kCpuGrain = 8192;
+  // positions[i] = the drift of point i at p.time_s; .w its speed.
+  template <class F, class Diag>
+  MASAV_HD static void run(uint32_t i, const DriftParams& p, Diag&, const float* start,
+                           const float* direction, hd::V4<F>* positions) {
+    using namespace drift;
+    const float lo[3] = {p.box_lo.x, p.box_lo.y, p.box_lo.z};
+    const float ext[3] = {p.box_extent.x, p.box_extent.y, p.box_extent.z};
+    const F speed_t = mul(F(p.speed), F(p.time_s));
+    F x[3];
+    F v2 = F(0);
+    for (int a = 0; a < 3; ++a) {
+      const F u = F(start[4 * i + a]), w = F(direction[4 * i + a]);
+      x[a] = add(F(lo[a]), mul(F(ext[a]), axis_fraction(u, w, speed_t)));
+      const F v = axis_velocity(w, F(p.speed), F(ext[a]));
+      v2 = add(v2, mul(v, v));
+    }
+    positions[i] = hd::V4<F>{x[0], x[1], x[2], sqrt_rn(v2)};
+  }
+};
+
+}  // namespace masav

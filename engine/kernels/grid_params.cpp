@@ -1,4 +1,4 @@
-#include "engine/core/kernel_params.h"
+#include "engine/kernels/grid_params.h"
 
 #include <bit>
 

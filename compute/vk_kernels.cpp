@@ -1,0 +1,26 @@
+// Every kernel of engine/core/kernels.inc on Vulkan: one dispatch of shaders/<name>.comp with the
+// kernel's layout as its push constants, or the backend's own run_own for the kernels listed in
+// runs_own (vk_backend.h).
+#include "compute/vk_backend.h"
+#include "engine/kernels/kernel_body.h"
+
+namespace masav::vk {
+template <KernelId K, class Params, class... Buffers>
+void VulkanBackend::run_kernel(const Params& p, uint64_t items, Buffers&... buffers) {
+  if constexpr (runs_own(K)) {
+    run_own(KernelTag<K>{}, p, items, buffers...);
+  } else {
+    const auto& layout = device_params<float>(p, buffers...);
+    static_assert(sizeof(layout) <= 128, "push constants beyond the 128 bytes every device has");
+    const BufferImpl* const impls[] = {impl_of(buffers)...};
+    if (const uint32_t limit = diag_limit(layout)) pending_diag_limit_ = limit;
+    dispatch_kernel(K, impls, &layout, sizeof(layout), items);
+  }
+}
+
+#define MASAV_KERNEL(name, Params, items, ...) \
+  MASAV_KERNEL_FORWARD(VulkanBackend, name, Params, __VA_ARGS__)
+#include "engine/core/kernels.inc"
+#undef MASAV_KERNEL
+
+}  // namespace masav::vk

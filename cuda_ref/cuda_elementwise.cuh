@@ -1,0 +1,46 @@
+#pragma once
+// CUDA's path for every kernel with a shared body (engine/kernels/kernel_body.h): one thread per
+// invocation runs KernelBody<K>::run<float>, the code the CPU reference runs in double. Included
+// only by cuda_kernels.cu, where the kernels are expanded from kernels.inc.
+#include "engine/kernels/kernel_body.h"
+
+namespace masav::cuda {
+
+// Diagnostics words on the device: {max_loop_ticks, flags, detail, reserved}.
+struct CudaDiag {
+  uint32_t* words;
+  __device__ void report(uint32_t flag, uint32_t index) {
+    atomicOr(&words[1], flag);
+    atomicMin(&words[2], index);
+  }
+};
+
+template <KernelId K, class Layout, class... Pointers>
+__global__ void shared_body_kernel(uint64_t items, Layout layout, uint32_t* diag_words,
+                                   Pointers... pointers) {
+  const uint64_t i = (uint64_t(blockIdx.y) * gridDim.x + blockIdx.x) * blockDim.x + threadIdx.x;
+  if (i >= items) return;
+  CudaDiag diag{diag_words};
+  KernelBody<K>::template run<float>(uint32_t(i), layout, diag, pointers...);
+}
+
+// The device pointer a body gets for each kind of buffer argument (Backend checked the owner).
+template <class T>
+const typename BodyElem<T, float>::type* body_pointer(const Buffer<T>& b) {
+  return static_cast<const typename BodyElem<T, float>::type*>(
+      static_cast<const CudaBuffer&>(b.impl()).ptr());
+}
+template <class T>
+typename BodyElem<T, float>::type* body_pointer(Buffer<T>& b) {
+  return static_cast<typename BodyElem<T, float>::type*>(static_cast<CudaBuffer&>(b.impl()).ptr());
+}
+template <class T>
+const typename BodyElem<T, float>::type* body_pointer(const Buffer<T>* b) {
+  return b ? body_pointer(*b) : nullptr;
+}
+template <class T>
+typename BodyElem<T, float>::type* body_pointer(Buffer<T>* b) {
+  return b ? body_pointer(*b) : nullptr;
+}
+
+}  // namespace masav::cuda

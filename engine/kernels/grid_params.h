@@ -1,0 +1,97 @@
+// Parameters of the hash-grid kernels (thesis §4.2.2): grid_assign_cells, grid_cell_ranges,
+// gather, grid_count_neighbors. Shared by C++, CUDA and GLSL (engine/core/layout.h).
+#ifndef MASAV_KERNELS_GRID_PARAMS_H
+#define MASAV_KERNELS_GRID_PARAMS_H
+#include "engine/core/layout.h"
+
+MASAV_NAMESPACE_BEGIN
+
+// Uniform grid over a box (thesis Eq. 4.1-4.2). A point's cell is floor((p - origin) * inv_cell)
+// per axis in fp32, clamped to [0, dims-1]; cell id = (cx * dims.y + cy) * dims.z + cz.
+MASAV_LAYOUT(GridParams) {
+  vec3 origin;
+  float cell_size MASAV_INIT(1.0f);
+  uvec3 dims MASAV_INIT(uvec3(1, 1, 1));
+  uint n MASAV_INIT(0u);            // points
+  float inv_cell MASAV_INIT(1.0f);  // fp32 1/cell_size computed once on the host (make_grid_params)
+};
+
+// Neighbours of each sorted point within `radius` over the 27 cells around it (itself included).
+MASAV_LAYOUT(NeighborParams) {
+  GridParams grid;
+  float radius MASAV_INIT(1.0f);
+  float radius2 MASAV_INIT(1.0f);  // fp32 radius*radius computed on the host
+  // Candidates examined per point at most; beyond it the kernel reports an overflow rather than
+  // run longer than the device's loop limit (Capabilities::max_loop_iterations).
+  uint max_candidates MASAV_INIT(60000u);
+};
+
+// What gather reads: dst[i] = src[order[i]] for i < n; an index of src_count or more is reported.
+MASAV_LAYOUT(GatherLayout) {
+  uint n;
+  uint src_count;
+};
+
+// What a kernel reports through the backend's diagnostics word (kernel_body.h, kernel_base.glsl):
+// the flag, and the smallest index that raised it.
+MASAV_CONSTANT(kDiagGatherIndexOutOfRange, 1)  // gather: order[i] past the source
+MASAV_CONSTANT(kDiagNeighborOverflow, 2)       // grid_count_neighbors: over max_candidates
+
+MASAV_NAMESPACE_END
+
+#ifdef __cplusplus
+#include "engine/core/buffer.h"
+
+namespace masav {
+
+MASAV_OFFSET(GridParams, origin, 0);
+MASAV_OFFSET(GridParams, cell_size, 12);
+MASAV_OFFSET(GridParams, dims, 16);
+MASAV_OFFSET(GridParams, n, 28);
+MASAV_OFFSET(GridParams, inv_cell, 32);
+MASAV_SIZE(GridParams, 48);
+MASAV_OFFSET(NeighborParams, grid, 0);
+MASAV_OFFSET(NeighborParams, radius, 48);
+MASAV_OFFSET(NeighborParams, radius2, 52);
+MASAV_OFFSET(NeighborParams, max_candidates, 56);
+MASAV_SIZE(NeighborParams, 64);
+MASAV_OFFSET(GatherLayout, n, 0);
+MASAV_OFFSET(GatherLayout, src_count, 4);
+MASAV_SIZE(GatherLayout, 16);
+
+GridParams make_grid_params(Vec3f origin, float cell_size, UVec3 dims, uint32_t n);
+uint64_t grid_cell_count(const GridParams& g);
+uint32_t grid_key_bits(const GridParams& g);  // bits needed for the largest cell id
+NeighborParams make_neighbor_params(const GridParams& grid, float radius);
+// What a neighbour overflow's message names.
+inline uint32_t diag_limit(const NeighborParams& p) {
+  return p.max_candidates;
+}
+
+// dst[i] = src[order[i]] for i < n.
+struct GatherParams {
+  uint32_t n = 0;
+};
+
+template <class F>
+GatherLayout device_params(const GatherParams& p, const Buffer<uint32_t>&, const BufferImpl& src,
+                           const BufferImpl&) {
+  return GatherLayout{p.n, uint32_t(src.count())};
+}
+
+class DeviceApi;
+// Checked before any backend runs the kernel (engine/core/kernel_checks.cpp); each throws
+// masav::Error naming the kernel, the field, its value and the allowed range.
+void validate(const DeviceApi& dev, const GridParams& g, const Buffer<Real4>& positions,
+              const Buffer<uint32_t>& cells, const Buffer<uint32_t>& indices);
+void validate(const DeviceApi& dev, const GridParams& g, const Buffer<uint32_t>& sorted_cells,
+              const Buffer<uint32_t>& cell_start, const Buffer<uint32_t>& cell_end);
+void validate(const DeviceApi& dev, const GatherParams& p, const Buffer<uint32_t>& order,
+              const BufferImpl& src, const BufferImpl& dst);
+void validate(const DeviceApi& dev, const NeighborParams& p, const Buffer<Real4>& positions,
+              const Buffer<uint32_t>& cell_start, const Buffer<uint32_t>& cell_end,
+              const Buffer<uint32_t>& counts);
+
+}  // namespace masav
+#endif
+#endif

@@ -1,0 +1,287 @@
+// Parameters of the SPH kernels (sph_density, sph_forces, sph_integrate): what the host
+// describes (SphStepParams, SphIntegrateParams: the physics in double) and the layouts the
+// kernels read (SphStepLayout, SphIntegrateLayout: coefficients computed once on the host, in the
+// backend's precision). Layouts, enums and constants are shared by C++, CUDA and GLSL
+// (engine/core/layout.h); scene-level parameters (presets, time stepping) are in
+// engine/sph/sph_params.h.
+#ifndef MASAV_KERNELS_SPH_KERNEL_PARAMS_H
+#define MASAV_KERNELS_SPH_KERNEL_PARAMS_H
+#include "engine/core/layout.h"
+
+MASAV_NAMESPACE_BEGIN
+
+MASAV_ENUM_BEGIN(SphPressureModel)
+// symmetric pressure force with the Tait equation of state (momentum-conserving)
+MASAV_ENUMERATOR(SphPressureModel, wcsph, 0)
+// thesis Eq. 4.5-4.7 as printed: density-difference pressure, not symmetric
+MASAV_ENUMERATOR(SphPressureModel, thesis, 1)
+MASAV_ENUM_END(SphPressureModel)
+
+// Integrator stages (sph::integrate_stage in engine/kernels/sph_kernels.h).
+MASAV_ENUM_BEGIN(SphStageOp)
+MASAV_ENUMERATOR(SphStageOp, euler, 0)             // x1 = x0 + dt v0, v1 = v0 + dt a (Fig. 4.2)
+MASAV_ENUMERATOR(SphStageOp, symplectic_euler, 1)  // v1 = v0 + dt a, x1 = x0 + dt v1 (Harada)
+MASAV_ENUMERATOR(SphStageOp, rk4_stage1, 2)        // classical RK4, thesis Eq. 4.8-4.12
+MASAV_ENUMERATOR(SphStageOp, rk4_stage2, 3)
+MASAV_ENUMERATOR(SphStageOp, rk4_stage3, 4)
+MASAV_ENUMERATOR(SphStageOp, rk4_final, 5)
+MASAV_ENUMERATOR(SphStageOp, kick_drift, 6)  // leapfrog: v_half = v0 + dt/2 a, x1 = x0 + dt v_half
+MASAV_ENUMERATOR(SphStageOp, kick, 7)        // leapfrog: v1 = v_half + dt/2 a(x1)
+MASAV_ENUM_END(SphStageOp)
+
+// Per-step statistics the kernels accumulate in a small u32 buffer (kSphStatWords words,
+// zero-filled before use): maxima of non-negative floats as their bit patterns (which order like
+// the floats), "first index" words as the bitwise NOT of the smallest index (0 = none).
+MASAV_CONSTANT(kSphStatMaxCandidates, 0)  // most candidates any particle examined
+MASAV_CONSTANT(kSphStatOverflow, 1)       // ~(smallest sorted index over max_candidates)
+MASAV_CONSTANT(kSphStatNonFinite, 2)      // ~(smallest sorted index with a NaN/Inf result)
+MASAV_CONSTANT(kSphStatMaxSpeed2, 3)      // float bits: largest |v|^2 written by sph_integrate
+MASAV_CONSTANT(kSphStatMaxAccel2, 4)      // float bits: largest |a|^2 from sph_forces (movers)
+MASAV_CONSTANT(kSphStatMaxDisp2, 5)       // float bits: largest |x_out - x0|^2 in sph_integrate
+MASAV_CONSTANT(kSphStatOutside, 6)        // particles outside the box after a step-ending stage
+MASAV_CONSTANT(kSphStatMaxNeighbors, 7)   // most neighbours within h (density, itself included)
+MASAV_CONSTANT(kSphStatWords, 8)
+
+// What sph_density and sph_forces read: the grid they walk and the smoothing kernels' constants
+// (definitions: device_params below; formulas: engine/kernels/sph_kernels.h).
+MASAV_REAL_LAYOUT(SphStepLayout) {
+  uvec3 dims;           // the hash grid's cells per axis
+  uint n;               // particles
+  uint max_candidates;  // examined per particle; beyond it the kernel reports an overflow
+  MASAV_ENUM(SphPressureModel) model;
+  uint clamp_negative_pressure;
+  uint walls;  // semi-analytic box walls (wcsph only)
+  real_t h2;
+  real_t inv_h;
+  real_t inv_h2;
+  real_t density;    // m * 315 / (64 pi h^3)
+  real_t pressure;   // wcsph: m * 45 / (pi h^4); thesis: kp * m * 45 / (pi h^3) / 2
+  real_t viscosity;  // nu * m * 45 / (pi h^5)
+  real_t rest_density;
+  real_t inv_rest_density;
+  real_t eos;  // wcsph: Tait B = rho0 c0^2 / 7 (Pa); thesis: c^2 of the reported pressure
+  real_t gravity[3];
+  real_t lo[3];
+  real_t wall_viscosity;  // nu * 7.5 / h^2: no-slip walls (see sph::wall_accel)
+  real_t hi[3];
+  real_t wall_offset;  // m: the continuum starts this far behind each wall
+};
+
+// What sph_integrate reads: one stage of the integrator, then the box walls.
+MASAV_REAL_LAYOUT(SphIntegrateLayout) {
+  MASAV_ENUM(SphStageOp) op;
+  uint walls;
+  uint n;
+  real_t dt;
+  real_t lo[3];
+  real_t restitution;
+  real_t hi[3];
+  real_t tangential_damping;
+};
+
+MASAV_NAMESPACE_END
+
+#ifdef __cplusplus
+#include <cmath>
+
+#include "engine/core/buffer.h"
+#include "engine/kernels/grid_params.h"
+
+namespace masav {
+
+MASAV_OFFSET(SphStepLayout<float>, dims, 0);
+MASAV_OFFSET(SphStepLayout<float>, n, 12);
+MASAV_OFFSET(SphStepLayout<float>, max_candidates, 16);
+MASAV_OFFSET(SphStepLayout<float>, model, 20);
+MASAV_OFFSET(SphStepLayout<float>, clamp_negative_pressure, 24);
+MASAV_OFFSET(SphStepLayout<float>, walls, 28);
+MASAV_OFFSET(SphStepLayout<float>, h2, 32);
+MASAV_OFFSET(SphStepLayout<float>, inv_h, 36);
+MASAV_OFFSET(SphStepLayout<float>, inv_h2, 40);
+MASAV_OFFSET(SphStepLayout<float>, density, 44);
+MASAV_OFFSET(SphStepLayout<float>, pressure, 48);
+MASAV_OFFSET(SphStepLayout<float>, viscosity, 52);
+MASAV_OFFSET(SphStepLayout<float>, rest_density, 56);
+MASAV_OFFSET(SphStepLayout<float>, inv_rest_density, 60);
+MASAV_OFFSET(SphStepLayout<float>, eos, 64);
+MASAV_OFFSET(SphStepLayout<float>, gravity, 68);
+MASAV_OFFSET(SphStepLayout<float>, lo, 80);
+MASAV_OFFSET(SphStepLayout<float>, wall_viscosity, 92);
+MASAV_OFFSET(SphStepLayout<float>, hi, 96);
+MASAV_OFFSET(SphStepLayout<float>, wall_offset, 108);
+MASAV_SIZE(SphStepLayout<float>, 112);
+MASAV_OFFSET(SphIntegrateLayout<float>, op, 0);
+MASAV_OFFSET(SphIntegrateLayout<float>, walls, 4);
+MASAV_OFFSET(SphIntegrateLayout<float>, n, 8);
+MASAV_OFFSET(SphIntegrateLayout<float>, dt, 12);
+MASAV_OFFSET(SphIntegrateLayout<float>, lo, 16);
+MASAV_OFFSET(SphIntegrateLayout<float>, restitution, 28);
+MASAV_OFFSET(SphIntegrateLayout<float>, hi, 32);
+MASAV_OFFSET(SphIntegrateLayout<float>, tangential_damping, 44);
+MASAV_SIZE(SphIntegrateLayout<float>, 48);
+
+// What the density and force kernels need. The particles are sorted by `grid` (cell size >= h,
+// built by build_hash_grid); each kernel walks the 27 cells around the particle's cell at that
+// build, so stage positions may drift from it by at most (cell_size - h) / 2.
+struct SphStepParams {
+  GridParams grid;
+  uint32_t n = 0;                  // particles (== grid.n)
+  uint32_t max_candidates = 8192;  // examined per particle; beyond it the kernel reports
+  SphPressureModel model = SphPressureModel::wcsph;
+  double h = 0.02;               // support radius (m)
+  double mass = 0.008;           // SPH mass of every particle (kg)
+  double rest_density = 1000.0;  // rho0 (kg/m^3)
+  double sound_speed = 20.0;     // c0 (m/s): Tait B = rho0 c0^2 / 7 (wcsph)
+  bool clamp_negative_pressure = true;
+  // wcsph: the pressure force's scale 1/kappa, kappa = -1/3 sum_j (m/rho0) r_j W'(r_j) over the
+  // rest lattice (1 for a continuum; 0.947 for the spiky kernel at h = 2 dx): a linear pressure
+  // field then gives exactly its gradient on the lattice, so a column at rest balances gravity.
+  double gradient_correction = 1.0;
+  double kp = 0.0;                 // thesis pressure constant (m^4 kg^-1 s^-2)
+  double viscosity = 0.0;          // nu (m^2/s)
+  Vec3d gravity{0.0, -9.81, 0.0};  // m/s^2
+  // Box walls as a continuum of fluid beyond them (wcsph only): adds their density and pressure
+  // force to particles within h of a wall (see engine/kernels/sph_kernels.h, wall_density).
+  bool walls = false;
+  Vec3d box_min, box_max{1, 1, 1};
+  // m: the wall continuum starts this far behind each wall, so that the first lattice layer
+  // (dx/2 from the wall) has exactly rest density; see wall_offset_for_lattice.
+  double wall_offset = 0.0;
+};
+
+// The sorted hash grid the SPH kernels walk.
+struct SphGridView {
+  const Buffer<uint32_t>* cells = nullptr;  // cell id of each sorted particle
+  const Buffer<uint32_t>* cell_start = nullptr;
+  const Buffer<uint32_t>* cell_end = nullptr;
+};
+
+struct SphDensityIO {
+  const Buffer<Real4>* positions = nullptr;  // sorted; xyz (m), w = inverse mass scale
+  SphGridView grid;
+  Buffer<Real>* density = nullptr;   // kg/m^3
+  Buffer<Real>* pressure = nullptr;  // Pa
+  Buffer<uint32_t>* stats = nullptr;
+};
+
+struct SphForcesIO {
+  const Buffer<Real4>* positions = nullptr;
+  const Buffer<Real4>* velocities = nullptr;  // the velocities the viscosity term uses
+  const Buffer<Real>* density = nullptr;
+  const Buffer<Real>* pressure = nullptr;
+  SphGridView grid;
+  Buffer<Real4>* accel = nullptr;  // xyz (m/s^2) with gravity and mass scale; w = neighbours
+  Buffer<uint32_t>* stats = nullptr;
+};
+
+struct SphIntegrateParams {
+  uint32_t n = 0;
+  SphStageOp op = SphStageOp::euler;
+  double dt = 1e-4;  // s
+  bool walls = true;
+  Vec3d box_min, box_max{1, 1, 1};
+  double restitution = 0.5;         // normal velocity kept (reversed) at a wall, in [0, 1]
+  double tangential_damping = 0.0;  // tangential velocity removed at a wall, in [0, 1]
+};
+
+// Buffers of one stage; unused ones may be null. Output buffers may be the same as inputs read
+// at the same index (each particle reads its own element before writing it).
+struct SphIntegrateIO {
+  const Buffer<Real4>* x0 = nullptr;     // step-start positions (w = inverse mass, kept)
+  const Buffer<Real4>* v0 = nullptr;     // step-start velocities (kick: v_half)
+  const Buffer<Real4>* vk = nullptr;     // RK4 stages 2-4: velocity of the stage state
+  const Buffer<Real4>* accel = nullptr;  // acceleration of the stage state
+  Buffer<Real4>* x_out = nullptr;        // not written by kick
+  Buffer<Real4>* v_out = nullptr;
+  Buffer<Real4>* sum_x = nullptr;  // RK4 running sums; unused otherwise
+  Buffer<Real4>* sum_v = nullptr;  // RK4 running sums; kick_drift: predicted v1
+  Buffer<uint32_t>* stats = nullptr;
+};
+
+// Signal speed of the pressure model (m/s): c0 for wcsph; for the thesis model, whose force
+// kp m sum (rho_j - rho_i)/(2 rho_j) grad W_thesis approximates -(3/14) kp h grad rho (the
+// continuum moment of Eq. 4.7's kernel), the sound speed of that isothermal gas,
+// sqrt(3/14 kp rho0 h). Used by the CFL limit and to report a thesis-model pressure
+// c^2 (rho - rho0).
+inline double signal_speed(const SphStepParams& p) {
+  if (p.model == SphPressureModel::thesis)
+    return std::sqrt(3.0 / 14.0 * p.kp * p.rest_density * p.h);
+  return p.sound_speed;
+}
+
+// The layouts the kernels read: every coefficient computed in double, then rounded once to the
+// backend's precision F (double on the CPU reference, float elsewhere), so that every backend
+// starts from the same values.
+template <class F, class... Buffers>
+SphStepLayout<F> device_params(const SphStepParams& p, const Buffers&...) {
+  constexpr double pi = 3.14159265358979323846;
+  const double h = p.h;
+  const bool thesis = p.model == SphPressureModel::thesis;
+  const double cs = signal_speed(p);
+  SphStepLayout<F> c{};
+  c.dims = p.grid.dims;
+  c.n = p.n;
+  c.max_candidates = p.max_candidates;
+  c.model = p.model;
+  c.clamp_negative_pressure = p.clamp_negative_pressure ? 1u : 0u;
+  c.walls = p.walls && !thesis ? 1u : 0u;
+  c.h2 = F(h * h);
+  c.inv_h = F(1.0 / h);
+  c.inv_h2 = F(1.0 / (h * h));
+  c.density = F(p.mass * 315.0 / (64.0 * pi * h * h * h));
+  c.pressure = F(thesis ? p.kp * p.mass * 45.0 / (pi * h * h * h) / 2.0
+                        : p.gradient_correction * p.mass * 45.0 / (pi * h * h * h * h));
+  c.viscosity = F(p.viscosity * p.mass * 45.0 / (pi * std::pow(h, 5)));
+  c.rest_density = F(p.rest_density);
+  c.inv_rest_density = F(1.0 / p.rest_density);
+  c.eos = F(thesis ? cs * cs : p.rest_density * p.sound_speed * p.sound_speed / 7.0);
+  const double g[3] = {p.gravity.x, p.gravity.y, p.gravity.z};
+  const double lo[3] = {p.box_min.x, p.box_min.y, p.box_min.z};
+  const double hi[3] = {p.box_max.x, p.box_max.y, p.box_max.z};
+  for (int a = 0; a < 3; ++a) {
+    c.gravity[a] = F(g[a]);
+    c.lo[a] = F(lo[a]);
+    c.hi[a] = F(hi[a]);
+  }
+  c.wall_viscosity = F(p.viscosity * 7.5 / (h * h));
+  c.wall_offset = F(p.wall_offset);
+  return c;
+}
+
+template <class F, class... Buffers>
+SphIntegrateLayout<F> device_params(const SphIntegrateParams& p, const Buffers&...) {
+  SphIntegrateLayout<F> s{};
+  s.op = p.op;
+  s.walls = p.walls ? 1u : 0u;
+  s.n = p.n;
+  s.dt = F(p.dt);
+  const double lo[3] = {p.box_min.x, p.box_min.y, p.box_min.z};
+  const double hi[3] = {p.box_max.x, p.box_max.y, p.box_max.z};
+  for (int a = 0; a < 3; ++a) {
+    s.lo[a] = F(lo[a]);
+    s.hi[a] = F(hi[a]);
+  }
+  s.restitution = F(p.restitution);
+  s.tangential_damping = F(p.tangential_damping);
+  return s;
+}
+
+class DeviceApi;
+// Checked before any backend runs the kernel (engine/sph/sph_checks.cpp).
+void validate(const DeviceApi& dev, const SphStepParams& p, const Buffer<Real4>& positions,
+              const Buffer<uint32_t>& cells, const Buffer<uint32_t>& cell_start,
+              const Buffer<uint32_t>& cell_end, const Buffer<Real>& density,
+              const Buffer<Real>& pressure, const Buffer<uint32_t>& stats);
+void validate(const DeviceApi& dev, const SphStepParams& p, const Buffer<Real4>& positions,
+              const Buffer<Real4>& velocities, const Buffer<Real>& density,
+              const Buffer<Real>& pressure, const Buffer<uint32_t>& cells,
+              const Buffer<uint32_t>& cell_start, const Buffer<uint32_t>& cell_end,
+              const Buffer<Real4>& accel, const Buffer<uint32_t>& stats);
+void validate(const DeviceApi& dev, const SphIntegrateParams& p, const Buffer<Real4>* x0,
+              const Buffer<Real4>& v0, const Buffer<Real4>* vk, const Buffer<Real4>& accel,
+              const Buffer<Real4>* x_out, const Buffer<Real4>& v_out, const Buffer<Real4>* sum_x,
+              const Buffer<Real4>* sum_v, const Buffer<uint32_t>& stats);
+
+}  // namespace masav
+#endif
+#endif
