@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "app/commands.h"
-#include "engine/core/backend.h"
+#include "engine/kernels/backend.h"
 #include "engine/util/json_writer.h"
 
 namespace masav::app {

@@ -13,10 +13,10 @@
 #include "app/bench_common.h"
 #include "engine/core/error.h"
 #include "engine/io/csv_writer.h"
-#include "engine/registry/registry.h"
 #include "engine/sph/sph_diagnostics.h"
 #include "engine/sph/sph_presets.h"
 #include "engine/sph/sph_simulation.h"
+#include "registry/backends.h"
 
 #ifndef MASAV_SOURCE_DIR
 #define MASAV_SOURCE_DIR "."

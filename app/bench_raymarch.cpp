@@ -8,10 +8,10 @@
 #include <cmath>
 
 #include "app/bench_atom_common.h"
-#include "engine/atom/atom_checks.h"
 #include "engine/atom/atom_scene.h"
 #include "engine/atom/transfer_function.h"
 #include "engine/core/error.h"
+#include "engine/kernels/atom_checks.h"
 
 namespace masav::app {
 

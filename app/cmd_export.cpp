@@ -8,9 +8,10 @@
 #include "engine/core/error.h"
 #include "engine/io/csv_writer.h"
 #include "engine/io/vtk_writer.h"
-#include "engine/registry/registry.h"
 #include "engine/scene/scene.h"
 #include "engine/util/json_writer.h"
+#include "registry/backends.h"
+#include "registry/scene_catalog.h"
 
 namespace masav::app {
 namespace {

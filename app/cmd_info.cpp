@@ -4,7 +4,7 @@
 #include "app/build_info.h"
 #include "app/commands.h"
 #include "engine/core/error.h"
-#include "engine/registry/registry.h"
+#include "registry/backends.h"
 
 namespace masav::app {
 namespace {

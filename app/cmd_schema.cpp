@@ -4,7 +4,8 @@
 
 #include "app/commands.h"
 #include "engine/scene/scene.h"
-#include "engine/scene/scene_file.h"
+#include "registry/scene_catalog.h"
+#include "registry/scene_file.h"
 
 namespace masav::app {
 

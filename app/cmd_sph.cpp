@@ -10,11 +10,11 @@
 #include "app/commands.h"
 #include "engine/core/error.h"
 #include "engine/io/csv_writer.h"
-#include "engine/registry/registry.h"
 #include "engine/sph/sph_diagnostics.h"
 #include "engine/sph/sph_export.h"
 #include "engine/sph/sph_presets.h"
 #include "engine/sph/sph_simulation.h"
+#include "registry/backends.h"
 
 namespace masav::app {
 namespace {

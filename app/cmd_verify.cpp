@@ -6,9 +6,10 @@
 #include "app/commands.h"
 #include "app/scene_options.h"
 #include "engine/core/error.h"
-#include "engine/registry/registry.h"
 #include "engine/util/json_writer.h"
 #include "engine/verify/cross_check.h"
+#include "registry/backends.h"
+#include "registry/check_catalog.h"
 
 namespace masav::app {
 namespace {

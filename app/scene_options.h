@@ -5,7 +5,7 @@
 #include <string>
 #include <vector>
 
-#include "engine/scene/scene_file.h"
+#include "registry/scene_file.h"
 
 namespace masav::app {
 

@@ -6,7 +6,7 @@
 #include <cstring>
 
 #include "engine/core/error.h"
-#include "engine/core/kernel_checks.h"
+#include "engine/kernels/kernel_checks.h"
 
 namespace masav::vk {
 namespace {
@@ -149,7 +149,8 @@ void VulkanBackend::check_diagnostics() {
                     seen.flags, seen.detail, pending_diag_limit_);
 }
 
-uint32_t VulkanBackend::take_max_loop_ticks() {
+std::optional<uint32_t> VulkanBackend::take_max_loop_ticks() {
+  if (!options_.count_loop_ticks) return std::nullopt;
   finish();
   auto* d = static_cast<Diagnostics*>(diag_->mapped);
   const uint32_t ticks = d->max_loop_ticks;

@@ -8,7 +8,7 @@
 #include "compute/vk_memory.h"
 #include "compute/vk_pipelines.h"
 #include "compute/vk_stream.h"
-#include "engine/core/backend.h"
+#include "engine/kernels/backend.h"
 
 namespace masav::vk {
 
@@ -48,8 +48,7 @@ class VulkanBackend final : public Backend {
   double timestamp_ns(TimestampId id) override { return stream_.timestamp_ns(id); }
   void reset_timestamps() override { stream_.reset_timestamps(); }
 
-  // The most loop iterations any invocation ran since the last call (needs count_loop_ticks).
-  uint32_t take_max_loop_ticks();
+  std::optional<uint32_t> take_max_loop_ticks() override;
   uint32_t tile_size() const { return options_.workgroup_size * options_.items_per_thread; }
 
   // For the renderer (render/), which draws straight from the kernels' buffers when it runs on
@@ -60,14 +59,14 @@ class VulkanBackend final : public Backend {
 
  protected:
 #define MASAV_KERNEL MASAV_KERNEL_OVERRIDE
-#include "engine/core/kernels.inc"
+#include "engine/kernels/kernels.inc"
 #undef MASAV_KERNEL
 
   // Every kernel: its shared body where it has one, else run_own (see run_kernel's definition).
   template <KernelId K, class Params, class... Buffers>
   void run_kernel(const Params& p, uint64_t items, Buffers&... buffers);
 #define MASAV_KERNEL MASAV_KERNEL_OWN
-#include "engine/core/kernels.inc"
+#include "engine/kernels/kernels.inc"
 #undef MASAV_KERNEL
 
   void write_bytes(BufferImpl& dst, const void* src, size_t bytes, size_t offset) override;

@@ -3,13 +3,14 @@
 #include <memory>
 #include <string_view>
 
-#include "engine/core/backend.h"
 #include "engine/core/backend_status.h"
+#include "engine/kernels/backend_factory.h"
 
 namespace masav::vk {
 
 BackendStatus backend_status();
-// Options from the environment (MASAV_VK_DEVICE, MASAV_VK_VALIDATION); `device` overrides.
-std::unique_ptr<Backend> create_backend(std::string_view device);
+// Options from the environment (MASAV_VK_DEVICE, MASAV_VK_VALIDATION); `device` overrides;
+// `request` asks for a device that can also draw, or for loop counting.
+std::unique_ptr<Backend> create_backend(std::string_view device, const BackendRequest& request);
 
 }  // namespace masav::vk

@@ -1,5 +1,5 @@
-// Every kernel of engine/core/kernels.inc on Vulkan: one dispatch of shaders/<name>.comp with the
-// kernel's layout as its push constants, or the backend's own run_own for the kernels listed in
+// Every kernel of engine/kernels/kernels.inc on Vulkan: one dispatch of shaders/<name>.comp with
+// the kernel's layout as its push constants, or the backend's own run_own for the kernels listed in
 // runs_own (vk_backend.h).
 #include "compute/vk_backend.h"
 #include "engine/kernels/kernel_body.h"
@@ -20,7 +20,7 @@ void VulkanBackend::run_kernel(const Params& p, uint64_t items, Buffers&... buff
 
 #define MASAV_KERNEL(name, Params, items, ...) \
   MASAV_KERNEL_FORWARD(VulkanBackend, name, Params, __VA_ARGS__)
-#include "engine/core/kernels.inc"
+#include "engine/kernels/kernels.inc"
 #undef MASAV_KERNEL
 
 }  // namespace masav::vk

@@ -7,7 +7,7 @@
 
 #include "compute/vk_backend.h"
 #include "engine/core/error.h"
-#include "engine/core/kernel_checks.h"
+#include "engine/kernels/kernel_checks.h"
 #include "engine/kernels/radix.h"
 #include "engine/kernels/sort_params.h"
 

@@ -3,8 +3,8 @@
 #include <memory>
 #include <string_view>
 
-#include "engine/core/backend.h"
 #include "engine/core/backend_status.h"
+#include "engine/kernels/backend.h"
 
 namespace masav::cuda {
 

@@ -1,4 +1,4 @@
-// Every kernel of engine/core/kernels.inc on CUDA: a kernel with a shared body runs it from one
+// Every kernel of engine/kernels/kernels.inc on CUDA: a kernel with a shared body runs it from one
 // generic launcher (cuda_elementwise.cuh); the others are CUDA's own run_own (cuda_sort.cpp,
 // cuda_grid.cpp, cuda_sph.cpp, cuda_atom.cpp).
 #include "cuda_ref/cuda_backend.h"
@@ -6,7 +6,7 @@
 #include "cuda_ref/cuda_elementwise.cuh"
 #include "cuda_ref/cuda_launch.h"
 #define MASAV_KERNEL_BODIES
-#include "engine/core/kernels.inc"
+#include "engine/kernels/kernels.inc"
 #undef MASAV_KERNEL_BODIES
 
 namespace masav::cuda {
@@ -27,7 +27,7 @@ void CudaBackend::run_kernel(const Params& p, uint64_t items, Buffers&... buffer
 
 #define MASAV_KERNEL(name, Params, items, ...) \
   MASAV_KERNEL_FORWARD(CudaBackend, name, Params, __VA_ARGS__)
-#include "engine/core/kernels.inc"
+#include "engine/kernels/kernels.inc"
 #undef MASAV_KERNEL
 
 }  // namespace masav::cuda

@@ -5,7 +5,7 @@
 #include "cuda_ref/cuda_check.h"
 #include "cuda_ref/cuda_launch.h"
 #include "engine/core/error.h"
-#include "engine/core/kernel_checks.h"
+#include "engine/kernels/kernel_checks.h"
 #include "engine/kernels/radix.h"
 
 namespace masav::cuda {

@@ -8,7 +8,7 @@
 #include <string>
 
 #include "compute/vk_memory.h"
-#include "engine/core/backend.h"
+#include "engine/kernels/backend.h"
 #include "render/render_device.h"
 
 namespace masav::render {

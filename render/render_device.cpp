@@ -3,7 +3,7 @@
 #include <fmt/format.h>
 
 #include "engine/core/error.h"
-#include "engine/registry/registry.h"
+#include "registry/backends.h"
 
 namespace masav::render {
 

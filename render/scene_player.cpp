@@ -6,6 +6,8 @@
 #include <algorithm>
 
 #include "engine/core/error.h"
+#include "registry/check_catalog.h"
+#include "registry/scene_catalog.h"
 
 namespace masav::render {
 

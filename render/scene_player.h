@@ -8,8 +8,8 @@
 #include <string>
 
 #include "engine/scene/scene.h"
-#include "engine/scene/scene_file.h"
 #include "engine/verify/cross_check.h"
+#include "registry/scene_file.h"
 #include "render/overlay.h"
 #include "render/renderer.h"
 

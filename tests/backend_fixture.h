@@ -3,13 +3,16 @@
 // reference it is compared with. Test bodies never know which backend they run on.
 #include <string>
 
-#include "engine/core/backend.h"
+#include "engine/kernels/backend.h"
 
 namespace masav::test {
 
 Backend& backend();    // the backend under test
 Backend& reference();  // the CPU reference (a separate instance)
 const std::string& backend_name();
-bool is_lavapipe();    // Vulkan on Mesa's CPU driver
+bool is_lavapipe();  // Vulkan on Mesa's CPU driver
+// The backend under test created once more with loop counting on (Backend::take_max_loop_ticks):
+// the "loop limit" suite's. Only Vulkan counts; on the others that suite is skipped.
+Backend& loop_counter();
 
 }  // namespace masav::test

@@ -9,7 +9,7 @@
 #include <cstdlib>
 #include <filesystem>
 
-#include "engine/scene/scene_file.h"
+#include "registry/scene_file.h"
 #include "render/png.h"
 #include "render/scene_player.h"
 

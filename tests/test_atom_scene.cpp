@@ -10,10 +10,11 @@
 #include <filesystem>
 #include <functional>
 
-#include "engine/cpu/cpu_backend.h"
 #include "engine/core/error.h"
+#include "engine/cpu/cpu_backend.h"
 #include "engine/scene/scene.h"
-#include "engine/scene/scene_file.h"
+#include "registry/scene_catalog.h"
+#include "registry/scene_file.h"
 
 using namespace masav;
 using namespace masav::scene;

@@ -17,9 +17,9 @@
 #include "engine/kernels/grid_params.h"
 #include "engine/kernels/philox.h"
 #include "engine/kernels/radix.h"
-#include "engine/registry/registry.h"
 #include "engine/util/error_metrics.h"
 #include "engine/util/json_writer.h"
+#include "registry/backends.h"
 
 using namespace masav;
 

@@ -12,9 +12,9 @@
 #include <string>
 #include <vector>
 
-#include "engine/cpu/cpu_backend.h"
 #include "engine/core/error.h"
-#include "engine/registry/registry.h"
+#include "engine/cpu/cpu_backend.h"
+#include "registry/backends.h"
 #include "tests/backend_fixture.h"
 #if MASAV_HAVE_VULKAN
 #include "compute/vk_context.h"
@@ -24,13 +24,23 @@ namespace masav::test {
 namespace {
 std::unique_ptr<Backend> g_backend;
 std::unique_ptr<Backend> g_reference;
+std::unique_ptr<Backend> g_loop_counter;
 std::string g_name;
 std::vector<std::string> g_stray_validation;  // messages outside any test case
 }  // namespace
 
-Backend& backend() { return *g_backend; }
-Backend& reference() { return *g_reference; }
-const std::string& backend_name() { return g_name; }
+Backend& backend() {
+  return *g_backend;
+}
+Backend& reference() {
+  return *g_reference;
+}
+Backend& loop_counter() {
+  return *g_loop_counter;
+}
+const std::string& backend_name() {
+  return g_name;
+}
 bool is_lavapipe() {
   return g_name == "vulkan" && g_backend->caps().device_type == "cpu";
 }
@@ -57,15 +67,19 @@ int main(int argc, char** argv) {
   std::vector<char*> rest;
   for (int i = 0; i < argc; ++i) {
     std::string a = argv[i];
-    if (a.rfind("--backend=", 0) == 0) name = a.substr(10);
-    else rest.push_back(argv[i]);
+    if (a.rfind("--backend=", 0) == 0)
+      name = a.substr(10);
+    else
+      rest.push_back(argv[i]);
   }
   test::g_name = name;
 
 #if MASAV_HAVE_VULKAN
   masav::vk::set_validation_handler([](const std::string& msg) {
-    if (doctest::is_running_in_test) FAIL_CHECK(msg);
-    else test::g_stray_validation.push_back(msg);
+    if (doctest::is_running_in_test)
+      FAIL_CHECK(msg);
+    else
+      test::g_stray_validation.push_back(msg);
   });
 #endif
 
@@ -97,9 +111,27 @@ int main(int argc, char** argv) {
   fmt::print("backend {}: {} ({}, {}), subgroup {}, max buffer {} MiB\n", name, c.device_name,
              c.device_type, c.driver, c.subgroup_size, c.max_buffer_bytes >> 20);
 
+  // The loop-limit suite needs a backend that counts loop iterations.
+  try {
+    auto counter = create_backend(name, "", BackendRequest{.count_loop_ticks = true});
+    if (counter->take_max_loop_ticks()) test::g_loop_counter = std::move(counter);
+  } catch (const Error& e) {
+    fmt::print(stderr, "FAILED: backend '{}' could not be created to count loops: {}\n", name,
+               e.what());
+    return 1;
+  }
+
   doctest::Context ctx;
   ctx.applyCommandLine(int(rest.size()), rest.data());
+  if (!test::g_loop_counter) {
+    fmt::print(
+        "SKIPPED: the \"loop limit\" suite: the {} backend does not count loop "
+        "iterations (its device has no loop limit to test)\n",
+        name);
+    ctx.addFilter("test-suite-exclude", "loop limit");
+  }
   int rc = ctx.run();
+  test::g_loop_counter.reset();
   test::g_backend.reset();
   test::g_reference.reset();
   if (!test::g_stray_validation.empty()) {

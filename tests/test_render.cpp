@@ -12,9 +12,10 @@
 #include <filesystem>
 
 #include "compute/vk_factory.h"
-#include "engine/cpu/cpu_backend.h"
 #include "engine/core/error.h"
+#include "engine/cpu/cpu_backend.h"
 #include "engine/scene/scene.h"
+#include "registry/scene_catalog.h"
 #include "render/png.h"
 #include "render/renderer.h"
 #include "render/scene_player.h"

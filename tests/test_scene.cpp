@@ -11,14 +11,16 @@
 #include <functional>
 #include <map>
 
-#include "engine/cpu/cpu_backend.h"
 #include "engine/core/error.h"
-#include "engine/scene/common_tables.h"
+#include "engine/cpu/cpu_backend.h"
 #include "engine/scene/scene.h"
-#include "engine/scene/scene_file.h"
 #include "engine/scene/stage_cache.h"
 #include "engine/util/chi_square.h"
 #include "engine/verify/cross_check.h"
+#include "registry/check_catalog.h"
+#include "registry/common_tables.h"
+#include "registry/scene_catalog.h"
+#include "registry/scene_file.h"
 
 using namespace masav;
 using namespace masav::scene;
@@ -427,4 +429,13 @@ TEST_CASE("chi-square p-values match closed forms") {
   CHECK(same.statistic == 0);
   CHECK(same.p_value == doctest::Approx(1.0));
   CHECK(same.dof == 2);
+}
+
+TEST_CASE("every kernel of kernels.inc has a built-in cross-check") {
+  for (KernelId k : kAllKernels) {
+    CAPTURE(kernel_name(k));
+    CHECK(verify::find_kernel_check(k) != nullptr);
+  }
+  // And every built-in check belongs to a kernel.
+  for (const auto& c : verify::kernel_checks()) CHECK_MESSAGE(find_kernel(c.kernel), c.kernel);
 }

@@ -4,6 +4,8 @@
 
 #include "engine/scene/scene.h"
 #include "engine/verify/cross_check.h"
+#include "registry/check_catalog.h"
+#include "registry/scene_catalog.h"
 #include "tests/backend_fixture.h"
 
 using namespace masav;

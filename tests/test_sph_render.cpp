@@ -4,15 +4,15 @@
 // initial cube sat above the box's middle. With MASAV_DEMO_SPH_SHOTS set, "demo sph screenshots"
 // inspects what `masav demo --script` wrote for the SPH scene under xvfb-run.
 #include <doctest/doctest.h>
-#include <glm/glm.hpp>
 
 #include <algorithm>
 #include <cstdlib>
+#include <glm/glm.hpp>
 #include <string>
 
-#include "engine/scene/scene_file.h"
 #include "engine/sph/sph_scene_type.h"
 #include "engine/sph/sph_simulation.h"
+#include "registry/scene_file.h"
 #include "render/png.h"
 #include "render/scene_player.h"
 
@@ -72,8 +72,7 @@ TEST_CASE("the SPH cube drop renders and the fluid ends at the bottom of the box
     render::FrameRequest req;
     req.readback = true;
     player.draw(req);
-    return Image{player.renderer().width(), player.renderer().height(),
-                 player.renderer().pixels()};
+    return Image{player.renderer().width(), player.renderer().height(), player.renderer().pixels()};
   };
   const Image first = frame(0);
   const SphSimulation* sim = sph::simulation_of(player.scene());
@@ -84,13 +83,12 @@ TEST_CASE("the SPH cube drop renders and the fluid ends at the bottom of the box
   const float cx = float(0.5 * (sc.box_min.x + sc.box_max.x));
   const float cz = float(0.5 * (sc.box_min.z + sc.box_max.z));
   const double floor_row = row_of(cam, {cx, float(sc.box_min.y), cz}, first.h);
-  const double mid_row =
-      row_of(cam, {cx, float(0.5 * (sc.box_min.y + sc.box_max.y)), cz}, first.h);
+  const double mid_row = row_of(cam, {cx, float(0.5 * (sc.box_min.y + sc.box_max.y)), cz}, first.h);
   REQUIRE(floor_row > mid_row);  // y up is up in the image
   const LitStats a = lit_pixels(first, first.w, 0, first.h);
   MESSAGE("initial: " << a.count << " lit pixels, mean row " << a.mean_row << " (mid " << mid_row
                       << ", floor " << floor_row << ")");
-  CHECK(a.count > 400);          // not blank
+  CHECK(a.count > 400);         // not blank
   CHECK(a.mean_row < mid_row);  // the cube starts in the upper half
 
   // Let it fall (0.45 m: 0.3 s), splash and run out along the floor.
@@ -103,8 +101,8 @@ TEST_CASE("the SPH cube drop renders and the fluid ends at the bottom of the box
   for (const auto& q : pos) com_y += q.y;
   com_y /= double(pos.size());
   const double height = sc.box_max.y - sc.box_min.y;
-  MESSAGE("after " << sim->steps() << " steps (t = " << sim->time() << " s): centre of mass at y = "
-                   << com_y << " m of " << height);
+  MESSAGE("after " << sim->steps() << " steps (t = " << sim->time()
+                   << " s): centre of mass at y = " << com_y << " m of " << height);
   CHECK(com_y < sc.box_min.y + 0.25 * height);
   const LitStats b = lit_pixels(last, last.w, 0, last.h);
   const LitStats below = lit_pixels(last, last.w, uint32_t(mid_row), last.h);

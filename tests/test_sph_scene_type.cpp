@@ -6,14 +6,16 @@
 
 #include <filesystem>
 
-#include "engine/cpu/cpu_backend.h"
 #include "engine/core/error.h"
+#include "engine/cpu/cpu_backend.h"
 #include "engine/scene/scene.h"
-#include "engine/scene/scene_file.h"
 #include "engine/sph/sph_presets.h"
 #include "engine/sph/sph_scene_type.h"
 #include "engine/sph/sph_simulation.h"
 #include "engine/verify/cross_check.h"
+#include "registry/check_catalog.h"
+#include "registry/scene_catalog.h"
+#include "registry/scene_file.h"
 
 using namespace masav;
 using namespace masav::scene;
@@ -153,8 +155,7 @@ TEST_CASE("the sph scene maps its table onto the preset and rejects bad values b
   CHECK(error_of("sph.preset", std::string("lava")).find("explosion, water, dambreak") !=
         std::string::npos);
   CHECK(error_of("sph.dt_s", 1.0).find("sph.dt_s") != std::string::npos);
-  CHECK(error_of("sph.integrator", std::string("rk5")).find("sph.integrator") !=
-        std::string::npos);
+  CHECK(error_of("sph.integrator", std::string("rk5")).find("sph.integrator") != std::string::npos);
   CHECK(error_of("sph.substeps", int64_t(0)).find("sph.substeps") != std::string::npos);
   CHECK(error_of("sph.colour", std::string("x")).find("color_by") != std::string::npos);
   // A rejected value leaves the old one.
@@ -163,7 +164,8 @@ TEST_CASE("the sph scene maps its table onto the preset and rejects bad values b
 
 TEST_CASE("the SPH scenes load, and the cross-check covers the SPH kernels") {
   const std::filesystem::path dir = std::filesystem::path(MASAV_SOURCE_DIR) / "scenes";
-  for (const char* name : {"sph_explosion", "sph_water", "sph_dambreak", "sph_mud", "sph_obstacle"}) {
+  for (const char* name :
+       {"sph_explosion", "sph_water", "sph_dambreak", "sph_mud", "sph_obstacle"}) {
     CAPTURE(name);
     const SceneFile f = load_scene_file((dir / (std::string(name) + ".toml")).string());
     CHECK(f.type == "sph");

@@ -9,8 +9,8 @@
 #include <random>
 #include <vector>
 
-#include "engine/atom/atom_checks.h"
 #include "engine/core/error.h"
+#include "engine/kernels/atom_checks.h"
 #include "engine/kernels/grid_cell.h"
 #include "engine/util/error_metrics.h"
 #include "tests/backend_fixture.h"

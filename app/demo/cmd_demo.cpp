@@ -18,7 +18,7 @@
 #include "app/interrupt.h"
 #include "app/scene_options.h"
 #include "engine/core/error.h"
-#include "engine/registry/registry.h"
+#include "registry/backends.h"
 #include "render/png.h"
 #include "render/swapchain.h"
 

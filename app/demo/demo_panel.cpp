@@ -11,6 +11,7 @@
 #include "app/demo/param_widgets.h"
 #include "app/demo/sph_panel.h"
 #include "engine/core/error.h"
+#include "registry/scene_catalog.h"
 
 namespace masav::app {
 namespace {

@@ -3,11 +3,12 @@
 // Inputs are built on the host from the scene's parameters (its state, scattering table and
 // grids) and uploaded identically to both backends; float results are compared against the
 // reference's double precision.
+#include "engine/atom/atom_cross_checks.h"
+
 #include <algorithm>
 #include <cmath>
 #include <mutex>
 
-#include "engine/atom/atom_checks.h"
 #include "engine/atom/atom_schema.h"
 #include "engine/atom/orbital.h"
 #include "engine/atom/orbital_tables.h"
@@ -15,7 +16,7 @@
 #include "engine/atom/transfer_function.h"
 #include "engine/cpu/cpu_backend.h"
 #include "engine/grid/hash_grid.h"
-#include "engine/verify/check_registry.h"
+#include "engine/kernels/atom_checks.h"
 
 namespace masav::verify {
 namespace {
@@ -69,9 +70,9 @@ std::vector<double> flatten(const std::vector<Vec4d>& v, bool with_w = true) {
 
 // A tolerance check whose relative errors are taken against `floor` times the largest
 // reference value (light spans many decades; tiny values carry fp32's absolute error).
-KernelCheck scaled_check(std::string kernel, Tolerance tol, double floor,
+KernelCheck scaled_check(KernelId kernel, Tolerance tol, double floor,
                          std::function<CheckOutputs(Backend&, const CheckInputs&)> run) {
-  KernelCheck k = tolerance_check(std::move(kernel), tol, std::move(run));
+  KernelCheck k = tolerance_check(kernel, tol, std::move(run));
   k.compare = [tol, floor](const CheckOutputs& g, const CheckOutputs& w, const CheckInputs&) {
     Tolerance t = tol;
     double top = 0;
@@ -181,18 +182,19 @@ std::vector<KernelCheck> atom_checks() {
   // orbital_sample: integer tables, Philox uniforms, then fp32 trigonometry: positions agree
   // to 2e-5 of the cloud's extent (tests/test_orbital.cpp).
   {
-    KernelCheck k = tolerance_check("orbital_sample", {}, [](Backend& b, const CheckInputs& in) {
-      const scene::ParamSet& p = params_of(in);
-      const OrbitalPlacement placement = p.get_text("atom.placement") == "shells"
-                                             ? OrbitalPlacement::shells
-                                             : OrbitalPlacement::exact;
-      const auto t = atom::make_orbital_tables(state_of(p), placement, in.points, in.seed);
-      auto tables = b.create<uint32_t>(t.cdf.size(), "check orbital tables");
-      b.upload(tables, t.cdf);
-      auto pos = b.create<Real4>(in.points, "check cloud");
-      b.orbital_sample(t.params, tables, pos);
-      return CheckOutputs{{"positions xyz", {}, flatten(b.download(pos), false)}};
-    });
+    KernelCheck k =
+        tolerance_check(KernelId::orbital_sample, {}, [](Backend& b, const CheckInputs& in) {
+          const scene::ParamSet& p = params_of(in);
+          const OrbitalPlacement placement = p.get_text("atom.placement") == "shells"
+                                                 ? OrbitalPlacement::shells
+                                                 : OrbitalPlacement::exact;
+          const auto t = atom::make_orbital_tables(state_of(p), placement, in.points, in.seed);
+          auto tables = b.create<uint32_t>(t.cdf.size(), "check orbital tables");
+          b.upload(tables, t.cdf);
+          auto pos = b.create<Real4>(in.points, "check cloud");
+          b.orbital_sample(t.params, tables, pos);
+          return CheckOutputs{{"positions xyz", {}, flatten(b.download(pos), false)}};
+        });
     k.compare = [](const CheckOutputs& g, const CheckOutputs& w, const CheckInputs& in) {
       const scene::ParamSet& p = params_of(in);
       const auto t = atom::make_orbital_tables(state_of(p), OrbitalPlacement::exact, 1, 1);
@@ -204,34 +206,35 @@ std::vector<KernelCheck> atom_checks() {
     c.push_back(std::move(k));
   }
   // cloud_density: integer counts over N * cell volume: fp32 rounding only.
-  c.push_back(
-      tolerance_check("cloud_density", {1e-6, 0, 1e-6}, [](Backend& b, const CheckInputs& in) {
-        const GridParams g = density_grid(in);
-        Buffer<Real4> pos = cloud_points(b, in, g);
-        HashGrid grid = make_hash_grid(b, g, in.points);
-        build_hash_grid(b, grid, pos);
-        auto d = b.create<Real>(grid_cell_count(g), "check density");
-        b.cloud_density({g, in.points}, grid.cell_start, grid.cell_end, d);
-        return CheckOutputs{{"density", {}, b.download(d)}};
-      }));
+  c.push_back(tolerance_check(KernelId::cloud_density, {1e-6, 0, 1e-6},
+                              [](Backend& b, const CheckInputs& in) {
+                                const GridParams g = density_grid(in);
+                                Buffer<Real4> pos = cloud_points(b, in, g);
+                                HashGrid grid = make_hash_grid(b, g, in.points);
+                                build_hash_grid(b, grid, pos);
+                                auto d = b.create<Real>(grid_cell_count(g), "check density");
+                                b.cloud_density({g, in.points}, grid.cell_start, grid.cell_end, d);
+                                return CheckOutputs{{"density", {}, b.download(d)}};
+                              }));
   // scatter_table: Monte Carlo; the photon histograms must be the same distribution
   // (two-sample chi-square, as tests/test_scatter.cpp). A few rows of the scene's table.
-  c.push_back(chi_square_check("scatter_table", 1e-4, [](Backend& b, const CheckInputs& in) {
-    ScatterTableParams sp = atom::scatter_params_of(params_of(in));
-    sp.first_row = sp.rows > 106 ? 100 : sp.rows / 2;  // rows that do scatter (tau ~ 1)
-    sp.rows = std::min<uint32_t>(sp.rows - sp.first_row, 6);
-    sp.photons_per_row = std::min<uint32_t>(sp.photons_per_row, 2048);
-    sp.seed = in.seed;
-    const atom::ScatterTable t = atom::compute_scatter_table(b, sp);
-    return CheckOutputs{{"photon hits", t.hits, {}}};
-  }));
+  c.push_back(
+      chi_square_check(KernelId::scatter_table, 1e-4, [](Backend& b, const CheckInputs& in) {
+        ScatterTableParams sp = atom::scatter_params_of(params_of(in));
+        sp.first_row = sp.rows > 106 ? 100 : sp.rows / 2;  // rows that do scatter (tau ~ 1)
+        sp.rows = std::min<uint32_t>(sp.rows - sp.first_row, 6);
+        sp.photons_per_row = std::min<uint32_t>(sp.photons_per_row, 2048);
+        sp.seed = in.seed;
+        const atom::ScatterTable t = atom::compute_scatter_table(b, sp);
+        return CheckOutputs{{"photon hits", t.hits, {}}};
+      }));
   // nebula_illuminate / nebula_view: fp32 path integrals and table interpolation against
   // double, relative to 1e-6 of the largest light: rel L2 1e-5 as tests/test_nebula.cpp. The
   // tests' per-value bounds (1e-4, 2e-3) hold on their 24^3 grid; on the scenes' 60^3 grid a
   // few particles sit so close to a cell face that fp32 and fp64 start their path in
   // neighbouring cells (measured up to 8.2e-3 over the ten states on lavapipe, while rel L2
   // stays below 6e-6), so each value is allowed 2e-2.
-  c.push_back(scaled_check("nebula_illuminate", {1e-5, 0, 2e-2}, 1e-6,
+  c.push_back(scaled_check(KernelId::nebula_illuminate, {1e-5, 0, 2e-2}, 1e-6,
                            [](Backend& b, const CheckInputs& in) {
                              ScatterTableParams sp;
                              check_phase_table(sp);
@@ -239,44 +242,45 @@ std::vector<KernelCheck> atom_checks() {
                              LitCloud lc = lit_cloud(b, in, lp);
                              return CheckOutputs{{"illumination", {}, b.download(lc.illumination)}};
                            }));
-  c.push_back(
-      scaled_check("nebula_view", {1e-5, 0, 2e-2}, 1e-6, [](Backend& b, const CheckInputs& in) {
-        ScatterTableParams sp;
-        const std::vector<double>& phase = check_phase_table(sp);
-        const NebulaLightParams lp = light_params(in, sp);
-        LitCloud lc = lit_cloud(b, in, lp);
-        auto tab = b.create<Real>(phase.size(), "check phase table");
-        b.upload(tab, phase);
-        auto light = b.create<Real>(in.points, "check light");
-        b.nebula_view(lp, lc.pos, lc.density, tab, lc.illumination, light);
-        return CheckOutputs{{"light", {}, b.download(light)}};
-      }));
+  c.push_back(scaled_check(KernelId::nebula_view, {1e-5, 0, 2e-2}, 1e-6,
+                           [](Backend& b, const CheckInputs& in) {
+                             ScatterTableParams sp;
+                             const std::vector<double>& phase = check_phase_table(sp);
+                             const NebulaLightParams lp = light_params(in, sp);
+                             LitCloud lc = lit_cloud(b, in, lp);
+                             auto tab = b.create<Real>(phase.size(), "check phase table");
+                             b.upload(tab, phase);
+                             auto light = b.create<Real>(in.points, "check light");
+                             b.nebula_view(lp, lc.pos, lc.density, tab, lc.illumination, light);
+                             return CheckOutputs{{"light", {}, b.download(light)}};
+                           }));
   // voxelize: counts exact, means in fp32: 3e-6 absolute on values in [0, 1]
   // (tests/test_volume.cpp).
-  c.push_back(tolerance_check("voxelize", {1e-5, 3e-6, 0}, [](Backend& b, const CheckInputs& in) {
-    const scene::ParamSet& p = params_of(in);
-    const GridParams g = cube_grid(p, uint32_t(p.get_int("volume.dims")), in.points);
-    Buffer<Real4> pos = cloud_points(b, in, g);
-    std::vector<double> lit(in.points);
-    for (uint32_t i = 0; i < in.points; ++i) lit[i] = 0.5 + 0.5 * std::sin(0.37 * i);
-    auto light = b.create<Real>(in.points, "check light");
-    b.upload(light, lit);
-    const size_t cells = grid_cell_count(g);
-    auto prob = b.create<Real>(cells, "check p"), mean = b.create<Real>(cells, "check g"),
-         sample = b.create<Real>(cells, "check sample");
-    VoxelizeParams vp;
-    vp.grid = g;
-    vp.s = float(p.get_real("volume.s"));
-    vp.t = float(p.get_real("volume.t"));
-    vp.light_to_unit = 1.5f;
-    b.voxelize(vp, pos, light, prob, mean, sample);
-    return CheckOutputs{{"p", {}, b.download(prob)},
-                        {"g", {}, b.download(mean)},
-                        {"sample", {}, b.download(sample)}};
-  }));
-  // volume_bricks: ranges and the largest alpha: fp32 of values in [0, 1].
   c.push_back(
-      tolerance_check("volume_bricks", {1e-6, 2e-6, 0}, [](Backend& b, const CheckInputs& in) {
+      tolerance_check(KernelId::voxelize, {1e-5, 3e-6, 0}, [](Backend& b, const CheckInputs& in) {
+        const scene::ParamSet& p = params_of(in);
+        const GridParams g = cube_grid(p, uint32_t(p.get_int("volume.dims")), in.points);
+        Buffer<Real4> pos = cloud_points(b, in, g);
+        std::vector<double> lit(in.points);
+        for (uint32_t i = 0; i < in.points; ++i) lit[i] = 0.5 + 0.5 * std::sin(0.37 * i);
+        auto light = b.create<Real>(in.points, "check light");
+        b.upload(light, lit);
+        const size_t cells = grid_cell_count(g);
+        auto prob = b.create<Real>(cells, "check p"), mean = b.create<Real>(cells, "check g"),
+             sample = b.create<Real>(cells, "check sample");
+        VoxelizeParams vp;
+        vp.grid = g;
+        vp.s = float(p.get_real("volume.s"));
+        vp.t = float(p.get_real("volume.t"));
+        vp.light_to_unit = 1.5f;
+        b.voxelize(vp, pos, light, prob, mean, sample);
+        return CheckOutputs{{"p", {}, b.download(prob)},
+                            {"g", {}, b.download(mean)},
+                            {"sample", {}, b.download(sample)}};
+      }));
+  // volume_bricks: ranges and the largest alpha: fp32 of values in [0, 1].
+  c.push_back(tolerance_check(
+      KernelId::volume_bricks, {1e-6, 2e-6, 0}, [](Backend& b, const CheckInputs& in) {
         const CheckVolume v = check_volume(in);
         auto vol = b.create<Real>(v.values.size(), "check volume");
         b.upload(vol, v.values);
@@ -290,29 +294,30 @@ std::vector<KernelCheck> atom_checks() {
   // raymarch: fp32 compositing along ~100 steps: rel L2 1e-4; per channel 2e-3 absolute (the
   // kernel test's 1e-4 is for a gentle transfer function; the default one's opacity ramp is
   // steeper: measured 8.8e-4).
-  c.push_back(tolerance_check("raymarch", {1e-4, 2e-3, 0}, [](Backend& b, const CheckInputs& in) {
-    const CheckVolume v = check_volume(in);
-    auto vol = b.create<Real>(v.values.size(), "check volume");
-    b.upload(vol, v.values);
-    auto tf = b.create<Real4>(v.tf.size(), "check transfer");
-    b.upload(tf, v.tf);
-    const UVec3 nb = brick_dims(v.desc, 8);
-    auto br = b.create<Real4>(size_t(nb.x) * nb.y * nb.z, "check bricks");
-    b.volume_bricks({v.desc, 8, uint32_t(v.tf.size())}, vol, tf, br);
-    const float h = v.desc.box_max.x;
-    RaymarchParams rp;
-    rp.volume = v.desc;
-    rp.width = 48;
-    rp.height = 36;
-    rp.eye = {1.2f * h, -2.6f * h, 1.5f * h};
-    rp.up = {0, 0, 1};
-    rp.step = 0.5f * 2 * h / float(v.desc.dims.x);
-    rp.reference_step = 2 * rp.step;
-    rp.tf_size = uint32_t(v.tf.size());
-    auto img = b.create<Real4>(size_t(rp.width) * rp.height, "check image");
-    b.raymarch(rp, vol, tf, br, img);
-    return CheckOutputs{{"image", {}, flatten(b.download(img))}};
-  }));
+  c.push_back(
+      tolerance_check(KernelId::raymarch, {1e-4, 2e-3, 0}, [](Backend& b, const CheckInputs& in) {
+        const CheckVolume v = check_volume(in);
+        auto vol = b.create<Real>(v.values.size(), "check volume");
+        b.upload(vol, v.values);
+        auto tf = b.create<Real4>(v.tf.size(), "check transfer");
+        b.upload(tf, v.tf);
+        const UVec3 nb = brick_dims(v.desc, 8);
+        auto br = b.create<Real4>(size_t(nb.x) * nb.y * nb.z, "check bricks");
+        b.volume_bricks({v.desc, 8, uint32_t(v.tf.size())}, vol, tf, br);
+        const float h = v.desc.box_max.x;
+        RaymarchParams rp;
+        rp.volume = v.desc;
+        rp.width = 48;
+        rp.height = 36;
+        rp.eye = {1.2f * h, -2.6f * h, 1.5f * h};
+        rp.up = {0, 0, 1};
+        rp.step = 0.5f * 2 * h / float(v.desc.dims.x);
+        rp.reference_step = 2 * rp.step;
+        rp.tf_size = uint32_t(v.tf.size());
+        auto img = b.create<Real4>(size_t(rp.width) * rp.height, "check image");
+        b.raymarch(rp, vol, tf, br, img);
+        return CheckOutputs{{"image", {}, flatten(b.download(img))}};
+      }));
   return c;
 }
 

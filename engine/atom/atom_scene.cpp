@@ -6,9 +6,9 @@
 #include <chrono>
 #include <cmath>
 
-#include "engine/atom/atom_checks.h"
 #include "engine/core/error.h"
 #include "engine/grid/hash_grid.h"
+#include "engine/kernels/atom_checks.h"
 
 namespace masav::atom {
 

@@ -10,7 +10,7 @@
 
 #include "engine/atom/orbital_tables.h"
 #include "engine/atom/scatter_cache.h"
-#include "engine/core/backend.h"
+#include "engine/kernels/backend.h"
 
 namespace masav::atom {
 
@@ -30,19 +30,19 @@ struct AtomSceneOptions {
   uint32_t particles = 200000;
   uint64_t seed = 1;
   TableOptions tables;
-  uint32_t density_dims = 60;     // density grid cells per axis (the thesis's cube of size l)
+  uint32_t density_dims = 60;      // density grid cells per axis (the thesis's cube of size l)
   double box_probability = 0.999;  // the grid's cube holds at least this much of |psi|^2
   ScatterTableParams scatter;      // defaults: thesis §2.2.3 (1000 x 72, g = a = 0.6)
   std::string cache_dir;           // "" = the default cache directory
   bool use_cache = true;
   float source_power_lm = 250000.0f;
-  Vec3f viewer{0, 0, 0};           // (0, 0, 0) = in front, at 2.5 box half-widths
+  Vec3f viewer{0, 0, 0};  // (0, 0, 0) = in front, at 2.5 box half-widths
   float tau_peak = 0.5f;  // scattering depth of one cell at the state's peak density
   OpticalPath path = OpticalPath::exact;
-  float step_a0 = 0.0f;          // midpoint path step; 0 = half a cell
-  uint32_t volume_dims = 60;     // voxelize: N^3
-  float s = 0.6f, t = 0.4f;      // sample = s g + t p (the thesis: s > t)
-  float exposure = 0.0f;         // light -> [0, 1] green; 0 = automatic (see view())
+  float step_a0 = 0.0f;       // midpoint path step; 0 = half a cell
+  uint32_t volume_dims = 60;  // voxelize: N^3
+  float s = 0.6f, t = 0.4f;   // sample = s g + t p (the thesis: s > t)
+  float exposure = 0.0f;      // light -> [0, 1] green; 0 = automatic (see view())
 };
 
 struct StageTimes {

@@ -5,11 +5,11 @@
 #include <algorithm>
 #include <cmath>
 
-#include "engine/atom/atom_checks.h"
 #include "engine/atom/atom_scene.h"
 #include "engine/atom/atom_schema.h"
 #include "engine/atom/transfer_function.h"
 #include "engine/core/error.h"
+#include "engine/kernels/atom_checks.h"
 #include "engine/scene/camera_pose.h"
 
 namespace masav::atom {

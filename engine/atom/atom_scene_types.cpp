@@ -14,9 +14,10 @@ using scene::ParamSet;
 
 // The kernels the cloud and its light run: sampling, the density grid (hash grid + density),
 // the scattering table (when not cached, and always in the check), the two lighting passes.
-std::vector<std::string> cloud_kernels() {
-  return {"orbital_sample", "grid_assign_cells", "radix_sort",        "grid_cell_ranges",
-          "cloud_density",  "scatter_table",     "nebula_illuminate", "nebula_view"};
+std::vector<KernelId> cloud_kernels() {
+  return {KernelId::orbital_sample,    KernelId::grid_assign_cells, KernelId::radix_sort,
+          KernelId::grid_cell_ranges,  KernelId::cloud_density,     KernelId::scatter_table,
+          KernelId::nebula_illuminate, KernelId::nebula_view};
 }
 
 scene::CheckInputs check_inputs_of(const ParamSet& p) {
@@ -50,8 +51,8 @@ scene::SceneType atom_volume_scene_type() {
   t.help = "the lit electron cloud voxelized and raymarched (optionally with its particles)";
   t.tables = {&atom_table(), &nebula_table(), &scatter_table_schema(), &volume_table()};
   t.kernels = [](const ParamSet&) {
-    std::vector<std::string> k = cloud_kernels();
-    k.insert(k.end(), {"voxelize", "volume_bricks", "raymarch"});
+    std::vector<KernelId> k = cloud_kernels();
+    k.insert(k.end(), {KernelId::voxelize, KernelId::volume_bricks, KernelId::raymarch});
     return k;
   };
   t.check_inputs = check_inputs_of;

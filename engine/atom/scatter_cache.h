@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "engine/core/backend.h"
+#include "engine/kernels/backend.h"
 
 namespace masav::atom {
 

@@ -5,26 +5,48 @@
 #include <cstring>
 
 #include "engine/core/error.h"
-#include "engine/core/kernel_checks.h"
 
 namespace masav {
 
+void check_owner(const DeviceApi& dev, const BufferImpl& b, std::string_view kernel) {
+  if (b.owner() != &dev)
+    throw Error(dev.name(), std::string(kernel),
+                fmt::format("buffer '{}' was created by another backend", b.label()),
+                "create every buffer a kernel uses with the backend that runs it");
+}
+
+void check_fits(const DeviceApi& dev, ElemKind kind, size_t count, std::string_view kernel,
+                std::string_view what) {
+  const size_t eb = elem_bytes(kind, dev.real_bytes());
+  const uint64_t limit = dev.caps().max_buffer_bytes;
+  if (limit != 0 && uint64_t(count) * eb > limit)
+    throw Error(
+        dev.name(), std::string(kernel),
+        fmt::format("{} needs {} elements of {} bytes ({} MiB), over this device's "
+                    "{} MiB per buffer ({})",
+                    what, count, eb, (uint64_t(count) * eb) >> 20, limit >> 20,
+                    dev.caps().device_name),
+        fmt::format("use at most {} elements here, or a device with larger buffers", limit / eb));
+}
+
 void DeviceApi::check_upload(const BufferImpl& dst, size_t count) const {
   if (dst.owner() != this)
-    throw Error(name(), "upload", fmt::format("buffer '{}' belongs to another backend", dst.label()),
+    throw Error(name(), "upload",
+                fmt::format("buffer '{}' belongs to another backend", dst.label()),
                 "create the buffer with the backend that uses it");
   if (count > dst.count())
-    throw Error(name(), "upload",
-                fmt::format("{} elements do not fit buffer '{}' of {}", count, dst.label(),
-                            dst.count()),
-                "create a larger buffer");
+    throw Error(
+        name(), "upload",
+        fmt::format("{} elements do not fit buffer '{}' of {}", count, dst.label(), dst.count()),
+        "create a larger buffer");
 }
 
 void DeviceApi::upload_bytes(BufferImpl& dst, const void* src, size_t bytes, size_t offset) {
   check_owner(*this, dst, "upload");
   if (offset > dst.bytes() || bytes > dst.bytes() - offset)
-    throw Error(name(), "upload", fmt::format("{} bytes at offset {} overrun '{}' ({} bytes)", bytes,
-                                              offset, dst.label(), dst.bytes()),
+    throw Error(name(), "upload",
+                fmt::format("{} bytes at offset {} overrun '{}' ({} bytes)", bytes, offset,
+                            dst.label(), dst.bytes()),
                 "upload within the buffer");
   if (bytes) write_bytes(dst, src, bytes, offset);
 }
@@ -32,8 +54,9 @@ void DeviceApi::upload_bytes(BufferImpl& dst, const void* src, size_t bytes, siz
 void DeviceApi::download_bytes(const BufferImpl& src, void* dst, size_t bytes, size_t offset) {
   check_owner(*this, src, "download");
   if (offset > src.bytes() || bytes > src.bytes() - offset)
-    throw Error(name(), "download", fmt::format("{} bytes at offset {} overrun '{}' ({} bytes)",
-                                                bytes, offset, src.label(), src.bytes()),
+    throw Error(name(), "download",
+                fmt::format("{} bytes at offset {} overrun '{}' ({} bytes)", bytes, offset,
+                            src.label(), src.bytes()),
                 "download within the buffer");
   if (bytes) read_bytes(src, dst, bytes, offset);
 }
@@ -42,9 +65,10 @@ void DeviceApi::copy_bytes(const BufferImpl& src, BufferImpl& dst, size_t bytes)
   check_owner(*this, src, "copy");
   check_owner(*this, dst, "copy");
   if (bytes > src.bytes() || bytes > dst.bytes())
-    throw Error(name(), "copy", fmt::format("{} bytes from '{}' to '{}' overrun a buffer", bytes,
-                                            src.label(), dst.label()),
-                "copy within both buffers");
+    throw Error(
+        name(), "copy",
+        fmt::format("{} bytes from '{}' to '{}' overrun a buffer", bytes, src.label(), dst.label()),
+        "copy within both buffers");
   if (bytes) copy_buffer(src, dst, bytes);
 }
 

@@ -35,7 +35,7 @@ class DeviceApi {
   virtual void fill_u32(BufferImpl& dst, uint32_t value) = 0;
 
   // ---- ordering and timing
-  virtual void finish() = 0;  // submit what is recorded and wait for it
+  virtual void finish() = 0;            // submit what is recorded and wait for it
   virtual TimestampId timestamp() = 0;  // records a device timestamp after the work so far
   virtual double timestamp_ns(TimestampId id) = 0;  // valid after finish()
   virtual void reset_timestamps() = 0;
@@ -76,5 +76,11 @@ class DeviceApi {
   void upload_reals(BufferImpl& dst, const float* src, size_t scalars);
   std::vector<double> download_reals(const BufferImpl& src, size_t scalars);
 };
+
+// Checks every backend runs the same way: `b` was created by `dev`; `count` elements of `kind`
+// fit one buffer of the device (else an Error with the largest count that does).
+void check_owner(const DeviceApi& dev, const BufferImpl& b, std::string_view kernel);
+void check_fits(const DeviceApi& dev, ElemKind kind, size_t count, std::string_view kernel,
+                std::string_view what);
 
 }  // namespace masav

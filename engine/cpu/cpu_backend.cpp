@@ -9,7 +9,7 @@
 #include <string>
 
 #include "engine/core/error.h"
-#include "engine/core/kernel_checks.h"
+#include "engine/kernels/kernel_checks.h"
 #include "engine/kernels/philox.h"
 
 namespace masav::cpu {

@@ -6,9 +6,9 @@
 #include <memory>
 #include <vector>
 
-#include "engine/core/backend.h"
 #include "engine/cpu/cpu_sph_lists.h"
 #include "engine/cpu/thread_pool.h"
+#include "engine/kernels/backend.h"
 
 namespace masav::cpu {
 
@@ -47,14 +47,14 @@ class CpuBackend final : public Backend {
 
  protected:
 #define MASAV_KERNEL MASAV_KERNEL_OVERRIDE
-#include "engine/core/kernels.inc"
+#include "engine/kernels/kernels.inc"
 #undef MASAV_KERNEL
 
   // Every kernel: its shared body where it has one, else run_own (see run_kernel's definition).
   template <KernelId K, class Params, class... Buffers>
   void run_kernel(const Params& p, uint64_t items, Buffers&... buffers);
 #define MASAV_KERNEL MASAV_KERNEL_OWN
-#include "engine/core/kernels.inc"
+#include "engine/kernels/kernels.inc"
 #undef MASAV_KERNEL
 
   void write_bytes(BufferImpl& dst, const void* src, size_t bytes, size_t offset) override;

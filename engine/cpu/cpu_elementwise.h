@@ -5,9 +5,9 @@
 #include <atomic>
 #include <tuple>
 
-#include "engine/core/kernel_checks.h"
 #include "engine/cpu/cpu_backend.h"
 #include "engine/kernels/kernel_body.h"
+#include "engine/kernels/kernel_checks.h"
 
 namespace masav::cpu {
 

@@ -3,8 +3,8 @@
 // run their shared bodies (engine/kernels/grid_body.h).
 #include <cstring>
 
-#include "engine/core/kernel_checks.h"
 #include "engine/cpu/cpu_elementwise.h"
+#include "engine/kernels/kernel_checks.h"
 
 namespace masav::cpu {
 

@@ -1,9 +1,9 @@
-// Every kernel of engine/core/kernels.inc on the CPU reference: a kernel with a shared body runs
+// Every kernel of engine/kernels/kernels.inc on the CPU reference: a kernel with a shared body runs
 // it on the thread pool (cpu_elementwise.h); the others are the CPU reference's own run_own
 // (cpu_sort.cpp, cpu_grid.cpp, cpu_sph.cpp, cpu_scatter.cpp, cpu_volume.cpp).
 #include "engine/cpu/cpu_elementwise.h"
 #define MASAV_KERNEL_BODIES
-#include "engine/core/kernels.inc"
+#include "engine/kernels/kernels.inc"
 #undef MASAV_KERNEL_BODIES
 
 namespace masav::cpu {
@@ -18,7 +18,7 @@ void CpuBackend::run_kernel(const Params& p, uint64_t items, Buffers&... buffers
 
 #define MASAV_KERNEL(name, Params, items, ...) \
   MASAV_KERNEL_FORWARD(CpuBackend, name, Params, __VA_ARGS__)
-#include "engine/core/kernels.inc"
+#include "engine/kernels/kernels.inc"
 #undef MASAV_KERNEL
 
 }  // namespace masav::cpu

@@ -2,8 +2,8 @@
 // of photons and added up in block order, so the table does not depend on the thread count.
 #include <vector>
 
-#include "engine/atom/atom_checks.h"
 #include "engine/cpu/cpu_backend.h"
+#include "engine/kernels/atom_checks.h"
 #include "engine/kernels/scatter_math.h"
 
 namespace masav::cpu {

@@ -11,7 +11,6 @@
 #include "engine/cpu/cpu_backend.h"
 #include "engine/cpu/cpu_sph_rows.h"
 #include "engine/kernels/sph_kernels.h"
-#include "engine/sph/sph_coefficients.h"
 
 namespace masav::cpu {
 namespace {

@@ -2,8 +2,8 @@
 #include <algorithm>
 #include <vector>
 
-#include "engine/atom/atom_checks.h"
 #include "engine/cpu/cpu_backend.h"
+#include "engine/kernels/atom_checks.h"
 #include "engine/kernels/grid_cell.h"
 #include "engine/kernels/volume_math.h"
 

@@ -1,7 +1,7 @@
 #include "engine/grid/hash_grid.h"
 
 #include "engine/core/error.h"
-#include "engine/core/kernel_checks.h"
+#include "engine/kernels/kernel_checks.h"
 
 namespace masav {
 

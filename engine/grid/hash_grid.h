@@ -3,7 +3,7 @@
 // (cell, index) pairs on only the cell bits in use, mark each cell's range. Later kernels reorder
 // per-point arrays with reorder() and walk neighbours with grid::for_each_neighbor_cell (C++/CUDA)
 // or grid_neighbor_cell (GLSL).
-#include "engine/core/backend.h"
+#include "engine/kernels/backend.h"
 
 namespace masav {
 

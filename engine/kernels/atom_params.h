@@ -111,7 +111,9 @@ MASAV_LAYOUT(NebulaLightParams) {
   uint table_bins MASAV_INIT(72u);
   float table_tau_step MASAV_INIT(0.01f);
 };
-MASAV_CONSTANT(kMaxPathSteps, 60000)  // lavapipe's loop limit, with margin
+// The most steps a midpoint path takes: within the portable loop budget (kPortableLoopBudget),
+// with room for the invocation's other loops.
+MASAV_CONSTANT(kMaxPathSteps, 60000)
 
 // ---- voxelize ---------------------------------------------------------------------------------
 // Thesis §3.3.2 on an N^3 grid: p(i) = particles in cell i / particles (clamped into the grid, so
@@ -177,6 +179,8 @@ MASAV_LAYOUT(RaymarchLayout) {
   uint brick;
   uint skip_empty;
 };
+// The most loop iterations a ray may take (samples and skipped bricks), within the portable loop
+// budget (kPortableLoopBudget).
 MASAV_CONSTANT(kMaxRaySteps, 60000)
 
 MASAV_NAMESPACE_END
@@ -294,7 +298,7 @@ struct RaymarchParams {
 };
 
 // The ray basis and derived constants every backend's raymarch reads (fp32, computed once;
-// engine/atom/atom_checks.cpp).
+// engine/kernels/atom_checks.cpp).
 RaymarchLayout raymarch_layout(const RaymarchParams& p);
 template <class F, class... Buffers>
 RaymarchLayout device_params(const RaymarchParams& p, const Buffers&...) {
@@ -302,7 +306,7 @@ RaymarchLayout device_params(const RaymarchParams& p, const Buffers&...) {
 }
 
 class DeviceApi;
-// ---- checks Backend runs before any backend sees a call (engine/atom/atom_checks.cpp) --------
+// ---- checks Backend runs before any backend sees a call (engine/kernels/atom_checks.cpp) --------
 void validate(const DeviceApi& dev, const OrbitalSampleParams& p, const Buffer<uint32_t>& tables,
               const Buffer<Real4>& positions);
 void validate(const DeviceApi& dev, const CloudDensityParams& p, const Buffer<uint32_t>& start,

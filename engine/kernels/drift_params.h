@@ -35,7 +35,7 @@ MASAV_OFFSET(DriftParams, n, 32);
 MASAV_SIZE(DriftParams, 48);
 
 class DeviceApi;
-// Checked before any backend runs drift_points (engine/points/drift_checks.cpp).
+// Checked before any backend runs drift_points (engine/kernels/drift_checks.cpp).
 void validate(const DeviceApi& dev, const DriftParams& p, const Buffer<float>& start,
               const Buffer<float>& direction, const Buffer<Real4>& positions);
 

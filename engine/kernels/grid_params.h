@@ -80,7 +80,7 @@ GatherLayout device_params(const GatherParams& p, const Buffer<uint32_t>&, const
 }
 
 class DeviceApi;
-// Checked before any backend runs the kernel (engine/core/kernel_checks.cpp); each throws
+// Checked before any backend runs the kernel (engine/kernels/kernel_checks.cpp); each throws
 // masav::Error naming the kernel, the field, its value and the allowed range.
 void validate(const DeviceApi& dev, const GridParams& g, const Buffer<Real4>& positions,
               const Buffer<uint32_t>& cells, const Buffer<uint32_t>& indices);

@@ -18,8 +18,8 @@
 #include <cstdint>
 
 #include "engine/core/hd.h"
-#include "engine/core/kernel_id.h"
 #include "engine/core/types.h"
+#include "engine/kernels/kernel_id.h"
 
 namespace masav {
 

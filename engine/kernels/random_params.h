@@ -42,7 +42,7 @@ PhiloxLayout device_params(const PhiloxParams& p, const Out& out) {
 }
 
 class DeviceApi;
-// Checked before any backend runs the kernel (engine/core/kernel_checks.cpp).
+// Checked before any backend runs the kernel (engine/kernels/kernel_checks.cpp).
 void validate(const DeviceApi& dev, const PhiloxParams& p, const Buffer<uint32_t>& out);
 void validate(const DeviceApi& dev, const PhiloxParams& p, const Buffer<float>& out);
 

@@ -54,7 +54,7 @@ MASAV_OFFSET(ScanParams, num_tiles, 4);
 MASAV_SIZE(ScanParams, 16);
 
 class DeviceApi;
-// Checked before any backend runs the kernel (engine/core/kernel_checks.cpp).
+// Checked before any backend runs the kernel (engine/kernels/kernel_checks.cpp).
 void validate(const DeviceApi& dev, const RadixSortParams& p, const Buffer<uint32_t>& keys,
               const Buffer<uint32_t>* values);
 

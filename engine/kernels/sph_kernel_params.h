@@ -267,7 +267,7 @@ SphIntegrateLayout<F> device_params(const SphIntegrateParams& p, const Buffers&.
 }
 
 class DeviceApi;
-// Checked before any backend runs the kernel (engine/sph/sph_checks.cpp).
+// Checked before any backend runs the kernel (engine/kernels/sph_checks.cpp).
 void validate(const DeviceApi& dev, const SphStepParams& p, const Buffer<Real4>& positions,
               const Buffer<uint32_t>& cells, const Buffer<uint32_t>& cell_start,
               const Buffer<uint32_t>& cell_end, const Buffer<Real>& density,

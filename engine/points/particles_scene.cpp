@@ -223,10 +223,11 @@ scene::SceneType particles_scene_type() {
   t.help = "Philox point cloud, drifting, binned in a hash grid, coloured by neighbour count";
   t.tables = {&particles_table()};
   t.kernels = [](const ParamSet& p) {
-    std::vector<std::string> k = {"philox_uniform", "drift_points"};
+    std::vector<KernelId> k = {KernelId::philox_uniform, KernelId::drift_points};
     if (p.get_text("particles.color_by") == "neighbors")
-      k.insert(k.end(), {"grid_assign_cells", "radix_sort", "grid_cell_ranges", "gather",
-                         "grid_count_neighbors"});
+      k.insert(k.end(),
+               {KernelId::grid_assign_cells, KernelId::radix_sort, KernelId::grid_cell_ranges,
+                KernelId::gather, KernelId::grid_count_neighbors});
     return k;
   };
   t.check_inputs = [](const ParamSet& p) {

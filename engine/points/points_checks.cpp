@@ -1,10 +1,11 @@
 // Cross-check of drift_points: positions within the kernel's stated fp32 tolerance
 // (drift_compare.h), compared across the periodic boundary.
+#include "engine/points/points_checks.h"
+
 #include <fmt/format.h>
 
 #include "engine/kernels/philox.h"
 #include "engine/points/drift_compare.h"
-#include "engine/verify/check_registry.h"
 
 namespace masav::verify {
 namespace {

@@ -3,7 +3,6 @@
 #include <fmt/format.h>
 
 #include "engine/core/error.h"
-#include "engine/scene/common_tables.h"
 
 namespace masav::scene {
 
@@ -41,28 +40,6 @@ UpdateReport SceneInstance::update(const FrameClock& clock, bool time_stages) {
   on_clock(clock);
   const std::vector<std::string> t = targets();
   return graph_.update(t, time_stages ? &backend_ : nullptr);
-}
-
-std::vector<std::string> scene_type_names() {
-  std::vector<std::string> names;
-  for (const auto& t : scene_types()) names.push_back(t.name);
-  return names;
-}
-
-const SceneType& find_scene_type(std::string_view name) {
-  for (const auto& t : scene_types())
-    if (t.name == name) return t;
-  std::string all;
-  for (const auto& n : scene_type_names()) all += (all.empty() ? "" : ", ") + n;
-  throw_invalid("scene", "scene.type", std::string(name), "one of " + all);
-}
-
-ParamSet default_params(const SceneType& type) {
-  ParamSet p;
-  for (const TableSchema* t : common_tables()) p.add_table(*t);
-  for (const TableSchema* t : type.tables) p.add_table(*t);
-  p.set("scene.type", type.name);
-  return p;
 }
 
 }  // namespace masav::scene

@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "engine/core/backend.h"
+#include "engine/kernels/backend.h"
 #include "engine/scene/param_schema.h"
 #include "engine/scene/scene_view.h"
 #include "engine/scene/stage_graph.h"
@@ -82,15 +82,9 @@ struct SceneType {
   std::string help;
   std::vector<const TableSchema*> tables;  // the domain's tables (the common ones are added)
   // Kernels the scene runs with these parameters (each must have a cross-check).
-  std::function<std::vector<std::string>(const ParamSet&)> kernels;
+  std::function<std::vector<KernelId>(const ParamSet&)> kernels;
   std::function<CheckInputs(const ParamSet&)> check_inputs;
   std::function<std::unique_ptr<SceneInstance>(Backend&, const ParamSet&)> create;
 };
-
-const std::vector<SceneType>& scene_types();
-std::vector<std::string> scene_type_names();
-const SceneType& find_scene_type(std::string_view name);
-// Every table of a scene type (common + domain) at its defaults.
-ParamSet default_params(const SceneType& type);
 
 }  // namespace masav::scene

@@ -2,8 +2,8 @@
 
 #include <fmt/format.h>
 
-#include "engine/core/backend.h"
 #include "engine/core/error.h"
+#include "engine/kernels/backend.h"
 
 namespace masav::scene {
 

@@ -5,6 +5,8 @@
 // lavapipe with about 10x margin: fp32 backends hold positions to ~6e-8 relative, densities
 // agree to 1e-7 (rel L2), accelerations -- sums of ~30 terms that largely cancel -- to 2e-7 of
 // their RMS.
+#include "engine/sph/sph_cross_checks.h"
+
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -16,7 +18,6 @@
 #include "engine/sph/sph_kernel_calls.h"
 #include "engine/sph/sph_particles.h"
 #include "engine/util/error_metrics.h"
-#include "engine/verify/check_registry.h"
 
 namespace masav::verify {
 namespace {

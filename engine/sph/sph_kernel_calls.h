@@ -2,7 +2,7 @@
 // The SPH kernels called with their buffers grouped by role (SphDensityIO, SphForcesIO,
 // SphIntegrateIO), as the simulation, the cross-check and the tests hold them. A missing
 // required buffer is an error naming it, before the kernel's own checks.
-#include "engine/core/backend.h"
+#include "engine/kernels/backend.h"
 
 namespace masav {
 

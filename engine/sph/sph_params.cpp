@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "engine/core/error.h"
+#include "engine/kernels/kernel_checks.h"
 
 namespace masav {
 namespace {
@@ -148,10 +149,13 @@ void validate(const SphScene& s) {
   in_range("dt_max", s.dt_max, 0.0, 10.0, true);
   in_range("dt_min", s.dt_min, 0.0, s.dt_max, true);
   in_range("rk4_skin", s.rk4_skin, 0.0, 2.0, true);
-  if (s.max_candidates < 1 || s.max_candidates > 65000)
+  // Before a device is chosen: the portable budget (each kernel checks its device's own).
+  constexpr uint32_t most = kPortableLoopBudget - kWalkLoopOverhead;
+  if (s.max_candidates < 1 || s.max_candidates > most)
     throw_invalid(kWhere, "max_candidates", std::to_string(s.max_candidates),
-                  "in [1, 65000] (lavapipe stops a shader invocation after 65,535 loop "
-                  "iterations)");
+                  fmt::format("in [1, {}] (a shader invocation runs at most {} loop iterations "
+                              "on lavapipe)",
+                              most, kPortableLoopBudget));
   in_range("jitter", s.jitter, 0.0, 0.45);
 }
 

@@ -136,8 +136,8 @@ GridParams check_grid(const ParamSet& p, uint32_t points) {
   auto cells = [&](double e) { return uint32_t(std::clamp(std::ceil(e / h), 1.0, 256.0)); };
   const UVec3 dims{cells(ext.x), cells(ext.y), cells(ext.z)};
   const float cell = float(std::max({ext.x / dims.x, ext.y / dims.y, ext.z / dims.z}));
-  return make_grid_params({float(s.box_min.x), float(s.box_min.y), float(s.box_min.z)}, cell,
-                          dims, points);
+  return make_grid_params({float(s.box_min.x), float(s.box_min.y), float(s.box_min.z)}, cell, dims,
+                          points);
 }
 
 }  // namespace
@@ -153,9 +153,10 @@ scene::SceneType sph_scene_type() {
   t.help = "SPH fluid (thesis ch. 4): explosion, water drop, dam break, mud, obstacle presets";
   t.tables = {&sph_table()};
   t.kernels = [](const ParamSet&) {
-    return std::vector<std::string>{"grid_assign_cells", "radix_sort",  "grid_cell_ranges",
-                                    "gather",            "sph_density", "sph_forces",
-                                    "sph_integrate"};
+    return std::vector<KernelId>{KernelId::grid_assign_cells, KernelId::radix_sort,
+                                 KernelId::grid_cell_ranges,  KernelId::gather,
+                                 KernelId::sph_density,       KernelId::sph_forces,
+                                 KernelId::sph_integrate};
   };
   t.check_inputs = [](const ParamSet& p) {
     scene::CheckInputs c;

@@ -8,7 +8,7 @@
 #include <limits>
 
 #include "engine/core/error.h"
-#include "engine/core/kernel_checks.h"
+#include "engine/kernels/kernel_checks.h"
 #include "engine/sph/sph_coefficients.h"
 #include "engine/sph/sph_kernel_calls.h"
 

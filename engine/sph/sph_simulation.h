@@ -32,8 +32,8 @@
 #include <string>
 #include <vector>
 
-#include "engine/core/backend.h"
 #include "engine/grid/hash_grid.h"
+#include "engine/kernels/backend.h"
 #include "engine/sph/sph_params.h"
 #include "engine/sph/sph_particles.h"
 

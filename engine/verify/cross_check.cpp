@@ -8,8 +8,6 @@
 #include <optional>
 
 #include "engine/core/error.h"
-#include "engine/cpu/cpu_backend.h"
-#include "engine/registry/registry.h"
 #include "engine/util/json_writer.h"
 
 namespace masav::verify {
@@ -100,42 +98,34 @@ CrossCheckReport cross_check(Backend& backend, Backend& reference,
 }
 
 CrossCheckReport cross_check_scene(Backend& backend, Backend& reference,
-                                   const scene::ParamSet& params) {
-  const scene::SceneType& type = scene::find_scene_type(params.get_text("scene.type"));
-  CrossCheckReport r =
-      cross_check(backend, reference, type.kernels(params), type.check_inputs(params));
+                                   const scene::SceneType& type, const scene::ParamSet& params,
+                                   const std::vector<KernelCheck>& checks) {
+  std::vector<std::string> kernels;
+  for (KernelId k : type.kernels(params)) kernels.emplace_back(kernel_name(k));
+  CrossCheckReport r = cross_check(backend, reference, kernels, type.check_inputs(params), checks);
   r.scene = type.name;
   return r;
 }
 
-std::unique_ptr<Backend> open_reference(const Backend& chosen, const std::string& choice) {
-  if (choice != "auto") {
-    if (choice == "cpu") return std::make_unique<cpu::CpuBackend>();
-    return create_backend(choice);
-  }
+std::unique_ptr<Backend> open_reference(const Backend& chosen, const std::string& choice,
+                                        const BackendFactory& factory) {
+  if (choice != "auto") return factory.create(choice);
+  // The other GPU backend when the chosen one is a GPU backend; a GPU backend when the chosen
+  // one is the CPU reference; else (none available, or it fails to open) the CPU reference.
   const std::string me = chosen.name();
-  if (me == "vulkan" || me == "cuda") {
-    const std::string other = me == "vulkan" ? "cuda" : "vulkan";
-    for (const auto& s : list_backends())
+  const std::vector<std::string> others =
+      me == "vulkan" ? std::vector<std::string>{"cuda"}
+                     : (me == "cuda" ? std::vector<std::string>{"vulkan"}
+                                     : std::vector<std::string>{"vulkan", "cuda"});
+  for (const std::string& other : others)
+    for (const auto& s : factory.list())
       if (s.name == other && s.available) {
         try {
-          return create_backend(other);
-        } catch (const Error&) {
-          break;  // listed but cannot open: fall back to the CPU reference
-        }
-      }
-    return std::make_unique<cpu::CpuBackend>();
-  }
-  // The chosen backend is the CPU reference: compare with a GPU backend when there is one.
-  for (const std::string other : {"vulkan", "cuda"})
-    for (const auto& s : list_backends())
-      if (s.name == other && s.available) {
-        try {
-          return create_backend(other);
+          return factory.create(other);
         } catch (const Error&) {
         }
       }
-  return std::make_unique<cpu::CpuBackend>();
+  return factory.create("cpu");
 }
 
 std::string format_report(const CrossCheckReport& r) {

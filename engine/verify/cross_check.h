@@ -6,7 +6,8 @@
 #include <string>
 #include <vector>
 
-#include "engine/core/backend.h"
+#include "engine/kernels/backend.h"
+#include "engine/kernels/backend_factory.h"
 #include "engine/scene/scene.h"
 #include "engine/verify/kernel_check.h"
 
@@ -32,21 +33,23 @@ struct CrossCheckReport {
   size_t failures() const;
 };
 
-// Runs the checks of `kernels` on `backend` and `reference`. A kernel without a registered check
-// fails (every kernel a scene uses must be checked). MASAV_VERIFY_FAULT=<kernel> makes `backend`
-// perturb that kernel's output during its own check (Backend::inject_fault): how the tests prove a
-// mismatch is caught and stops the run.
+// Runs the checks of `kernels` (found in `checks`) on `backend` and `reference`. A kernel
+// without a check fails (every kernel a scene uses must be checked). MASAV_VERIFY_FAULT=<kernel>
+// makes `backend` perturb that kernel's output during its own check (Backend::inject_fault):
+// how the tests prove a mismatch is caught and stops the run.
 CrossCheckReport cross_check(Backend& backend, Backend& reference,
                              const std::vector<std::string>& kernels, const CheckInputs& in,
-                             const std::vector<KernelCheck>& checks = kernel_checks());
-// All the checks a scene's parameters need.
+                             const std::vector<KernelCheck>& checks);
+// Every kernel `type` runs with `params`, on the inputs it asks for.
 CrossCheckReport cross_check_scene(Backend& backend, Backend& reference,
-                                   const scene::ParamSet& params);
+                                   const scene::SceneType& type, const scene::ParamSet& params,
+                                   const std::vector<KernelCheck>& checks);
 
-// The second backend: `choice` (verify.reference: auto, cpu, vulkan, cuda). auto = the other
-// GPU backend if it is available, else the CPU reference (a second instance when the chosen
-// backend is the CPU itself and no GPU backend is present).
-std::unique_ptr<Backend> open_reference(const Backend& chosen, const std::string& choice);
+// The second backend: `choice` (verify.reference: auto, cpu, vulkan, cuda) from `factory`.
+// auto = the other GPU backend if it is available, else the CPU reference (a second instance
+// when the chosen backend is the CPU itself and no GPU backend is present).
+std::unique_ptr<Backend> open_reference(const Backend& chosen, const std::string& choice,
+                                        const BackendFactory& factory);
 
 std::string format_report(const CrossCheckReport& r);
 std::string report_json(const CrossCheckReport& r);

@@ -1,12 +1,13 @@
 // Cross-checks of the foundation's kernels: Philox, the radix sort and the hash-grid kernels,
 // all integer results, so bit for bit. Inputs come from the scene (its point count, seed and
 // grid), generated on the host and uploaded identically to both backends.
+#include "engine/verify/foundation_checks.h"
+
 #include <cstring>
 #include <numeric>
 #include <random>
 
 #include "engine/grid/hash_grid.h"
-#include "engine/verify/check_registry.h"
 
 namespace masav::verify {
 namespace {
@@ -34,12 +35,12 @@ HashGrid grid_on(Backend& b, const CheckInputs& in, Buffer<Real4>& pos) {
 
 std::vector<KernelCheck> foundation_checks() {
   std::vector<KernelCheck> c;
-  c.push_back(exact_check("philox_u32", [](Backend& b, const CheckInputs& in) {
+  c.push_back(exact_check(KernelId::philox_u32, [](Backend& b, const CheckInputs& in) {
     auto out = b.create<uint32_t>(4 * size_t(in.points), "check philox");
     b.philox_u32({in.seed, 7, 0}, out);
     return CheckOutputs{{"words", b.download(out), {}}};
   }));
-  c.push_back(exact_check("philox_uniform", [](Backend& b, const CheckInputs& in) {
+  c.push_back(exact_check(KernelId::philox_uniform, [](Backend& b, const CheckInputs& in) {
     auto out = b.create<float>(4 * size_t(in.points), "check uniforms");
     b.philox_uniform({in.seed, 0, 0}, out);
     const auto f = b.download(out);
@@ -47,7 +48,7 @@ std::vector<KernelCheck> foundation_checks() {
     std::memcpy(bits.data(), f.data(), 4 * f.size());
     return CheckOutputs{{"float bits", bits, {}}};
   }));
-  c.push_back(exact_check("radix_sort", [](Backend& b, const CheckInputs& in) {
+  c.push_back(exact_check(KernelId::radix_sort, [](Backend& b, const CheckInputs& in) {
     std::mt19937 rng(uint32_t(in.seed));
     std::vector<uint32_t> keys(in.points), values(in.points);
     for (auto& k : keys) k = rng();
@@ -59,7 +60,7 @@ std::vector<KernelCheck> foundation_checks() {
     b.radix_sort({in.points, 32}, kb, &vb);
     return CheckOutputs{{"keys", b.download(kb), {}}, {"values", b.download(vb), {}}};
   }));
-  c.push_back(exact_check("grid_assign_cells", [](Backend& b, const CheckInputs& in) {
+  c.push_back(exact_check(KernelId::grid_assign_cells, [](Backend& b, const CheckInputs& in) {
     const GridParams g = grid_or_default(in);
     auto pos = b.create<Real4>(in.points, "check positions");
     b.upload(pos, check_points(in));
@@ -68,14 +69,14 @@ std::vector<KernelCheck> foundation_checks() {
     b.grid_assign_cells(g, pos, cells, idx);
     return CheckOutputs{{"cells", b.download(cells), {}}, {"indices", b.download(idx), {}}};
   }));
-  c.push_back(exact_check("grid_cell_ranges", [](Backend& b, const CheckInputs& in) {
+  c.push_back(exact_check(KernelId::grid_cell_ranges, [](Backend& b, const CheckInputs& in) {
     Buffer<Real4> pos;
     HashGrid g = grid_on(b, in, pos);
     return CheckOutputs{{"sorted cells", b.download(g.sorted_cells), {}},
                         {"cell start", b.download(g.cell_start), {}},
                         {"cell end", b.download(g.cell_end), {}}};
   }));
-  c.push_back(exact_check("gather", [](Backend& b, const CheckInputs& in) {
+  c.push_back(exact_check(KernelId::gather, [](Backend& b, const CheckInputs& in) {
     Buffer<Real4> pos;
     HashGrid g = grid_on(b, in, pos);
     auto sorted = b.create<Real4>(in.points, "check sorted");
@@ -85,7 +86,7 @@ std::vector<KernelCheck> foundation_checks() {
     std::memcpy(bits.data(), f.data(), 16 * f.size());
     return CheckOutputs{{"sorted positions (fp32 bits)", bits, {}}};
   }));
-  c.push_back(exact_check("grid_count_neighbors", [](Backend& b, const CheckInputs& in) {
+  c.push_back(exact_check(KernelId::grid_count_neighbors, [](Backend& b, const CheckInputs& in) {
     Buffer<Real4> pos;
     HashGrid g = grid_on(b, in, pos);
     auto sorted = b.create<Real4>(in.points, "check sorted");

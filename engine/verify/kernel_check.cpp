@@ -153,10 +153,19 @@ KernelCheck chi_square_check(std::string kernel, double min_p,
   return k;
 }
 
-const KernelCheck* find_kernel_check(std::string_view kernel) {
-  for (const auto& k : kernel_checks())
-    if (k.kernel == kernel) return &k;
-  return nullptr;
+KernelCheck exact_check(KernelId kernel,
+                        std::function<CheckOutputs(Backend&, const CheckInputs&)> run) {
+  return exact_check(std::string(kernel_name(kernel)), std::move(run));
+}
+
+KernelCheck tolerance_check(KernelId kernel, Tolerance tol,
+                            std::function<CheckOutputs(Backend&, const CheckInputs&)> run) {
+  return tolerance_check(std::string(kernel_name(kernel)), tol, std::move(run));
+}
+
+KernelCheck chi_square_check(KernelId kernel, double min_p,
+                             std::function<CheckOutputs(Backend&, const CheckInputs&)> run) {
+  return chi_square_check(std::string(kernel_name(kernel)), min_p, std::move(run));
 }
 
 std::vector<Vec4f> check_points(const CheckInputs& in) {

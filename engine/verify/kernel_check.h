@@ -13,7 +13,7 @@
 #include <string>
 #include <vector>
 
-#include "engine/core/backend.h"
+#include "engine/kernels/backend.h"
 #include "engine/scene/scene.h"
 
 namespace masav::verify {
@@ -58,6 +58,13 @@ struct KernelCheck {
 
 KernelCheck exact_check(std::string kernel,
                         std::function<CheckOutputs(Backend&, const CheckInputs&)> run);
+// The built-in checks name their kernel by KernelId (a typo is a build error).
+KernelCheck exact_check(KernelId kernel,
+                        std::function<CheckOutputs(Backend&, const CheckInputs&)> run);
+KernelCheck tolerance_check(KernelId kernel, Tolerance tol,
+                            std::function<CheckOutputs(Backend&, const CheckInputs&)> run);
+KernelCheck chi_square_check(KernelId kernel, double min_p,
+                             std::function<CheckOutputs(Backend&, const CheckInputs&)> run);
 KernelCheck tolerance_check(std::string kernel, Tolerance tol,
                             std::function<CheckOutputs(Backend&, const CheckInputs&)> run);
 // Histograms (in `words` or `reals`) pass when the two-sample chi-square's p-value >= min_p.
@@ -68,10 +75,6 @@ KernelCheck chi_square_check(std::string kernel, double min_p,
 Verdict compare_exact(const CheckOutputs& got, const CheckOutputs& want);
 Verdict compare_tolerance(const CheckOutputs& got, const CheckOutputs& want, const Tolerance& tol);
 Verdict compare_chi_square(const CheckOutputs& got, const CheckOutputs& want, double min_p);
-
-// Every kernel check built in (check_registry.cpp); the lead adds the SPH and atom ones there.
-const std::vector<KernelCheck>& kernel_checks();
-const KernelCheck* find_kernel_check(std::string_view kernel);
 
 // Host-side inputs shared by several checks, identical on every backend: points uniform in the
 // check grid's box (or the unit cube), as fp32.

@@ -1,4 +1,4 @@
-#include "engine/core/kernel_checks.h"
+#include "engine/kernels/kernel_checks.h"
 
 #include <fmt/format.h>
 
@@ -7,27 +7,6 @@
 #include "engine/core/error.h"
 
 namespace masav {
-
-void check_owner(const DeviceApi& dev, const BufferImpl& b, std::string_view kernel) {
-  if (b.owner() != &dev)
-    throw Error(dev.name(), std::string(kernel),
-                fmt::format("buffer '{}' was created by another backend", b.label()),
-                "create every buffer a kernel uses with the backend that runs it");
-}
-
-void check_fits(const DeviceApi& dev, ElemKind kind, size_t count, std::string_view kernel,
-                std::string_view what) {
-  const size_t eb = elem_bytes(kind, dev.real_bytes());
-  const uint64_t limit = dev.caps().max_buffer_bytes;
-  if (limit != 0 && uint64_t(count) * eb > limit)
-    throw Error(
-        dev.name(), std::string(kernel),
-        fmt::format("{} needs {} elements of {} bytes ({} MiB), over this device's "
-                    "{} MiB per buffer ({})",
-                    what, count, eb, (uint64_t(count) * eb) >> 20, limit >> 20,
-                    dev.caps().device_name),
-        fmt::format("use at most {} elements here, or a device with larger buffers", limit / eb));
-}
 
 void validate(const DeviceApi&, const PhiloxParams&, const Buffer<uint32_t>& out) {
   if (out.size() > UINT32_MAX - 3)
@@ -109,7 +88,7 @@ void validate(const DeviceApi& dev, const GatherParams& p, const Buffer<uint32_t
     throw_invalid("gather", "source size", std::to_string(src.count()), "below 2^32");
 }
 
-void validate(const DeviceApi&, const NeighborParams& p, const Buffer<Real4>& pos,
+void validate(const DeviceApi& dev, const NeighborParams& p, const Buffer<Real4>& pos,
               const Buffer<uint32_t>& start, const Buffer<uint32_t>& end,
               const Buffer<uint32_t>& counts) {
   check_grid(p.grid, "grid_count_neighbors");
@@ -120,10 +99,7 @@ void validate(const DeviceApi&, const NeighborParams& p, const Buffer<Real4>& po
   if (p.radius2 != p.radius * p.radius)
     throw_invalid("grid_count_neighbors", "radius2", fmt::format("{}", p.radius2),
                   "radius*radius in fp32 (use make_neighbor_params)");
-  if (p.max_candidates < 1 || p.max_candidates > 65000)
-    throw_invalid("grid_count_neighbors", "max_candidates", std::to_string(p.max_candidates),
-                  "in [1, 65000] (lavapipe stops a shader invocation after 65,535 loop "
-                  "iterations)");
+  check_candidates(dev, p.max_candidates, "grid_count_neighbors");
   const uint64_t ncells = grid_cell_count(p.grid);
   if (start.size() < ncells || end.size() < ncells)
     throw_invalid("grid_count_neighbors", "cell_start/cell_end size",
@@ -133,6 +109,20 @@ void validate(const DeviceApi&, const NeighborParams& p, const Buffer<Real4>& po
     throw_invalid("grid_count_neighbors", "n", std::to_string(p.grid.n),
                   fmt::format("at most the buffers' sizes (positions {}, counts {})", pos.size(),
                               counts.size()));
+}
+
+uint32_t max_walk_candidates(const DeviceApi& dev) {
+  const uint32_t budget = dev.caps().max_loop_iterations;
+  return budget > kWalkLoopOverhead ? budget - kWalkLoopOverhead : 1;
+}
+
+void check_candidates(const DeviceApi& dev, uint32_t max_candidates, std::string_view kernel) {
+  const uint32_t most = max_walk_candidates(dev);
+  if (max_candidates < 1 || max_candidates > most)
+    throw_invalid(kernel, "max_candidates", std::to_string(max_candidates),
+                  fmt::format("in [1, {}] (a shader invocation runs at most {} loop iterations "
+                              "on {})",
+                              most, dev.caps().max_loop_iterations, dev.caps().device_name));
 }
 
 void raise_diagnostics(const DeviceApi& dev, std::string_view kernel, uint32_t flags,
@@ -145,8 +135,9 @@ void raise_diagnostics(const DeviceApi& dev, std::string_view kernel, uint32_t f
     throw Error(
         dev.name(), std::string(kernel),
         fmt::format("sorted point {} has more than {} candidates in its 27 cells", detail, limit),
-        "use smaller cells (or fewer points per cell): a GPU invocation must stay under "
-        "lavapipe's 65,535-iteration loop limit");
+        fmt::format("use smaller cells (or fewer points per cell): a shader invocation runs at "
+                    "most {} loop iterations on {}",
+                    dev.caps().max_loop_iterations, dev.caps().device_name));
 }
 
 }  // namespace masav

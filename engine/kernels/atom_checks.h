@@ -1,7 +1,7 @@
 #pragma once
 // Helpers of the electron-cloud, nebula and volume kernels that every backend shares: table
 // sizes, brick counts, the raymarch camera. Their checks are declared in atom_params.h.
-#include "engine/core/backend.h"
+#include "engine/kernels/backend.h"
 #include "engine/kernels/volume_math.h"
 
 namespace masav {

@@ -1,5 +1,5 @@
 #pragma once
-// The preprocessor pieces that expand engine/core/kernels.inc: a kernel's buffers are written
+// The preprocessor pieces that expand engine/kernels/kernels.inc: a kernel's buffers are written
 // once there as (access, Elem, name) and become parameter lists, argument lists and names here.
 //
 // access   C++ parameter                 meaning
@@ -51,7 +51,7 @@
 
 // A backend's override of one kernel; backends declare them all with
 //   #define MASAV_KERNEL MASAV_KERNEL_OVERRIDE
-//   #include "engine/core/kernels.inc"
+//   #include "engine/kernels/kernels.inc"
 //   #undef MASAV_KERNEL
 // and define them in one file with MASAV_KERNEL_FORWARD(Class), which hands each call to the
 // backend's member template run_kernel<KernelId::name>(p, items, buffers...).

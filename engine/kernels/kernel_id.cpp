@@ -1,4 +1,4 @@
-#include "engine/core/kernel_id.h"
+#include "engine/kernels/kernel_id.h"
 
 #include <string>
 
@@ -7,7 +7,7 @@ namespace {
 
 constexpr std::array<std::string_view, kKernelCount> kNames = {
 #define MASAV_KERNEL(name, ...) #name,
-#include "engine/core/kernels.inc"
+#include "engine/kernels/kernels.inc"
 #undef MASAV_KERNEL
 };
 

@@ -3,14 +3,18 @@
 // backend rejects the same inputs with the same message.
 #include <string_view>
 
-#include "engine/core/backend.h"
+#include "engine/kernels/backend.h"
 
 namespace masav {
 
-void check_owner(const DeviceApi& dev, const BufferImpl& b, std::string_view kernel);
-void check_fits(const DeviceApi& dev, ElemKind kind, size_t count, std::string_view kernel,
-                std::string_view what);
 void check_grid(const GridParams& g, std::string_view kernel);
+
+// The loops of a neighbour walk besides its candidates (cells, rows, walls): fewer than this.
+inline constexpr uint32_t kWalkLoopOverhead = 535;
+// The candidates a neighbour walk may examine on `dev`: its loop budget less that overhead.
+uint32_t max_walk_candidates(const DeviceApi& dev);
+// throw_invalid for a candidate cap outside [1, max_walk_candidates(dev)].
+void check_candidates(const DeviceApi& dev, uint32_t max_candidates, std::string_view kernel);
 
 // Throws the kernel's error for a non-zero flags word (kDiag* in engine/kernels/grid_params.h);
 // `detail` is the first offending index.

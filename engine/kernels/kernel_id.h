@@ -1,5 +1,5 @@
 #pragma once
-// Kernels by identity rather than by name: KernelId is generated from engine/core/kernels.inc,
+// Kernels by identity rather than by name: KernelId is generated from engine/kernels/kernels.inc,
 // so every registry keyed by it (cross-checks, a scene's kernel list, fault injection, shader
 // names, loop-limit cases) can be checked for completeness at run time in one loop.
 #include <array>
@@ -12,20 +12,20 @@ namespace masav {
 
 enum class KernelId : uint32_t {
 #define MASAV_KERNEL(name, ...) name,
-#include "engine/core/kernels.inc"
+#include "engine/kernels/kernels.inc"
 #undef MASAV_KERNEL
 };
 
 inline constexpr size_t kKernelCount = 0
 #define MASAV_KERNEL(name, ...) +1
-#include "engine/core/kernels.inc"
+#include "engine/kernels/kernels.inc"
 #undef MASAV_KERNEL
     ;
 
 // Every kernel, in the order of kernels.inc.
 inline constexpr std::array<KernelId, kKernelCount> kAllKernels = {
 #define MASAV_KERNEL(name, ...) KernelId::name,
-#include "engine/core/kernels.inc"
+#include "engine/kernels/kernels.inc"
 #undef MASAV_KERNEL
 };
 

@@ -1,32 +1,44 @@
-// lavapipe silently stops a shader invocation after 65,535 loop iterations (PLATFORM.md). Every
-// kernel is built here with loop counting on and driven at its worst case; the largest count
-// any invocation reached must stay below the limit. Vulkan only: exits 77 without a device.
-#define DOCTEST_CONFIG_IMPLEMENT
+// lavapipe silently stops a shader invocation after 65,535 loop iterations (PLATFORM.md): every
+// kernel is driven here at its worst case on a backend that counts loop iterations
+// (test::loop_counter, Vulkan with loop counting), and the largest count any invocation reached
+// must stay below the device's Capabilities::max_loop_iterations. The other backends skip this
+// suite (test_main.cpp says so); the coverage test below runs everywhere.
 #include <doctest/doctest.h>
-#include <fmt/format.h>
 
 #include <cmath>
-#include <memory>
-#include <numeric>
 #include <random>
+#include <set>
 #include <vector>
 
-#include "compute/vk_backend.h"
-#include "compute/vk_factory.h"
-#include "engine/atom/atom_checks.h"
 #include "engine/atom/orbital_tables.h"
 #include "engine/core/error.h"
 #include "engine/grid/hash_grid.h"
+#include "engine/kernels/atom_checks.h"
 #include "engine/sph/sph_kernel_calls.h"
 #include "engine/sph/sph_particles.h"
+#include "tests/backend_fixture.h"
 
 using namespace masav;
-namespace mvk = masav::vk;
 
 namespace {
 
-constexpr uint32_t kLavapipeLoopLimit = 65535;
-std::unique_ptr<mvk::VulkanBackend> g_vk;
+// The kernels that have a loop-limit case (each case names the kernels it drives).
+std::set<KernelId>& covered() {
+  static std::set<KernelId> kernels;
+  return kernels;
+}
+struct Covers {
+  Covers(std::initializer_list<KernelId> kernels) { covered().insert(kernels); }
+};
+#define LOOP_LIMIT_CASE(name, ...)                                             \
+  static const Covers MASAV_PP_CAT(loop_limit_covers_, __LINE__){__VA_ARGS__}; \
+  TEST_CASE(name* doctest::test_suite("loop limit"))
+
+uint32_t ticks_of(Backend& b) {
+  const std::optional<uint32_t> t = b.take_max_loop_ticks();
+  REQUIRE(t.has_value());
+  return *t;
+}
 
 std::vector<Vec4f> cluster(uint32_t n, float extent, uint64_t seed) {
   std::mt19937_64 rng(seed);
@@ -38,16 +50,25 @@ std::vector<Vec4f> cluster(uint32_t n, float extent, uint64_t seed) {
 
 }  // namespace
 
-TEST_CASE("philox kernels loop a fixed, small number of times") {
-  auto& b = *g_vk;
+TEST_CASE("every kernel of kernels.inc has a loop-limit case") {
+  for (KernelId k : kAllKernels) {
+    CAPTURE(kernel_name(k));
+    CHECK(covered().count(k) == 1);
+  }
+}
+
+LOOP_LIMIT_CASE("philox kernels loop a fixed, small number of times", KernelId::philox_u32,
+                KernelId::philox_uniform) {
+  Backend& b = test::loop_counter();
   auto out = b.create<uint32_t>(1 << 16, "words");
   b.philox_u32({1, 2, 3}, out);
-  const uint32_t ticks = b.take_max_loop_ticks();
+  const uint32_t ticks = ticks_of(b);
   CHECK(ticks == 10 + 4);  // ten rounds, four output words
 }
 
-TEST_CASE("radix sort and its scans stay far below the loop limit at 2^20 keys") {
-  auto& b = *g_vk;
+LOOP_LIMIT_CASE("radix sort and its scans stay far below the loop limit at 2^20 keys",
+                KernelId::radix_sort) {
+  Backend& b = test::loop_counter();
   const uint32_t n = 1 << 20;
   std::vector<uint32_t> keys(n);
   std::mt19937 rng(5);
@@ -56,7 +77,7 @@ TEST_CASE("radix sort and its scans stay far below the loop limit at 2^20 keys")
   auto vb = b.create<uint32_t>(n, "values");
   b.upload(kb, keys);
   b.radix_sort({n, 32}, kb, &vb);
-  const uint32_t ticks = b.take_max_loop_ticks();
+  const uint32_t ticks = ticks_of(b);
   MESSAGE("radix_sort worst invocation: " << ticks << " loop iterations");
   CHECK(ticks > 0);
   // Independent of n. Tiled scatter: a few loops over the tile and the subgroups (~300).
@@ -64,63 +85,80 @@ TEST_CASE("radix sort and its scans stay far below the loop limit at 2^20 keys")
   CHECK(ticks <= 256 / 4 + 256 * 9);
 }
 
-TEST_CASE("neighbour count: loop ticks = 27 cells + candidates, capped below the limit") {
-  auto& b = *g_vk;
+LOOP_LIMIT_CASE("neighbour count: loop ticks = 27 cells + candidates, capped below the limit",
+                KernelId::grid_count_neighbors) {
+  Backend& b = test::loop_counter();
   const uint32_t n = 4000;
   const GridParams gp = make_grid_params({0, 0, 0}, 1.0f, {1, 1, 1}, n);  // one crowded cell
   auto pos = b.create<Real4>(n, "pos");
   b.upload(pos, cluster(n, 1.0f, 9));
   HashGrid g = make_hash_grid(b, gp, n);
   build_hash_grid(b, g, pos);
-  (void)b.take_max_loop_ticks();
+  (void)ticks_of(b);
   auto counts = b.create<uint32_t>(n, "counts");
   NeighborParams np = make_neighbor_params(gp, 1.0f);
   np.max_candidates = n;
   b.grid_count_neighbors(np, pos, g.cell_start, g.cell_end, counts);
-  CHECK(b.take_max_loop_ticks() == 27 + n);  // the counter measures what we think it does
+  CHECK(ticks_of(b) == 27 + n);  // the counter measures what we think it does
   // The validated maximum of max_candidates keeps the worst invocation under the limit.
   NeighborParams worst = np;
   worst.max_candidates = 65000;
-  CHECK(27 + worst.max_candidates + 1 < kLavapipeLoopLimit);
+  CHECK(27 + worst.max_candidates + 1 < test::loop_counter().caps().max_loop_iterations);
   worst.max_candidates = 65001;
   CHECK_THROWS_AS(b.grid_count_neighbors(worst, pos, g.cell_start, g.cell_end, counts), Error);
 }
 
-TEST_CASE("grid assignment, ranges and gather do not loop") {
-  auto& b = *g_vk;
+LOOP_LIMIT_CASE("grid assignment, ranges and gather do not loop", KernelId::grid_assign_cells,
+                KernelId::grid_cell_ranges, KernelId::gather) {
+  Backend& b = test::loop_counter();
   const uint32_t n = 100000;
   const GridParams gp = make_grid_params({0, 0, 0}, 0.05f, {20, 20, 20}, n);
   auto pos = b.create<Real4>(n, "pos");
   b.upload(pos, cluster(n, 1.0f, 4));
   HashGrid g = make_hash_grid(b, gp, n);
   b.grid_assign_cells(gp, pos, g.sorted_cells, g.sorted_index);
-  CHECK(b.take_max_loop_ticks() == 0);
+  CHECK(ticks_of(b) == 0);
   b.radix_sort({n, grid_key_bits(gp)}, g.sorted_cells, &g.sorted_index);
-  (void)b.take_max_loop_ticks();
+  (void)ticks_of(b);
   b.grid_cell_ranges(gp, g.sorted_cells, g.cell_start, g.cell_end);
   auto sorted = b.create<Real4>(n, "sorted");
   reorder(b, g, pos.impl(), sorted.impl());
-  CHECK(b.take_max_loop_ticks() == 0);
+  CHECK(ticks_of(b) == 0);
 }
 
-TEST_CASE("orbital_sample: three bounded binary searches (exact) or one (shells)") {
-  auto& b = *g_vk;
+LOOP_LIMIT_CASE("orbital_sample: three bounded binary searches (exact) or one (shells)",
+                KernelId::orbital_sample) {
+  Backend& b = test::loop_counter();
   for (OrbitalPlacement pl : {OrbitalPlacement::exact, OrbitalPlacement::shells}) {
     const auto t = atom::make_orbital_tables({5, 3, -2, true}, pl, 20000, 1);
     auto tables = b.create<uint32_t>(t.cdf.size(), "tables");
     b.upload(tables, t.cdf);
     auto pos = b.create<Real4>(t.params.count, "positions");
-    (void)b.take_max_loop_ticks();
+    (void)ticks_of(b);
     b.orbital_sample(t.params, tables, pos);
-    const uint32_t ticks = b.take_max_loop_ticks();
+    const uint32_t ticks = ticks_of(b);
     MESSAGE("orbital_sample (placement " << int(pl) << "): " << ticks << " loop iterations");
     CHECK(ticks > 10);
     CHECK(ticks <= 10 + 3 * 25);  // Philox's ten rounds + at most 25 halvings per table (2^24 bins)
   }
 }
 
-TEST_CASE("scatter_table: the event cap bounds a photon that never escapes") {
-  auto& b = *g_vk;
+LOOP_LIMIT_CASE("cloud_density does not loop", KernelId::cloud_density) {
+  Backend& b = test::loop_counter();
+  const GridParams g = make_grid_params({0, 0, 0}, 0.1f, {16, 16, 16}, 1000);
+  auto start = b.create<uint32_t>(16 * 16 * 16, "cell start");
+  auto end = b.create<uint32_t>(16 * 16 * 16, "cell end");
+  auto density = b.create<Real>(16 * 16 * 16, "density");
+  b.fill(start, 0u);
+  b.fill(end, 0u);
+  (void)ticks_of(b);
+  b.cloud_density({g, 1000}, start, end, density);
+  CHECK(ticks_of(b) == 0);
+}
+
+LOOP_LIMIT_CASE("scatter_table: the event cap bounds a photon that never escapes",
+                KernelId::scatter_table) {
+  Backend& b = test::loop_counter();
   ScatterTableParams p;
   p.rows = 1;
   p.first_row = 1;
@@ -133,17 +171,18 @@ TEST_CASE("scatter_table: the event cap bounds a photon that never escapes") {
   const uint32_t entries = p.bins + kScatterExtras;
   auto table = b.create<Real>(entries, "table");
   auto hits = b.create<uint32_t>(entries, "hits");
-  (void)b.take_max_loop_ticks();
+  (void)ticks_of(b);
   b.scatter_table(p, table, hits);
-  const uint32_t ticks = b.take_max_loop_ticks();
+  const uint32_t ticks = ticks_of(b);
   MESSAGE("scatter_table at 5000 events: " << ticks << " loop iterations");
   CHECK(ticks >= 5001 * 11);  // each event: one iteration plus Philox's ten rounds
-  CHECK(ticks < kLavapipeLoopLimit);
+  CHECK(ticks < test::loop_counter().caps().max_loop_iterations);
   CHECK(b.download(hits)[p.bins + kScatterCapped] == p.photons_per_row);
 }
 
-TEST_CASE("nebula paths: voxel traversal and the smallest midpoint step stay below the limit") {
-  auto& b = *g_vk;
+LOOP_LIMIT_CASE("nebula paths: voxel traversal and the smallest midpoint step stay below the limit",
+                KernelId::nebula_illuminate, KernelId::nebula_view) {
+  Backend& b = test::loop_counter();
   NebulaLightParams p;
   p.grid = make_grid_params({-8, -8, -8}, 0.25f, {64, 64, 64}, 2);
   p.viewer = {9, 9, 9};
@@ -158,12 +197,12 @@ TEST_CASE("nebula paths: voxel traversal and the smallest midpoint step stay bel
     p.path = path;
     p.step_a0 =
         path == OpticalPath::midpoint ? float(16 * std::sqrt(3.0) / kMaxPathSteps) * 1.0001f : 0.1f;
-    (void)b.take_max_loop_ticks();
+    (void)ticks_of(b);
     b.nebula_illuminate(p, pos, density, ill);
     b.nebula_view(p, pos, density, table, ill, light);
-    const uint32_t ticks = b.take_max_loop_ticks();
+    const uint32_t ticks = ticks_of(b);
     MESSAGE("nebula path " << int(path) << ": " << ticks << " loop iterations");
-    CHECK(ticks < kLavapipeLoopLimit);
+    CHECK(ticks < test::loop_counter().caps().max_loop_iterations);
     if (path == OpticalPath::exact)
       CHECK(ticks <= 3 * 64 + 3 + 6);
     else
@@ -173,8 +212,9 @@ TEST_CASE("nebula paths: voxel traversal and the smallest midpoint step stay bel
   CHECK_THROWS_AS(b.nebula_view(p, pos, density, table, ill, light), Error);
 }
 
-TEST_CASE("voxelize does not loop; volume_bricks at the largest brick stays below the limit") {
-  auto& b = *g_vk;
+LOOP_LIMIT_CASE("voxelize does not loop; volume_bricks at the largest brick stays below the limit",
+                KernelId::voxelize, KernelId::volume_bricks) {
+  Backend& b = test::loop_counter();
   VoxelizeParams vp;
   vp.grid = make_grid_params({0, 0, 0}, 0.1f, {10, 10, 10}, 1000);
   auto pos = b.create<Real4>(1000, "pos");
@@ -182,9 +222,9 @@ TEST_CASE("voxelize does not loop; volume_bricks at the largest brick stays belo
   auto light = b.create<Real>(1000, "light");
   b.upload(light, std::vector<double>(1000, 0.5));
   auto p = b.create<Real>(1000, "p"), g = b.create<Real>(1000, "g"), s = b.create<Real>(1000, "s");
-  (void)b.take_max_loop_ticks();
+  (void)ticks_of(b);
   b.voxelize(vp, pos, light, p, g, s);
-  CHECK(b.take_max_loop_ticks() == 0);
+  CHECK(ticks_of(b) == 0);
   const VolumeDesc vol = make_volume_desc({64, 64, 64}, {0, 0, 0}, {1, 1, 1});
   auto v = b.create<Real>(64 * 64 * 64, "volume");
   b.upload(v, std::vector<double>(64 * 64 * 64, 0.5));
@@ -193,14 +233,16 @@ TEST_CASE("voxelize does not loop; volume_bricks at the largest brick stays belo
   b.upload(tf, tfv);
   auto bricks = b.create<Real4>(8, "bricks");
   b.volume_bricks({vol, 32, 4096}, v, tf, bricks);
-  const uint32_t ticks = b.take_max_loop_ticks();
+  const uint32_t ticks = ticks_of(b);
   MESSAGE("volume_bricks, brick 32: " << ticks << " loop iterations");
   CHECK(ticks == 33 * 33 * 33 + 2);  // voxels of the first brick and its apron + 2 TF entries
-  CHECK(ticks < kLavapipeLoopLimit);
+  CHECK(ticks < test::loop_counter().caps().max_loop_iterations);
 }
 
-TEST_CASE("raymarch: the smallest validated step stays below the limit; skipping and ERT cut it") {
-  auto& b = *g_vk;
+LOOP_LIMIT_CASE(
+    "raymarch: the smallest validated step stays below the limit; skipping and ERT cut it",
+    KernelId::raymarch) {
+  Backend& b = test::loop_counter();
   const VolumeDesc vol = make_volume_desc({64, 64, 64}, {0, 0, 0}, {1, 1, 1});
   auto v = b.create<Real>(64 * 64 * 64, "volume");
   auto tf = b.create<Real4>(2, "tf");
@@ -223,14 +265,14 @@ TEST_CASE("raymarch: the smallest validated step stays below the limit; skipping
     b.upload(v, std::vector<double>(64 * 64 * 64, value));
     b.upload(tf, std::vector<Vec4d>{{1, 1, 1, alpha}, {1, 1, 1, alpha}});
     b.volume_bricks({vol, rp.brick, 2}, v, tf, bricks);
-    (void)b.take_max_loop_ticks();
+    (void)ticks_of(b);
     b.raymarch(rp, v, tf, bricks, img);
-    return b.take_max_loop_ticks();
+    return ticks_of(b);
   };
   const uint32_t worst = run(0.5, 1e-6);
   MESSAGE("raymarch at the smallest step: " << worst << " loop iterations");
   CHECK(worst > 55000);  // all the segments ran (a nested loop once made lavapipe stop at 32,768)
-  CHECK(worst < kLavapipeLoopLimit);
+  CHECK(worst < test::loop_counter().caps().max_loop_iterations);
   rp.skip_empty = true;
   const uint32_t empty = run(0.5, 0.0);  // every brick empty: one slab test per brick
   MESSAGE("raymarch through empty bricks: " << empty << " loop iterations");
@@ -243,24 +285,26 @@ TEST_CASE("raymarch: the smallest validated step stays below the limit; skipping
   CHECK_THROWS_AS(b.raymarch(rp, v, tf, bricks, img), Error);
 }
 
-TEST_CASE("drift_points loops three times (one per axis), independent of n") {
-  auto& b = *g_vk;
+LOOP_LIMIT_CASE("drift_points loops three times (one per axis), independent of n",
+                KernelId::drift_points) {
+  Backend& b = test::loop_counter();
   const uint32_t n = 100000;
   auto start = b.create<float>(4 * n, "start");
   auto dir = b.create<float>(4 * n, "direction");
   auto pos = b.create<Real4>(n, "positions");
   b.philox_uniform({1, 0, 0}, start);
   b.philox_uniform({1, 1, 0}, dir);
-  (void)b.take_max_loop_ticks();
+  (void)ticks_of(b);
   DriftParams p;
   p.n = n;
   p.time_s = 100.0f;
   b.drift_points(p, start, dir, pos);
-  CHECK(b.take_max_loop_ticks() == 3);
+  CHECK(ticks_of(b) == 3);
 }
 
-TEST_CASE("sph kernels: loop ticks = rows + cells + candidates, capped below the limit") {
-  auto& b = *g_vk;
+LOOP_LIMIT_CASE("sph kernels: loop ticks = rows + cells + candidates, capped below the limit",
+                KernelId::sph_density, KernelId::sph_forces, KernelId::sph_integrate) {
+  Backend& b = test::loop_counter();
   const uint32_t n = 3000;
   const float h = 0.05f;
   // One crowded cell: every particle is every particle's candidate.
@@ -285,17 +329,17 @@ TEST_CASE("sph kernels: loop ticks = rows + cells + candidates, capped below the
   auto acc = b.create<Real4>(n, "acc");
   auto stats = b.create<uint32_t>(kSphStatWords, "stats");
   b.fill(stats, 0u);
-  (void)b.take_max_loop_ticks();
+  (void)ticks_of(b);
   const SphGridView view{&g.sorted_cells, &g.cell_start, &g.cell_end};
   sph_density(b, p, {&pos, view, &rho, &pr, &stats});
   // x loop 3 + y loop 3 (one x in the grid) + 1 cell in the row + n candidates + 48 wall ticks.
   const uint32_t walls = 6 + 6 * 7;
-  CHECK(b.take_max_loop_ticks() == 3 + 3 + 1 + n + walls);
+  CHECK(ticks_of(b) == 3 + 3 + 1 + n + walls);
   sph_forces(b, p, {&pos, &vel, &rho, &pr, view, &acc, &stats});
-  CHECK(b.take_max_loop_ticks() == 3 + 3 + 1 + n + walls + 6);  // + the no-slip weight
+  CHECK(ticks_of(b) == 3 + 3 + 1 + n + walls + 6);  // + the no-slip weight
   // The worst any SPH kernel can do: 3 + 9 row loops, 27 cells, the validated maximum of
   // candidates (65000) and the walls' 48 stay under lavapipe's limit; one more is refused.
-  CHECK(3 + 9 + 27 + 65000 + walls + 6 < kLavapipeLoopLimit);
+  CHECK(3 + 9 + 27 + 65000 + walls + 6 < test::loop_counter().caps().max_loop_iterations);
   p.max_candidates = 65001;
   CHECK_THROWS_AS(sph_density(b, p, {&pos, view, &rho, &pr, &stats}), Error);
 
@@ -307,28 +351,5 @@ TEST_CASE("sph kernels: loop ticks = rows + cells + candidates, capped below the
   ip.box_max = {0.5 * h, 0.5 * h, 0.5 * h};
   auto xo = b.create<Real4>(n, "xo"), vo = b.create<Real4>(n, "vo");
   sph_integrate(b, ip, {&pos, &vel, nullptr, &acc, &xo, &vo, nullptr, nullptr, &stats});
-  CHECK(b.take_max_loop_ticks() <= 6);
-}
-
-int main(int argc, char** argv) {
-  const BackendStatus s = mvk::backend_status();
-  if (!s.available) {
-    fmt::print("SKIPPED: Vulkan is not available here: {}\n", s.reason);
-    return 77;
-  }
-  mvk::set_validation_handler([](const std::string& msg) {
-    if (doctest::is_running_in_test)
-      FAIL_CHECK(msg);
-    else
-      fmt::print(stderr, "{}\n", msg);
-  });
-  mvk::BackendOptions o;
-  o.context = mvk::options_from_env();
-  o.count_loop_ticks = true;
-  g_vk = std::make_unique<mvk::VulkanBackend>(o);
-  fmt::print("loop-limit tests on {}\n", g_vk->caps().device_name);
-  doctest::Context ctx(argc, argv);
-  const int rc = ctx.run();
-  g_vk.reset();
-  return rc;
+  CHECK(ticks_of(b) <= 6);
 }

@@ -1,4 +1,4 @@
-#include "engine/scene/scene_file.h"
+#include "registry/scene_file.h"
 
 #include <fmt/format.h>
 #include <toml++/toml.h>
@@ -8,7 +8,7 @@
 #include <sstream>
 
 #include "engine/core/error.h"
-#include "engine/scene/scene.h"
+#include "registry/scene_catalog.h"
 
 namespace masav::scene {
 namespace {

@@ -1,6 +1,6 @@
-#include "engine/scene/common_tables.h"
+#include "registry/common_tables.h"
 
-#include "engine/scene/scene.h"
+#include "registry/scene_catalog.h"
 
 namespace masav::scene {
 

@@ -1,5 +1,5 @@
 #pragma once
-// The kernel set as an interface. Each kernel of engine/core/kernels.inc becomes
+// The kernel set as an interface. Each kernel of engine/kernels/kernels.inc becomes
 //   - a public non-virtual method, Backend::name(p, buffers...), which enforces the contract
 //     once for every backend: the buffers belong to this backend, the parameters pass the
 //     kernel's validate() (same message everywhere), empty work returns before any backend code,
@@ -15,10 +15,10 @@
 #include <vector>
 
 #include "engine/core/device_api.h"
-#include "engine/core/kernel_id.h"
-#include "engine/core/kernel_macros.h"
+#include "engine/kernels/kernel_id.h"
+#include "engine/kernels/kernel_macros.h"
 #define MASAV_KERNEL_PARAMS
-#include "engine/core/kernels.inc"
+#include "engine/kernels/kernels.inc"
 #undef MASAV_KERNEL_PARAMS
 
 namespace masav {
@@ -40,7 +40,7 @@ class Backend : public DeviceApi {
           do_##name(p, n MASAV_BUFFER_ARGS(__VA_ARGS__));                            \
         } MASAV_BUFFER_ARGS(__VA_ARGS__));                                           \
   }
-#include "engine/core/kernels.inc"
+#include "engine/kernels/kernels.inc"
 #undef MASAV_KERNEL
 
   // Record each kernel's device time from now on (off by default: two timestamps per call).
@@ -49,6 +49,13 @@ class Backend : public DeviceApi {
   }
   // Calls recorded since the last take, in call order; read their times after finish().
   std::vector<KernelTiming> take_kernel_timings();
+
+  // The most loop iterations any shader invocation ran since the last call, on a backend created
+  // to count them (BackendRequest::count_loop_ticks); nothing elsewhere. The tests drive each
+  // kernel's worst case with it against Capabilities::max_loop_iterations.
+  virtual std::optional<uint32_t> take_max_loop_ticks() {
+    return std::nullopt;
+  }
 
   // Test hook: perturb the first output of every later call of `kernel` (one word flipped, or
   // one value changed by 1e-3 relative), so a cross-check can prove it catches a mismatch.
@@ -59,7 +66,7 @@ class Backend : public DeviceApi {
  protected:
 #define MASAV_KERNEL(name, Params, items, ...) \
   virtual void do_##name(const Params& p, uint64_t items_ MASAV_BUFFER_PARAMS(__VA_ARGS__)) = 0;
-#include "engine/core/kernels.inc"
+#include "engine/kernels/kernels.inc"
 #undef MASAV_KERNEL
 
  private:
@@ -73,10 +80,9 @@ class Backend : public DeviceApi {
     validate(*this, p, buffers...);
     const uint64_t n = items();
     if (n == 0) return;
-    const std::optional<TimestampId> begin =
-        kernel_timing_ ? std::optional(timestamp()) : std::nullopt;
+    const TimestampId begin = kernel_timing_ ? timestamp() : 0;
     run(n);
-    if (begin) timings_.push_back({id, *begin, timestamp()});
+    if (kernel_timing_) timings_.push_back({id, begin, timestamp()});
     if (fault_ == id) perturb(first_output(buffers...));
   }
 

@@ -1,9 +1,9 @@
-#include "engine/registry/registry.h"
+#include "registry/backends.h"
 
 #include <fmt/format.h>
 
-#include "engine/cpu/cpu_backend.h"
 #include "engine/core/error.h"
+#include "engine/cpu/cpu_backend.h"
 #if MASAV_HAVE_VULKAN
 #include "compute/vk_factory.h"
 #endif
@@ -70,17 +70,19 @@ std::string auto_backend_name() {
   return "cpu";
 }
 
-std::unique_ptr<Backend> create_backend(std::string_view name_in, std::string_view device) {
+std::unique_ptr<Backend> create_backend(std::string_view name_in, std::string_view device,
+                                        const BackendRequest& request) {
   const std::string name = name_in == "auto" ? auto_backend_name() : std::string(name_in);
   if (name == "cpu") {
     if (!device.empty() && device != "0")
-      throw_invalid("cpu backend", "device", std::string(device),
-                    "empty or 0 (the CPU backend has one device; set MASAV_CPU_THREADS for threads)");
+      throw_invalid(
+          "cpu backend", "device", std::string(device),
+          "empty or 0 (the CPU backend has one device; set MASAV_CPU_THREADS for threads)");
     return std::make_unique<cpu::CpuBackend>();
   }
   if (name == "vulkan") {
 #if MASAV_HAVE_VULKAN
-    return vk::create_backend(device);
+    return vk::create_backend(device, request);
 #else
     throw Error("vulkan", "", status_of("vulkan").reason, "use --backend cpu, or rebuild");
 #endif
@@ -94,6 +96,24 @@ std::unique_ptr<Backend> create_backend(std::string_view name_in, std::string_vi
   }
   throw_invalid("backend selection", "backend", std::string(name_in),
                 "one of vulkan, cuda, cpu, auto");
+}
+
+namespace {
+
+class Registry final : public BackendFactory {
+ public:
+  std::vector<BackendStatus> list() const override { return list_backends(); }
+  std::unique_ptr<Backend> create(std::string_view name, std::string_view device,
+                                  const BackendRequest& request) const override {
+    return create_backend(name, device, request);
+  }
+};
+
+}  // namespace
+
+const BackendFactory& backend_factory() {
+  static const Registry registry;
+  return registry;
 }
 
 }  // namespace masav

@@ -1,11 +1,11 @@
-#include "engine/core/backend.h"
+#include "engine/kernels/backend.h"
 
 #include <fmt/format.h>
 
 #include <cstring>
 
 #include "engine/core/error.h"
-#include "engine/core/kernel_checks.h"
+#include "engine/kernels/kernel_checks.h"
 
 namespace masav {
 

@@ -4,7 +4,7 @@
 
 #include "engine/core/device_api.h"
 #include "engine/core/error.h"
-#include "engine/core/kernel_checks.h"
+#include "engine/kernels/kernel_checks.h"
 #include "engine/kernels/sph_kernel_params.h"
 
 namespace masav {
@@ -69,11 +69,7 @@ void check_sph_step(const DeviceApi& dev, const SphStepParams& p, const char* ke
         throw_invalid(kernel, "box", fmt::format("[{}, {}] on axis {}", lo[a], hi[a], a),
                       "finite with min < max on every axis");
   }
-  if (p.max_candidates < 1 || p.max_candidates > 65000)
-    throw_invalid(kernel, "max_candidates", std::to_string(p.max_candidates),
-                  "in [1, 65000] (lavapipe stops a shader invocation after 65,535 loop "
-                  "iterations)");
-  (void)dev;
+  check_candidates(dev, p.max_candidates, kernel);
 }
 
 }  // namespace

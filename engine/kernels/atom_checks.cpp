@@ -1,11 +1,11 @@
-#include "engine/atom/atom_checks.h"
+#include "engine/kernels/atom_checks.h"
 
 #include <fmt/format.h>
 
 #include <cmath>
 
 #include "engine/core/error.h"
-#include "engine/core/kernel_checks.h"
+#include "engine/kernels/kernel_checks.h"
 
 namespace masav {
 namespace {
@@ -58,8 +58,8 @@ void check_nebula(const NebulaLightParams& p, const Buffer<Real4>& positions,
                                                              double(p.grid.dims.z) * p.grid.dims.z);
     if (diag / p.step_a0 > kMaxPathSteps)
       throw_invalid(kernel, "step_a0", fmt::format("{}", p.step_a0),
-                    fmt::format("at least {:.4g} (the grid's diagonal / {} steps, lavapipe's "
-                                "loop limit)",
+                    fmt::format("at least {:.4g} (the grid's diagonal / {} steps, the most a "
+                                "path takes within a shader invocation's loop budget)",
                                 diag / kMaxPathSteps, kMaxPathSteps));
   }
   const uint64_t dsum = uint64_t(p.grid.dims.x) + p.grid.dims.y + p.grid.dims.z;
@@ -126,7 +126,8 @@ void validate(const DeviceApi& dev, const ScatterTableParams& p, const Buffer<Re
   in_range(k, "albedo", p.albedo, 0, 1);
   if (!std::isfinite(p.weight_threshold) || p.weight_threshold < 0 || p.weight_threshold >= 1)
     throw_invalid(k, "weight_threshold", fmt::format("{}", p.weight_threshold), "in [0, 1)");
-  // lavapipe's loop limit: each event is one loop iteration plus Philox's ten rounds.
+  // Within the loop budget of an invocation (65,535 on lavapipe): each event is one loop
+  // iteration plus Philox's ten rounds.
   in_range(k, "max_scatterings", p.max_scatterings, 0, 5000);
   if (p.start != ScatterStart::surface && p.start != ScatterStart::centre)
     throw_invalid(k, "start", std::to_string(uint32_t(p.start)), "surface or centre");
@@ -259,7 +260,7 @@ uint64_t max_ray_segments(const RaymarchParams& p) {
   return uint64_t(std::ceil(std::sqrt(dx * dx + dy * dy + dz * dz) / p.step)) + 1;
 }
 
-void validate(const DeviceApi&, const RaymarchParams& p, const Buffer<Real>& volume,
+void validate(const DeviceApi& dev, const RaymarchParams& p, const Buffer<Real>& volume,
               const Buffer<Real4>& tf, const Buffer<Real4>& bricks, const Buffer<Real4>& image) {
   const char* k = "raymarch";
   check_volume(p.volume, k);
@@ -287,10 +288,11 @@ void validate(const DeviceApi&, const RaymarchParams& p, const Buffer<Real>& vol
   const UVec3 nb = brick_dims(p.volume, p.brick);
   const uint64_t segs = max_ray_segments(p) + 3ull * (uint64_t(nb.x) + nb.y + nb.z) + 16;
   if (segs > kMaxRaySteps)
-    throw_invalid(k, "step", fmt::format("{}", p.step),
-                  fmt::format("large enough for at most {} samples across the box ({} now): "
-                              "lavapipe stops a shader invocation after 65,535 iterations",
-                              kMaxRaySteps, segs));
+    throw_invalid(
+        k, "step", fmt::format("{}", p.step),
+        fmt::format("large enough for at most {} samples across the box ({} now): a "
+                    "shader invocation runs at most {} loop iterations on {}",
+                    kMaxRaySteps, segs, dev.caps().max_loop_iterations, dev.caps().device_name));
   at_least(k, "transfer function", tf.size(), p.tf_size);
   at_least(k, "volume", volume.size(),
            uint64_t(p.volume.dims.x) * p.volume.dims.y * p.volume.dims.z);

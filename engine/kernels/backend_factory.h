@@ -1,0 +1,31 @@
+#pragma once
+// What constructs backends by name. The registry (registry/backends.h) is the one factory built
+// into masav; the code below it that needs a second backend (the cross-check's reference)
+// receives a factory instead of linking the backends itself.
+#include <memory>
+#include <string_view>
+#include <vector>
+
+#include "engine/core/backend_status.h"
+#include "engine/kernels/backend.h"
+
+namespace masav {
+
+// What a caller needs of a backend beyond its kernels.
+struct BackendRequest {
+  bool graphics = false;          // a device that can also draw (the renderer borrows it)
+  bool count_loop_ticks = false;  // instrument every loop: Backend::take_max_loop_ticks
+};
+
+class BackendFactory {
+ public:
+  virtual ~BackendFactory() = default;
+  // Every backend built into this binary, with its devices or why it is unavailable.
+  virtual std::vector<BackendStatus> list() const = 0;
+  // name: vulkan | cuda | cpu | auto; device: index or part of a name ("" = the best one).
+  // Throws masav::Error naming the backend and what to install when it cannot be created.
+  virtual std::unique_ptr<Backend> create(std::string_view name, std::string_view device = "",
+                                          const BackendRequest& request = {}) const = 0;
+};
+
+}  // namespace masav
