@@ -4,8 +4,8 @@
 #include <memory>
 #include <string>
 
-#include "compute/vk_context.h"
-#include "compute/vk_memory.h"
+#include "compute/device/vk_context.h"
+#include "compute/device/vk_memory.h"
 #include "compute/vk_pipelines.h"
 #include "compute/vk_stream.h"
 #include "engine/kernels/backend.h"
@@ -34,7 +34,7 @@ constexpr bool runs_own(KernelId k) {
          k == KernelId::scatter_table || k == KernelId::voxelize;
 }
 
-class VulkanBackend final : public Backend {
+class VulkanBackend final : public Backend, public VulkanInterop {
  public:
   explicit VulkanBackend(const BackendOptions& options);
   ~VulkanBackend() override;
@@ -51,10 +51,12 @@ class VulkanBackend final : public Backend {
   std::optional<uint32_t> take_max_loop_ticks() override;
   uint32_t tile_size() const { return options_.workgroup_size * options_.items_per_thread; }
 
-  // For the renderer (render/), which draws straight from the kernels' buffers when it runs on
-  // this backend's device: the device, and the allocation behind a buffer of this backend.
-  const Context& context() const { return ctx_; }
-  std::shared_ptr<Allocation> allocation(const BufferImpl& b) const { return alloc(b, "render"); }
+  // For the renderer, which draws straight from the kernels' buffers on this device.
+  const VulkanInterop* vulkan_interop() const override { return this; }
+  const Context& vulkan_context() const override { return ctx_; }
+  std::shared_ptr<Allocation> vulkan_buffer(const BufferImpl& b) const override {
+    return alloc(b, "render");
+  }
   SortScatter sort_scatter() const { return scatter_; }
 
  protected:

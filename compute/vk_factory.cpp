@@ -35,9 +35,8 @@ BackendStatus backend_status() {
 
 std::unique_ptr<Backend> create_backend(std::string_view device, const BackendRequest& request) {
   BackendOptions o;
-  o.context = options_from_env();
+  o.context = request.vulkan ? *request.vulkan : options_from_env();
   if (!device.empty()) o.context.device_selector = std::string(device);
-  o.context.graphics = request.graphics;
   o.count_loop_ticks = request.count_loop_ticks;
   try {
     return std::make_unique<VulkanBackend>(o);

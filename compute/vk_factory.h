@@ -9,8 +9,8 @@
 namespace masav::vk {
 
 BackendStatus backend_status();
-// Options from the environment (MASAV_VK_DEVICE, MASAV_VK_VALIDATION); `device` overrides;
-// `request` asks for a device that can also draw, or for loop counting.
+// Options from the environment (MASAV_VK_DEVICE, MASAV_VK_VALIDATION) or the request's;
+// `device` overrides the device; the request may ask for loop counting.
 std::unique_ptr<Backend> create_backend(std::string_view device, const BackendRequest& request);
 
 }  // namespace masav::vk

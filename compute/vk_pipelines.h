@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "compute/vk_context.h"
+#include "compute/device/vk_context.h"
 
 namespace masav::vk {
 

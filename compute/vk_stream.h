@@ -6,7 +6,7 @@
 #include <span>
 #include <vector>
 
-#include "compute/vk_memory.h"
+#include "compute/device/vk_memory.h"
 #include "compute/vk_pipelines.h"
 
 namespace masav::vk {

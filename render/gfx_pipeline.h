@@ -5,7 +5,7 @@
 #include <cstdint>
 #include <memory>
 
-#include "compute/vk_context.h"
+#include "compute/device/vk_context.h"
 
 namespace masav::render {
 

@@ -27,7 +27,7 @@ std::shared_ptr<vk::Allocation> LayerBridge::store(const std::string& slot, cons
 std::shared_ptr<vk::Allocation> LayerBridge::positions(const std::string& slot,
                                                        const Buffer<Real4>& b, uint32_t count,
                                                        uint64_t version) {
-  if (dev_.shared()) return dev_.shared()->allocation(b.impl());
+  if (dev_.shared()) return dev_.shared()->vulkan_buffer(b.impl());
   if (fresh(slot, b.impl(), version)) return slots_[slot].copy;
   std::vector<Vec4f> host = dev_.compute().download_f32(b);
   host.resize(count);
@@ -36,7 +36,7 @@ std::shared_ptr<vk::Allocation> LayerBridge::positions(const std::string& slot,
 
 std::shared_ptr<vk::Allocation> LayerBridge::words(const std::string& slot, const BufferImpl& b,
                                                    uint64_t version) {
-  if (dev_.shared()) return dev_.shared()->allocation(b);
+  if (dev_.shared()) return dev_.shared()->vulkan_buffer(b);
   if (fresh(slot, b, version)) return slots_[slot].copy;
   Backend& c = dev_.compute();
   if (b.kind() == ElemKind::real || b.kind() == ElemKind::real4) {

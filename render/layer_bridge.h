@@ -7,7 +7,7 @@
 #include <memory>
 #include <string>
 
-#include "compute/vk_memory.h"
+#include "compute/device/vk_memory.h"
 #include "engine/kernels/backend.h"
 #include "render/render_device.h"
 

@@ -6,7 +6,7 @@
 #include <memory>
 #include <vector>
 
-#include "compute/vk_memory.h"
+#include "compute/device/vk_memory.h"
 #include "render/render_device.h"
 
 namespace masav::render {

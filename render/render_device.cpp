@@ -16,25 +16,15 @@ vk::ContextOptions graphics_options(const std::string& device) {
 
 std::unique_ptr<Backend> open_compute_backend(const std::string& name, const std::string& device,
                                               const vk::ContextOptions& options) {
-  const std::string resolved = name == "auto" ? auto_backend_name() : name;
-  if (resolved != "vulkan") return create_backend(resolved, device);
-  vk::BackendOptions o;
-  o.context = options;
-  if (!device.empty()) o.context.device_selector = device;
-  try {
-    return std::make_unique<vk::VulkanBackend>(o);
-  } catch (const ::vk::SystemError& e) {
-    throw Error("vulkan", "", std::string("device set-up failed: ") + e.what(),
-                "update the Vulkan driver or choose another device (masav info)");
-  }
+  return create_backend(name, device, BackendRequest{.vulkan = &options});
 }
 
 RenderDevice::RenderDevice(Backend& compute, const vk::ContextOptions& options)
     : compute_(compute) {
-  auto* vkb = dynamic_cast<vk::VulkanBackend*>(&compute);
-  if (vkb && vkb->context().graphics()) {
-    shared_ = vkb;
-    ctx_ = &vkb->context();
+  const VulkanInterop* vi = compute.vulkan_interop();
+  if (vi && vi->vulkan_context().graphics()) {
+    shared_ = vi;
+    ctx_ = &vi->vulkan_context();
   } else {
     try {
       owned_ = std::make_unique<vk::Context>(options);

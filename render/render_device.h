@@ -7,8 +7,8 @@
 #include <memory>
 #include <string>
 
-#include "compute/vk_backend.h"
-#include "compute/vk_context.h"
+#include "compute/device/vk_context.h"
+#include "engine/kernels/backend.h"
 
 namespace masav::render {
 
@@ -16,9 +16,8 @@ namespace masav::render {
 // with a graphics queue required.
 vk::ContextOptions graphics_options(const std::string& device = "");
 
-// The compute backend for a scene that is drawn: "vulkan" (and "auto" when it resolves to
-// Vulkan) opens the Vulkan backend on a device that can also draw, with `options`; the others
-// come from the registry.
+// The compute backend for a scene that is drawn, from the registry: a Vulkan one (also "auto"
+// when it resolves to Vulkan) on a device that can also draw, with `options`.
 std::unique_ptr<Backend> open_compute_backend(const std::string& name, const std::string& device,
                                               const vk::ContextOptions& options);
 
@@ -31,8 +30,9 @@ class RenderDevice {
 
   const vk::Context& ctx() const { return *ctx_; }
   const ::vk::raii::Device& device() const { return ctx_->device(); }
-  // The compute backend whose buffers the renderer binds directly, or null when it copies.
-  vk::VulkanBackend* shared() const { return shared_; }
+  // The compute backend's Vulkan device and buffers when the renderer draws from them directly,
+  // or null when it copies.
+  const VulkanInterop* shared() const { return shared_; }
   Backend& compute() const { return compute_; }
 
   // One command buffer, recorded and submitted per frame; submit() waits for it.
@@ -42,7 +42,7 @@ class RenderDevice {
 
  private:
   Backend& compute_;
-  vk::VulkanBackend* shared_ = nullptr;
+  const VulkanInterop* shared_ = nullptr;
   std::unique_ptr<vk::Context> owned_;
   const vk::Context* ctx_ = nullptr;
   ::vk::raii::CommandPool pool_ = nullptr;

@@ -4,7 +4,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "compute/vk_context.h"
+#include "compute/device/vk_context.h"
 
 namespace masav::render {
 

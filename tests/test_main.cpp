@@ -17,7 +17,7 @@
 #include "registry/backends.h"
 #include "tests/backend_fixture.h"
 #if MASAV_HAVE_VULKAN
-#include "compute/vk_context.h"
+#include "compute/device/vk_context.h"
 #endif
 
 namespace masav::test {

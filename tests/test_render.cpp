@@ -11,10 +11,11 @@
 #include <cstdlib>
 #include <filesystem>
 
-#include "compute/vk_factory.h"
+#include "compute/device/vk_context.h"
 #include "engine/core/error.h"
 #include "engine/cpu/cpu_backend.h"
 #include "engine/scene/scene.h"
+#include "registry/backends.h"
 #include "registry/scene_catalog.h"
 #include "render/png.h"
 #include "render/renderer.h"
@@ -345,7 +346,9 @@ TEST_CASE("demo screenshots" * doctest::skip(std::getenv("MASAV_DEMO_SHOTS") == 
 }
 
 int main(int argc, char** argv) {
-  const BackendStatus s = masav::vk::backend_status();
+  BackendStatus s;
+  for (const BackendStatus& b : list_backends())
+    if (b.name == "vulkan") s = b;
   if (!s.available) {
     fmt::print("SKIPPED: Vulkan is not available here: {}\n", s.reason);
     return 77;

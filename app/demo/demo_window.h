@@ -3,7 +3,7 @@
 // extensions and presentation support GLFW reports, and the window surface.
 #include <string>
 
-#include "compute/vk_context.h"
+#include "compute/device/vk_context.h"
 
 struct GLFWwindow;
 

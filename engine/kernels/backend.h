@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "engine/core/device_api.h"
+#include "engine/core/interop.h"
 #include "engine/kernels/kernel_id.h"
 #include "engine/kernels/kernel_macros.h"
 #define MASAV_KERNEL_PARAMS
@@ -49,6 +50,11 @@ class Backend : public DeviceApi {
   }
   // Calls recorded since the last take, in call order; read their times after finish().
   std::vector<KernelTiming> take_kernel_timings();
+
+  // What the backend hands other Vulkan code without a copy (null: it computes elsewhere).
+  virtual const VulkanInterop* vulkan_interop() const {
+    return nullptr;
+  }
 
   // The most loop iterations any shader invocation ran since the last call, on a backend created
   // to count them (BackendRequest::count_loop_ticks); nothing elsewhere. The tests drive each

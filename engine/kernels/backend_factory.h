@@ -11,9 +11,15 @@
 
 namespace masav {
 
+namespace vk {
+struct ContextOptions;  // compute/device/vk_context.h
+}
+
 // What a caller needs of a backend beyond its kernels.
 struct BackendRequest {
-  bool graphics = false;          // a device that can also draw (the renderer borrows it)
+  // A Vulkan backend's device settings: a graphics queue and the window's extensions for the
+  // renderer that borrows its device (null: the environment's defaults; other backends ignore it).
+  const vk::ContextOptions* vulkan = nullptr;
   bool count_loop_ticks = false;  // instrument every loop: Backend::take_max_loop_ticks
 };
 

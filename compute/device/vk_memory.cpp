@@ -1,4 +1,4 @@
-#include "compute/vk_memory.h"
+#include "compute/device/vk_memory.h"
 
 #include <fmt/format.h>
 
@@ -36,8 +36,9 @@ std::shared_ptr<Allocation> allocate(const Context& ctx, ::vk::DeviceSize bytes,
     std::optional<uint32_t> type;
     switch (use) {
       case MemoryUse::device:
-        if (unified) type = find_type(mem, req.memoryTypeBits,
-                                      MP::eDeviceLocal | MP::eHostVisible | MP::eHostCoherent);
+        if (unified)
+          type = find_type(mem, req.memoryTypeBits,
+                           MP::eDeviceLocal | MP::eHostVisible | MP::eHostCoherent);
         if (!type) type = find_type(mem, req.memoryTypeBits, MP::eDeviceLocal);
         break;
       case MemoryUse::upload:

@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "compute/vk_common.h"
+#include "compute/device/vk_common.h"
 #include "engine/core/capabilities.h"
 
 namespace masav::vk {

@@ -4,7 +4,7 @@
 #include <memory>
 #include <string>
 
-#include "compute/vk_context.h"
+#include "compute/device/vk_context.h"
 #include "engine/core/buffer.h"
 
 namespace masav::vk {

@@ -1,5 +1,6 @@
-#include "compute/vk_context.h"
+#include "compute/device/vk_context.h"
 
+#include <dlfcn.h>
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -7,7 +8,6 @@
 #include <cctype>
 #include <cstdlib>
 #include <cstring>
-#include <dlfcn.h>
 
 #include "engine/core/error.h"
 
@@ -27,8 +27,8 @@ VKAPI_ATTR VkBool32 VKAPI_CALL on_debug_message(VkDebugUtilsMessageSeverityFlagB
                                                 const VkDebugUtilsMessengerCallbackDataEXT* data,
                                                 void*) {
   ++g_validation_messages;
-  std::string msg = fmt::format("[vulkan validation] {}", data && data->pMessage ? data->pMessage
-                                                                                 : "(no text)");
+  std::string msg =
+      fmt::format("[vulkan validation] {}", data && data->pMessage ? data->pMessage : "(no text)");
   if (handler_slot())
     handler_slot()(msg);
   else
@@ -51,12 +51,13 @@ std::unique_ptr<raii::Context> open_loader() {
     handle = dlopen(name && *name ? name : "libvulkan.so.1", RTLD_NOW | RTLD_LOCAL);
     if (!handle) error = dlerror();
   }
-  auto gipa = handle ? reinterpret_cast<PFN_vkGetInstanceProcAddr>(
-                           dlsym(handle, "vkGetInstanceProcAddr"))
-                     : nullptr;
+  auto gipa =
+      handle ? reinterpret_cast<PFN_vkGetInstanceProcAddr>(dlsym(handle, "vkGetInstanceProcAddr"))
+             : nullptr;
   if (!gipa)
-    throw Error("vulkan", "", fmt::format("the Vulkan loader could not be opened ({})",
-                                          error.empty() ? "no vkGetInstanceProcAddr" : error),
+    throw Error("vulkan", "",
+                fmt::format("the Vulkan loader could not be opened ({})",
+                            error.empty() ? "no vkGetInstanceProcAddr" : error),
                 "install the Debian package libvulkan1, plus mesa-vulkan-drivers for the CPU "
                 "driver lavapipe or your GPU vendor's driver");
   return std::make_unique<raii::Context>(gipa);
@@ -84,9 +85,11 @@ std::unique_ptr<raii::Instance> make_instance(const raii::Context& ctx, bool val
   std::vector<const char*> layers, extensions;
   if (validation) {
     if (!has_layer(ctx, kValidationLayer))
-      throw Error("vulkan", "", "validation was asked for (MASAV_VK_VALIDATION=1) but "
-                                "VK_LAYER_KHRONOS_validation is not installed",
-                  "install the Debian package vulkan-validationlayers, or unset MASAV_VK_VALIDATION");
+      throw Error(
+          "vulkan", "",
+          "validation was asked for (MASAV_VK_VALIDATION=1) but "
+          "VK_LAYER_KHRONOS_validation is not installed",
+          "install the Debian package vulkan-validationlayers, or unset MASAV_VK_VALIDATION");
     layers.push_back(kValidationLayer);
     extensions.push_back(VK_EXT_DEBUG_UTILS_EXTENSION_NAME);
   }
@@ -104,40 +107,59 @@ std::unique_ptr<raii::Instance> make_instance(const raii::Context& ctx, bool val
     throw Error("vulkan", "", "no Vulkan driver is installed (the loader found no ICD)",
                 kNoDriverRemedy);
   } catch (const ::vk::SystemError& e) {
-    throw Error("vulkan", "", fmt::format("vkCreateInstance failed: {}", e.what()), kNoDriverRemedy);
+    throw Error("vulkan", "", fmt::format("vkCreateInstance failed: {}", e.what()),
+                kNoDriverRemedy);
   }
 }
 
 std::string type_name(::vk::PhysicalDeviceType t) {
   switch (t) {
-    case ::vk::PhysicalDeviceType::eDiscreteGpu: return "discrete";
-    case ::vk::PhysicalDeviceType::eIntegratedGpu: return "integrated";
-    case ::vk::PhysicalDeviceType::eVirtualGpu: return "virtual";
-    case ::vk::PhysicalDeviceType::eCpu: return "cpu";
-    default: return "other";
+    case ::vk::PhysicalDeviceType::eDiscreteGpu:
+      return "discrete";
+    case ::vk::PhysicalDeviceType::eIntegratedGpu:
+      return "integrated";
+    case ::vk::PhysicalDeviceType::eVirtualGpu:
+      return "virtual";
+    case ::vk::PhysicalDeviceType::eCpu:
+      return "cpu";
+    default:
+      return "other";
   }
 }
 
 int type_rank(::vk::PhysicalDeviceType t) {
   switch (t) {
-    case ::vk::PhysicalDeviceType::eDiscreteGpu: return 0;
-    case ::vk::PhysicalDeviceType::eIntegratedGpu: return 1;
-    case ::vk::PhysicalDeviceType::eVirtualGpu: return 2;
-    case ::vk::PhysicalDeviceType::eCpu: return 4;
-    default: return 3;
+    case ::vk::PhysicalDeviceType::eDiscreteGpu:
+      return 0;
+    case ::vk::PhysicalDeviceType::eIntegratedGpu:
+      return 1;
+    case ::vk::PhysicalDeviceType::eVirtualGpu:
+      return 2;
+    case ::vk::PhysicalDeviceType::eCpu:
+      return 4;
+    default:
+      return 3;
   }
 }
 
 std::string vendor_name(uint32_t id) {
   switch (id) {
-    case 0x10DE: return "NVIDIA";
-    case 0x1002: return "AMD";
-    case 0x8086: return "Intel";
-    case 0x10005: return "Mesa";
-    case 0x13B5: return "ARM";
-    case 0x5143: return "Qualcomm";
-    case 0x106B: return "Apple";
-    default: return fmt::format("0x{:04x}", id);
+    case 0x10DE:
+      return "NVIDIA";
+    case 0x1002:
+      return "AMD";
+    case 0x8086:
+      return "Intel";
+    case 0x10005:
+      return "Mesa";
+    case 0x13B5:
+      return "ARM";
+    case 0x5143:
+      return "Qualcomm";
+    case 0x106B:
+      return "Apple";
+    default:
+      return fmt::format("0x{:04x}", id);
   }
 }
 
@@ -170,12 +192,13 @@ std::string unusable_reason(const raii::PhysicalDevice& pd) {
   const auto props = pd.getProperties();
   if (props.apiVersion < VK_API_VERSION_1_1) return "supports only Vulkan 1.0 (masav needs 1.1)";
   if (!pick_queue_family(pd)) return "no compute queue with timestamps";
-  const auto chain = pd.getProperties2<::vk::PhysicalDeviceProperties2,
-                                       ::vk::PhysicalDeviceSubgroupProperties>();
+  const auto chain =
+      pd.getProperties2<::vk::PhysicalDeviceProperties2, ::vk::PhysicalDeviceSubgroupProperties>();
   const auto& sg = chain.get<::vk::PhysicalDeviceSubgroupProperties>();
   if (!(sg.supportedStages & ::vk::ShaderStageFlagBits::eCompute))
     return "no subgroup operations in compute shaders";
-  const auto need = ::vk::SubgroupFeatureFlagBits::eBasic | ::vk::SubgroupFeatureFlagBits::eArithmetic;
+  const auto need =
+      ::vk::SubgroupFeatureFlagBits::eBasic | ::vk::SubgroupFeatureFlagBits::eArithmetic;
   if ((sg.supportedOperations & need) != need) return "no subgroup arithmetic";
   if (sg.subgroupSize < 4 || sg.subgroupSize > 128)
     return fmt::format("subgroup size {} outside [4, 128]", sg.subgroupSize);
@@ -208,18 +231,25 @@ std::string lower(std::string s) {
 
 }  // namespace
 
-void set_validation_handler(ValidationHandler handler) { handler_slot() = std::move(handler); }
-uint64_t validation_message_count() { return g_validation_messages.load(); }
+void set_validation_handler(ValidationHandler handler) {
+  handler_slot() = std::move(handler);
+}
+uint64_t validation_message_count() {
+  return g_validation_messages.load();
+}
 
 ContextOptions options_from_env() {
   ContextOptions o;
   if (const char* d = std::getenv("MASAV_VK_DEVICE")) o.device_selector = d;
   if (const char* v = std::getenv("MASAV_VK_VALIDATION")) {
     const std::string s = v;
-    if (s == "1" || s == "on" || s == "true") o.validation = true;
-    else if (s == "0" || s == "off" || s == "false" || s.empty()) o.validation = false;
-    else throw Error("", "environment", fmt::format("invalid MASAV_VK_VALIDATION = {}", s),
-                     "MASAV_VK_VALIDATION must be 1/on/true or 0/off/false");
+    if (s == "1" || s == "on" || s == "true")
+      o.validation = true;
+    else if (s == "0" || s == "off" || s == "false" || s.empty())
+      o.validation = false;
+    else
+      throw Error("", "environment", fmt::format("invalid MASAV_VK_VALIDATION = {}", s),
+                  "MASAV_VK_VALIDATION must be 1/on/true or 0/off/false");
   }
   return o;
 }
@@ -271,27 +301,31 @@ Context::Context(const ContextOptions& options) {
   std::optional<size_t> chosen;
   std::string listing;
   for (size_t i = 0; i < devices.size(); ++i)
-    listing += fmt::format("{}{}: {}", i ? ", " : "", i, devices[i].getProperties().deviceName.data());
+    listing +=
+        fmt::format("{}{}: {}", i ? ", " : "", i, devices[i].getProperties().deviceName.data());
   if (!options.device_selector.empty()) {
     const std::string sel = options.device_selector;
     char* end = nullptr;
     const long idx = std::strtol(sel.c_str(), &end, 10);
     if (end && *end == '\0') {
       if (idx < 0 || size_t(idx) >= devices.size())
-        throw_invalid("vulkan", "device", sel, fmt::format("an index in [0, {}] ({})",
-                                                           devices.size() - 1, listing));
+        throw_invalid("vulkan", "device", sel,
+                      fmt::format("an index in [0, {}] ({})", devices.size() - 1, listing));
       chosen = size_t(idx);
     } else {
       for (size_t i = 0; i < devices.size() && !chosen; ++i)
-        if (lower(devices[i].getProperties().deviceName.data()).find(lower(sel)) != std::string::npos)
+        if (lower(devices[i].getProperties().deviceName.data()).find(lower(sel)) !=
+            std::string::npos)
           chosen = i;
       if (!chosen)
-        throw_invalid("vulkan", "device", sel, fmt::format("an index or part of a name ({})", listing));
+        throw_invalid("vulkan", "device", sel,
+                      fmt::format("an index or part of a name ({})", listing));
     }
     const std::string why = why_not(devices[*chosen]);
     if (!why.empty())
-      throw Error("vulkan", "", fmt::format("device '{}' cannot run masav: {}",
-                                            devices[*chosen].getProperties().deviceName.data(), why),
+      throw Error("vulkan", "",
+                  fmt::format("device '{}' cannot run masav: {}",
+                              devices[*chosen].getProperties().deviceName.data(), why),
                   "choose another device (masav info lists them)");
   } else {
     int best_rank = 1 << 30;
@@ -335,15 +369,17 @@ Context::Context(const ContextOptions& options) {
   try {
     device_ = std::make_unique<raii::Device>(*physical_, dinfo);
   } catch (const ::vk::SystemError& e) {
-    throw Error("vulkan", "", fmt::format("vkCreateDevice failed on {}: {}",
-                                          props.deviceName.data(), e.what()), kNoDriverRemedy);
+    throw Error("vulkan", "",
+                fmt::format("vkCreateDevice failed on {}: {}", props.deviceName.data(), e.what()),
+                kNoDriverRemedy);
   }
   queue_ = std::make_unique<raii::Queue>(*device_, queue_family_, 0);
 
   // Capabilities.
-  const auto chain = physical_->getProperties2<::vk::PhysicalDeviceProperties2,
-                                               ::vk::PhysicalDeviceSubgroupProperties,
-                                               ::vk::PhysicalDeviceMaintenance3Properties>();
+  const auto chain =
+      physical_
+          ->getProperties2<::vk::PhysicalDeviceProperties2, ::vk::PhysicalDeviceSubgroupProperties,
+                           ::vk::PhysicalDeviceMaintenance3Properties>();
   const auto& sg = chain.get<::vk::PhysicalDeviceSubgroupProperties>();
   const auto& m3 = chain.get<::vk::PhysicalDeviceMaintenance3Properties>();
   caps_.backend = "vulkan";
@@ -359,7 +395,8 @@ Context::Context(const ContextOptions& options) {
     const auto c13 = physical_->getProperties2<::vk::PhysicalDeviceProperties2,
                                                ::vk::PhysicalDeviceSubgroupSizeControlProperties,
                                                ::vk::PhysicalDeviceDriverProperties>();
-    caps_.min_subgroup_size = c13.get<::vk::PhysicalDeviceSubgroupSizeControlProperties>().minSubgroupSize;
+    caps_.min_subgroup_size =
+        c13.get<::vk::PhysicalDeviceSubgroupSizeControlProperties>().minSubgroupSize;
     const auto& drv = c13.get<::vk::PhysicalDeviceDriverProperties>();
     caps_.driver = fmt::format("{} {} (Vulkan {})", drv.driverName.data(), drv.driverInfo.data(),
                                version_string(props.apiVersion));
@@ -367,8 +404,8 @@ Context::Context(const ContextOptions& options) {
   caps_.max_workgroup_size = props.limits.maxComputeWorkGroupInvocations;
   caps_.max_workgroups_x = props.limits.maxComputeWorkGroupCount[0];
   caps_.shared_memory_bytes = props.limits.maxComputeSharedMemorySize;
-  caps_.max_buffer_bytes = std::min<uint64_t>(props.limits.maxStorageBufferRange,
-                                              m3.maxMemoryAllocationSize);
+  caps_.max_buffer_bytes =
+      std::min<uint64_t>(props.limits.maxStorageBufferRange, m3.maxMemoryAllocationSize);
   uint64_t largest_heap = 0;
   const auto mem = physical_->getMemoryProperties();
   for (uint32_t h = 0; h < mem.memoryHeapCount; ++h)
