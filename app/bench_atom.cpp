@@ -36,8 +36,8 @@ int run_atom_bench(const AtomBenchOptions& o) {
     for (const ThesisRow& row : kThesisTable23) {
       try {
         const uint32_t n = std::max(1u, uint32_t(std::lround(row.particles * o.scale)));
-        const auto t = atom::make_orbital_tables(atom::preset_state(row.state),
-                                                 OrbitalPlacement::exact, n, 1);
+        const auto t =
+            atom::make_orbital_tables(atom::preset_state(row.state), OrbitalPlacement::exact, n, 1);
         auto tables = b->create<uint32_t>(t.cdf.size(), "tables");
         b->upload(tables, t.cdf);
         auto pos = b->create<Real4>(n, "positions");
@@ -60,8 +60,8 @@ int run_atom_bench(const AtomBenchOptions& o) {
   // Run time against error: the sampled <r> and <r^2> against the closed forms.
   const atom::OrbitalState st = atom::preset_state(o.sweep_state);
   fmt::print("  particle count vs moment error ({}, {}):\n", o.sweep_state, describe(st));
-  fmt::print("  {:<8} {:>9} {:>10} {:>12} {:>12}\n", "backend", "particles", "ms",
-             "|<r>| rel", "|<r^2>| rel");
+  fmt::print("  {:<8} {:>9} {:>10} {:>12} {:>12}\n", "backend", "particles", "ms", "|<r>| rel",
+             "|<r^2>| rel");
   j.field("sweep_state", o.sweep_state).key("sweep").begin_array();
   for (auto& b : backends) {
     for (uint32_t n : {1000u, 10000u, 100000u, 1000000u}) {
@@ -100,7 +100,8 @@ int run_atom_bench(const AtomBenchOptions& o) {
 
 void add_atom_bench(CLI::App& bench) {
   static AtomBenchOptions o;
-  auto* cmd = bench.add_subcommand("atom", "cloud creation: thesis Table 2.3 states; count vs error");
+  auto* cmd =
+      bench.add_subcommand("atom", "cloud creation: thesis Table 2.3 states; count vs error");
   add_backend_options(*cmd, o.choice, true);
   cmd->add_option("--scale", o.scale, "fraction of the thesis's particle counts")
       ->check(CLI::Range(1e-4, 16.0))

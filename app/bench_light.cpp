@@ -22,8 +22,10 @@ struct LightBenchOptions {
 namespace {
 
 int run_light_bench(const LightBenchOptions& o) {
-  fmt::print("bench light: nebula lighting for thesis Table 2.3 (counts x {}), 60^3 density "
-             "grid, exact path, median of {} runs\n", o.scale, o.reps);
+  fmt::print(
+      "bench light: nebula lighting for thesis Table 2.3 (counts x {}), 60^3 density "
+      "grid, exact path, median of {} runs\n",
+      o.scale, o.reps);
   JsonWriter j;
   j.begin_object();
   write_record_header(j, "light");
@@ -46,13 +48,15 @@ int run_light_bench(const LightBenchOptions& o) {
         scene.illuminate();
         scene.view();
         const NebulaLightParams lp = scene.light_params();
-        const TimingStats si = summarize(time_on_device(*b, 1, o.reps, [] {}, [&] {
-          b->nebula_illuminate(lp, scene.positions, scene.density, scene.illumination);
-        }));
-        const TimingStats sv = summarize(time_on_device(*b, 1, o.reps, [] {}, [&] {
-          b->nebula_view(lp, scene.positions, scene.density, scene.phase, scene.illumination,
-                         scene.light);
-        }));
+        const TimingStats si = summarize(time_on_device(
+            *b, 1, o.reps, [] {},
+            [&] { b->nebula_illuminate(lp, scene.positions, scene.density, scene.illumination); }));
+        const TimingStats sv = summarize(time_on_device(
+            *b, 1, o.reps, [] {},
+            [&] {
+              b->nebula_view(lp, scene.positions, scene.density, scene.phase, scene.illumination,
+                             scene.light);
+            }));
         const double total = si.median_ms + sv.median_ms;
         fmt::print("  {:<8} {:<8} {:>9} {:>10.2f} {:>10.2f} {:>10.2f} {:>10.3f}s {:>10.1f}s\n",
                    b->name(), row.state, so.particles, si.median_ms, sv.median_ms, total,
@@ -71,7 +75,8 @@ int run_light_bench(const LightBenchOptions& o) {
   }
   j.end_array();
   // Midpoint steps against the exact traversal (state 3, 100k particles).
-  fmt::print("  optical-depth path: midpoint step vs error against the exact traversal (state3):\n");
+  fmt::print(
+      "  optical-depth path: midpoint step vs error against the exact traversal (state3):\n");
   fmt::print("  {:<8} {:>12} {:>10} {:>14}\n", "backend", "step (cells)", "ms", "rel L2 light");
   j.key("sweep").begin_array();
   for (auto& b : backends) {
@@ -90,14 +95,16 @@ int run_light_bench(const LightBenchOptions& o) {
       };
       run();
       const std::vector<double> exact = b->download(scene.light);
-      const TimingStats se = summarize(time_on_device(*b, 1, o.reps, [] {}, run));
+      const TimingStats se = summarize(time_on_device(
+          *b, 1, o.reps, [] {}, run));
       j.begin_object().field("backend", b->name()).field("path", "exact");
       j.field("ms", se.median_ms).field("rel_l2", 0.0).end_object();
       fmt::print("  {:<8} {:>12} {:>10.2f} {:>14}\n", b->name(), "exact", se.median_ms, "0");
       lp.path = OpticalPath::midpoint;
       for (double cells : {2.0, 1.0, 0.5, 0.25, 0.125}) {
         lp.step_a0 = float(cells * lp.grid.cell_size);
-        const TimingStats s = summarize(time_on_device(*b, 1, o.reps, [] {}, run));
+        const TimingStats s = summarize(time_on_device(
+            *b, 1, o.reps, [] {}, run));
         const std::vector<double> got = b->download(scene.light);
         double d2 = 0, r2 = 0;
         for (size_t i = 0; i < got.size(); ++i) {
@@ -123,7 +130,8 @@ int run_light_bench(const LightBenchOptions& o) {
 
 void add_light_bench(CLI::App& bench) {
   static LightBenchOptions o;
-  auto* cmd = bench.add_subcommand("light", "nebula lighting: thesis Table 2.3; path step vs error");
+  auto* cmd =
+      bench.add_subcommand("light", "nebula lighting: thesis Table 2.3; path step vs error");
   add_backend_options(*cmd, o.choice, true);
   cmd->add_option("--scale", o.scale, "fraction of the thesis's particle counts")
       ->check(CLI::Range(1e-4, 16.0))

@@ -46,14 +46,16 @@ Timed time_raymarch(Backend& b, const RaymarchParams& rp, const Buffer<Real>& vo
   auto bricks = b.create<Real4>(size_t(nb.x) * nb.y * nb.z, "bricks");
   b.volume_bricks({rp.volume, rp.brick, rp.tf_size}, vol, t, bricks);
   auto img = b.create<Real4>(size_t(rp.width) * rp.height, "image");
-  const TimingStats s =
-      summarize(time_on_device(b, 1, reps, [] {}, [&] { b.raymarch(rp, vol, t, bricks, img); }));
+  const TimingStats s = summarize(time_on_device(
+      b, 1, reps, [] {}, [&] { b.raymarch(rp, vol, t, bricks, img); }));
   return {s.median_ms, b.download(img)};
 }
 
 int run_raymarch_bench(const RaymarchBenchOptions& o) {
-  fmt::print("bench raymarch: the state1 cloud voxelized on 60^3 (front view, step 1/2 voxel, "
-             "empty-space skipping, ERT 0.99), median of {} runs\n", o.reps);
+  fmt::print(
+      "bench raymarch: the state1 cloud voxelized on 60^3 (front view, step 1/2 voxel, "
+      "empty-space skipping, ERT 0.99), median of {} runs\n",
+      o.reps);
   JsonWriter j;
   j.begin_object();
   write_record_header(j, "raymarch");
@@ -78,12 +80,14 @@ int run_raymarch_bench(const RaymarchBenchOptions& o) {
       for (Case c : {Case{512, 512}, Case{1024, 1024}}) {
         for (bool skip : {true, false}) {
           if (!skip && c.w > 512) continue;  // the effect of skipping shows at 512^2
-          RaymarchParams rp = atom::default_raymarch(scene.volume(), atom::ViewPreset::front, c.w, c.h);
+          RaymarchParams rp =
+              atom::default_raymarch(scene.volume(), atom::ViewPreset::front, c.w, c.h);
           rp.skip_empty = skip;
           const Timed t = time_raymarch(*b, rp, scene.sample, tf, o.reps);
           const double rays = double(c.w) * c.h / (t.ms * 1e-3);
           fmt::print("  {:<8} {:>10} {:>7}x{:<4} {:>10.2f} {:>8.1f} {:>12.1f}{}\n", b->name(),
-                     "60^3", c.w, c.h, t.ms, 1e3 / t.ms, rays * 1e-6, skip ? "" : "  (no skipping)");
+                     "60^3", c.w, c.h, t.ms, 1e3 / t.ms, rays * 1e-6,
+                     skip ? "" : "  (no skipping)");
           j.begin_object();
           write_device(j, *b);
           j.field("volume", "60^3").field("width", c.w).field("height", c.h);

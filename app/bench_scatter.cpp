@@ -49,9 +49,10 @@ int run_scatter_bench(const ScatterBenchOptions& o) {
   ScatterTableParams p;  // thesis defaults: 1000 x 72, tau 0 .. 9.99, g = a = 0.6
   p.photons_per_row = o.photons;
   const double events = mean_events(p);
-  fmt::print("bench scatter: {} rows x {} bins, {} photons per row ({:.1f} scatterings per "
-             "photon), median of {} runs\n",
-             p.rows, p.bins, p.photons_per_row, events, o.reps);
+  fmt::print(
+      "bench scatter: {} rows x {} bins, {} photons per row ({:.1f} scatterings per "
+      "photon), median of {} runs\n",
+      p.rows, p.bins, p.photons_per_row, events, o.reps);
   JsonWriter j;
   j.begin_object();
   write_record_header(j, "scatter");
@@ -66,8 +67,8 @@ int run_scatter_bench(const ScatterBenchOptions& o) {
       const size_t entries = size_t(p.rows) * (p.bins + kScatterExtras);
       auto table = b->create<Real>(entries, "table");
       auto hits = b->create<uint32_t>(entries, "hits");
-      const TimingStats s = summarize(
-          time_on_device(*b, 1, o.reps, [] {}, [&] { b->scatter_table(p, table, hits); }));
+      const TimingStats s = summarize(time_on_device(
+          *b, 1, o.reps, [] {}, [&] { b->scatter_table(p, table, hits); }));
       const double ps = n / (s.median_ms * 1e-3);
       fmt::print("  {:<8} {:>11.2f} {:>12.2f} {:>14.4f}\n", b->name(), s.median_ms, ps * 1e-6,
                  ps * events * 1e-9);
@@ -109,7 +110,8 @@ int run_scatter_bench(const ScatterBenchOptions& o) {
         const auto t0 = std::chrono::steady_clock::now();
         const atom::ScatterTable t = atom::compute_scatter_table(*b, sw);
         const double ms =
-            std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+            std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0)
+                .count();
         const atom::ScatterTable one = atom::compute_scatter_table(*b, ss);
         double e1 = 0;
         for (uint32_t k = 0; k < ss.bins; ++k) {
@@ -142,7 +144,8 @@ void add_scatter_bench(CLI::App& bench) {
   cmd->add_option("--photons", o.photons, "photons per tau row of the timed table")
       ->check(CLI::Range(1u, 1u << 20))
       ->capture_default_str();
-  cmd->add_option("--reference-photons", o.reference_photons, "photons per row of the converged table")
+  cmd->add_option("--reference-photons", o.reference_photons,
+                  "photons per row of the converged table")
       ->check(CLI::Range(64u, 1u << 20))
       ->capture_default_str();
   add_reps_option(*cmd, o.reps);

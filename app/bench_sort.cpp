@@ -46,7 +46,9 @@ int run_sort_bench(const SortBenchOptions& o) {
         auto vb = b->create<uint32_t>(o.n, "values");
         const auto samples = time_on_device(
             *b, 1, o.reps, [&] { b->upload(kb, keys), b->upload(vb, values); },
-            [&] { b->radix_sort({o.n, o.key_bits, impl}, kb, &vb); });
+            [&] {
+              b->radix_sort({o.n, o.key_bits, impl}, kb, &vb);
+            });
         const auto sorted = b->download(kb);
         bool verified = std::is_sorted(sorted.begin(), sorted.end());
         const TimingStats t = summarize(samples);
@@ -77,7 +79,9 @@ void add_sort_bench(CLI::App& bench) {
   static SortBenchOptions o;
   auto* cmd = bench.add_subcommand("sort", "radix sort of key-value pairs");
   add_backend_options(*cmd, o.choice, true);
-  cmd->add_option("--n", o.n, "pairs to sort")->check(CLI::Range(1u, 1u << 28))->capture_default_str();
+  cmd->add_option("--n", o.n, "pairs to sort")
+      ->check(CLI::Range(1u, 1u << 28))
+      ->capture_default_str();
   cmd->add_option("--key-bits", o.key_bits, "key bits in use (keys are masked to them)")
       ->check(CLI::Range(1u, 32u))
       ->capture_default_str();

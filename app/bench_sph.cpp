@@ -198,8 +198,7 @@ int run_sph_bench(const SphBenchOptions& o) {
         "\nrun time against error: dam break, {} particles, {:.6g} s ({} steps of dt0 = {:.3g} s); "
         "reference RK4 at dt0/16 (CPU, fp64)\n",
         o.error_particles, t_end, n0, dt0);
-    const Final ref =
-        run_steps(ref_backend, error_scene(o, SphIntegrator::rk4, dt0 / 16), 16 * n0);
+    const Final ref = run_steps(ref_backend, error_scene(o, SphIntegrator::rk4, dt0 / 16), 16 * n0);
     std::vector<double> ref_v;
     for (const auto& v : ref.state.velocities) ref_v.insert(ref_v.end(), {v.x, v.y, v.z});
     j.key("error_sweep").begin_object();

@@ -65,9 +65,15 @@ std::vector<Vec4d> splat_cloud(atom::AtomScene& scene, atom::ViewPreset view, ui
   for (size_t i = 0; i < pos.size(); ++i) {
     double u = 0, v = 0;
     switch (view) {
-      case atom::ViewPreset::top: u = pos[i].x, v = pos[i].y; break;
-      case atom::ViewPreset::left: u = -pos[i].y, v = pos[i].z; break;
-      case atom::ViewPreset::front: u = pos[i].x, v = pos[i].z; break;
+      case atom::ViewPreset::top:
+        u = pos[i].x, v = pos[i].y;
+        break;
+      case atom::ViewPreset::left:
+        u = -pos[i].y, v = pos[i].z;
+        break;
+      case atom::ViewPreset::front:
+        u = pos[i].x, v = pos[i].z;
+        break;
     }
     const int px = int((u / h * 0.5 + 0.5) * size), py = int((0.5 - v / h * 0.5) * size);
     if (px < 0 || py < 0 || px >= int(size) || py >= int(size)) continue;
@@ -75,7 +81,7 @@ std::vector<Vec4d> splat_cloud(atom::AtomScene& scene, atom::ViewPreset view, ui
     const double g = std::min(1.0, light[i] * k);
     c.x += 0.02 * g * g;  // hot particles tint towards white
     c.y += 0.05 * g;
-    c.z += 0.015;         // every particle leaves a faint trace, so the whole cloud shows
+    c.z += 0.015;  // every particle leaves a faint trace, so the whole cloud shows
     c.w = 1;
   }
   return img;
@@ -88,8 +94,9 @@ int run_atom(const AtomCliOptions& o) {
     so.state.real = o.real;
   } else {
     if (o.n == 0)
-      throw_invalid("masav atom", "--state or --n", "none", "a preset (--state state1..state10) "
-                                                            "or a state (--n N --l L --m M)");
+      throw_invalid("masav atom", "--state or --n", "none",
+                    "a preset (--state state1..state10) "
+                    "or a state (--n N --l L --m M)");
     so.state = {o.n, o.l, o.m, o.real};
   }
   atom::validate_state(so.state, "masav atom");
@@ -113,15 +120,16 @@ int run_atom(const AtomCliOptions& o) {
   const float half = float(atom::box_half_width(so.state, so.box_probability));
   const Vec3f eye = atom::view_eye(view, 1.9f * half * std::sqrt(3.0f));
   so.viewer = eye;
-  fmt::print("atom: {} ({} particles, {} placement) on {} ({})\n", describe(so.state),
-             so.particles, o.placement, backend->name(), backend->caps().device_name);
+  fmt::print("atom: {} ({} particles, {} placement) on {} ({})\n", describe(so.state), so.particles,
+             o.placement, backend->name(), backend->caps().device_name);
   atom::AtomScene scene(*backend, so);
   scene.run_all();
   const auto& t = scene.times();
-  fmt::print("  cloud {:.1f} ms, density {:.1f} ms, scattering table {:.1f} ms{}, illumination "
-             "{:.1f} ms, view {:.1f} ms, voxelize {:.1f} ms\n",
-             t.cloud_ms, t.density_ms, t.table_ms, t.table_from_cache ? " (from the cache)" : "",
-             t.illuminate_ms, t.view_ms, t.voxelize_ms);
+  fmt::print(
+      "  cloud {:.1f} ms, density {:.1f} ms, scattering table {:.1f} ms{}, illumination "
+      "{:.1f} ms, view {:.1f} ms, voxelize {:.1f} ms\n",
+      t.cloud_ms, t.density_ms, t.table_ms, t.table_from_cache ? " (from the cache)" : "",
+      t.illuminate_ms, t.view_ms, t.voxelize_ms);
   std::filesystem::create_directories(o.out);
   const std::string dir = o.out + "/";
   atom::write_cloud_vtp(scene, dir + "cloud.vtp");
@@ -154,8 +162,9 @@ int run_volume(const VolumeCliOptions& o) {
       throw_invalid("masav volume", "--dims", fmt::format("{} values", o.dims.size()),
                     "three sizes X,Y,Z for a raw file");
     if (o.type.empty())
-      throw_invalid("masav volume", "--type", "none", "the sample type of a raw file (uint8, int16, "
-                                                      "float32, ...)");
+      throw_invalid("masav volume", "--type", "none",
+                    "the sample type of a raw file (uint8, int16, "
+                    "float32, ...)");
     Vec3f sp{1, 1, 1};
     if (o.spacing.size() == 3) sp = {o.spacing[0], o.spacing[1], o.spacing[2]};
     vol = atom::load_raw(o.file, {o.dims[0], o.dims[1], o.dims[2]}, atom::parse_sample_type(o.type),
@@ -179,8 +188,9 @@ int run_volume(const VolumeCliOptions& o) {
 
 void add_atom_command(CLI::App& app) {
   static AtomCliOptions o;
-  auto* cmd = app.add_subcommand("atom", "hydrogen electron cloud as a reflection nebula: cloud, "
-                                         "lighting, volume, raymarch; writes .vtp/.vti/.csv/.png");
+  auto* cmd = app.add_subcommand("atom",
+                                 "hydrogen electron cloud as a reflection nebula: cloud, "
+                                 "lighting, volume, raymarch; writes .vtp/.vti/.csv/.png");
   add_backend_options(*cmd, o.choice, false);
   cmd->add_option("--state", o.preset, "thesis Table 2.1 preset: state1 .. state10");
   cmd->add_option("--n", o.n, "principal quantum number")->check(CLI::Range(1, atom::kMaxN));
@@ -198,9 +208,15 @@ void add_atom_command(CLI::App& app) {
       ->check(CLI::Range(0.0f, 1e9f))
       ->capture_default_str();
   cmd->add_option("--view", o.view, "top, left or front")->capture_default_str();
-  cmd->add_option("--width", o.width, "image width")->check(CLI::Range(16u, 8192u))->capture_default_str();
-  cmd->add_option("--height", o.height, "image height")->check(CLI::Range(16u, 8192u))->capture_default_str();
-  cmd->add_option("--dims", o.dims, "voxel grid N (N^3 volume)")->check(CLI::Range(2u, 512u))->capture_default_str();
+  cmd->add_option("--width", o.width, "image width")
+      ->check(CLI::Range(16u, 8192u))
+      ->capture_default_str();
+  cmd->add_option("--height", o.height, "image height")
+      ->check(CLI::Range(16u, 8192u))
+      ->capture_default_str();
+  cmd->add_option("--dims", o.dims, "voxel grid N (N^3 volume)")
+      ->check(CLI::Range(2u, 512u))
+      ->capture_default_str();
   cmd->add_option("--density-dims", o.density_dims, "density grid N (cells of the lighting)")
       ->check(CLI::Range(2u, 512u))
       ->capture_default_str();
@@ -219,12 +235,14 @@ void add_atom_command(CLI::App& app) {
   });
 
   static VolumeCliOptions v;
-  auto* vc = app.add_subcommand("volume", "raymarch a scalar volume (raw, .nrrd/.nhdr, .vti) to PNG");
+  auto* vc =
+      app.add_subcommand("volume", "raymarch a scalar volume (raw, .nrrd/.nhdr, .vti) to PNG");
   add_backend_options(*vc, v.choice, false);
   vc->add_option("file", v.file, "the volume file")->required();
   vc->add_option("--out", v.out, "output PNG")->required();
   vc->add_option("--dims", v.dims, "raw: sizes X Y Z")->delimiter(',')->expected(3);
-  vc->add_option("--type", v.type, "raw: uint8, int8, uint16, int16, uint32, int32, float32, float64");
+  vc->add_option("--type", v.type,
+                 "raw: uint8, int8, uint16, int16, uint32, int32, float32, float64");
   vc->add_option("--spacing", v.spacing, "raw: voxel size X,Y,Z")->delimiter(',')->expected(3);
   vc->add_flag("--big-endian", v.big_endian, "raw: big-endian samples");
   vc->add_option("--array", v.array, "vti: the array to read (default: the first)");

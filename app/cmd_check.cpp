@@ -93,10 +93,9 @@ int run_check(const BackendChoice& choice) {
   fmt::print("self-check: {} ({}) against the CPU reference\n", backend->name(),
              backend->caps().device_name);
   const auto t0 = std::chrono::steady_clock::now();
-  std::vector<Outcome> out = {check_philox(*backend, reference, 1 << 20),
-                              check_sort(*backend, reference, 1 << 20, 32),
-                              check_sort(*backend, reference, 1 << 20, 20),
-                              check_grid(*backend, reference, 200000)};
+  std::vector<Outcome> out = {
+      check_philox(*backend, reference, 1 << 20), check_sort(*backend, reference, 1 << 20, 32),
+      check_sort(*backend, reference, 1 << 20, 20), check_grid(*backend, reference, 200000)};
   bool all = true;
   for (const auto& o : out) {
     fmt::print("  {:<24} {}  {}\n", o.name, o.pass ? "PASS" : "FAIL", o.detail);
