@@ -1,10 +1,13 @@
 #pragma once
 // Shared pieces of the electron-cloud benchmarks: the thesis's Table 2.3 (states, particle
 // counts, and its Quadro FX 5800 / Core2 Duo P8400 times) and small helpers.
+#include <fmt/format.h>
+
 #include <array>
 #include <string>
 
 #include "app/bench_common.h"
+#include "engine/atom/atom_scene.h"
 #include "engine/atom/orbital.h"
 
 namespace masav::app {
@@ -30,6 +33,28 @@ inline constexpr std::array<ThesisRow, 10> kThesisTable23 = {{
     {"state9", 132192, 1.5, 27.5, 0.105},
     {"state10", 1000001, 8.7, 64.1, 0.197},
 }};
+
+// `row` for each backend and each state of Table 2.3, every one under run_row with the backend
+// and the state as its label; 1 if one failed, else 0.
+inline int for_each_thesis_row(const std::vector<std::unique_ptr<Backend>>& backends,
+                               const std::function<void(Backend&, const ThesisRow&)>& row) {
+  int rc = 0;
+  for (const auto& b : backends)
+    for (const ThesisRow& r : kThesisTable23)
+      if (!run_row(fmt::format("{:<8} {:<8}", b->name(), r.state), [&] { row(*b, r); })) rc = 1;
+  return rc;
+}
+
+// The electron-cloud scene of a benchmark: a preset state, its particle count and the photons per
+// tau row of the scattering table (which only feeds the lookups there).
+inline atom::AtomSceneOptions bench_scene_options(const char* state, uint32_t particles,
+                                                  uint32_t photons) {
+  atom::AtomSceneOptions so;
+  so.state = atom::preset_state(state);
+  so.particles = particles;
+  so.scatter.photons_per_row = photons;
+  return so;
+}
 
 // Thesis §3.4: raymarching the 60^3 volume took 32-37 ms per frame on the Quadro FX 5800.
 inline constexpr double kThesisRaymarchMs[2] = {32.0, 37.0};

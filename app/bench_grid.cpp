@@ -40,52 +40,45 @@ int run_grid_bench(const GridBenchOptions& o) {
   j.field("n", o.n).field("cells_per_axis", side).key("rows").begin_array();
   fmt::print("  {:<8} {:<34} {:>9} {:>9} {:>9} {:>9} {:>10} {:>12}\n", "backend", "device",
              "assign", "sort", "ranges", "reorder", "neighbours", "Mpts/s build");
-  int rc = 0;
-  for (auto& b : open_backends(o.choice)) {
-    try {
-      auto pos = b->create<Real4>(o.n, "positions");
-      auto sorted = b->create<Real4>(o.n, "sorted positions");
-      auto counts = b->create<uint32_t>(o.n, "counts");
-      b->upload(pos, pts);
-      HashGrid g = make_hash_grid(*b, gp, o.n);
-      const NeighborParams np = make_neighbor_params(gp, gp.cell_size);
-      std::vector<double> stage_ms[kStageCount];
-      for (int rep = 0; rep < o.reps + 1; ++rep) {
-        b->finish();
-        b->reset_timestamps();
-        TimestampId t[kStageCount + 1];
-        t[0] = b->timestamp();
-        b->grid_assign_cells(gp, pos, g.sorted_cells, g.sorted_index);
-        t[1] = b->timestamp();
-        b->radix_sort({o.n, grid_key_bits(gp)}, g.sorted_cells, &g.sorted_index);
-        t[2] = b->timestamp();
-        b->grid_cell_ranges(gp, g.sorted_cells, g.cell_start, g.cell_end);
-        t[3] = b->timestamp();
-        reorder(*b, g, pos.impl(), sorted.impl());
-        t[4] = b->timestamp();
-        b->grid_count_neighbors(np, sorted, g.cell_start, g.cell_end, counts);
-        t[5] = b->timestamp();
-        b->finish();
-        if (rep == 0) continue;  // warm-up
-        for (int s = 0; s < kStageCount; ++s)
-          stage_ms[s].push_back((b->timestamp_ns(t[s + 1]) - b->timestamp_ns(t[s])) * 1e-6);
-      }
-      TimingStats st[kStageCount];
-      for (int s = 0; s < kStageCount; ++s) st[s] = summarize(stage_ms[s]);
-      const double build_ms = st[0].median_ms + st[1].median_ms + st[2].median_ms;
-      fmt::print("  {:<8} {:<34.34} {:>9.3f} {:>9.3f} {:>9.3f} {:>9.3f} {:>10.3f} {:>12.1f}\n",
-                 b->name(), b->caps().device_name, st[0].median_ms, st[1].median_ms,
-                 st[2].median_ms, st[3].median_ms, st[4].median_ms, o.n / build_ms * 1e-3);
-      j.begin_object();
-      write_device(j, *b);
-      j.field("reps", o.reps).key("median_ms").begin_object();
-      for (int s = 0; s < kStageCount; ++s) j.field(kStages[s], st[s].median_ms);
-      j.end_object().field("build_points_per_s", o.n / (build_ms * 1e-3)).end_object();
-    } catch (const Error& e) {
-      fmt::print("  {:<8} error: {}\n", b->name(), e.what());
-      rc = 1;
+  const int rc = for_each_backend(open_backends(o.choice), [&](Backend& b) {
+    auto pos = b.create<Real4>(o.n, "positions");
+    auto sorted = b.create<Real4>(o.n, "sorted positions");
+    auto counts = b.create<uint32_t>(o.n, "counts");
+    b.upload(pos, pts);
+    HashGrid g = make_hash_grid(b, gp, o.n);
+    const NeighborParams np = make_neighbor_params(gp, gp.cell_size);
+    std::vector<double> stage_ms[kStageCount];
+    for (int rep = 0; rep < o.reps + 1; ++rep) {
+      b.finish();
+      b.reset_timestamps();
+      TimestampId t[kStageCount + 1];
+      t[0] = b.timestamp();
+      b.grid_assign_cells(gp, pos, g.sorted_cells, g.sorted_index);
+      t[1] = b.timestamp();
+      b.radix_sort({o.n, grid_key_bits(gp)}, g.sorted_cells, &g.sorted_index);
+      t[2] = b.timestamp();
+      b.grid_cell_ranges(gp, g.sorted_cells, g.cell_start, g.cell_end);
+      t[3] = b.timestamp();
+      reorder(b, g, pos.impl(), sorted.impl());
+      t[4] = b.timestamp();
+      b.grid_count_neighbors(np, sorted, g.cell_start, g.cell_end, counts);
+      t[5] = b.timestamp();
+      b.finish();
+      if (rep == 0) continue;  // warm-up
+      for (int s = 0; s < kStageCount; ++s)
+        stage_ms[s].push_back((b.timestamp_ns(t[s + 1]) - b.timestamp_ns(t[s])) * 1e-6);
     }
-  }
+    TimingStats st[kStageCount];
+    for (int s = 0; s < kStageCount; ++s) st[s] = summarize(stage_ms[s]);
+    const double build_ms = st[0].median_ms + st[1].median_ms + st[2].median_ms;
+    fmt::print("  {:<8} {:<34.34} {:>9.3f} {:>9.3f} {:>9.3f} {:>9.3f} {:>10.3f} {:>12.1f}\n",
+               b.name(), b.caps().device_name, st[0].median_ms, st[1].median_ms, st[2].median_ms,
+               st[3].median_ms, st[4].median_ms, o.n / build_ms * 1e-3);
+    begin_row(j, b);
+    j.field("reps", o.reps).key("median_ms").begin_object();
+    for (int s = 0; s < kStageCount; ++s) j.field(kStages[s], st[s].median_ms);
+    j.end_object().field("build_points_per_s", o.n / (build_ms * 1e-3)).end_object();
+  });
   j.end_array().end_object();
   finish_record(j, o.json);
   return rc;

@@ -41,7 +41,7 @@ int run_sort_bench(const SortBenchOptions& o) {
     if (b->name() == "cuda") impls.push_back({"cub", SortImpl::vendor});
     if (b->name() == "cpu") impls = {{"cpu-ref", SortImpl::portable}};
     for (const auto& [label, impl] : impls) {
-      try {
+      auto row = [&] {
         auto kb = b->create<uint32_t>(o.n, "keys");
         auto vb = b->create<uint32_t>(o.n, "values");
         const auto samples = time_on_device(
@@ -56,16 +56,13 @@ int run_sort_bench(const SortBenchOptions& o) {
         fmt::print("  {:<8} {:<10} {:<40.40} {:>10.3f} {:>10.3f} {:>12.1f}{}\n", b->name(), label,
                    b->caps().device_name, t.median_ms, t.min_ms, rate * 1e-6,
                    verified ? "" : "  NOT SORTED");
-        j.begin_object();
-        write_device(j, *b);
+        begin_row(j, *b);
         j.field("impl", label).field("reps", t.reps).field("median_ms", t.median_ms);
         j.field("min_ms", t.min_ms).field("max_ms", t.max_ms).field("pairs_per_s", rate);
         j.field("verified_sorted", verified).end_object();
         if (!verified) rc = 1;
-      } catch (const Error& e) {
-        fmt::print("  {:<8} {:<10} error: {}\n", b->name(), label, e.what());
-        rc = 1;
-      }
+      };
+      if (!run_row(fmt::format("{:<8} {:<10}", b->name(), label), row)) rc = 1;
     }
   }
   j.end_array().end_object();
