@@ -31,12 +31,9 @@ TimingStats time_sampling(Backend& b, const atom::OrbitalTables& t, uint32_t n, 
   return time_work(b, reps, [&] { b.orbital_sample(t.params, tables, pos); });
 }
 
-int run_atom_bench(const AtomBenchOptions& o) {
+int run_atom_bench(const AtomBenchOptions& o, JsonWriter& j) {
   fmt::print("bench atom: cloud creation for thesis Table 2.3 (counts x {}), median of {} runs\n",
              o.scale, o.reps);
-  JsonWriter j;
-  j.begin_object();
-  write_record_header(j, "atom");
   j.field("scale", o.scale).key("rows").begin_array();
   auto backends = open_backends(o.choice);
   fmt::print("  {:<8} {:<8} {:>9} {:>11} {:>12} {:>11}\n", "backend", "state", "particles",
@@ -84,8 +81,7 @@ int run_atom_bench(const AtomBenchOptions& o) {
       if (!run_row(backend_label(*b), row)) rc = 1;
     }
   }
-  j.end_array().end_object();
-  finish_record(j, o.json);
+  j.end_array();
   return rc;
 }
 
@@ -93,19 +89,14 @@ int run_atom_bench(const AtomBenchOptions& o) {
 
 void add_atom_bench(CLI::App& bench) {
   static AtomBenchOptions o;
-  auto* cmd =
-      bench.add_subcommand("atom", "cloud creation: thesis Table 2.3 states; count vs error");
-  add_backend_options(*cmd, o.choice, true);
-  cmd->add_option("--scale", o.scale, "fraction of the thesis's particle counts")
-      ->check(CLI::Range(1e-4, 16.0))
-      ->capture_default_str();
+  auto* cmd = add_bench(bench, "atom", "cloud creation: thesis Table 2.3 states; count vs error", o,
+                        run_atom_bench);
+  add_ranged_option(*cmd, "--scale", o.scale, "fraction of the thesis's particle counts", 1e-4,
+                    16.0);
   add_reps_option(*cmd, o.reps);
   cmd->add_option("--sweep-state", o.sweep_state, "state of the count-vs-error sweep")
       ->capture_default_str();
   add_json_option(*cmd, o.json);
-  cmd->callback([] {
-    if (int rc = run_atom_bench(o)) throw CLI::RuntimeError(rc);
-  });
 }
 
 }  // namespace masav::app

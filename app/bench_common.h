@@ -49,6 +49,27 @@ void begin_row(JsonWriter& j, const Backend& b);
 // Writes the JSON record (atomically) if a path was given, and says where.
 void finish_record(const JsonWriter& j, const std::string& path);
 
+// A `masav bench` subcommand: --backend, where `all` is allowed, and --device are its first
+// options. When it is chosen, `run(o, j)` fills the JSON record `j` (an object opened with the
+// header, the benchmark named as the subcommand) and returns the exit code; the record is then
+// written where --json says, even when a backend failed.
+template <class Options>
+CLI::App* add_bench(CLI::App& bench, const std::string& name, const std::string& description,
+                    Options& o, int (*run)(const Options&, JsonWriter&)) {
+  CLI::App* cmd = bench.add_subcommand(name, description);
+  add_backend_options(*cmd, o.choice, true);
+  cmd->callback([name, &o, run] {
+    JsonWriter j;
+    j.begin_object();
+    write_record_header(j, name);
+    const int rc = run(o, j);
+    j.end_object();
+    finish_record(j, o.json);
+    if (rc) throw CLI::RuntimeError(rc);
+  });
+  return cmd;
+}
+
 // The options every benchmark has: --reps (timed runs after one warm-up, 1..1000) and --json.
 void add_reps_option(CLI::App& cmd, int& reps);
 void add_json_option(CLI::App& cmd, std::string& path);

@@ -24,7 +24,7 @@ namespace {
 const char* kStages[] = {"assign", "sort", "ranges", "reorder", "neighbours"};
 constexpr int kStageCount = 5;
 
-int run_grid_bench(const GridBenchOptions& o) {
+int run_grid_bench(const GridBenchOptions& o, JsonWriter& j) {
   const uint32_t side = std::max(1u, uint32_t(std::lround(std::cbrt(o.n / o.per_cell))));
   const GridParams gp = make_grid_params({0, 0, 0}, 1.0f / float(side), {side, side, side}, o.n);
   fmt::print("bench grid: {} points uniform in {}^3 cells (~{:.1f} per cell), median of {} runs\n",
@@ -34,9 +34,6 @@ int run_grid_bench(const GridBenchOptions& o) {
   std::vector<Vec4f> pts(o.n);
   for (auto& p : pts) p = {u(rng), u(rng), u(rng), 0.0f};
 
-  JsonWriter j;
-  j.begin_object();
-  write_record_header(j, "grid");
   j.field("n", o.n).field("cells_per_axis", side).key("rows").begin_array();
   fmt::print("  {:<8} {:<34} {:>9} {:>9} {:>9} {:>9} {:>10} {:>12}\n", "backend", "device",
              "assign", "sort", "ranges", "reorder", "neighbours", "Mpts/s build");
@@ -79,8 +76,7 @@ int run_grid_bench(const GridBenchOptions& o) {
     for (int s = 0; s < kStageCount; ++s) j.field(kStages[s], st[s].median_ms);
     j.end_object().field("build_points_per_s", o.n / (build_ms * 1e-3)).end_object();
   });
-  j.end_array().end_object();
-  finish_record(j, o.json);
+  j.end_array();
   return rc;
 }
 
@@ -88,17 +84,12 @@ int run_grid_bench(const GridBenchOptions& o) {
 
 void add_grid_bench(CLI::App& bench) {
   static GridBenchOptions o;
-  auto* cmd = bench.add_subcommand("grid", "hash-grid build, reorder and neighbour query");
-  add_backend_options(*cmd, o.choice, true);
-  cmd->add_option("--n", o.n, "points")->check(CLI::Range(1u, 1u << 26))->capture_default_str();
-  cmd->add_option("--per-cell", o.per_cell, "mean points per cell")
-      ->check(CLI::Range(0.5, 1000.0))
-      ->capture_default_str();
+  auto* cmd =
+      add_bench(bench, "grid", "hash-grid build, reorder and neighbour query", o, run_grid_bench);
+  add_ranged_option(*cmd, "--n", o.n, "points", 1u, 1u << 26);
+  add_ranged_option(*cmd, "--per-cell", o.per_cell, "mean points per cell", 0.5, 1000.0);
   add_reps_option(*cmd, o.reps);
   add_json_option(*cmd, o.json);
-  cmd->callback([] {
-    if (int rc = run_grid_bench(o)) throw CLI::RuntimeError(rc);
-  });
 }
 
 }  // namespace masav::app

@@ -21,14 +21,11 @@ struct LightBenchOptions {
 
 namespace {
 
-int run_light_bench(const LightBenchOptions& o) {
+int run_light_bench(const LightBenchOptions& o, JsonWriter& j) {
   fmt::print(
       "bench light: nebula lighting for thesis Table 2.3 (counts x {}), 60^3 density "
       "grid, exact path, median of {} runs\n",
       o.scale, o.reps);
-  JsonWriter j;
-  j.begin_object();
-  write_record_header(j, "light");
   j.field("scale", o.scale).field("density_dims", 60).key("rows").begin_array();
   auto backends = open_backends(o.choice);
   fmt::print("  {:<8} {:<8} {:>9} {:>10} {:>10} {:>10} {:>11} {:>11}\n", "backend", "state",
@@ -96,8 +93,7 @@ int run_light_bench(const LightBenchOptions& o) {
       j.field("step_cells", cells).field("ms", s.median_ms).field("rel_l2", err).end_object();
     }
   });
-  j.end_array().end_object();
-  finish_record(j, o.json);
+  j.end_array();
   return rc;
 }
 
@@ -105,20 +101,13 @@ int run_light_bench(const LightBenchOptions& o) {
 
 void add_light_bench(CLI::App& bench) {
   static LightBenchOptions o;
-  auto* cmd =
-      bench.add_subcommand("light", "nebula lighting: thesis Table 2.3; path step vs error");
-  add_backend_options(*cmd, o.choice, true);
-  cmd->add_option("--scale", o.scale, "fraction of the thesis's particle counts")
-      ->check(CLI::Range(1e-4, 16.0))
-      ->capture_default_str();
+  auto* cmd = add_bench(bench, "light", "nebula lighting: thesis Table 2.3; path step vs error", o,
+                        run_light_bench);
+  add_ranged_option(*cmd, "--scale", o.scale, "fraction of the thesis's particle counts", 1e-4,
+                    16.0);
   add_reps_option(*cmd, o.reps);
-  cmd->add_option("--photons", o.photons, "photons per tau row of the table")
-      ->check(CLI::Range(1u, 1u << 20))
-      ->capture_default_str();
+  add_ranged_option(*cmd, "--photons", o.photons, "photons per tau row of the table", 1u, 1u << 20);
   add_json_option(*cmd, o.json);
-  cmd->callback([] {
-    if (int rc = run_light_bench(o)) throw CLI::RuntimeError(rc);
-  });
 }
 
 }  // namespace masav::app

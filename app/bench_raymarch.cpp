@@ -63,14 +63,11 @@ std::vector<float> large_volume(uint32_t n) {
   return v;
 }
 
-int run_raymarch_bench(const RaymarchBenchOptions& o) {
+int run_raymarch_bench(const RaymarchBenchOptions& o, JsonWriter& j) {
   fmt::print(
       "bench raymarch: the state1 cloud voxelized on 60^3 (front view, step 1/2 voxel, "
       "empty-space skipping, ERT 0.99), median of {} runs\n",
       o.reps);
-  JsonWriter j;
-  j.begin_object();
-  write_record_header(j, "raymarch");
   j.field("thesis_ms_min", kThesisRaymarchMs[0]).field("thesis_ms_max", kThesisRaymarchMs[1]);
   j.key("rows").begin_array();
   auto backends = open_backends(o.choice);
@@ -158,8 +155,7 @@ int run_raymarch_bench(const RaymarchBenchOptions& o) {
       j.field("ms", t.ms).field("max_abs_error", err).end_object();
     }
   });
-  j.end_array().end_object();
-  finish_record(j, o.json);
+  j.end_array();
   return rc;
 }
 
@@ -167,14 +163,11 @@ int run_raymarch_bench(const RaymarchBenchOptions& o) {
 
 void add_raymarch_bench(CLI::App& bench) {
   static RaymarchBenchOptions o;
-  auto* cmd = bench.add_subcommand("raymarch", "volume ray casting of 60^3; step vs error");
-  add_backend_options(*cmd, o.choice, true);
+  auto* cmd = add_bench(bench, "raymarch", "volume ray casting of 60^3; step vs error", o,
+                        run_raymarch_bench);
   add_reps_option(*cmd, o.reps);
   cmd->add_flag("--large", o.large, "also a 256^3 volume at 1920x1080");
   add_json_option(*cmd, o.json);
-  cmd->callback([] {
-    if (int rc = run_raymarch_bench(o)) throw CLI::RuntimeError(rc);
-  });
 }
 
 }  // namespace masav::app

@@ -45,7 +45,7 @@ double table_error(const atom::ScatterTable& t, const atom::ScatterTable& ref) {
   return err / t.params.rows;  // mean L1 distance of a row's bins
 }
 
-int run_scatter_bench(const ScatterBenchOptions& o) {
+int run_scatter_bench(const ScatterBenchOptions& o, JsonWriter& j) {
   ScatterTableParams p;  // thesis defaults: 1000 x 72, tau 0 .. 9.99, g = a = 0.6
   p.photons_per_row = o.photons;
   const double events = mean_events(p);
@@ -53,9 +53,6 @@ int run_scatter_bench(const ScatterBenchOptions& o) {
       "bench scatter: {} rows x {} bins, {} photons per row ({:.1f} scatterings per "
       "photon), median of {} runs\n",
       p.rows, p.bins, p.photons_per_row, events, o.reps);
-  JsonWriter j;
-  j.begin_object();
-  write_record_header(j, "scatter");
   j.field("rows", p.rows).field("bins", p.bins).field("photons_per_row", p.photons_per_row);
   j.field("mean_scatterings_per_photon", events).key("rows_by_backend").begin_array();
   auto backends = open_backends(o.choice);
@@ -116,8 +113,7 @@ int run_scatter_bench(const ScatterBenchOptions& o) {
       j.end_object();
     }
   });
-  j.end_array().end_object();
-  finish_record(j, o.json);
+  j.end_array();
   return rc;
 }
 
@@ -125,20 +121,14 @@ int run_scatter_bench(const ScatterBenchOptions& o) {
 
 void add_scatter_bench(CLI::App& bench) {
   static ScatterBenchOptions o;
-  auto* cmd = bench.add_subcommand("scatter", "Monte Carlo scattering table; photons vs error");
-  add_backend_options(*cmd, o.choice, true);
-  cmd->add_option("--photons", o.photons, "photons per tau row of the timed table")
-      ->check(CLI::Range(1u, 1u << 20))
-      ->capture_default_str();
-  cmd->add_option("--reference-photons", o.reference_photons,
-                  "photons per row of the converged table")
-      ->check(CLI::Range(64u, 1u << 20))
-      ->capture_default_str();
+  auto* cmd = add_bench(bench, "scatter", "Monte Carlo scattering table; photons vs error", o,
+                        run_scatter_bench);
+  add_ranged_option(*cmd, "--photons", o.photons, "photons per tau row of the timed table", 1u,
+                    1u << 20);
+  add_ranged_option(*cmd, "--reference-photons", o.reference_photons,
+                    "photons per row of the converged table", 64u, 1u << 20);
   add_reps_option(*cmd, o.reps);
   add_json_option(*cmd, o.json);
-  cmd->callback([] {
-    if (int rc = run_scatter_bench(o)) throw CLI::RuntimeError(rc);
-  });
 }
 
 }  // namespace masav::app

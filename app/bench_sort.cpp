@@ -20,7 +20,7 @@ struct SortBenchOptions {
 
 namespace {
 
-int run_sort_bench(const SortBenchOptions& o) {
+int run_sort_bench(const SortBenchOptions& o, JsonWriter& j) {
   fmt::print("bench sort: {} key-value pairs, {} key bits, median of {} runs\n", o.n, o.key_bits,
              o.reps);
   std::mt19937 rng(1);
@@ -29,9 +29,6 @@ int run_sort_bench(const SortBenchOptions& o) {
   for (auto& k : keys) k = rng() & mask;
   std::iota(values.begin(), values.end(), 0u);
 
-  JsonWriter j;
-  j.begin_object();
-  write_record_header(j, "sort");
   j.field("n", o.n).field("key_bits", o.key_bits).key("rows").begin_array();
   int rc = 0;
   fmt::print("  {:<8} {:<10} {:<40} {:>10} {:>10} {:>12}\n", "backend", "impl", "device",
@@ -65,8 +62,7 @@ int run_sort_bench(const SortBenchOptions& o) {
       if (!run_row(fmt::format("{:<8} {:<10}", b->name(), label), row)) rc = 1;
     }
   }
-  j.end_array().end_object();
-  finish_record(j, o.json);
+  j.end_array();
   return rc;
 }
 
@@ -74,19 +70,12 @@ int run_sort_bench(const SortBenchOptions& o) {
 
 void add_sort_bench(CLI::App& bench) {
   static SortBenchOptions o;
-  auto* cmd = bench.add_subcommand("sort", "radix sort of key-value pairs");
-  add_backend_options(*cmd, o.choice, true);
-  cmd->add_option("--n", o.n, "pairs to sort")
-      ->check(CLI::Range(1u, 1u << 28))
-      ->capture_default_str();
-  cmd->add_option("--key-bits", o.key_bits, "key bits in use (keys are masked to them)")
-      ->check(CLI::Range(1u, 32u))
-      ->capture_default_str();
+  auto* cmd = add_bench(bench, "sort", "radix sort of key-value pairs", o, run_sort_bench);
+  add_ranged_option(*cmd, "--n", o.n, "pairs to sort", 1u, 1u << 28);
+  add_ranged_option(*cmd, "--key-bits", o.key_bits, "key bits in use (keys are masked to them)", 1u,
+                    32u);
   add_reps_option(*cmd, o.reps);
   add_json_option(*cmd, o.json);
-  cmd->callback([] {
-    if (int rc = run_sort_bench(o)) throw CLI::RuntimeError(rc);
-  });
 }
 
 }  // namespace masav::app

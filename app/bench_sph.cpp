@@ -114,7 +114,7 @@ Final run_steps(Backend& b, const SphScene& s, uint64_t n) {
   return f;
 }
 
-int run_sph_bench(const SphBenchOptions& o) {
+int run_sph_bench(const SphBenchOptions& o, JsonWriter& j) {
   std::vector<uint32_t> counts;
   for (const auto& c : split(o.counts)) {
     char* end = nullptr;
@@ -127,9 +127,6 @@ int run_sph_bench(const SphBenchOptions& o) {
   for (const auto& i : split(o.integrators))
     integrators.push_back(parse_integrator(i, "--integrators"));
 
-  JsonWriter j;
-  j.begin_object();
-  write_record_header(j, "sph");
   j.field("preset", o.preset);
   j.key("thesis_table_4_1").begin_object();  // 32,768 particles, steps per second
   j.field("note", "Quadro FX 5800 GPU / Core2 Duo P8400 CPU, 32,768 particles, frames per second");
@@ -241,8 +238,6 @@ int run_sph_bench(const SphBenchOptions& o) {
     }
     j.end_array().end_object();
   }
-  j.end_object();
-  finish_record(j, o.json);
   return 0;
 }
 
@@ -250,9 +245,9 @@ int run_sph_bench(const SphBenchOptions& o) {
 
 void add_sph_bench(CLI::App& bench) {
   static SphBenchOptions o;
-  auto* cmd = bench.add_subcommand(
-      "sph", "SPH particle-steps/s by backend, integrator and count; run time against error");
-  add_backend_options(*cmd, o.choice, true);
+  auto* cmd = add_bench(
+      bench, "sph", "SPH particle-steps/s by backend, integrator and count; run time against error",
+      o, run_sph_bench);
   cmd->add_option("--n", o.counts, "comma-separated particle counts")->capture_default_str();
   cmd->add_option("--integrators", o.integrators,
                   "comma-separated: euler, symplectic-euler, "
@@ -266,16 +261,11 @@ void add_sph_bench(CLI::App& bench) {
   cmd->add_option("--steps", o.steps, "timed steps per run (0: ~2M particle-steps, 2..20)")
       ->check(CLI::Range(0, 100000));
   cmd->add_flag("--skip-error", o.skip_error, "skip the run-time/error sweep");
-  cmd->add_option("--error-particles", o.error_particles, "particles of the error sweep")
-      ->check(CLI::Range(64u, 1u << 20))
-      ->capture_default_str();
-  cmd->add_option("--error-time", o.error_time, "simulated seconds of the error sweep")
-      ->check(CLI::Range(1e-4, 10.0))
-      ->capture_default_str();
+  add_ranged_option(*cmd, "--error-particles", o.error_particles, "particles of the error sweep",
+                    64u, 1u << 20);
+  add_ranged_option(*cmd, "--error-time", o.error_time, "simulated seconds of the error sweep",
+                    1e-4, 10.0);
   add_json_option(*cmd, o.json);
-  cmd->callback([] {
-    if (int rc = run_sph_bench(o)) throw CLI::RuntimeError(rc);
-  });
 }
 
 }  // namespace masav::app
