@@ -11,12 +11,8 @@
 
 namespace masav::app {
 
-struct AtomBenchOptions {
-  BackendChoice choice{"all", ""};
-  double scale = 1.0;  // fraction of the thesis's particle counts
-  int reps = 3;
+struct AtomBenchOptions : Table23Options {
   std::string sweep_state = "state6";
-  std::string json;
 };
 
 namespace {
@@ -38,19 +34,19 @@ int run_atom_bench(const AtomBenchOptions& o, JsonWriter& j) {
   auto backends = open_backends(o.choice);
   fmt::print("  {:<8} {:<8} {:>9} {:>11} {:>12} {:>11}\n", "backend", "state", "particles",
              "median ms", "Mparticles/s", "thesis s");
-  int rc = for_each_thesis_row(backends, [&](Backend& b, const ThesisRow& row) {
-    const uint32_t n = std::max(1u, uint32_t(std::lround(row.particles * o.scale)));
-    const auto t =
-        atom::make_orbital_tables(atom::preset_state(row.state), OrbitalPlacement::exact, n, 1);
-    Buffer<Real4> pos;
-    const TimingStats s = time_sampling(b, t, n, o.reps, pos);
-    fmt::print("  {:<8} {:<8} {:>9} {:>11.3f} {:>12.1f} {:>11.1f}\n", b.name(), row.state, n,
-               s.median_ms, n / (s.median_ms * 1e3), row.creation_s);
-    begin_row(j, b);
-    j.field("state", row.state).field("particles", n).field("median_ms", s.median_ms);
-    j.field("min_ms", s.min_ms).field("max_ms", s.max_ms);
-    j.field("thesis_creation_s", row.creation_s).end_object();
-  });
+  int rc =
+      for_each_thesis_row(backends, o.scale, [&](Backend& b, const ThesisRow& row, uint32_t n) {
+        const auto t =
+            atom::make_orbital_tables(atom::preset_state(row.state), OrbitalPlacement::exact, n, 1);
+        Buffer<Real4> pos;
+        const TimingStats s = time_sampling(b, t, n, o.reps, pos);
+        fmt::print("  {:<8} {:<8} {:>9} {:>11.3f} {:>12.1f} {:>11.1f}\n", b.name(), row.state, n,
+                   s.median_ms, n / (s.median_ms * 1e3), row.creation_s);
+        begin_row(j, b);
+        j.field("state", row.state).field("particles", n).field("median_ms", s.median_ms);
+        j.field("min_ms", s.min_ms).field("max_ms", s.max_ms);
+        j.field("thesis_creation_s", row.creation_s).end_object();
+      });
   j.end_array();
   // Run time against error: the sampled <r> and <r^2> against the closed forms.
   const atom::OrbitalState st = atom::preset_state(o.sweep_state);
@@ -91,9 +87,7 @@ void add_atom_bench(CLI::App& bench) {
   static AtomBenchOptions o;
   auto* cmd = add_bench(bench, "atom", "cloud creation: thesis Table 2.3 states; count vs error", o,
                         run_atom_bench);
-  add_ranged_option(*cmd, "--scale", o.scale, "fraction of the thesis's particle counts", 1e-4,
-                    16.0);
-  add_reps_option(*cmd, o.reps);
+  add_table23_options(*cmd, o);
   cmd->add_option("--sweep-state", o.sweep_state, "state of the count-vs-error sweep")
       ->capture_default_str();
   add_json_option(*cmd, o.json);

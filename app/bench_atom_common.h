@@ -3,7 +3,9 @@
 // counts, and its Quadro FX 5800 / Core2 Duo P8400 times) and small helpers.
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <array>
+#include <cmath>
 #include <string>
 
 #include "app/bench_common.h"
@@ -34,14 +36,31 @@ inline constexpr std::array<ThesisRow, 10> kThesisTable23 = {{
     {"state10", 1000001, 8.7, 64.1, 0.197},
 }};
 
-// `row` for each backend and each state of Table 2.3, every one under run_row with the backend
-// and the state as its label; 1 if one failed, else 0.
-inline int for_each_thesis_row(const std::vector<std::unique_ptr<Backend>>& backends,
-                               const std::function<void(Backend&, const ThesisRow&)>& row) {
+// The options of the Table 2.3 benchmarks (atom, light): the fraction of the thesis's particle
+// counts to run, and the timed runs of each row.
+struct Table23Options : BenchOptions {
+  double scale = 1.0;
+  int reps = 3;
+};
+inline void add_table23_options(CLI::App& cmd, Table23Options& o) {
+  add_ranged_option(cmd, "--scale", o.scale, "fraction of the thesis's particle counts", 1e-4,
+                    16.0);
+  add_reps_option(cmd, o.reps);
+}
+
+// `row` for each backend and each state of Table 2.3 with its particle count times `scale` (at
+// least 1), every one under run_row with the backend and the state as its label; 1 if one
+// failed, else 0.
+inline int for_each_thesis_row(
+    const std::vector<std::unique_ptr<Backend>>& backends, double scale,
+    const std::function<void(Backend&, const ThesisRow&, uint32_t particles)>& row) {
   int rc = 0;
   for (const auto& b : backends)
-    for (const ThesisRow& r : kThesisTable23)
-      if (!run_row(fmt::format("{:<8} {:<8}", b->name(), r.state), [&] { row(*b, r); })) rc = 1;
+    for (const ThesisRow& r : kThesisTable23) {
+      const uint32_t particles = std::max(1u, uint32_t(std::lround(r.particles * scale)));
+      if (!run_row(fmt::format("{:<8} {:<8}", b->name(), r.state), [&] { row(*b, r, particles); }))
+        rc = 1;
+    }
   return rc;
 }
 

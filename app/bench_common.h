@@ -12,6 +12,13 @@
 
 namespace masav::app {
 
+// What every benchmark added by add_bench is given: the backends (every available one unless
+// --backend names one) and where its JSON record goes (none if --json is not given).
+struct BenchOptions {
+  BackendChoice choice{"all", ""};
+  std::string json;
+};
+
 struct TimingStats {
   double median_ms = 0, min_ms = 0, max_ms = 0;
   int reps = 0;

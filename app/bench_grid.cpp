@@ -11,12 +11,10 @@
 
 namespace masav::app {
 
-struct GridBenchOptions {
-  BackendChoice choice{"all", ""};
+struct GridBenchOptions : BenchOptions {
   uint32_t n = 1u << 20;
   double per_cell = 8.0;
   int reps = 5;
-  std::string json;
 };
 
 namespace {

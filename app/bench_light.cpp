@@ -11,12 +11,8 @@
 
 namespace masav::app {
 
-struct LightBenchOptions {
-  BackendChoice choice{"all", ""};
-  double scale = 1.0;
-  int reps = 3;
+struct LightBenchOptions : Table23Options {
   uint32_t photons = 256;  // the table only feeds the lookups here
-  std::string json;
 };
 
 namespace {
@@ -30,32 +26,32 @@ int run_light_bench(const LightBenchOptions& o, JsonWriter& j) {
   auto backends = open_backends(o.choice);
   fmt::print("  {:<8} {:<8} {:>9} {:>10} {:>10} {:>10} {:>11} {:>11}\n", "backend", "state",
              "particles", "illum ms", "view ms", "total ms", "thesis GPU", "thesis CPU");
-  int rc = for_each_thesis_row(backends, [&](Backend& b, const ThesisRow& row) {
-    const uint32_t particles = std::max(1u, uint32_t(std::lround(row.particles * o.scale)));
-    atom::AtomScene scene(b, bench_scene_options(row.state, particles, o.photons));
-    scene.build_cloud();
-    scene.build_density();
-    scene.build_table();
-    scene.illuminate();
-    scene.view();
-    const NebulaLightParams lp = scene.light_params();
-    const TimingStats si = time_work(b, o.reps, [&] {
-      b.nebula_illuminate(lp, scene.positions, scene.density, scene.illumination);
-    });
-    const TimingStats sv = time_work(b, o.reps, [&] {
-      b.nebula_view(lp, scene.positions, scene.density, scene.phase, scene.illumination,
-                    scene.light);
-    });
-    const double total = si.median_ms + sv.median_ms;
-    fmt::print("  {:<8} {:<8} {:>9} {:>10.2f} {:>10.2f} {:>10.2f} {:>10.3f}s {:>10.1f}s\n",
-               b.name(), row.state, particles, si.median_ms, sv.median_ms, total, row.color_gpu_s,
-               row.color_cpu_s);
-    begin_row(j, b);
-    j.field("state", row.state).field("particles", particles);
-    j.field("illuminate_ms", si.median_ms).field("view_ms", sv.median_ms);
-    j.field("total_ms", total).field("thesis_gpu_s", row.color_gpu_s);
-    j.field("thesis_cpu_s", row.color_cpu_s).end_object();
-  });
+  int rc = for_each_thesis_row(
+      backends, o.scale, [&](Backend& b, const ThesisRow& row, uint32_t particles) {
+        atom::AtomScene scene(b, bench_scene_options(row.state, particles, o.photons));
+        scene.build_cloud();
+        scene.build_density();
+        scene.build_table();
+        scene.illuminate();
+        scene.view();
+        const NebulaLightParams lp = scene.light_params();
+        const TimingStats si = time_work(b, o.reps, [&] {
+          b.nebula_illuminate(lp, scene.positions, scene.density, scene.illumination);
+        });
+        const TimingStats sv = time_work(b, o.reps, [&] {
+          b.nebula_view(lp, scene.positions, scene.density, scene.phase, scene.illumination,
+                        scene.light);
+        });
+        const double total = si.median_ms + sv.median_ms;
+        fmt::print("  {:<8} {:<8} {:>9} {:>10.2f} {:>10.2f} {:>10.2f} {:>10.3f}s {:>10.1f}s\n",
+                   b.name(), row.state, particles, si.median_ms, sv.median_ms, total,
+                   row.color_gpu_s, row.color_cpu_s);
+        begin_row(j, b);
+        j.field("state", row.state).field("particles", particles);
+        j.field("illuminate_ms", si.median_ms).field("view_ms", sv.median_ms);
+        j.field("total_ms", total).field("thesis_gpu_s", row.color_gpu_s);
+        j.field("thesis_cpu_s", row.color_cpu_s).end_object();
+      });
   j.end_array();
   // Midpoint steps against the exact traversal (state 3, 100k particles).
   fmt::print(
@@ -103,9 +99,7 @@ void add_light_bench(CLI::App& bench) {
   static LightBenchOptions o;
   auto* cmd = add_bench(bench, "light", "nebula lighting: thesis Table 2.3; path step vs error", o,
                         run_light_bench);
-  add_ranged_option(*cmd, "--scale", o.scale, "fraction of the thesis's particle counts", 1e-4,
-                    16.0);
-  add_reps_option(*cmd, o.reps);
+  add_table23_options(*cmd, o);
   add_ranged_option(*cmd, "--photons", o.photons, "photons per tau row of the table", 1u, 1u << 20);
   add_json_option(*cmd, o.json);
 }

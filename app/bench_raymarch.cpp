@@ -15,11 +15,9 @@
 
 namespace masav::app {
 
-struct RaymarchBenchOptions {
-  BackendChoice choice{"all", ""};
+struct RaymarchBenchOptions : BenchOptions {
   int reps = 5;
   bool large = false;
-  std::string json;
 };
 
 namespace {

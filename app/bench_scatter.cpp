@@ -14,12 +14,10 @@
 
 namespace masav::app {
 
-struct ScatterBenchOptions {
-  BackendChoice choice{"all", ""};
+struct ScatterBenchOptions : BenchOptions {
   uint32_t photons = 1024;
   uint32_t reference_photons = 16384;
   int reps = 3;
-  std::string json;
 };
 
 namespace {

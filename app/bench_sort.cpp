@@ -10,12 +10,10 @@
 
 namespace masav::app {
 
-struct SortBenchOptions {
-  BackendChoice choice{"all", ""};
+struct SortBenchOptions : BenchOptions {
   uint32_t n = 1u << 24;
   uint32_t key_bits = 32;
   int reps = 5;
-  std::string json;
 };
 
 namespace {

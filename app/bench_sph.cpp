@@ -17,8 +17,7 @@
 
 namespace masav::app {
 
-struct SphBenchOptions {
-  BackendChoice choice{"all", ""};
+struct SphBenchOptions : BenchOptions {
   std::string counts = "32768,131072,1048576";
   std::string integrators = "euler,leapfrog,rk4";
   std::string preset = "water";
@@ -26,7 +25,6 @@ struct SphBenchOptions {
   bool skip_error = false;
   uint32_t error_particles = 4096;
   double error_time = 0.02;  // s of dam break for the run-time/error sweep
-  std::string json;
 };
 
 namespace {

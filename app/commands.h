@@ -16,6 +16,15 @@ void add_schema_command(CLI::App& app);
 void add_run_command(CLI::App& app);
 void add_demo_command(CLI::App& app);
 void add_sph_command(CLI::App& app);
+// `masav bench` subcommands (bench_<name>.cpp), which add_bench_command adds.
+void add_sort_bench(CLI::App& bench);
+void add_grid_bench(CLI::App& bench);
+void add_atom_bench(CLI::App& bench);
+void add_scatter_bench(CLI::App& bench);
+void add_light_bench(CLI::App& bench);
+void add_raymarch_bench(CLI::App& bench);
+void add_sph_bench(CLI::App& bench);
+void add_dambreak_bench(CLI::App& bench);
 
 // Shared --backend / --device options.
 struct BackendChoice {
