@@ -1,7 +1,7 @@
 // `masav bench dambreak`: the dam-break preset against laboratory measurements of a collapsing
 // water column (bench/data/dam_break_surge_front.csv: Martin & Moyce 1952, Koshizuka & Oka
 // 1996). Records the surge front over time, compares it at every measured instant, and writes
-// a table (CSV) and JSON that tools/plot_sph.py turns into a plot.
+// a table (CSV) and JSON that tools/plot_sph_bench.py turns into a plot.
 #include <fmt/format.h>
 
 #include <chrono>
