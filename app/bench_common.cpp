@@ -41,8 +41,8 @@ std::vector<double> time_on_device(Backend& b, int warmup, int reps,
 }
 
 TimingStats time_work(Backend& b, int reps, const std::function<void()>& work) {
-  return summarize(time_on_device(
-      b, 1, reps, [] {}, work));
+  const auto no_setup = [] {};
+  return summarize(time_on_device(b, 1, reps, no_setup, work));
 }
 
 std::vector<std::unique_ptr<Backend>> open_backends(const BackendChoice& choice) {
