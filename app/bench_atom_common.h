@@ -1,10 +1,15 @@
 #pragma once
 // Shared pieces of the electron-cloud benchmarks: the thesis's Table 2.3 (states, particle
 // counts, and its Quadro FX 5800 / Core2 Duo P8400 times) and small helpers.
+#include <fmt/format.h>
+
+#include <algorithm>
 #include <array>
+#include <cmath>
 #include <string>
 
 #include "app/bench_common.h"
+#include "engine/atom/atom_scene.h"
 #include "engine/atom/orbital.h"
 
 namespace masav::app {
@@ -30,6 +35,45 @@ inline constexpr std::array<ThesisRow, 10> kThesisTable23 = {{
     {"state9", 132192, 1.5, 27.5, 0.105},
     {"state10", 1000001, 8.7, 64.1, 0.197},
 }};
+
+// The options of the Table 2.3 benchmarks (atom, light): the fraction of the thesis's particle
+// counts to run, and the timed runs of each row.
+struct Table23Options : BenchOptions {
+  double scale = 1.0;
+  int reps = 3;
+};
+inline void add_table23_options(CLI::App& cmd, Table23Options& o) {
+  add_ranged_option(cmd, "--scale", o.scale, "fraction of the thesis's particle counts", 1e-4,
+                    16.0);
+  add_reps_option(cmd, o.reps);
+}
+
+// `row` for each backend and each state of Table 2.3 with its particle count times `scale` (at
+// least 1), every one under run_row with the backend and the state as its label; 1 if one
+// failed, else 0.
+inline int for_each_thesis_row(
+    const std::vector<std::unique_ptr<Backend>>& backends, double scale,
+    const std::function<void(Backend&, const ThesisRow&, uint32_t particles)>& row) {
+  int rc = 0;
+  for (const auto& b : backends)
+    for (const ThesisRow& r : kThesisTable23) {
+      const uint32_t particles = std::max(1u, uint32_t(std::lround(r.particles * scale)));
+      if (!run_row(fmt::format("{:<8} {:<8}", b->name(), r.state), [&] { row(*b, r, particles); }))
+        rc = 1;
+    }
+  return rc;
+}
+
+// The electron-cloud scene of a benchmark: a preset state, its particle count and the photons per
+// tau row of the scattering table (which only feeds the lookups there).
+inline atom::AtomSceneOptions bench_scene_options(const char* state, uint32_t particles,
+                                                  uint32_t photons) {
+  atom::AtomSceneOptions so;
+  so.state = atom::preset_state(state);
+  so.particles = particles;
+  so.scatter.photons_per_row = photons;
+  return so;
+}
 
 // Thesis §3.4: raymarching the 60^3 volume took 32-37 ms per frame on the Quadro FX 5800.
 inline constexpr double kThesisRaymarchMs[2] = {32.0, 37.0};

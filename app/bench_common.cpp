@@ -40,6 +40,11 @@ std::vector<double> time_on_device(Backend& b, int warmup, int reps,
   return out;
 }
 
+TimingStats time_work(Backend& b, int reps, const std::function<void()>& work) {
+  const auto no_setup = [] {};
+  return summarize(time_on_device(b, 1, reps, no_setup, work));
+}
+
 std::vector<std::unique_ptr<Backend>> open_backends(const BackendChoice& choice) {
   std::vector<std::unique_ptr<Backend>> out;
   if (choice.backend != "all") {
@@ -54,6 +59,28 @@ std::vector<std::unique_ptr<Backend>> open_backends(const BackendChoice& choice)
     out.push_back(create_backend(s.name, s.name == "cpu" ? "" : choice.device));
   }
   return out;
+}
+
+bool run_row(const std::string& label, const std::function<void()>& row, const char* outcome) {
+  try {
+    row();
+    return true;
+  } catch (const Error& e) {
+    fmt::print("  {} {}: {}\n", label, outcome, e.what());
+    return false;
+  }
+}
+
+std::string backend_label(const Backend& b) {
+  return fmt::format("{:<8}", b.name());
+}
+
+int for_each_backend(const std::vector<std::unique_ptr<Backend>>& backends,
+                     const std::function<void(Backend&)>& body) {
+  int rc = 0;
+  for (const auto& b : backends)
+    if (!run_row(backend_label(*b), [&] { body(*b); })) rc = 1;
+  return rc;
 }
 
 void write_record_header(JsonWriter& j, const std::string& benchmark) {
@@ -75,6 +102,11 @@ void write_device(JsonWriter& j, const Backend& b) {
   j.field("backend", c.backend).field("device", c.device_name).field("device_type", c.device_type);
   j.field("vendor", c.vendor).field("driver", c.driver).field("subgroup_size", c.subgroup_size);
   if (c.threads > 1) j.field("threads", c.threads);
+}
+
+void begin_row(JsonWriter& j, const Backend& b) {
+  j.begin_object();
+  write_device(j, b);
 }
 
 void finish_record(const JsonWriter& j, const std::string& path) {

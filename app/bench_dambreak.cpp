@@ -1,7 +1,7 @@
 // `masav bench dambreak`: the dam-break preset against laboratory measurements of a collapsing
 // water column (bench/data/dam_break_surge_front.csv: Martin & Moyce 1952, Koshizuka & Oka
 // 1996). Records the surge front over time, compares it at every measured instant, and writes
-// a table (CSV) and JSON that tools/plot_sph.py turns into a plot.
+// a table (CSV) and JSON that tools/plot_sph_bench.py turns into a plot.
 #include <fmt/format.h>
 
 #include <chrono>
@@ -172,15 +172,12 @@ int run_dambreak(const DamBreakOptions& o) {
 
 void add_dambreak_bench(CLI::App& bench) {
   static DamBreakOptions o;
-  auto* cmd = bench.add_subcommand(
-      "dambreak", "dam break against laboratory surge-front measurements (table and JSON)");
+  auto* cmd = add_command(bench, "dambreak",
+                          "dam break against laboratory surge-front measurements (table and JSON)",
+                          o, run_dambreak);
   add_backend_options(*cmd, o.choice, false);
-  cmd->add_option("--n", o.particles, "fluid particles")
-      ->check(CLI::Range(64u, 1u << 26))
-      ->capture_default_str();
-  cmd->add_option("--t-end", o.t_end, "end time in T = t sqrt(2 g / a)")
-      ->check(CLI::Range(0.1, 20.0))
-      ->capture_default_str();
+  add_ranged_option(*cmd, "--n", o.particles, "fluid particles", 64u, 1u << 26);
+  add_ranged_option(*cmd, "--t-end", o.t_end, "end time in T = t sqrt(2 g / a)", 0.1, 20.0);
   cmd->add_option("--integrator", o.integrator, "euler, symplectic-euler, rk4 or leapfrog")
       ->capture_default_str();
   cmd->add_option("--pressure", o.pressure, "wcsph or thesis")->capture_default_str();
@@ -188,9 +185,6 @@ void add_dambreak_bench(CLI::App& bench) {
   cmd->add_option("--data", o.data, "measurements (CSV: source,T,Z)")->capture_default_str();
   cmd->add_option("--json", o.json, "write the simulated front and the comparison as JSON");
   cmd->add_option("--csv", o.csv, "write the comparison table as CSV");
-  cmd->callback([] {
-    if (int rc = run_dambreak(o)) throw CLI::RuntimeError(rc);
-  });
 }
 
 }  // namespace masav::app

@@ -8,18 +8,16 @@
 #include <cmath>
 
 #include "app/bench_atom_common.h"
+#include "engine/kernels/atom_checks.h"
 #include "engine/atom/atom_scene.h"
 #include "engine/atom/transfer_function.h"
 #include "engine/core/error.h"
-#include "engine/kernels/atom_checks.h"
 
 namespace masav::app {
 
-struct RaymarchBenchOptions {
-  BackendChoice choice{"all", ""};
+struct RaymarchBenchOptions : BenchOptions {
   int reps = 5;
   bool large = false;
-  std::string json;
 };
 
 namespace {
@@ -46,83 +44,68 @@ Timed time_raymarch(Backend& b, const RaymarchParams& rp, const Buffer<Real>& vo
   auto bricks = b.create<Real4>(size_t(nb.x) * nb.y * nb.z, "bricks");
   b.volume_bricks({rp.volume, rp.brick, rp.tf_size}, vol, t, bricks);
   auto img = b.create<Real4>(size_t(rp.width) * rp.height, "image");
-  const TimingStats s = summarize(time_on_device(
-      b, 1, reps, [] {}, [&] { b.raymarch(rp, vol, t, bricks, img); }));
+  const TimingStats s = time_work(b, reps, [&] { b.raymarch(rp, vol, t, bricks, img); });
   return {s.median_ms, b.download(img)};
 }
 
-int run_raymarch_bench(const RaymarchBenchOptions& o) {
+// The --large volume: a smooth blob on n^3 voxels with fine detail along x y.
+std::vector<float> large_volume(uint32_t n) {
+  std::vector<float> v(size_t(n) * n * n);
+  for (uint32_t k = 0; k < n; ++k)
+    for (uint32_t jj = 0; jj < n; ++jj)
+      for (uint32_t i = 0; i < n; ++i) {
+        const double x = i / 128.0 - 1, y = jj / 128.0 - 1, z = k / 128.0 - 1;
+        v[(size_t(k) * n + jj) * n + i] =
+            float(std::exp(-3 * (x * x + y * y + z * z)) * (0.6 + 0.4 * std::cos(12 * x * y)));
+      }
+  return v;
+}
+
+int run_raymarch_bench(const RaymarchBenchOptions& o, JsonWriter& j) {
   fmt::print(
       "bench raymarch: the state1 cloud voxelized on 60^3 (front view, step 1/2 voxel, "
       "empty-space skipping, ERT 0.99), median of {} runs\n",
       o.reps);
-  JsonWriter j;
-  j.begin_object();
-  write_record_header(j, "raymarch");
   j.field("thesis_ms_min", kThesisRaymarchMs[0]).field("thesis_ms_max", kThesisRaymarchMs[1]);
   j.key("rows").begin_array();
-  int rc = 0;
   auto backends = open_backends(o.choice);
   const auto tf = atom::resample_transfer(atom::default_transfer_points());
   fmt::print("  {:<8} {:>10} {:>12} {:>10} {:>8} {:>12}\n", "backend", "volume", "image",
              "ms/frame", "fps", "Mrays/s");
-  for (auto& b : backends) {
-    try {
-      atom::AtomSceneOptions so;
-      so.state = atom::preset_state("state1");
-      so.particles = 630720;  // the thesis's count for state 1
-      so.scatter.photons_per_row = 256;
-      atom::AtomScene scene(*b, so);
-      scene.run_all();
-      struct Case {
-        uint32_t w, h;
-      };
-      for (Case c : {Case{512, 512}, Case{1024, 1024}}) {
-        for (bool skip : {true, false}) {
-          if (!skip && c.w > 512) continue;  // the effect of skipping shows at 512^2
-          RaymarchParams rp =
-              atom::default_raymarch(scene.volume(), atom::ViewPreset::front, c.w, c.h);
-          rp.skip_empty = skip;
-          const Timed t = time_raymarch(*b, rp, scene.sample, tf, o.reps);
-          const double rays = double(c.w) * c.h / (t.ms * 1e-3);
-          fmt::print("  {:<8} {:>10} {:>7}x{:<4} {:>10.2f} {:>8.1f} {:>12.1f}{}\n", b->name(),
-                     "60^3", c.w, c.h, t.ms, 1e3 / t.ms, rays * 1e-6,
-                     skip ? "" : "  (no skipping)");
-          j.begin_object();
-          write_device(j, *b);
-          j.field("volume", "60^3").field("width", c.w).field("height", c.h);
-          j.field("skip_empty", skip).field("median_ms", t.ms).field("rays_per_s", rays);
-          j.end_object();
-        }
+  int rc = for_each_backend(backends, [&](Backend& b) {
+    auto row = [&](const char* volume, uint32_t w, uint32_t h, bool skip, double ms) {
+      const double rays = double(w) * h / (ms * 1e-3);
+      fmt::print("  {:<8} {:>10} {:>7}x{:<4} {:>10.2f} {:>8.1f} {:>12.1f}{}\n", b.name(), volume, w,
+                 h, ms, 1e3 / ms, rays * 1e-6, skip ? "" : "  (no skipping)");
+      begin_row(j, b);
+      j.field("volume", volume).field("width", w).field("height", h);
+      j.field("skip_empty", skip).field("median_ms", ms).field("rays_per_s", rays).end_object();
+    };
+    // The thesis's count for state 1.
+    atom::AtomScene scene(b, bench_scene_options("state1", 630720, 256));
+    scene.run_all();
+    struct Case {
+      uint32_t w, h;
+    };
+    for (Case c : {Case{512, 512}, Case{1024, 1024}}) {
+      for (bool skip : {true, false}) {
+        if (!skip && c.w > 512) continue;  // the effect of skipping shows at 512^2
+        RaymarchParams rp =
+            atom::default_raymarch(scene.volume(), atom::ViewPreset::front, c.w, c.h);
+        rp.skip_empty = skip;
+        row("60^3", c.w, c.h, skip, time_raymarch(b, rp, scene.sample, tf, o.reps).ms);
       }
-      if (o.large) {
-        const uint32_t n = 256;
-        std::vector<float> v(size_t(n) * n * n);
-        for (uint32_t k = 0; k < n; ++k)
-          for (uint32_t jj = 0; jj < n; ++jj)
-            for (uint32_t i = 0; i < n; ++i) {
-              const double x = i / 128.0 - 1, y = jj / 128.0 - 1, z = k / 128.0 - 1;
-              v[(size_t(k) * n + jj) * n + i] = float(std::exp(-3 * (x * x + y * y + z * z)) *
-                                                      (0.6 + 0.4 * std::cos(12 * x * y)));
-            }
-        auto vol = b->create<Real>(v.size(), "volume 256");
-        b->upload(vol, std::span<const float>(v));
-        const VolumeDesc d = make_volume_desc({n, n, n}, {-1, -1, -1}, {1, 1, 1});
-        RaymarchParams rp = atom::default_raymarch(d, atom::ViewPreset::front, 1920, 1080);
-        const Timed t = time_raymarch(*b, rp, vol, tf, o.reps);
-        const double rays = 1920.0 * 1080 / (t.ms * 1e-3);
-        fmt::print("  {:<8} {:>10} {:>12} {:>10.2f} {:>8.1f} {:>12.1f}\n", b->name(), "256^3",
-                   "1920x1080", t.ms, 1e3 / t.ms, rays * 1e-6);
-        j.begin_object();
-        write_device(j, *b);
-        j.field("volume", "256^3").field("width", 1920).field("height", 1080);
-        j.field("skip_empty", true).field("median_ms", t.ms).field("rays_per_s", rays).end_object();
-      }
-    } catch (const Error& e) {
-      fmt::print("  {:<8} error: {}\n", b->name(), e.what());
-      rc = 1;
     }
-  }
+    if (o.large) {
+      const uint32_t n = 256;
+      const std::vector<float> v = large_volume(n);
+      auto vol = b.create<Real>(v.size(), "volume 256");
+      b.upload(vol, std::span<const float>(v));
+      const VolumeDesc d = make_volume_desc({n, n, n}, {-1, -1, -1}, {1, 1, 1});
+      RaymarchParams rp = atom::default_raymarch(d, atom::ViewPreset::front, 1920, 1080);
+      row("256^3", 1920, 1080, true, time_raymarch(b, rp, vol, tf, o.reps).ms);
+    }
+  });
   j.end_array();
   // Step against error: a linear volume on 60^3 whose opacity has a closed form.
   const uint32_t n = 60;
@@ -144,39 +127,33 @@ int run_raymarch_bench(const RaymarchBenchOptions& o) {
   fmt::print("  step vs error against the analytic line integral (linear 60^3 volume, 128^2):\n");
   fmt::print("  {:<8} {:>12} {:>10} {:>14}\n", "backend", "step (voxels)", "ms", "max |alpha err|");
   j.key("sweep").begin_array();
-  for (auto& b : backends) {
-    try {
-      auto vol = b->create<Real>(ramp.size(), "ramp");
-      b->upload(vol, ramp);
-      for (double sv : {2.0, 1.0, 0.5, 0.25, 0.125}) {
-        rp.step = float(sv * spacing);
-        const Timed t = time_raymarch(*b, rp, vol, atf, o.reps);
-        const RaymarchLayout cam = raymarch_layout(rp);
-        double err = 0;
-        for (uint32_t y = 0; y < rp.height; ++y)
-          for (uint32_t x = 0; x < rp.width; ++x) {
-            const hd::V3<double> eye = volume::v3<double>(cam.eye);
-            const hd::V3<double> dir = volume::pixel_direction<double>(cam, x, y);
-            double t0 = 0, t1 = 1e30, integral = 0;
-            if (volume::slab(eye, dir, hd::V3<double>{-1, -1, -1}, hd::V3<double>{1, 1, 1}, t0, t1))
-              for (int a = 0; a < 3; ++a)
-                integral += clamped_linear_integral((hd::comp(eye, a) + 1) / spacing - 0.5,
-                                                    hd::comp(dir, a) / spacing, 0, n - 1, t0, t1) /
-                            (3.0 * (n - 1));
-            const double want = integral > 0 ? 1 - std::exp(-c * integral) : 0.0;
-            err = std::max(err, std::abs(t.image[y * rp.width + x].w - want));
-          }
-        fmt::print("  {:<8} {:>12.3f} {:>10.3f} {:>14.3e}\n", b->name(), sv, t.ms, err);
-        j.begin_object().field("backend", b->name()).field("step_voxels", sv);
-        j.field("ms", t.ms).field("max_abs_error", err).end_object();
-      }
-    } catch (const Error& e) {
-      fmt::print("  {:<8} error: {}\n", b->name(), e.what());
-      rc = 1;
+  rc |= for_each_backend(backends, [&](Backend& b) {
+    auto vol = b.create<Real>(ramp.size(), "ramp");
+    b.upload(vol, ramp);
+    for (double sv : {2.0, 1.0, 0.5, 0.25, 0.125}) {
+      rp.step = float(sv * spacing);
+      const Timed t = time_raymarch(b, rp, vol, atf, o.reps);
+      const RaymarchLayout cam = raymarch_layout(rp);
+      double err = 0;
+      for (uint32_t y = 0; y < rp.height; ++y)
+        for (uint32_t x = 0; x < rp.width; ++x) {
+          const hd::V3<double> eye = volume::v3<double>(cam.eye);
+          const hd::V3<double> dir = volume::pixel_direction<double>(cam, x, y);
+          double t0 = 0, t1 = 1e30, integral = 0;
+          if (volume::slab(eye, dir, hd::V3<double>{-1, -1, -1}, hd::V3<double>{1, 1, 1}, t0, t1))
+            for (int a = 0; a < 3; ++a)
+              integral += clamped_linear_integral((hd::comp(eye, a) + 1) / spacing - 0.5,
+                                                  hd::comp(dir, a) / spacing, 0, n - 1, t0, t1) /
+                          (3.0 * (n - 1));
+          const double want = integral > 0 ? 1 - std::exp(-c * integral) : 0.0;
+          err = std::max(err, std::abs(t.image[y * rp.width + x].w - want));
+        }
+      fmt::print("  {:<8} {:>12.3f} {:>10.3f} {:>14.3e}\n", b.name(), sv, t.ms, err);
+      j.begin_object().field("backend", b.name()).field("step_voxels", sv);
+      j.field("ms", t.ms).field("max_abs_error", err).end_object();
     }
-  }
-  j.end_array().end_object();
-  finish_record(j, o.json);
+  });
+  j.end_array();
   return rc;
 }
 
@@ -184,14 +161,11 @@ int run_raymarch_bench(const RaymarchBenchOptions& o) {
 
 void add_raymarch_bench(CLI::App& bench) {
   static RaymarchBenchOptions o;
-  auto* cmd = bench.add_subcommand("raymarch", "volume ray casting of 60^3; step vs error");
-  add_backend_options(*cmd, o.choice, true);
+  auto* cmd = add_bench(bench, "raymarch", "volume ray casting of 60^3; step vs error", o,
+                        run_raymarch_bench);
   add_reps_option(*cmd, o.reps);
   cmd->add_flag("--large", o.large, "also a 256^3 volume at 1920x1080");
   add_json_option(*cmd, o.json);
-  cmd->callback([] {
-    if (int rc = run_raymarch_bench(o)) throw CLI::RuntimeError(rc);
-  });
 }
 
 }  // namespace masav::app

@@ -14,12 +14,10 @@
 
 namespace masav::app {
 
-struct ScatterBenchOptions {
-  BackendChoice choice{"all", ""};
+struct ScatterBenchOptions : BenchOptions {
   uint32_t photons = 1024;
   uint32_t reference_photons = 16384;
   int reps = 3;
-  std::string json;
 };
 
 namespace {
@@ -45,41 +43,31 @@ double table_error(const atom::ScatterTable& t, const atom::ScatterTable& ref) {
   return err / t.params.rows;  // mean L1 distance of a row's bins
 }
 
-int run_scatter_bench(const ScatterBenchOptions& o) {
+int run_scatter_bench(const ScatterBenchOptions& o, JsonWriter& j) {
   ScatterTableParams p;  // thesis defaults: 1000 x 72, tau 0 .. 9.99, g = a = 0.6
   p.photons_per_row = o.photons;
   const double events = mean_events(p);
-  fmt::print("bench scatter: {} rows x {} bins, {} photons per row ({:.1f} scatterings per "
-             "photon), median of {} runs\n",
-             p.rows, p.bins, p.photons_per_row, events, o.reps);
-  JsonWriter j;
-  j.begin_object();
-  write_record_header(j, "scatter");
+  fmt::print(
+      "bench scatter: {} rows x {} bins, {} photons per row ({:.1f} scatterings per "
+      "photon), median of {} runs\n",
+      p.rows, p.bins, p.photons_per_row, events, o.reps);
   j.field("rows", p.rows).field("bins", p.bins).field("photons_per_row", p.photons_per_row);
   j.field("mean_scatterings_per_photon", events).key("rows_by_backend").begin_array();
-  int rc = 0;
   auto backends = open_backends(o.choice);
   fmt::print("  {:<8} {:>11} {:>12} {:>14}\n", "backend", "median ms", "Mphotons/s", "Gevents/s");
   const uint64_t n = uint64_t(p.rows) * p.photons_per_row;
-  for (auto& b : backends) {
-    try {
-      const size_t entries = size_t(p.rows) * (p.bins + kScatterExtras);
-      auto table = b->create<Real>(entries, "table");
-      auto hits = b->create<uint32_t>(entries, "hits");
-      const TimingStats s = summarize(
-          time_on_device(*b, 1, o.reps, [] {}, [&] { b->scatter_table(p, table, hits); }));
-      const double ps = n / (s.median_ms * 1e-3);
-      fmt::print("  {:<8} {:>11.2f} {:>12.2f} {:>14.4f}\n", b->name(), s.median_ms, ps * 1e-6,
-                 ps * events * 1e-9);
-      j.begin_object();
-      write_device(j, *b);
-      j.field("median_ms", s.median_ms).field("min_ms", s.min_ms).field("max_ms", s.max_ms);
-      j.field("photons_per_s", ps).field("events_per_s", ps * events).end_object();
-    } catch (const Error& e) {
-      fmt::print("  {:<8} error: {}\n", b->name(), e.what());
-      rc = 1;
-    }
-  }
+  int rc = for_each_backend(backends, [&](Backend& b) {
+    const size_t entries = size_t(p.rows) * (p.bins + kScatterExtras);
+    auto table = b.create<Real>(entries, "table");
+    auto hits = b.create<uint32_t>(entries, "hits");
+    const TimingStats s = time_work(b, o.reps, [&] { b.scatter_table(p, table, hits); });
+    const double ps = n / (s.median_ms * 1e-3);
+    fmt::print("  {:<8} {:>11.2f} {:>12.2f} {:>14.4f}\n", b.name(), s.median_ms, ps * 1e-6,
+               ps * events * 1e-9);
+    begin_row(j, b);
+    j.field("median_ms", s.median_ms).field("min_ms", s.min_ms).field("max_ms", s.max_ms);
+    j.field("photons_per_s", ps).field("events_per_s", ps * events).end_object();
+  });
   j.end_array();
   // Run time against error on 100 rows (tau 0 .. 9.9): against a converged table, and at
   // tau = 0.05 with one scattering at most against the single-scattering quadrature.
@@ -98,38 +86,32 @@ int run_scatter_bench(const ScatterBenchOptions& o) {
              o.reference_photons);
   fmt::print("  {:<8} {:>8} {:>10} {:>14} {:>16}\n", "backend", "photons", "ms", "L1 vs conv.",
              "L1 vs 1-scatter");
-  for (auto& b : backends) {
-    try {
-      ScatterTableParams rp = sw;
-      rp.photons_per_row = o.reference_photons;
-      rp.seed = 999;  // independent of the swept tables
-      const atom::ScatterTable ref = atom::compute_scatter_table(*b, rp);
-      for (uint32_t photons : {64u, 256u, 1024u, 4096u}) {
-        sw.photons_per_row = ss.photons_per_row = photons;
-        const auto t0 = std::chrono::steady_clock::now();
-        const atom::ScatterTable t = atom::compute_scatter_table(*b, sw);
-        const double ms =
-            std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-        const atom::ScatterTable one = atom::compute_scatter_table(*b, ss);
-        double e1 = 0;
-        for (uint32_t k = 0; k < ss.bins; ++k) {
-          double w = one.weight[k];
-          if (k + 1 == ss.bins) w -= one.weight[ss.bins + kScatterUnscattered];
-          e1 += std::abs(w - ss.albedo * quad[k]);
-        }
-        const double ec = table_error(t, ref);
-        fmt::print("  {:<8} {:>8} {:>10.2f} {:>14.3e} {:>16.3e}\n", b->name(), photons, ms, ec, e1);
-        j.begin_object().field("backend", b->name()).field("photons_per_row", photons);
-        j.field("ms", ms).field("l1_vs_converged", ec).field("l1_vs_single_scattering", e1);
-        j.end_object();
+  rc |= for_each_backend(backends, [&](Backend& b) {
+    ScatterTableParams rp = sw;
+    rp.photons_per_row = o.reference_photons;
+    rp.seed = 999;  // independent of the swept tables
+    const atom::ScatterTable ref = atom::compute_scatter_table(b, rp);
+    for (uint32_t photons : {64u, 256u, 1024u, 4096u}) {
+      sw.photons_per_row = ss.photons_per_row = photons;
+      const auto t0 = std::chrono::steady_clock::now();
+      const atom::ScatterTable t = atom::compute_scatter_table(b, sw);
+      const double ms =
+          std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+      const atom::ScatterTable one = atom::compute_scatter_table(b, ss);
+      double e1 = 0;
+      for (uint32_t k = 0; k < ss.bins; ++k) {
+        double w = one.weight[k];
+        if (k + 1 == ss.bins) w -= one.weight[ss.bins + kScatterUnscattered];
+        e1 += std::abs(w - ss.albedo * quad[k]);
       }
-    } catch (const Error& e) {
-      fmt::print("  {:<8} error: {}\n", b->name(), e.what());
-      rc = 1;
+      const double ec = table_error(t, ref);
+      fmt::print("  {:<8} {:>8} {:>10.2f} {:>14.3e} {:>16.3e}\n", b.name(), photons, ms, ec, e1);
+      j.begin_object().field("backend", b.name()).field("photons_per_row", photons);
+      j.field("ms", ms).field("l1_vs_converged", ec).field("l1_vs_single_scattering", e1);
+      j.end_object();
     }
-  }
-  j.end_array().end_object();
-  finish_record(j, o.json);
+  });
+  j.end_array();
   return rc;
 }
 
@@ -137,19 +119,14 @@ int run_scatter_bench(const ScatterBenchOptions& o) {
 
 void add_scatter_bench(CLI::App& bench) {
   static ScatterBenchOptions o;
-  auto* cmd = bench.add_subcommand("scatter", "Monte Carlo scattering table; photons vs error");
-  add_backend_options(*cmd, o.choice, true);
-  cmd->add_option("--photons", o.photons, "photons per tau row of the timed table")
-      ->check(CLI::Range(1u, 1u << 20))
-      ->capture_default_str();
-  cmd->add_option("--reference-photons", o.reference_photons, "photons per row of the converged table")
-      ->check(CLI::Range(64u, 1u << 20))
-      ->capture_default_str();
+  auto* cmd = add_bench(bench, "scatter", "Monte Carlo scattering table; photons vs error", o,
+                        run_scatter_bench);
+  add_ranged_option(*cmd, "--photons", o.photons, "photons per tau row of the timed table", 1u,
+                    1u << 20);
+  add_ranged_option(*cmd, "--reference-photons", o.reference_photons,
+                    "photons per row of the converged table", 64u, 1u << 20);
   add_reps_option(*cmd, o.reps);
   add_json_option(*cmd, o.json);
-  cmd->callback([] {
-    if (int rc = run_scatter_bench(o)) throw CLI::RuntimeError(rc);
-  });
 }
 
 }  // namespace masav::app

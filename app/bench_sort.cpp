@@ -10,17 +10,15 @@
 
 namespace masav::app {
 
-struct SortBenchOptions {
-  BackendChoice choice{"all", ""};
+struct SortBenchOptions : BenchOptions {
   uint32_t n = 1u << 24;
   uint32_t key_bits = 32;
   int reps = 5;
-  std::string json;
 };
 
 namespace {
 
-int run_sort_bench(const SortBenchOptions& o) {
+int run_sort_bench(const SortBenchOptions& o, JsonWriter& j) {
   fmt::print("bench sort: {} key-value pairs, {} key bits, median of {} runs\n", o.n, o.key_bits,
              o.reps);
   std::mt19937 rng(1);
@@ -29,9 +27,6 @@ int run_sort_bench(const SortBenchOptions& o) {
   for (auto& k : keys) k = rng() & mask;
   std::iota(values.begin(), values.end(), 0u);
 
-  JsonWriter j;
-  j.begin_object();
-  write_record_header(j, "sort");
   j.field("n", o.n).field("key_bits", o.key_bits).key("rows").begin_array();
   int rc = 0;
   fmt::print("  {:<8} {:<10} {:<40} {:>10} {:>10} {:>12}\n", "backend", "impl", "device",
@@ -41,12 +36,14 @@ int run_sort_bench(const SortBenchOptions& o) {
     if (b->name() == "cuda") impls.push_back({"cub", SortImpl::vendor});
     if (b->name() == "cpu") impls = {{"cpu-ref", SortImpl::portable}};
     for (const auto& [label, impl] : impls) {
-      try {
+      auto row = [&] {
         auto kb = b->create<uint32_t>(o.n, "keys");
         auto vb = b->create<uint32_t>(o.n, "values");
         const auto samples = time_on_device(
             *b, 1, o.reps, [&] { b->upload(kb, keys), b->upload(vb, values); },
-            [&] { b->radix_sort({o.n, o.key_bits, impl}, kb, &vb); });
+            [&] {
+              b->radix_sort({o.n, o.key_bits, impl}, kb, &vb);
+            });
         const auto sorted = b->download(kb);
         bool verified = std::is_sorted(sorted.begin(), sorted.end());
         const TimingStats t = summarize(samples);
@@ -54,20 +51,16 @@ int run_sort_bench(const SortBenchOptions& o) {
         fmt::print("  {:<8} {:<10} {:<40.40} {:>10.3f} {:>10.3f} {:>12.1f}{}\n", b->name(), label,
                    b->caps().device_name, t.median_ms, t.min_ms, rate * 1e-6,
                    verified ? "" : "  NOT SORTED");
-        j.begin_object();
-        write_device(j, *b);
+        begin_row(j, *b);
         j.field("impl", label).field("reps", t.reps).field("median_ms", t.median_ms);
         j.field("min_ms", t.min_ms).field("max_ms", t.max_ms).field("pairs_per_s", rate);
         j.field("verified_sorted", verified).end_object();
         if (!verified) rc = 1;
-      } catch (const Error& e) {
-        fmt::print("  {:<8} {:<10} error: {}\n", b->name(), label, e.what());
-        rc = 1;
-      }
+      };
+      if (!run_row(fmt::format("{:<8} {:<10}", b->name(), label), row)) rc = 1;
     }
   }
-  j.end_array().end_object();
-  finish_record(j, o.json);
+  j.end_array();
   return rc;
 }
 
@@ -75,17 +68,12 @@ int run_sort_bench(const SortBenchOptions& o) {
 
 void add_sort_bench(CLI::App& bench) {
   static SortBenchOptions o;
-  auto* cmd = bench.add_subcommand("sort", "radix sort of key-value pairs");
-  add_backend_options(*cmd, o.choice, true);
-  cmd->add_option("--n", o.n, "pairs to sort")->check(CLI::Range(1u, 1u << 28))->capture_default_str();
-  cmd->add_option("--key-bits", o.key_bits, "key bits in use (keys are masked to them)")
-      ->check(CLI::Range(1u, 32u))
-      ->capture_default_str();
+  auto* cmd = add_bench(bench, "sort", "radix sort of key-value pairs", o, run_sort_bench);
+  add_ranged_option(*cmd, "--n", o.n, "pairs to sort", 1u, 1u << 28);
+  add_ranged_option(*cmd, "--key-bits", o.key_bits, "key bits in use (keys are masked to them)", 1u,
+                    32u);
   add_reps_option(*cmd, o.reps);
   add_json_option(*cmd, o.json);
-  cmd->callback([] {
-    if (int rc = run_sort_bench(o)) throw CLI::RuntimeError(rc);
-  });
 }
 
 }  // namespace masav::app

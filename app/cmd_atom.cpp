@@ -188,9 +188,10 @@ int run_volume(const VolumeCliOptions& o) {
 
 void add_atom_command(CLI::App& app) {
   static AtomCliOptions o;
-  auto* cmd = app.add_subcommand("atom",
-                                 "hydrogen electron cloud as a reflection nebula: cloud, "
-                                 "lighting, volume, raymarch; writes .vtp/.vti/.csv/.png");
+  auto* cmd = add_command(app, "atom",
+                          "hydrogen electron cloud as a reflection nebula: cloud, "
+                          "lighting, volume, raymarch; writes .vtp/.vti/.csv/.png",
+                          o, run_atom);
   add_backend_options(*cmd, o.choice, false);
   cmd->add_option("--state", o.preset, "thesis Table 2.1 preset: state1 .. state10");
   cmd->add_option("--n", o.n, "principal quantum number")->check(CLI::Range(1, atom::kMaxN));
@@ -199,44 +200,28 @@ void add_atom_command(CLI::App& app) {
   cmd->add_flag("--real", o.real, "real orbital (cos/sin of m phi) instead of e^{i m phi}");
   cmd->add_option("--placement", o.placement, "exact (inverse CDF) or shells (thesis Alg. 2.1)")
       ->capture_default_str();
-  cmd->add_option("--particles", o.particles, "cloud size")
-      ->check(CLI::Range(1u, 1u << 28))
-      ->capture_default_str();
+  add_ranged_option(*cmd, "--particles", o.particles, "cloud size", 1u, 1u << 28);
   cmd->add_option("--seed", o.seed, "random seed (Philox key)")->capture_default_str();
   cmd->add_option("--out", o.out, "output directory")->required();
-  cmd->add_option("--power", o.power, "source power Phi in lumens")
-      ->check(CLI::Range(0.0f, 1e9f))
-      ->capture_default_str();
+  add_ranged_option(*cmd, "--power", o.power, "source power Phi in lumens", 0.0f, 1e9f);
   cmd->add_option("--view", o.view, "top, left or front")->capture_default_str();
-  cmd->add_option("--width", o.width, "image width")
-      ->check(CLI::Range(16u, 8192u))
-      ->capture_default_str();
-  cmd->add_option("--height", o.height, "image height")
-      ->check(CLI::Range(16u, 8192u))
-      ->capture_default_str();
-  cmd->add_option("--dims", o.dims, "voxel grid N (N^3 volume)")
-      ->check(CLI::Range(2u, 512u))
-      ->capture_default_str();
-  cmd->add_option("--density-dims", o.density_dims, "density grid N (cells of the lighting)")
-      ->check(CLI::Range(2u, 512u))
-      ->capture_default_str();
-  cmd->add_option("--photons", o.photons, "photons per tau row of the scattering table")
-      ->check(CLI::Range(1u, 1u << 24))
-      ->capture_default_str();
-  cmd->add_option("--tau-peak", o.tau_peak, "scattering depth of one cell at the peak density")
-      ->check(CLI::Range(0.0f, 1000.0f))
-      ->capture_default_str();
+  add_ranged_option(*cmd, "--width", o.width, "image width", 16u, 8192u);
+  add_ranged_option(*cmd, "--height", o.height, "image height", 16u, 8192u);
+  add_ranged_option(*cmd, "--dims", o.dims, "voxel grid N (N^3 volume)", 2u, 512u);
+  add_ranged_option(*cmd, "--density-dims", o.density_dims,
+                    "density grid N (cells of the lighting)", 2u, 512u);
+  add_ranged_option(*cmd, "--photons", o.photons, "photons per tau row of the scattering table", 1u,
+                    1u << 24);
+  add_ranged_option(*cmd, "--tau-peak", o.tau_peak,
+                    "scattering depth of one cell at the peak density", 0.0f, 1000.0f);
   cmd->add_option("--s", o.s, "volume mix: weight of the light g")->check(CLI::Range(0.0f, 1.0f));
   cmd->add_option("--t", o.t, "volume mix: weight of the density p")->check(CLI::Range(0.0f, 1.0f));
   cmd->add_option("--tf", o.tf, "transfer function file (lines: value r g b a)");
   cmd->add_flag("--no-cache", o.no_cache, "recompute the scattering table");
-  cmd->callback([] {
-    if (int rc = run_atom(o)) throw CLI::RuntimeError(rc);
-  });
 
   static VolumeCliOptions v;
-  auto* vc =
-      app.add_subcommand("volume", "raymarch a scalar volume (raw, .nrrd/.nhdr, .vti) to PNG");
+  auto* vc = add_command(app, "volume", "raymarch a scalar volume (raw, .nrrd/.nhdr, .vti) to PNG",
+                         v, run_volume);
   add_backend_options(*vc, v.choice, false);
   vc->add_option("file", v.file, "the volume file")->required();
   vc->add_option("--out", v.out, "output PNG")->required();
@@ -252,9 +237,6 @@ void add_atom_command(CLI::App& app) {
   vc->add_option("--width", v.width, "image width")->check(CLI::Range(16u, 8192u));
   vc->add_option("--height", v.height, "image height")->check(CLI::Range(16u, 8192u));
   vc->add_option("--step", v.step_voxels, "ray step in voxels")->check(CLI::Range(0.05f, 4.0f));
-  vc->callback([] {
-    if (int rc = run_volume(v)) throw CLI::RuntimeError(rc);
-  });
 }
 
 }  // namespace masav::app

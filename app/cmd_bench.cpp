@@ -3,15 +3,6 @@
 
 namespace masav::app {
 
-void add_sort_bench(CLI::App& bench);
-void add_grid_bench(CLI::App& bench);
-void add_atom_bench(CLI::App& bench);
-void add_scatter_bench(CLI::App& bench);
-void add_light_bench(CLI::App& bench);
-void add_raymarch_bench(CLI::App& bench);
-void add_sph_bench(CLI::App& bench);
-void add_dambreak_bench(CLI::App& bench);
-
 void add_bench_command(CLI::App& app) {
   auto* bench = app.add_subcommand("bench", "time kernels on each backend (device timestamps)");
   bench->require_subcommand(1);

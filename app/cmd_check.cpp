@@ -109,12 +109,10 @@ int run_check(const BackendChoice& choice) {
 }  // namespace
 
 void add_check_command(CLI::App& app) {
-  auto* cmd = app.add_subcommand("check", "compare sort, grid and RNG against the CPU reference");
   static BackendChoice choice;
+  auto* cmd = add_command(app, "check", "compare sort, grid and RNG against the CPU reference",
+                          choice, run_check);
   add_backend_options(*cmd, choice, false);
-  cmd->callback([] {
-    if (int rc = run_check(choice)) throw CLI::RuntimeError(rc);
-  });
 }
 
 }  // namespace masav::app

@@ -89,18 +89,12 @@ int run_export(const ExportOptions& o) {
 
 void add_export_command(CLI::App& app) {
   static ExportOptions o;
-  auto* cmd = app.add_subcommand("export",
-                                 "write a scene's particles (.vtp), resolved scene "
-                                 "(.toml) and stage counters (.csv) at a frame");
-  add_scene_options(*cmd, o.scene, false);
-  add_backend_options(*cmd, o.choice, false);
-  cmd->add_option("--frame", o.frame, "frame to export")
-      ->check(CLI::Range(0, 10000000))
-      ->capture_default_str();
+  auto* cmd = add_scene_command(app, "export",
+                                "write a scene's particles (.vtp), resolved scene "
+                                "(.toml) and stage counters (.csv) at a frame",
+                                o, run_export);
+  add_ranged_option(*cmd, "--frame", o.frame, "frame to export", 0, 10000000);
   cmd->add_option("--out,-o", o.out, "output directory")->capture_default_str();
-  cmd->callback([] {
-    if (int rc = run_export(o)) throw CLI::RuntimeError(rc);
-  });
 }
 
 }  // namespace masav::app

@@ -164,20 +164,16 @@ int run(const RunOptions& o) {
 
 void add_run_command(CLI::App& app) {
   static RunOptions o;
-  auto* cmd = app.add_subcommand("run",
-                                 "render a scene headless to PNG frames (and an MP4), "
-                                 "after the cross-check");
-  add_scene_options(*cmd, o.scene, false);
-  add_backend_options(*cmd, o.choice, false);
+  auto* cmd = add_scene_command(app, "run",
+                                "render a scene headless to PNG frames (and an MP4), "
+                                "after the cross-check",
+                                o, run);
   cmd->add_option("--frames,-n", o.frames, "frames to render (default: the scene's run.frames)")
       ->check(CLI::Range(1, 1000000));
   cmd->add_option("--out,-o", o.out, "output directory")->capture_default_str();
   cmd->add_flag("--stats", o.stats, "print which stages ran and which were skipped");
   cmd->add_flag("--no-verify", o.no_verify, "render without the cross-check");
   cmd->add_flag("--no-video", o.no_video, "PNG frames only, even with ffmpeg present");
-  cmd->callback([] {
-    if (int rc = run(o)) throw CLI::RuntimeError(rc);
-  });
 }
 
 }  // namespace masav::app

@@ -124,19 +124,16 @@ int run_sph(const SphOptions& o) {
 
 void add_sph_command(CLI::App& app) {
   static SphOptions o;
-  auto* cmd = app.add_subcommand("sph", "run an SPH fluid preset headless; export .vtp and CSV");
+  auto* cmd =
+      add_command(app, "sph", "run an SPH fluid preset headless; export .vtp and CSV", o, run_sph);
   add_backend_options(*cmd, o.choice, false);
   std::vector<std::string> presets;
   for (const auto& p : sph_presets()) presets.push_back(p.name);
   cmd->add_option("--preset,-p", o.preset, "scene")
       ->check(CLI::IsMember(presets))
       ->capture_default_str();
-  cmd->add_option("--particles,-n", o.particles, "fluid particles")
-      ->check(CLI::Range(1u, 1u << 30))
-      ->capture_default_str();
-  cmd->add_option("--steps", o.steps, "steps to run")
-      ->check(CLI::Range(uint64_t(1), uint64_t(1) << 40))
-      ->capture_default_str();
+  add_ranged_option(*cmd, "--particles,-n", o.particles, "fluid particles", 1u, 1u << 30);
+  add_ranged_option(*cmd, "--steps", o.steps, "steps to run", uint64_t(1), uint64_t(1) << 40);
   cmd->add_option("--time", o.time, "run until this simulated time (s) instead of --steps")
       ->check(CLI::Range(0.0, 1e6));
   cmd->add_option("--integrator", o.integrator, "euler, symplectic-euler, rk4 or leapfrog");
@@ -151,15 +148,11 @@ void add_sph_command(CLI::App& app) {
   cmd->add_option("--seed", o.seed, "seed of the particles' jitter")->capture_default_str();
   cmd->add_option("--vtp-every", o.vtp_every, "write particles (.vtp) every k steps (0: never)")
       ->check(CLI::Range(uint64_t(0), uint64_t(1) << 40));
-  cmd->add_option("--diag-every", o.diag_every, "CSV diagnostics every k steps")
-      ->check(CLI::Range(uint64_t(1), uint64_t(1) << 40))
-      ->capture_default_str();
+  add_ranged_option(*cmd, "--diag-every", o.diag_every, "CSV diagnostics every k steps",
+                    uint64_t(1), uint64_t(1) << 40);
   cmd->add_option("--csv", o.csv, "write per-step diagnostics to this CSV file");
   cmd->add_option("--out", o.out, "directory for .vtp snapshots");
   cmd->add_flag("--quiet,-q", o.quiet, "no progress lines");
-  cmd->callback([] {
-    if (int rc = run_sph(o)) throw CLI::RuntimeError(rc);
-  });
 }
 
 }  // namespace masav::app

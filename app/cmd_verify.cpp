@@ -40,18 +40,14 @@ int run_verify(const VerifyOptions& o) {
 
 void add_verify_command(CLI::App& app) {
   static VerifyOptions o;
-  auto* cmd = app.add_subcommand("verify",
-                                 "cross-check every kernel a scene uses against a "
-                                 "second backend (report printed and saved as JSON)");
-  add_scene_options(*cmd, o.scene, false);
-  add_backend_options(*cmd, o.choice, false);
+  auto* cmd = add_scene_command(app, "verify",
+                                "cross-check every kernel a scene uses against a "
+                                "second backend (report printed and saved as JSON)",
+                                o, run_verify);
   cmd->add_option("--reference,-r", o.reference,
                   "second backend (default: the scene's verify.reference, auto)")
       ->check(CLI::IsMember({"auto", "cpu", "vulkan", "cuda"}));
   cmd->add_option("--json", o.json, "write the report here (\"\" for none)")->capture_default_str();
-  cmd->callback([] {
-    if (int rc = run_verify(o)) throw CLI::RuntimeError(rc);
-  });
 }
 
 }  // namespace masav::app

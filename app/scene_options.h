@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "app/commands.h"
 #include "registry/scene_file.h"
 
 namespace masav::app {
@@ -15,6 +16,16 @@ struct SceneChoice {
 };
 
 void add_scene_options(CLI::App& cmd, SceneChoice& choice, bool path_required);
+// A scene command (add_command): the optional scene file and --set first, then --backend and
+// --device; `Options` has a SceneChoice `scene` and a BackendChoice `choice`.
+template <class Options>
+CLI::App* add_scene_command(CLI::App& app, const std::string& name, const std::string& description,
+                            Options& o, int (*run)(const Options&)) {
+  CLI::App* cmd = add_command(app, name, description, o, run);
+  add_scene_options(*cmd, o.scene, false);
+  add_backend_options(*cmd, o.choice, false);
+  return cmd;
+}
 // Loads the file (or the defaults) and applies the overrides; errors name the key and range.
 scene::SceneFile load_scene(const SceneChoice& choice);
 // Creates `dir` if needed and proves it writable (a probe file, written then removed).

@@ -7,26 +7,28 @@ usage: tools/plot_atom_bench.py OUT_PREFIX RECORD.json...
   and OUT_PREFIX_error.png (run time against error for each accuracy knob).
 Needs python3-matplotlib (tools/setup --plots).
 """
-import json
 import sys
 
-import matplotlib
-
-matplotlib.use("Agg")
-import matplotlib.pyplot as plt  # noqa: E402
-
-
-def load(paths):
-    records = {}
-    for path in paths:
-        with open(path) as f:
-            record = json.load(f)
-        records[record["benchmark"]] = record
-    return records
+from plot_common import groups, label_axes, load_records, plt, save
 
 
 def label(row):
     return f"{row['backend']} ({row['device'][:28]})"
+
+
+def plot_states(ax, rows, thesis, key, ylabel, title):
+    """Our times (`key`, ms) per Table 2.3 state, a line per backend, beside the thesis's
+    (`thesis`: its seconds' key, line style and label for each)."""
+    states = [r["state"] for r in rows if r["backend"] == rows[0]["backend"]]
+    x = range(len(states))
+    for seconds, style, name in thesis:
+        ms = {r["state"]: r[seconds] * 1e3 for r in rows}
+        ax.plot(x, [ms[s] for s in states], style, label=name)
+    for _, be_rows in groups(rows, "backend"):
+        by_state = {r["state"]: r for r in be_rows}
+        ax.plot(x, [by_state[s][key] for s in states], "-o", label=label(by_state[states[0]]))
+    ax.set_xticks(list(x), [s.replace("state", "") for s in states])
+    label_axes(ax, "state (thesis Table 2.3 particle counts)", ylabel, title, log_x=False)
 
 
 def plot_tables(prefix, atom, light, ray):
@@ -34,44 +36,18 @@ def plot_tables(prefix, atom, light, ray):
     if not panels:
         return
     fig, axes = plt.subplots(1, len(panels), figsize=(6 * len(panels), 4.5), squeeze=False)
-    axes = axes[0]
-    k = 0
+    axes = iter(axes[0])
     if atom:
-        ax = axes[k]
-        k += 1
-        states = [r["state"] for r in atom["rows"] if r["backend"] == atom["rows"][0]["backend"]]
-        x = range(len(states))
-        thesis = {r["state"]: r["thesis_creation_s"] * 1e3 for r in atom["rows"]}
-        ax.plot(x, [thesis[s] for s in states], "k--o", label="thesis CPU (Core2 Duo)")
-        for be in sorted({r["backend"] for r in atom["rows"]}):
-            rows = {r["state"]: r for r in atom["rows"] if r["backend"] == be}
-            ax.plot(x, [rows[s]["median_ms"] for s in states], "-o", label=label(rows[states[0]]))
-        ax.set_xticks(list(x), [s.replace("state", "") for s in states])
-        ax.set_yscale("log")
-        ax.set_xlabel("state (thesis Table 2.3 particle counts)")
-        ax.set_ylabel("cloud creation, ms")
-        ax.set_title("cloud creation")
-        ax.legend(fontsize=7)
+        plot_states(next(axes), atom["rows"],
+                    [("thesis_creation_s", "k--o", "thesis CPU (Core2 Duo)")], "median_ms",
+                    "cloud creation, ms", "cloud creation")
     if light:
-        ax = axes[k]
-        k += 1
-        states = [r["state"] for r in light["rows"] if r["backend"] == light["rows"][0]["backend"]]
-        x = range(len(states))
-        gpu = {r["state"]: r["thesis_gpu_s"] * 1e3 for r in light["rows"]}
-        cpu = {r["state"]: r["thesis_cpu_s"] * 1e3 for r in light["rows"]}
-        ax.plot(x, [cpu[s] for s in states], "k:o", label="thesis CPU")
-        ax.plot(x, [gpu[s] for s in states], "k--o", label="thesis GPU (Quadro FX 5800)")
-        for be in sorted({r["backend"] for r in light["rows"]}):
-            rows = {r["state"]: r for r in light["rows"] if r["backend"] == be}
-            ax.plot(x, [rows[s]["total_ms"] for s in states], "-o", label=label(rows[states[0]]))
-        ax.set_xticks(list(x), [s.replace("state", "") for s in states])
-        ax.set_yscale("log")
-        ax.set_xlabel("state (thesis Table 2.3 particle counts)")
-        ax.set_ylabel("nebula lighting, ms")
-        ax.set_title("lighting (Eq. 2.4-2.6)")
-        ax.legend(fontsize=7)
+        plot_states(next(axes), light["rows"],
+                    [("thesis_cpu_s", "k:o", "thesis CPU"),
+                     ("thesis_gpu_s", "k--o", "thesis GPU (Quadro FX 5800)")],
+                    "total_ms", "nebula lighting, ms", "lighting (Eq. 2.4-2.6)")
     if ray:
-        ax = axes[k]
+        ax = next(axes)
         names, values = [], []
         for r in ray["rows"]:
             names.append(f"{r['backend']}\n{r['volume']} {r['width']}x{r['height']}"
@@ -81,12 +57,8 @@ def plot_tables(prefix, atom, light, ray):
         ax.axhspan(ray["thesis_ms_min"], ray["thesis_ms_max"], color="k", alpha=0.2,
                    label="thesis 32-37 ms (60^3)")
         ax.set_xticks(range(len(names)), names, fontsize=6)
-        ax.set_yscale("log")
-        ax.set_ylabel("ms per frame")
-        ax.set_title("raymarch")
-        ax.legend(fontsize=7)
-    fig.tight_layout()
-    fig.savefig(f"{prefix}_table23.png", dpi=110)
+        label_axes(ax, None, "ms per frame", "raymarch", log_x=False)
+    save(fig, f"{prefix}_table23.png", 110)
     print(f"wrote {prefix}_table23.png")
 
 
@@ -110,19 +82,13 @@ def plot_errors(prefix, atom, scatter, light, ray):
         return
     fig, axes = plt.subplots(1, len(panels), figsize=(4.6 * len(panels), 4), squeeze=False)
     for ax, (title, rows, tkey, ekey, knob) in zip(axes[0], panels):
-        for be in sorted({r["backend"] for r in rows}):
-            pts = [r for r in rows if r["backend"] == be and r[ekey] > 0]
+        for (be,), be_rows in groups(rows, "backend"):
+            pts = [r for r in be_rows if r[ekey] > 0]
             ax.plot([r[tkey] for r in pts], [r[ekey] for r in pts], "-o", label=be)
             for r in pts:
                 ax.annotate(f"{r[knob]:g}", (r[tkey], r[ekey]), fontsize=6)
-        ax.set_xscale("log")
-        ax.set_yscale("log")
-        ax.set_xlabel("run time, ms")
-        ax.set_ylabel("error")
-        ax.set_title(title, fontsize=8)
-        ax.legend(fontsize=7)
-    fig.tight_layout()
-    fig.savefig(f"{prefix}_error.png", dpi=110)
+        label_axes(ax, "run time, ms", "error", title, title_size=8)
+    save(fig, f"{prefix}_error.png", 110)
     print(f"wrote {prefix}_error.png")
 
 
@@ -131,7 +97,8 @@ def main():
         print(__doc__)
         return 2
     prefix = sys.argv[1]
-    records = load(sys.argv[2:])
+    # The latest record of each benchmark.
+    records = {name: recs[-1] for name, recs in load_records(sys.argv[2:]).items()}
     atom, scatter = records.get("atom"), records.get("scatter")
     light, ray = records.get("light"), records.get("raymarch")
     if not any((atom, scatter, light, ray)):

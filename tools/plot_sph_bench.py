@@ -12,25 +12,12 @@ usage: tools/plot_sph_bench.py OUT_PREFIX RECORD.json...
   OUT_PREFIX_dambreak.png    the simulated surge front against the laboratory measurements.
 Needs python3-matplotlib (tools/setup --plots).
 """
-import json
 import sys
 
-import matplotlib
-
-matplotlib.use("Agg")
-import matplotlib.pyplot as plt  # noqa: E402
+from plot_common import groups, label_axes, load_records, plt, save
 
 # Thesis Table 4.1: frames per second at 32,768 particles (water), Quadro FX 5800 / Core2 Duo.
 THESIS_WATER_FPS = {"GPU euler": 8.8, "GPU rk4": 8.6, "CPU euler": 0.41, "CPU rk4": 0.25}
-
-
-def load(paths):
-    records = {}
-    for path in paths:
-        with open(path) as f:
-            record = json.load(f)
-        records.setdefault(record["benchmark"], []).append(record)
-    return records
 
 
 def plot_throughput(prefix, sph_records):
@@ -42,15 +29,9 @@ def plot_throughput(prefix, sph_records):
     if not rows:
         return
     fig, ax = plt.subplots(figsize=(8, 4.8))
-    for be in sorted({r["backend"] for r in rows}):
-        for integ in sorted({r["integrator"] for r in rows}):
-            pts = sorted(
-                (r["particles"], r["particle_steps_per_s"])
-                for r in rows
-                if r["backend"] == be and r["integrator"] == integ
-            )
-            if pts:
-                ax.plot(*zip(*pts), "-o", label=f"{be} {integ}")
+    for (be, integ), runs in groups(rows, "backend", "integrator"):
+        pts = sorted((r["particles"], r["particle_steps_per_s"]) for r in runs)
+        ax.plot(*zip(*pts), "-o", label=f"{be} {integ}")
     for name, fps in THESIS_WATER_FPS.items():
         ax.plot([32768], [fps * 32768], "k*" if name.startswith("GPU") else "kx", ms=9)
         ax.annotate(f"thesis {name}", (32768, fps * 32768), fontsize=7,
@@ -58,14 +39,8 @@ def plot_throughput(prefix, sph_records):
                     textcoords="offset points")
     ax.axhline(0.75e6, color="grey", ls=":", lw=1)
     ax.annotate("SPEC §5 CPU target", (rows[0]["particles"], 0.75e6), fontsize=7, color="grey")
-    ax.set_xscale("log")
-    ax.set_yscale("log")
-    ax.set_xlabel("particles")
-    ax.set_ylabel("particle-steps / s")
-    ax.set_title("SPH throughput (water preset)")
-    ax.legend(fontsize=7)
-    fig.tight_layout()
-    fig.savefig(f"{prefix}_throughput.png", dpi=120)
+    label_axes(ax, "particles", "particle-steps / s", "SPH throughput (water preset)")
+    save(fig, f"{prefix}_throughput.png", 120)
 
 
 def pareto(points):
@@ -88,29 +63,17 @@ def plot_pareto(prefix, sph_records):
         return
     fig, ax = plt.subplots(figsize=(8, 4.8))
     markers = {"euler": "o", "symplectic-euler": "v", "leapfrog": "s", "rk4": "D"}
-    for be in sorted({r["backend"] for r in rows}):
-        for integ in sorted({r["integrator"] for r in rows}):
-            pts = sorted(
-                (r["wall_ms"], r["position_error_over_h"], r["dt_s"])
-                for r in rows
-                if r["backend"] == be and r["integrator"] == integ
-            )
-            if not pts:
-                continue
-            ax.plot([p[0] for p in pts], [p[1] for p in pts], "-" + markers.get(integ, "o"),
-                    label=f"{be} {integ}", alpha=0.8)
+    for (be, integ), runs in groups(rows, "backend", "integrator"):
+        pts = sorted((r["wall_ms"], r["position_error_over_h"], r["dt_s"]) for r in runs)
+        ax.plot([p[0] for p in pts], [p[1] for p in pts], "-" + markers.get(integ, "o"),
+                label=f"{be} {integ}", alpha=0.8)
     front = pareto([(r["wall_ms"], r["position_error_over_h"]) for r in rows])
     ax.step([p[0] for p in front], [p[1] for p in front], "k--", where="post", lw=1,
             label="Pareto front")
-    ax.set_xscale("log")
-    ax.set_yscale("log")
-    ax.set_xlabel("wall time, ms")
-    ax.set_ylabel("RMS position error / h")
-    ax.set_title(f"run time against error: dam break, {sweep['particles']} particles, "
-                 f"{sweep['time_s']:.4g} s, ref. RK4 at dt0/16", fontsize=9)
-    ax.legend(fontsize=7)
-    fig.tight_layout()
-    fig.savefig(f"{prefix}_pareto.png", dpi=120)
+    label_axes(ax, "wall time, ms", "RMS position error / h",
+               f"run time against error: dam break, {sweep['particles']} particles, "
+               f"{sweep['time_s']:.4g} s, ref. RK4 at dt0/16", title_size=9)
+    save(fig, f"{prefix}_pareto.png", 120)
 
 
 def plot_dambreak(prefix, records):
@@ -127,19 +90,16 @@ def plot_dambreak(prefix, records):
         pts = exp["points"]
         ax.plot([p["T"] for p in pts], [p["Z"] for p in pts], markers[k % 4], mfc="none",
                 label=f"{exp['source']} (mean |dZ| {exp.get('mean_abs_difference', 0):.3f})")
-    ax.set_xlabel("T = t sqrt(2 g / a)")
-    ax.set_ylabel("Z = surge front / a")
-    ax.set_title("dam break: surge front against laboratory data")
-    ax.legend(fontsize=7)
-    fig.tight_layout()
-    fig.savefig(f"{prefix}_dambreak.png", dpi=120)
+    label_axes(ax, "T = t sqrt(2 g / a)", "Z = surge front / a",
+               "dam break: surge front against laboratory data", log_x=False, log_y=False)
+    save(fig, f"{prefix}_dambreak.png", 120)
 
 
 def main():
     if len(sys.argv) < 3:
         sys.exit(__doc__)
     prefix = sys.argv[1]
-    records = load(sys.argv[2:])
+    records = load_records(sys.argv[2:])
     plot_throughput(prefix, records.get("sph", []))
     plot_pareto(prefix, records.get("sph", []))
     plot_dambreak(prefix, records.get("dambreak", []))

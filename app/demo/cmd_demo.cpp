@@ -294,18 +294,14 @@ int run_demo(const DemoOptions& o) {
 
 void add_demo_command(CLI::App& app) {
   static DemoOptions o;
-  auto* cmd = app.add_subcommand("demo",
-                                 "the desktop demo: the scene in a window with a control "
-                                 "panel (needs a display; `masav run` renders headless)");
-  add_scene_options(*cmd, o.scene, false);
-  add_backend_options(*cmd, o.choice, false);
+  auto* cmd = add_scene_command(app, "demo",
+                                "the desktop demo: the scene in a window with a control "
+                                "panel (needs a display; `masav run` renders headless)",
+                                o, run_demo);
   cmd->add_option("--script", o.script,
                   "drive the demo from a script (wait N, set K V, view V, scene F, backend B, "
                   "pause, step, reset, verify, panel on|off, screenshot F, quit)");
   cmd->add_flag("--no-verify", o.no_verify, "start without the cross-check");
-  cmd->callback([] {
-    if (int rc = run_demo(o)) throw CLI::RuntimeError(rc);
-  });
 }
 
 }  // namespace masav::app
