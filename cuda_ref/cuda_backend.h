@@ -52,16 +52,7 @@ class CudaBackend final : public Backend {
   dim3 grid_for_items(uint64_t items, const char* kernel) const;
 
  protected:
-#define MASAV_KERNEL MASAV_KERNEL_OVERRIDE
-#include "engine/kernels/kernels.inc"
-#undef MASAV_KERNEL
-
-  // Every kernel: its shared body where it has one, else run_own (see run_kernel's definition).
-  template <KernelId K, class Params, class... Buffers>
-  void run_kernel(const Params& p, uint64_t items, Buffers&... buffers);
-#define MASAV_KERNEL MASAV_KERNEL_OWN
-#include "engine/kernels/kernels.inc"
-#undef MASAV_KERNEL
+#include "engine/kernels/backend_overrides.inc"
 
   void write_bytes(BufferImpl& dst, const void* src, size_t bytes, size_t offset) override;
   void read_bytes(const BufferImpl& src, void* dst, size_t bytes, size_t offset) override;

@@ -13,7 +13,7 @@
 //    to 16, as alignas(16) does in C++);
 //  - a constant both sides use is MASAV_CONSTANT(name, value) (MASAV_CONSTANT64 for 64 bits);
 //  - defaults are written MASAV_INIT(value) (C++ only: GLSL members have no initialisers);
-//  - every header asserts, in C++, the size and the offset of every field (MASAV_OFFSET).
+//  - every header asserts, in C++, the size and the offset of every field (MASAV_LAYOUT_CHECK).
 // A layout templated on the real type (MASAV_REAL_LAYOUT, fields of type real_t) is read in
 // double by the CPU reference and in float everywhere else; its float form is the one asserted.
 #ifndef MASAV_CORE_LAYOUT_H
@@ -23,6 +23,7 @@
 #include <cstddef>
 #include <cstdint>
 
+#include "engine/core/pp.h"
 #include "engine/core/types.h"
 
 #define MASAV_LAYOUT(Name) struct alignas(16) Name
@@ -40,11 +41,14 @@
 #define MASAV_CONSTANT(name, value) inline constexpr uint32_t name = value;
 #define MASAV_CONSTANT64(name, hi, lo) \
   inline constexpr uint64_t name = (uint64_t(hi) << 32) | uint64_t(lo);
-#define MASAV_OFFSET(Type, field, offset)          \
+// MASAV_LAYOUT_CHECK(Type, bytes, (field, offset)...): the size and every field's offset, as
+// std430 places them (C++ only: the header's own numbers, checked by the compiler).
+#define MASAV_LAYOUT_CHECK(Type, bytes, ...)                                  \
+  static_assert(sizeof(Type) == (bytes), "sizeof(" #Type ") is not " #bytes); \
+  MASAV_PP_EACH(MASAV_LAYOUT_OFFSET_I, Type, __VA_ARGS__)
+#define MASAV_LAYOUT_OFFSET_I(Type, field, offset) \
   static_assert(offsetof(Type, field) == (offset), \
-                #Type "::" #field " is not at std430 offset " #offset)
-#define MASAV_SIZE(Type, bytes) \
-  static_assert(sizeof(Type) == (bytes), "sizeof(" #Type ") is not " #bytes)
+                #Type "::" #field " is not at std430 offset " #offset);
 #define MASAV_NAMESPACE_BEGIN namespace masav {
 #define MASAV_NAMESPACE_END }
 
@@ -68,8 +72,6 @@ using uvec3 = UVec3;
 #define MASAV_ENUM_END(Type)
 #define MASAV_CONSTANT(name, value) const uint name = uint(value);
 #define MASAV_CONSTANT64(name, hi, lo) const uvec2 name = uvec2(lo, hi);
-#define MASAV_OFFSET(Type, field, offset)
-#define MASAV_SIZE(Type, bytes)
 #define MASAV_NAMESPACE_BEGIN
 #define MASAV_NAMESPACE_END
 // A kernel's parameters as its push block, read as `p.field` like the C++ and CUDA code.

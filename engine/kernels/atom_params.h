@@ -190,82 +190,25 @@ MASAV_NAMESPACE_END
 
 namespace masav {
 
-MASAV_OFFSET(OrbitalSampleParams, count, 0);
-MASAV_OFFSET(OrbitalSampleParams, placement, 4);
-MASAV_OFFSET(OrbitalSampleParams, seed, 8);
-MASAV_OFFSET(OrbitalSampleParams, radial_bins, 16);
-MASAV_OFFSET(OrbitalSampleParams, polar_bins, 20);
-MASAV_OFFSET(OrbitalSampleParams, azimuth_bins, 24);
-MASAV_OFFSET(OrbitalSampleParams, azimuth_periods, 28);
-MASAV_OFFSET(OrbitalSampleParams, radial_max_a0, 32);
-MASAV_OFFSET(OrbitalSampleParams, azimuth_offset, 36);
-MASAV_SIZE(OrbitalSampleParams, 48);
-MASAV_OFFSET(CloudDensityParams, grid, 0);
-MASAV_OFFSET(CloudDensityParams, particles, 48);
-MASAV_SIZE(CloudDensityParams, 64);
-MASAV_OFFSET(ScatterTableParams, rows, 0);
-MASAV_OFFSET(ScatterTableParams, first_row, 4);
-MASAV_OFFSET(ScatterTableParams, bins, 8);
-MASAV_OFFSET(ScatterTableParams, photons_per_row, 12);
-MASAV_OFFSET(ScatterTableParams, seed, 16);
-MASAV_OFFSET(ScatterTableParams, max_scatterings, 24);
-MASAV_OFFSET(ScatterTableParams, start, 28);
-MASAV_OFFSET(ScatterTableParams, direction, 32);
-MASAV_OFFSET(ScatterTableParams, tau_step, 44);
-MASAV_OFFSET(ScatterTableParams, g, 48);
-MASAV_OFFSET(ScatterTableParams, albedo, 52);
-MASAV_OFFSET(ScatterTableParams, weight_threshold, 56);
-MASAV_SIZE(ScatterTableParams, 64);
-MASAV_OFFSET(ScatterFinalizeParams, entries, 0);
-MASAV_OFFSET(ScatterFinalizeParams, scale, 4);
-MASAV_SIZE(ScatterFinalizeParams, 16);
-MASAV_OFFSET(NebulaLightParams, grid, 0);
-MASAV_OFFSET(NebulaLightParams, nucleus, 48);
-MASAV_OFFSET(NebulaLightParams, source_power_lm, 60);
-MASAV_OFFSET(NebulaLightParams, viewer, 64);
-MASAV_OFFSET(NebulaLightParams, kappa_a2, 76);
-MASAV_OFFSET(NebulaLightParams, albedo, 80);
-MASAV_OFFSET(NebulaLightParams, core_radius_a0, 84);
-MASAV_OFFSET(NebulaLightParams, step_a0, 88);
-MASAV_OFFSET(NebulaLightParams, path, 92);
-MASAV_OFFSET(NebulaLightParams, table_rows, 96);
-MASAV_OFFSET(NebulaLightParams, table_bins, 100);
-MASAV_OFFSET(NebulaLightParams, table_tau_step, 104);
-MASAV_SIZE(NebulaLightParams, 112);
-MASAV_OFFSET(VoxelizeParams, grid, 0);
-MASAV_OFFSET(VoxelizeParams, s, 48);
-MASAV_OFFSET(VoxelizeParams, t, 52);
-MASAV_OFFSET(VoxelizeParams, light_to_unit, 56);
-MASAV_SIZE(VoxelizeParams, 64);
-MASAV_OFFSET(VolumeDesc, dims, 0);
-MASAV_OFFSET(VolumeDesc, value_min, 12);
-MASAV_OFFSET(VolumeDesc, box_min, 16);
-MASAV_OFFSET(VolumeDesc, value_max, 28);
-MASAV_OFFSET(VolumeDesc, box_max, 32);
-MASAV_SIZE(VolumeDesc, 48);
-MASAV_OFFSET(VolumeBrickParams, volume, 0);
-MASAV_OFFSET(VolumeBrickParams, brick, 48);
-MASAV_OFFSET(VolumeBrickParams, tf_size, 52);
-MASAV_SIZE(VolumeBrickParams, 64);
-MASAV_OFFSET(RaymarchLayout, eye, 0);
-MASAV_OFFSET(RaymarchLayout, step, 12);
-MASAV_OFFSET(RaymarchLayout, forward, 16);
-MASAV_OFFSET(RaymarchLayout, reference_step, 28);
-MASAV_OFFSET(RaymarchLayout, right, 32);
-MASAV_OFFSET(RaymarchLayout, termination_alpha, 44);
-MASAV_OFFSET(RaymarchLayout, up, 48);
-MASAV_OFFSET(RaymarchLayout, value_min, 60);
-MASAV_OFFSET(RaymarchLayout, box_min, 64);
-MASAV_OFFSET(RaymarchLayout, value_scale, 76);
-MASAV_OFFSET(RaymarchLayout, box_max, 80);
-MASAV_OFFSET(RaymarchLayout, mode, 92);
-MASAV_OFFSET(RaymarchLayout, dims, 96);
-MASAV_OFFSET(RaymarchLayout, tf_size, 108);
-MASAV_OFFSET(RaymarchLayout, width, 112);
-MASAV_OFFSET(RaymarchLayout, height, 116);
-MASAV_OFFSET(RaymarchLayout, brick, 120);
-MASAV_OFFSET(RaymarchLayout, skip_empty, 124);
-MASAV_SIZE(RaymarchLayout, 128);
+MASAV_LAYOUT_CHECK(OrbitalSampleParams, 48, (count, 0), (placement, 4), (seed, 8),
+                   (radial_bins, 16), (polar_bins, 20), (azimuth_bins, 24), (azimuth_periods, 28),
+                   (radial_max_a0, 32), (azimuth_offset, 36))
+MASAV_LAYOUT_CHECK(CloudDensityParams, 64, (grid, 0), (particles, 48))
+MASAV_LAYOUT_CHECK(ScatterTableParams, 64, (rows, 0), (first_row, 4), (bins, 8),
+                   (photons_per_row, 12), (seed, 16), (max_scatterings, 24), (start, 28),
+                   (direction, 32), (tau_step, 44), (g, 48), (albedo, 52), (weight_threshold, 56))
+MASAV_LAYOUT_CHECK(ScatterFinalizeParams, 16, (entries, 0), (scale, 4))
+MASAV_LAYOUT_CHECK(NebulaLightParams, 112, (grid, 0), (nucleus, 48), (source_power_lm, 60),
+                   (viewer, 64), (kappa_a2, 76), (albedo, 80), (core_radius_a0, 84), (step_a0, 88),
+                   (path, 92), (table_rows, 96), (table_bins, 100), (table_tau_step, 104))
+MASAV_LAYOUT_CHECK(VoxelizeParams, 64, (grid, 0), (s, 48), (t, 52), (light_to_unit, 56))
+MASAV_LAYOUT_CHECK(VolumeDesc, 48, (dims, 0), (value_min, 12), (box_min, 16), (value_max, 28),
+                   (box_max, 32))
+MASAV_LAYOUT_CHECK(VolumeBrickParams, 64, (volume, 0), (brick, 48), (tf_size, 52))
+MASAV_LAYOUT_CHECK(RaymarchLayout, 128, (eye, 0), (step, 12), (forward, 16), (reference_step, 28),
+                   (right, 32), (termination_alpha, 44), (up, 48), (value_min, 60), (box_min, 64),
+                   (value_scale, 76), (box_max, 80), (mode, 92), (dims, 96), (tf_size, 108),
+                   (width, 112), (height, 116), (brick, 120), (skip_empty, 124))
 
 // A volume's description in the order one says it: dims, box, value range.
 inline VolumeDesc make_volume_desc(UVec3 dims, Vec3f box_min, Vec3f box_max, float value_min = 0,

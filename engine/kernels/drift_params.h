@@ -27,12 +27,8 @@ MASAV_NAMESPACE_END
 
 namespace masav {
 
-MASAV_OFFSET(DriftParams, box_lo, 0);
-MASAV_OFFSET(DriftParams, speed, 12);
-MASAV_OFFSET(DriftParams, box_extent, 16);
-MASAV_OFFSET(DriftParams, time_s, 28);
-MASAV_OFFSET(DriftParams, n, 32);
-MASAV_SIZE(DriftParams, 48);
+MASAV_LAYOUT_CHECK(DriftParams, 48, (box_lo, 0), (speed, 12), (box_extent, 16), (time_s, 28),
+                   (n, 32))
 
 class DeviceApi;
 // Checked before any backend runs drift_points (engine/kernels/drift_checks.cpp).

@@ -44,20 +44,10 @@ MASAV_NAMESPACE_END
 
 namespace masav {
 
-MASAV_OFFSET(GridParams, origin, 0);
-MASAV_OFFSET(GridParams, cell_size, 12);
-MASAV_OFFSET(GridParams, dims, 16);
-MASAV_OFFSET(GridParams, n, 28);
-MASAV_OFFSET(GridParams, inv_cell, 32);
-MASAV_SIZE(GridParams, 48);
-MASAV_OFFSET(NeighborParams, grid, 0);
-MASAV_OFFSET(NeighborParams, radius, 48);
-MASAV_OFFSET(NeighborParams, radius2, 52);
-MASAV_OFFSET(NeighborParams, max_candidates, 56);
-MASAV_SIZE(NeighborParams, 64);
-MASAV_OFFSET(GatherLayout, n, 0);
-MASAV_OFFSET(GatherLayout, src_count, 4);
-MASAV_SIZE(GatherLayout, 16);
+MASAV_LAYOUT_CHECK(GridParams, 48, (origin, 0), (cell_size, 12), (dims, 16), (n, 28),
+                   (inv_cell, 32))
+MASAV_LAYOUT_CHECK(NeighborParams, 64, (grid, 0), (radius, 48), (radius2, 52), (max_candidates, 56))
+MASAV_LAYOUT_CHECK(GatherLayout, 16, (n, 0), (src_count, 4))
 
 GridParams make_grid_params(Vec3f origin, float cell_size, UVec3 dims, uint32_t n);
 uint64_t grid_cell_count(const GridParams& g);

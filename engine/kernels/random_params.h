@@ -21,11 +21,7 @@ MASAV_NAMESPACE_END
 
 namespace masav {
 
-MASAV_OFFSET(PhiloxLayout, seed, 0);
-MASAV_OFFSET(PhiloxLayout, stream, 8);
-MASAV_OFFSET(PhiloxLayout, first_block, 16);
-MASAV_OFFSET(PhiloxLayout, count, 24);
-MASAV_SIZE(PhiloxLayout, 32);
+MASAV_LAYOUT_CHECK(PhiloxLayout, 32, (seed, 0), (stream, 8), (first_block, 16), (count, 24))
 
 // Philox4x32-10 stream: word i of the output is word (i % 4) of the block with counter
 // (first_block + i / 4, stream) under key `seed`. Streams with different ids never overlap. The

@@ -40,18 +40,9 @@ MASAV_NAMESPACE_END
 
 namespace masav {
 
-MASAV_OFFSET(RadixSortParams, n, 0);
-MASAV_OFFSET(RadixSortParams, key_bits, 4);
-MASAV_OFFSET(RadixSortParams, impl, 8);
-MASAV_SIZE(RadixSortParams, 16);
-MASAV_OFFSET(RadixPassParams, n, 0);
-MASAV_OFFSET(RadixPassParams, shift, 4);
-MASAV_OFFSET(RadixPassParams, bits, 8);
-MASAV_OFFSET(RadixPassParams, num_tiles, 12);
-MASAV_SIZE(RadixPassParams, 16);
-MASAV_OFFSET(ScanParams, n, 0);
-MASAV_OFFSET(ScanParams, num_tiles, 4);
-MASAV_SIZE(ScanParams, 16);
+MASAV_LAYOUT_CHECK(RadixSortParams, 16, (n, 0), (key_bits, 4), (impl, 8))
+MASAV_LAYOUT_CHECK(RadixPassParams, 16, (n, 0), (shift, 4), (bits, 8), (num_tiles, 12))
+MASAV_LAYOUT_CHECK(ScanParams, 16, (n, 0), (num_tiles, 4))
 
 class DeviceApi;
 // Checked before any backend runs the kernel (engine/kernels/kernel_checks.cpp).

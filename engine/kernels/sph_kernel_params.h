@@ -89,36 +89,13 @@ MASAV_NAMESPACE_END
 
 namespace masav {
 
-MASAV_OFFSET(SphStepLayout<float>, dims, 0);
-MASAV_OFFSET(SphStepLayout<float>, n, 12);
-MASAV_OFFSET(SphStepLayout<float>, max_candidates, 16);
-MASAV_OFFSET(SphStepLayout<float>, model, 20);
-MASAV_OFFSET(SphStepLayout<float>, clamp_negative_pressure, 24);
-MASAV_OFFSET(SphStepLayout<float>, walls, 28);
-MASAV_OFFSET(SphStepLayout<float>, h2, 32);
-MASAV_OFFSET(SphStepLayout<float>, inv_h, 36);
-MASAV_OFFSET(SphStepLayout<float>, inv_h2, 40);
-MASAV_OFFSET(SphStepLayout<float>, density, 44);
-MASAV_OFFSET(SphStepLayout<float>, pressure, 48);
-MASAV_OFFSET(SphStepLayout<float>, viscosity, 52);
-MASAV_OFFSET(SphStepLayout<float>, rest_density, 56);
-MASAV_OFFSET(SphStepLayout<float>, inv_rest_density, 60);
-MASAV_OFFSET(SphStepLayout<float>, eos, 64);
-MASAV_OFFSET(SphStepLayout<float>, gravity, 68);
-MASAV_OFFSET(SphStepLayout<float>, lo, 80);
-MASAV_OFFSET(SphStepLayout<float>, wall_viscosity, 92);
-MASAV_OFFSET(SphStepLayout<float>, hi, 96);
-MASAV_OFFSET(SphStepLayout<float>, wall_offset, 108);
-MASAV_SIZE(SphStepLayout<float>, 112);
-MASAV_OFFSET(SphIntegrateLayout<float>, op, 0);
-MASAV_OFFSET(SphIntegrateLayout<float>, walls, 4);
-MASAV_OFFSET(SphIntegrateLayout<float>, n, 8);
-MASAV_OFFSET(SphIntegrateLayout<float>, dt, 12);
-MASAV_OFFSET(SphIntegrateLayout<float>, lo, 16);
-MASAV_OFFSET(SphIntegrateLayout<float>, restitution, 28);
-MASAV_OFFSET(SphIntegrateLayout<float>, hi, 32);
-MASAV_OFFSET(SphIntegrateLayout<float>, tangential_damping, 44);
-MASAV_SIZE(SphIntegrateLayout<float>, 48);
+MASAV_LAYOUT_CHECK(SphStepLayout<float>, 112, (dims, 0), (n, 12), (max_candidates, 16), (model, 20),
+                   (clamp_negative_pressure, 24), (walls, 28), (h2, 32), (inv_h, 36), (inv_h2, 40),
+                   (density, 44), (pressure, 48), (viscosity, 52), (rest_density, 56),
+                   (inv_rest_density, 60), (eos, 64), (gravity, 68), (lo, 80), (wall_viscosity, 92),
+                   (hi, 96), (wall_offset, 108))
+MASAV_LAYOUT_CHECK(SphIntegrateLayout<float>, 48, (op, 0), (walls, 4), (n, 8), (dt, 12), (lo, 16),
+                   (restitution, 28), (hi, 32), (tangential_damping, 44))
 
 // What the density and force kernels need. The particles are sorted by `grid` (cell size >= h,
 // built by build_hash_grid); each kernel walks the 27 cells around the particle's cell at that

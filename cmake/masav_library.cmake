@@ -1,0 +1,12 @@
+# A library per folder: its sources are the folder's own .cpp (and .cu) files, found at
+# configure time, so a folder's files are its library and a new file needs no build line.
+#   masav_folder_library(name [DEPENDS public deps...] [PRIVATE private deps...])
+function(masav_folder_library name)
+  cmake_parse_arguments(arg "" "" "DEPENDS;PRIVATE" ${ARGN})
+  file(GLOB sources CONFIGURE_DEPENDS ${CMAKE_CURRENT_SOURCE_DIR}/*.cpp
+       ${CMAKE_CURRENT_SOURCE_DIR}/*.cu)
+  add_library(${name} STATIC ${sources})
+  target_include_directories(${name} PUBLIC ${PROJECT_SOURCE_DIR})
+  target_link_libraries(${name} PUBLIC ${arg_DEPENDS} PRIVATE ${arg_PRIVATE})
+  masav_target_defaults(${name})
+endfunction()
