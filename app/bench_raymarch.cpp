@@ -12,6 +12,7 @@
 #include "engine/atom/atom_scene.h"
 #include "engine/atom/transfer_function.h"
 #include "engine/core/error.h"
+#include "engine/atom/ray_integral.h"
 
 namespace masav::app {
 
@@ -21,15 +22,6 @@ struct RaymarchBenchOptions : BenchOptions {
 };
 
 namespace {
-
-double clamped_linear_integral(double o, double d, double lo, double hi, double t0, double t1) {
-  if (d == 0) return std::clamp(o, lo, hi) * (t1 - t0);
-  double ta = (lo - o) / d, tb = (hi - o) / d;
-  if (ta > tb) std::swap(ta, tb);
-  const double a = std::clamp(ta, t0, t1), b = std::clamp(tb, t0, t1);
-  const double below = d > 0 ? lo : hi, above = d > 0 ? hi : lo;
-  return below * (a - t0) + (o * (b - a) + 0.5 * d * (b * b - a * a)) + above * (t1 - b);
-}
 
 struct Timed {
   double ms;
@@ -142,7 +134,7 @@ int run_raymarch_bench(const RaymarchBenchOptions& o, JsonWriter& j) {
           double t0 = 0, t1 = 1e30, integral = 0;
           if (volume::slab(eye, dir, hd::V3<double>{-1, -1, -1}, hd::V3<double>{1, 1, 1}, t0, t1))
             for (int a = 0; a < 3; ++a)
-              integral += clamped_linear_integral((hd::comp(eye, a) + 1) / spacing - 0.5,
+              integral += atom::clamped_linear_integral((hd::comp(eye, a) + 1) / spacing - 0.5,
                                                   hd::comp(dir, a) / spacing, 0, n - 1, t0, t1) /
                           (3.0 * (n - 1));
           const double want = integral > 0 ? 1 - std::exp(-c * integral) : 0.0;

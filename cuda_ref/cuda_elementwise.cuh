@@ -24,23 +24,13 @@ __global__ void shared_body_kernel(uint64_t items, Layout layout, uint32_t* diag
   KernelBody<K>::template run<float>(uint32_t(i), layout, diag, pointers...);
 }
 
-// The device pointer a body gets for each kind of buffer argument (Backend checked the owner).
-template <class T>
-const typename BodyElem<T, float>::type* body_pointer(const Buffer<T>& b) {
-  return static_cast<const typename BodyElem<T, float>::type*>(
-      static_cast<const CudaBuffer&>(b.impl()).ptr());
+// The device address of a CUDA buffer, and the pointer a body gets for a buffer argument.
+inline void* cuda_data(const BufferImpl& b) {
+  return static_cast<const CudaBuffer&>(b).ptr();
 }
-template <class T>
-typename BodyElem<T, float>::type* body_pointer(Buffer<T>& b) {
-  return static_cast<typename BodyElem<T, float>::type*>(static_cast<CudaBuffer&>(b.impl()).ptr());
-}
-template <class T>
-const typename BodyElem<T, float>::type* body_pointer(const Buffer<T>* b) {
-  return b ? body_pointer(*b) : nullptr;
-}
-template <class T>
-typename BodyElem<T, float>::type* body_pointer(Buffer<T>* b) {
-  return b ? body_pointer(*b) : nullptr;
+template <class B>
+auto body_pointer(B& b) {
+  return masav::body_pointer<float>(cuda_data, b);
 }
 
 }  // namespace masav::cuda

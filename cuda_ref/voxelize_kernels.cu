@@ -1,6 +1,6 @@
 // voxelize on CUDA: per-particle integer tallies on the hash grid's fp32 cell rule, then one
 // pass per cell (brick ranges and ray casting run their shared bodies,
-// engine/kernels/volume_body.h).
+// engine/kernels/atom_body.h).
 #include "cuda_ref/atom_launch.h"
 #include "cuda_ref/cuda_launch.h"
 #include "engine/kernels/grid_cell.h"

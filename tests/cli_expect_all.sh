@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
-# cli_expect_all.sh ok|fail REGEX... -- COMMAND...
-# Like cli_expect.sh, with several regexes that must each match some line of the output (in
-# any order): for tables such as `masav run --stats`.
+# cli_expect_all.sh ok|fail|either REGEX... -- COMMAND...
+# Runs COMMAND; checks its exit status (ok = 0, fail = non-zero, either = any) and that each
+# regex (grep -E) matches some line of its output, in any order (tables such as
+# `masav run --stats`). Prints the output when a check fails.
 set -u
 want=$1
 shift
@@ -17,6 +18,7 @@ fail() { printf '%s\n--- output (exit %d) ---\n%s\n' "$1" "$rc" "$out"; exit 1; 
 case "$want" in
   ok) [[ $rc -eq 0 ]] || fail "expected success" ;;
   fail) [[ $rc -ne 0 ]] || fail "expected a non-zero exit" ;;
+  either) ;;
   *) echo "cli_expect_all.sh: unknown expectation '$want'"; exit 2 ;;
 esac
 [[ $rc -lt 128 ]] || fail "crashed (signal $((rc - 128)))"

@@ -14,6 +14,7 @@
 #include "engine/kernels/grid_cell.h"
 #include "engine/util/error_metrics.h"
 #include "tests/backend_fixture.h"
+#include "engine/atom/ray_integral.h"
 
 using namespace masav;
 
@@ -76,16 +77,6 @@ std::vector<Vec4d> render(Backend& b, const RaymarchParams& rp, const Volume& vo
   auto img = b.create<Real4>(size_t(rp.width) * rp.height, "image");
   b.raymarch(rp, v, t, bricks, img);
   return b.download(img);
-}
-
-// int_{t0}^{t1} clamp(o + t d, lo, hi) dt, exactly.
-double clamped_linear_integral(double o, double d, double lo, double hi, double t0, double t1) {
-  if (d == 0) return std::clamp(o, lo, hi) * (t1 - t0);
-  double ta = (lo - o) / d, tb = (hi - o) / d;
-  if (ta > tb) std::swap(ta, tb);
-  const double a = std::clamp(ta, t0, t1), b = std::clamp(tb, t0, t1);
-  const double below = d > 0 ? lo : hi, above = d > 0 ? hi : lo;
-  return below * (a - t0) + (o * (b - a) + 0.5 * d * (b * b - a * a)) + above * (t1 - b);
 }
 
 }  // namespace
@@ -195,7 +186,7 @@ TEST_CASE("raymarch: opacity equals the analytic line integral; error falls with
       double integral = 0;
       for (int a = 0; a < 3; ++a) {
         const double o = (hd::comp(eye, a) + 1) / spacing - 0.5, du = hd::comp(d, a) / spacing;
-        integral += clamped_linear_integral(o, du, 0, 23, t0, t1) / total;
+        integral += atom::clamped_linear_integral(o, du, 0, 23, t0, t1) / total;
       }
       want[y * rp.width + x] = 1 - std::exp(-c * integral);
     }

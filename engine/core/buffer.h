@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <memory>
 #include <string>
+#include <type_traits>
 #include <utility>
 
 #include "engine/core/types.h"
@@ -18,28 +19,16 @@ const char* elem_kind_name(ElemKind kind);
 // Bytes per element: `real_bytes` is 4 on the GPU backends and 8 on the CPU reference.
 size_t elem_bytes(ElemKind kind, size_t real_bytes);
 
+// The element kind of a buffer's element type.
 template <class T>
-struct ElemTraits;
-template <>
-struct ElemTraits<uint32_t> {
-  static constexpr ElemKind kind = ElemKind::u32;
-};
-template <>
-struct ElemTraits<int32_t> {
-  static constexpr ElemKind kind = ElemKind::i32;
-};
-template <>
-struct ElemTraits<float> {
-  static constexpr ElemKind kind = ElemKind::f32;
-};
-template <>
-struct ElemTraits<Real> {
-  static constexpr ElemKind kind = ElemKind::real;
-};
-template <>
-struct ElemTraits<Real4> {
-  static constexpr ElemKind kind = ElemKind::real4;
-};
+consteval ElemKind elem_kind_of() {
+  if constexpr (std::is_same_v<T, uint32_t>) return ElemKind::u32;
+  else if constexpr (std::is_same_v<T, int32_t>) return ElemKind::i32;
+  else if constexpr (std::is_same_v<T, float>) return ElemKind::f32;
+  else if constexpr (std::is_same_v<T, Real>) return ElemKind::real;
+  else if constexpr (std::is_same_v<T, Real4>) return ElemKind::real4;
+  else static_assert(sizeof(T) == 0, "no buffer holds this element type");
+}
 
 class DeviceApi;
 

@@ -41,23 +41,23 @@ void DeviceApi::check_upload(const BufferImpl& dst, size_t count) const {
         "create a larger buffer");
 }
 
-void DeviceApi::upload_bytes(BufferImpl& dst, const void* src, size_t bytes, size_t offset) {
-  check_owner(*this, dst, "upload");
-  if (offset > dst.bytes() || bytes > dst.bytes() - offset)
-    throw Error(name(), "upload",
+void DeviceApi::check_range(const BufferImpl& b, size_t bytes, size_t offset,
+                            const char* what) const {
+  check_owner(*this, b, what);
+  if (offset > b.bytes() || bytes > b.bytes() - offset)
+    throw Error(name(), what,
                 fmt::format("{} bytes at offset {} overrun '{}' ({} bytes)", bytes, offset,
-                            dst.label(), dst.bytes()),
-                "upload within the buffer");
+                            b.label(), b.bytes()),
+                fmt::format("{} within the buffer", what));
+}
+
+void DeviceApi::upload_bytes(BufferImpl& dst, const void* src, size_t bytes, size_t offset) {
+  check_range(dst, bytes, offset, "upload");
   if (bytes) write_bytes(dst, src, bytes, offset);
 }
 
 void DeviceApi::download_bytes(const BufferImpl& src, void* dst, size_t bytes, size_t offset) {
-  check_owner(*this, src, "download");
-  if (offset > src.bytes() || bytes > src.bytes() - offset)
-    throw Error(name(), "download",
-                fmt::format("{} bytes at offset {} overrun '{}' ({} bytes)", bytes, offset,
-                            src.label(), src.bytes()),
-                "download within the buffer");
+  check_range(src, bytes, offset, "download");
   if (bytes) read_bytes(src, dst, bytes, offset);
 }
 

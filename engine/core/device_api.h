@@ -24,7 +24,7 @@ class DeviceApi {
   // ---- buffers (ordered with the kernels recorded before them)
   template <class T>
   Buffer<T> create(size_t count, std::string_view label) {
-    return Buffer<T>(create_buffer(ElemTraits<T>::kind, count, label));
+    return Buffer<T>(create_buffer(elem_kind_of<T>(), count, label));
   }
   virtual std::unique_ptr<BufferImpl> create_buffer(ElemKind kind, size_t count,
                                                     std::string_view label) = 0;
@@ -72,6 +72,8 @@ class DeviceApi {
   virtual void copy_buffer(const BufferImpl& src, BufferImpl& dst, size_t bytes) = 0;
 
   void check_upload(const BufferImpl& dst, size_t count) const;
+  // `b` is this backend's and [offset, offset + bytes) lies in it (`what`: upload, download).
+  void check_range(const BufferImpl& b, size_t bytes, size_t offset, const char* what) const;
   void upload_reals(BufferImpl& dst, const double* src, size_t scalars);
   void upload_reals(BufferImpl& dst, const float* src, size_t scalars);
   std::vector<double> download_reals(const BufferImpl& src, size_t scalars);

@@ -27,22 +27,13 @@ class CpuDiag {
   std::atomic<uint32_t> flags_{0}, detail_{UINT32_MAX};
 };
 
-// The pointer a body gets for each kind of buffer argument (Backend checked the owner).
-template <class T>
-const typename BodyElem<T, double>::type* body_pointer(const Buffer<T>& b) {
-  return static_cast<const CpuBuffer&>(b.impl()).as<typename BodyElem<T, double>::type>();
+// The address of a CPU buffer's storage, and the pointer a body gets for a buffer argument.
+inline void* cpu_data(const BufferImpl& b) {
+  return const_cast<std::byte*>(static_cast<const CpuBuffer&>(b).data());
 }
-template <class T>
-typename BodyElem<T, double>::type* body_pointer(Buffer<T>& b) {
-  return static_cast<CpuBuffer&>(b.impl()).as<typename BodyElem<T, double>::type>();
-}
-template <class T>
-const typename BodyElem<T, double>::type* body_pointer(const Buffer<T>* b) {
-  return b ? body_pointer(*b) : nullptr;
-}
-template <class T>
-typename BodyElem<T, double>::type* body_pointer(Buffer<T>* b) {
-  return b ? body_pointer(*b) : nullptr;
+template <class B>
+auto body_pointer(B& b) {
+  return masav::body_pointer<double>(cpu_data, b);
 }
 
 // Invocations [0, items) of kernel K's body on `pool`, then its diagnostics raised as an Error.

@@ -8,24 +8,28 @@
 
 namespace masav::hd {
 
-MASAV_HD inline float sqrt_t(float x) { return sqrtf(x); }
-MASAV_HD inline double sqrt_t(double x) { return sqrt(x); }
-MASAV_HD inline float log_t(float x) { return logf(x); }
-MASAV_HD inline double log_t(double x) { return log(x); }
-MASAV_HD inline float exp_t(float x) { return expf(x); }
-MASAV_HD inline double exp_t(double x) { return exp(x); }
-MASAV_HD inline float sin_t(float x) { return sinf(x); }
-MASAV_HD inline double sin_t(double x) { return sin(x); }
-MASAV_HD inline float cos_t(float x) { return cosf(x); }
-MASAV_HD inline double cos_t(double x) { return cos(x); }
-MASAV_HD inline float pow_t(float x, float y) { return powf(x, y); }
-MASAV_HD inline double pow_t(double x, double y) { return pow(x, y); }
-MASAV_HD inline float cbrt_t(float x) { return cbrtf(x); }
-MASAV_HD inline double cbrt_t(double x) { return cbrt(x); }
-MASAV_HD inline float floor_t(float x) { return floorf(x); }
-MASAV_HD inline double floor_t(double x) { return floor(x); }
-MASAV_HD inline float ceil_t(float x) { return ceilf(x); }
-MASAV_HD inline double ceil_t(double x) { return ceil(x); }
+// The float function (sqrtf, ...) for float, the double one for double: what CUDA and the host
+// both resolve without std::.
+#define MASAV_HD_MATH1(name)                                         \
+  template <class T>                                                 \
+  MASAV_HD inline T name##_t(T x) {                                  \
+    if constexpr (sizeof(T) == sizeof(float)) return name##f(x);     \
+    else return name(x);                                             \
+  }
+MASAV_HD_MATH1(sqrt)
+MASAV_HD_MATH1(log)
+MASAV_HD_MATH1(exp)
+MASAV_HD_MATH1(sin)
+MASAV_HD_MATH1(cos)
+MASAV_HD_MATH1(cbrt)
+MASAV_HD_MATH1(floor)
+MASAV_HD_MATH1(ceil)
+#undef MASAV_HD_MATH1
+template <class T>
+MASAV_HD inline T pow_t(T x, T y) {
+  if constexpr (sizeof(T) == sizeof(float)) return powf(x, y);
+  else return pow(x, y);
+}
 template <class T>
 MASAV_HD inline T min_t(T a, T b) { return a < b ? a : b; }
 template <class T>

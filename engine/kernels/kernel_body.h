@@ -17,6 +17,7 @@
 // message names the limit diag_limit(layout) gives (overloaded next to the layout).
 #include <cstdint>
 
+#include "engine/core/buffer.h"
 #include "engine/core/hd.h"
 #include "engine/core/types.h"
 #include "engine/kernels/kernel_id.h"
@@ -44,6 +45,25 @@ template <class F>
 struct BodyElem<Real4, F> {
   using type = hd::V4<F>;
 };
+
+// The pointer a body gets for each kind of buffer argument, from the backend's `data(impl)`, the
+// address of a buffer's storage (Backend checked the owner): null for an absent optional one.
+template <class F, class Data, class T>
+const typename BodyElem<T, F>::type* body_pointer(Data&& data, const Buffer<T>& b) {
+  return static_cast<const typename BodyElem<T, F>::type*>(data(b.impl()));
+}
+template <class F, class Data, class T>
+typename BodyElem<T, F>::type* body_pointer(Data&& data, Buffer<T>& b) {
+  return static_cast<typename BodyElem<T, F>::type*>(data(b.impl()));
+}
+template <class F, class Data, class T>
+const typename BodyElem<T, F>::type* body_pointer(Data&& data, const Buffer<T>* b) {
+  return b ? body_pointer<F>(data, *b) : nullptr;
+}
+template <class F, class Data, class T>
+typename BodyElem<T, F>::type* body_pointer(Data&& data, Buffer<T>* b) {
+  return b ? body_pointer<F>(data, *b) : nullptr;
+}
 
 // The limit a kernel's diagnostics name (0: none), overloaded for the layouts that have one.
 template <class Layout>

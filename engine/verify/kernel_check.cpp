@@ -128,29 +128,26 @@ Verdict compare_chi_square(const CheckOutputs& got, const CheckOutputs& want, do
 
 KernelCheck exact_check(std::string kernel,
                         std::function<CheckOutputs(Backend&, const CheckInputs&)> run) {
-  KernelCheck k{std::move(kernel), CheckKind::exact, std::move(run), {}};
-  k.compare = [](const CheckOutputs& g, const CheckOutputs& w, const CheckInputs&) {
-    return compare_exact(g, w);
-  };
-  return k;
+  return {std::move(kernel), CheckKind::exact, std::move(run),
+          [](const CheckOutputs& g, const CheckOutputs& w, const CheckInputs&) {
+            return compare_exact(g, w);
+          }};
 }
 
 KernelCheck tolerance_check(std::string kernel, Tolerance tol,
                             std::function<CheckOutputs(Backend&, const CheckInputs&)> run) {
-  KernelCheck k{std::move(kernel), CheckKind::tolerance, std::move(run), {}};
-  k.compare = [tol](const CheckOutputs& g, const CheckOutputs& w, const CheckInputs&) {
-    return compare_tolerance(g, w, tol);
-  };
-  return k;
+  return {std::move(kernel), CheckKind::tolerance, std::move(run),
+          [tol](const CheckOutputs& g, const CheckOutputs& w, const CheckInputs&) {
+            return compare_tolerance(g, w, tol);
+          }};
 }
 
 KernelCheck chi_square_check(std::string kernel, double min_p,
                              std::function<CheckOutputs(Backend&, const CheckInputs&)> run) {
-  KernelCheck k{std::move(kernel), CheckKind::statistical, std::move(run), {}};
-  k.compare = [min_p](const CheckOutputs& g, const CheckOutputs& w, const CheckInputs&) {
-    return compare_chi_square(g, w, min_p);
-  };
-  return k;
+  return {std::move(kernel), CheckKind::statistical, std::move(run),
+          [min_p](const CheckOutputs& g, const CheckOutputs& w, const CheckInputs&) {
+            return compare_chi_square(g, w, min_p);
+          }};
 }
 
 KernelCheck exact_check(KernelId kernel,
