@@ -8,9 +8,8 @@
 
 namespace masav::vk {
 
-void VulkanBackend::run_own(KernelTag<KernelId::grid_cell_ranges>, const GridParams& g, uint64_t,
-                            const Buffer<uint32_t>& sorted_cells, Buffer<uint32_t>& cell_start,
-                            Buffer<uint32_t>& cell_end) {
+void VulkanBackend::run_own(const KernelArgs<KernelId::grid_cell_ranges>& a) {
+  auto& [g, items_, sorted_cells, cell_start, cell_end] = a;
   const auto& start = alloc(cell_start.impl(), "grid_cell_ranges");
   const auto& end = alloc(cell_end.impl(), "grid_cell_ranges");
   stream_.fill(start, 0);
@@ -21,8 +20,8 @@ void VulkanBackend::run_own(KernelTag<KernelId::grid_cell_ranges>, const GridPar
       {alloc(sorted_cells.impl(), "grid_cell_ranges"), start, end}, &g, (g.n + wg - 1) / wg);
 }
 
-void VulkanBackend::run_own(KernelTag<KernelId::gather>, const GatherParams& p, uint64_t,
-                            const Buffer<uint32_t>& order, const BufferImpl& src, BufferImpl& dst) {
+void VulkanBackend::run_own(const KernelArgs<KernelId::gather>& a) {
+  auto& [p, items_, order, src, dst] = a;
   const size_t eb = elem_bytes(src.kind(), real_bytes());
   if (eb != 4 && eb != 16)
     throw Error("vulkan", "gather", fmt::format("no gather for {}-byte elements", eb),

@@ -8,7 +8,7 @@ namespace masav::vk {
 template <KernelId K, class Params, class... Buffers>
 void VulkanBackend::run_kernel(const Params& p, uint64_t items, Buffers&... buffers) {
   if constexpr (runs_own(K)) {
-    run_own(KernelTag<K>{}, p, items, buffers...);
+    run_own(KernelArgs<K>{p, items, buffers...});
   } else {
     const auto& layout = device_params<float>(p, buffers...);
     static_assert(sizeof(layout) <= 128, "push constants beyond the 128 bytes every device has");

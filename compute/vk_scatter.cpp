@@ -5,8 +5,8 @@
 
 namespace masav::vk {
 
-void VulkanBackend::run_own(KernelTag<KernelId::scatter_table>, const ScatterTableParams& p,
-                            uint64_t, Buffer<Real>& table, Buffer<uint32_t>& hits) {
+void VulkanBackend::run_own(const KernelArgs<KernelId::scatter_table>& a) {
+  auto& [p, items_, table, hits] = a;
   const uint32_t entries_per_row = p.bins + kScatterExtras;
   const uint64_t entries = uint64_t(p.rows) * entries_per_row;
   auto tallies = scratch("scatter_table tallies", entries * 8);

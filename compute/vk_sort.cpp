@@ -34,8 +34,8 @@ void VulkanBackend::exclusive_scan(const std::shared_ptr<Allocation>& data, uint
   }
 }
 
-void VulkanBackend::run_own(KernelTag<KernelId::radix_sort>, const RadixSortParams& p, uint64_t,
-                            Buffer<uint32_t>& keys, Buffer<uint32_t>* values) {
+void VulkanBackend::run_own(const KernelArgs<KernelId::radix_sort>& a) {
+  auto& [p, items_, keys, values] = a;
   if (p.n <= 1) return;
   // Tile geometry of the scatter variant; the histogram must use the same tiles.
   const bool by_subgroup = scatter_ == SortScatter::subgroup;

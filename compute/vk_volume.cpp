@@ -4,10 +4,8 @@
 
 namespace masav::vk {
 
-void VulkanBackend::run_own(KernelTag<KernelId::voxelize>, const VoxelizeParams& p, uint64_t,
-                            const Buffer<Real4>& positions, const Buffer<Real>& light,
-                            Buffer<Real>& probability, Buffer<Real>& mean_light,
-                            Buffer<Real>& sample) {
+void VulkanBackend::run_own(const KernelArgs<KernelId::voxelize>& a) {
+  auto& [p, items_, positions, light, probability, mean_light, sample] = a;
   const char* k = "voxelize";
   const uint64_t cells = grid_cell_count(p.grid);
   auto tallies = scratch("voxelize tallies", (3 * cells + 1) * 4);

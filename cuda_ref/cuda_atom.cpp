@@ -16,8 +16,8 @@ T* as(void* p) {
 
 }  // namespace
 
-void CudaBackend::run_own(KernelTag<KernelId::scatter_table>, const ScatterTableParams& p, uint64_t,
-                          Buffer<Real>& table, Buffer<uint32_t>& hits) {
+void CudaBackend::run_own(const KernelArgs<KernelId::scatter_table>& a) {
+  auto& [p, items_, table, hits] = a;
   const char* k = "scatter_table";
   const uint32_t entries_per_row = p.bins + kScatterExtras;
   const uint64_t entries = uint64_t(p.rows) * entries_per_row;
@@ -37,10 +37,8 @@ void CudaBackend::run_own(KernelTag<KernelId::scatter_table>, const ScatterTable
         k, "launch");
 }
 
-void CudaBackend::run_own(KernelTag<KernelId::voxelize>, const VoxelizeParams& p, uint64_t,
-                          const Buffer<Real4>& positions, const Buffer<Real>& light,
-                          Buffer<Real>& probability, Buffer<Real>& mean_light,
-                          Buffer<Real>& sample) {
+void CudaBackend::run_own(const KernelArgs<KernelId::voxelize>& a) {
+  auto& [p, items_, positions, light, probability, mean_light, sample] = a;
   const char* k = "voxelize";
   const uint64_t cells = grid_cell_count(p.grid);
   auto* counts = as<uint32_t>(scratch_["voxelize counts"].reserve((cells + 1) * 4, k));

@@ -9,9 +9,8 @@
 
 namespace masav::cuda {
 
-void CudaBackend::run_own(KernelTag<KernelId::grid_cell_ranges>, const GridParams& g, uint64_t,
-                          const Buffer<uint32_t>& sorted_cells, Buffer<uint32_t>& cell_start,
-                          Buffer<uint32_t>& cell_end) {
+void CudaBackend::run_own(const KernelArgs<KernelId::grid_cell_ranges>& a) {
+  auto& [g, items_, sorted_cells, cell_start, cell_end] = a;
   const char* k = "grid_cell_ranges";
   auto* start = static_cast<uint32_t*>(ptr(cell_start.impl(), k));
   auto* end = static_cast<uint32_t*>(ptr(cell_end.impl(), k));
@@ -23,8 +22,8 @@ void CudaBackend::run_own(KernelTag<KernelId::grid_cell_ranges>, const GridParam
         k, "launch");
 }
 
-void CudaBackend::run_own(KernelTag<KernelId::gather>, const GatherParams& p, uint64_t,
-                          const Buffer<uint32_t>& order, const BufferImpl& src, BufferImpl& dst) {
+void CudaBackend::run_own(const KernelArgs<KernelId::gather>& a) {
+  auto& [p, items_, order, src, dst] = a;
   const size_t eb = elem_bytes(src.kind(), real_bytes());
   if (eb != 4 && eb != 16)
     throw Error("cuda", "gather", fmt::format("no gather for {}-byte elements", eb),

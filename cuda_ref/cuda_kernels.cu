@@ -21,7 +21,7 @@ void CudaBackend::run_kernel(const Params& p, uint64_t items, Buffers&... buffer
         items, layout, diag_, body_pointer(buffers)...);
     check(cudaGetLastError(), name, "launch");
   } else {
-    run_own(KernelTag<K>{}, p, items, buffers...);
+    run_own(KernelArgs<K>{p, items, buffers...});
   }
 }
 

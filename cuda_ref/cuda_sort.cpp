@@ -78,8 +78,8 @@ void CudaBackend::sort_cub(uint32_t n, uint32_t key_bits, uint32_t* keys, uint32
   }
 }
 
-void CudaBackend::run_own(KernelTag<KernelId::radix_sort>, const RadixSortParams& p, uint64_t,
-                          Buffer<uint32_t>& keys, Buffer<uint32_t>* values) {
+void CudaBackend::run_own(const KernelArgs<KernelId::radix_sort>& a) {
+  auto& [p, items_, keys, values] = a;
   if (p.n <= 1) return;
   auto* k = static_cast<uint32_t*>(ptr(keys.impl(), "radix_sort"));
   auto* v = values ? static_cast<uint32_t*>(ptr(values->impl(), "radix_sort")) : nullptr;

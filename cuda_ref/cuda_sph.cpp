@@ -11,10 +11,8 @@ using V4 = hd::V4<float>;
 
 }  // namespace
 
-void CudaBackend::run_own(KernelTag<KernelId::sph_density>, const SphStepParams& p, uint64_t,
-                          const Buffer<Real4>& positions, const Buffer<uint32_t>& cells,
-                          const Buffer<uint32_t>& cell_start, const Buffer<uint32_t>& cell_end,
-                          Buffer<Real>& density, Buffer<Real>& pressure, Buffer<uint32_t>& stats) {
+void CudaBackend::run_own(const KernelArgs<KernelId::sph_density>& a) {
+  auto& [p, items_, positions, cells, cell_start, cell_end, density, pressure, stats] = a;
   const char* k = "sph_density";
   check(launch::sph_density(stream_, grid_for_items(p.n, k), device_params<float>(p),
                             device_ptr<V4>(positions, k), device_ptr<uint32_t>(cells, k),
@@ -24,12 +22,9 @@ void CudaBackend::run_own(KernelTag<KernelId::sph_density>, const SphStepParams&
         k, "launch");
 }
 
-void CudaBackend::run_own(KernelTag<KernelId::sph_forces>, const SphStepParams& p, uint64_t,
-                          const Buffer<Real4>& positions, const Buffer<Real4>& velocities,
-                          const Buffer<Real>& density, const Buffer<Real>& pressure,
-                          const Buffer<uint32_t>& cells, const Buffer<uint32_t>& cell_start,
-                          const Buffer<uint32_t>& cell_end, Buffer<Real4>& accel,
-                          Buffer<uint32_t>& stats) {
+void CudaBackend::run_own(const KernelArgs<KernelId::sph_forces>& a) {
+  auto& [p, items_, positions, velocities, density, pressure, cells, cell_start, cell_end, accel,
+         stats] = a;
   const char* k = "sph_forces";
   check(launch::sph_forces(stream_, grid_for_items(p.n, k), device_params<float>(p),
                            device_ptr<V4>(positions, k), device_ptr<V4>(velocities, k),
@@ -40,10 +35,8 @@ void CudaBackend::run_own(KernelTag<KernelId::sph_forces>, const SphStepParams& 
         k, "launch");
 }
 
-void CudaBackend::run_own(KernelTag<KernelId::sph_integrate>, const SphIntegrateParams& p, uint64_t,
-                          const Buffer<Real4>* x0, const Buffer<Real4>& v0, const Buffer<Real4>* vk,
-                          const Buffer<Real4>& accel, Buffer<Real4>* x_out, Buffer<Real4>& v_out,
-                          Buffer<Real4>* sum_x, Buffer<Real4>* sum_v, Buffer<uint32_t>& stats) {
+void CudaBackend::run_own(const KernelArgs<KernelId::sph_integrate>& a) {
+  auto& [p, items_, x0, v0, vk, accel, x_out, v_out, sum_x, sum_v, stats] = a;
   const char* k = "sph_integrate";
   auto opt = [&](const Buffer<Real4>* b) { return b ? device_ptr<V4>(*b, k) : nullptr; };
   check(launch::sph_integrate(stream_, grid_for_items(p.n, k), device_params<float>(p), opt(x0),

@@ -103,8 +103,8 @@ double CpuBackend::timestamp_ns(TimestampId id) {
   return std::chrono::duration<double, std::nano>(stamps_[id] - epoch_).count();
 }
 
-void CpuBackend::run_own(KernelTag<KernelId::radix_sort>, const RadixSortParams& p, uint64_t,
-                         Buffer<uint32_t>& keys, Buffer<uint32_t>* values) {
+void CpuBackend::run_own(const KernelArgs<KernelId::radix_sort>& a) {
+  auto& [p, items_, keys, values] = a;
   radix_sort_host(pool_, p.n, p.key_bits, own(keys.impl(), "radix_sort").as<uint32_t>(),
                   values ? own(values->impl(), "radix_sort").as<uint32_t>() : nullptr);
 }

@@ -8,9 +8,8 @@
 
 namespace masav::cpu {
 
-void CpuBackend::run_own(KernelTag<KernelId::grid_cell_ranges>, const GridParams& g, uint64_t,
-                         const Buffer<uint32_t>& sorted_cells, Buffer<uint32_t>& cell_start,
-                         Buffer<uint32_t>& cell_end) {
+void CpuBackend::run_own(const KernelArgs<KernelId::grid_cell_ranges>& a) {
+  auto& [g, items_, sorted_cells, cell_start, cell_end] = a;
   const uint32_t* c = body_pointer(sorted_cells);
   uint32_t* start = body_pointer(cell_start);
   uint32_t* end = body_pointer(cell_end);
@@ -25,8 +24,8 @@ void CpuBackend::run_own(KernelTag<KernelId::grid_cell_ranges>, const GridParams
   });
 }
 
-void CpuBackend::run_own(KernelTag<KernelId::gather>, const GatherParams& p, uint64_t,
-                         const Buffer<uint32_t>& order, const BufferImpl& src, BufferImpl& dst) {
+void CpuBackend::run_own(const KernelArgs<KernelId::gather>& a) {
+  auto& [p, items_, order, src, dst] = a;
   const uint32_t* o = body_pointer(order);
   const std::byte* s = static_cast<const CpuBuffer&>(src).data();
   std::byte* d = static_cast<CpuBuffer&>(dst).data();

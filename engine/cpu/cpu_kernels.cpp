@@ -13,7 +13,7 @@ void CpuBackend::run_kernel(const Params& p, uint64_t items, Buffers&... buffers
   if constexpr (HasKernelBody<K>)
     run_shared_body<K>(*this, pool_, p, items, buffers...);
   else
-    run_own(KernelTag<K>{}, p, items, buffers...);
+    run_own(KernelArgs<K>{p, items, buffers...});
 }
 
 #define MASAV_KERNEL(name, Params, items, ...) \

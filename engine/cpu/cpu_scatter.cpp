@@ -8,8 +8,8 @@
 
 namespace masav::cpu {
 
-void CpuBackend::run_own(KernelTag<KernelId::scatter_table>, const ScatterTableParams& p, uint64_t,
-                         Buffer<Real>& table, Buffer<uint32_t>& hits) {
+void CpuBackend::run_own(const KernelArgs<KernelId::scatter_table>& a) {
+  auto& [p, items_, table, hits] = a;
   auto* tab = own(table.impl(), "scatter_table").as<double>();
   auto* cnt = own(hits.impl(), "scatter_table").as<uint32_t>();
   const uint32_t stride = p.bins + kScatterExtras;

@@ -132,10 +132,8 @@ void CpuBackend::build_sph_lists(const SphListInputs& in, size_t chunks, Found&&
   sph_lists_.remember(in);
 }
 
-void CpuBackend::run_own(KernelTag<KernelId::sph_density>, const SphStepParams& p, uint64_t,
-                         const Buffer<Real4>& positions, const Buffer<uint32_t>& cells,
-                         const Buffer<uint32_t>& cell_start, const Buffer<uint32_t>& cell_end,
-                         Buffer<Real>& density, Buffer<Real>& pressure, Buffer<uint32_t>& stats) {
+void CpuBackend::run_own(const KernelArgs<KernelId::sph_density>& a) {
+  auto& [p, items_, positions, cells, cell_start, cell_end, density, pressure, stats] = a;
   const char* k = "sph_density";
   const auto c = device_params<double>(p);
   SphListInputs in = sph_list_inputs(p, cells, cell_start, cell_end, c.h2, k);
@@ -161,12 +159,9 @@ void CpuBackend::run_own(KernelTag<KernelId::sph_density>, const SphStepParams& 
   merge(words, st);
 }
 
-void CpuBackend::run_own(KernelTag<KernelId::sph_forces>, const SphStepParams& p, uint64_t,
-                         const Buffer<Real4>& positions, const Buffer<Real4>& velocities,
-                         const Buffer<Real>& density, const Buffer<Real>& pressure,
-                         const Buffer<uint32_t>& cells, const Buffer<uint32_t>& cell_start,
-                         const Buffer<uint32_t>& cell_end, Buffer<Real4>& accel,
-                         Buffer<uint32_t>& stats) {
+void CpuBackend::run_own(const KernelArgs<KernelId::sph_forces>& a) {
+  auto& [p, items_, positions, velocities, density, pressure, cells, cell_start, cell_end, accel,
+         stats] = a;
   const char* k = "sph_forces";
   const auto c = device_params<double>(p);
   SphListInputs in = sph_list_inputs(p, cells, cell_start, cell_end, c.h2, k);
@@ -220,10 +215,8 @@ void CpuBackend::run_own(KernelTag<KernelId::sph_forces>, const SphStepParams& p
   merge(words, st);
 }
 
-void CpuBackend::run_own(KernelTag<KernelId::sph_integrate>, const SphIntegrateParams& p, uint64_t,
-                         const Buffer<Real4>* x0, const Buffer<Real4>& v0, const Buffer<Real4>* vk,
-                         const Buffer<Real4>& accel, Buffer<Real4>* x_out, Buffer<Real4>& v_out,
-                         Buffer<Real4>* sum_x, Buffer<Real4>* sum_v, Buffer<uint32_t>& stats) {
+void CpuBackend::run_own(const KernelArgs<KernelId::sph_integrate>& a) {
+  auto& [p, items_, x0, v0, vk, accel, x_out, v_out, sum_x, sum_v, stats] = a;
   using V4 = hd::V4<double>;
   auto in = [](const Buffer<Real4>* b) {
     return b ? static_cast<const CpuBuffer&>(b->impl()).as<V4>() : nullptr;

@@ -9,10 +9,8 @@
 
 namespace masav::cpu {
 
-void CpuBackend::run_own(KernelTag<KernelId::voxelize>, const VoxelizeParams& p, uint64_t,
-                         const Buffer<Real4>& positions, const Buffer<Real>& light,
-                         Buffer<Real>& probability, Buffer<Real>& mean_light,
-                         Buffer<Real>& sample) {
+void CpuBackend::run_own(const KernelArgs<KernelId::voxelize>& a) {
+  auto& [p, items_, positions, light, probability, mean_light, sample] = a;
   const auto* pos = own(positions.impl(), "voxelize").as<double>();
   const auto* lit = own(light.impl(), "voxelize").as<double>();
   auto* prob = own(probability.impl(), "voxelize").as<double>();

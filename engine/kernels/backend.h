@@ -24,6 +24,13 @@
 
 namespace masav {
 
+// A kernel call's arguments, named as in kernels.inc (a.p, a.items_, a.positions, ...).
+template <KernelId K>
+struct KernelArgs;
+#define MASAV_KERNEL MASAV_KERNEL_ARGS
+#include "engine/kernels/kernels.inc"
+#undef MASAV_KERNEL
+
 // The device time one kernel call took (Backend::set_kernel_timing).
 struct KernelTiming {
   KernelId kernel;

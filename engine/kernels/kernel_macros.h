@@ -23,11 +23,14 @@
 
 #define MASAV_BUFFER_PARAM(d, access, elem, name) , MASAV_BUFFER_TYPE_##access(elem) name
 #define MASAV_BUFFER_ARG(d, access, elem, name) , name
+#define MASAV_BUFFER_MEMBER(d, access, elem, name) MASAV_BUFFER_TYPE_##access(elem) name;
 #define MASAV_BUFFER_NAME(d, access, elem, name) #name,
 // ", const Buffer<float>& start, Buffer<Real4>& positions" (each with its leading comma).
 #define MASAV_BUFFER_PARAMS(...) MASAV_PP_EACH(MASAV_BUFFER_PARAM, _, __VA_ARGS__)
 // ", start, positions".
 #define MASAV_BUFFER_ARGS(...) MASAV_PP_EACH(MASAV_BUFFER_ARG, _, __VA_ARGS__)
+// "const Buffer<float>& start; Buffer<Real4>& positions;"
+#define MASAV_BUFFER_MEMBERS(...) MASAV_PP_EACH(MASAV_BUFFER_MEMBER, _, __VA_ARGS__)
 // "start", "positions",
 #define MASAV_BUFFER_NAMES(...) MASAV_PP_EACH(MASAV_BUFFER_NAME, _, __VA_ARGS__)
 
@@ -44,10 +47,19 @@
     run_kernel<KernelId::name>(p, items_ MASAV_BUFFER_ARGS(__VA_ARGS__));                    \
   }
 
-// A backend's own implementation of one kernel, run_own(KernelTag<KernelId::name>, p, items,
-// buffers...). Backends declare one for every kernel and define only those they implement
-// themselves (a kernel without a shared body, or a multi-pass one); run_kernel calls it only for
-// those, so the others need no definition.
-#define MASAV_KERNEL_OWN(name, Params, items, ...)         \
-  void run_own(KernelTag<KernelId::name>, const Params& p, \
-               uint64_t items_ MASAV_BUFFER_PARAMS(__VA_ARGS__));
+// One call's arguments as a struct, KernelArgs<KernelId::name>{p, items, buffers...}: what a
+// backend's own implementation receives (see MASAV_KERNEL_OWN).
+#define MASAV_KERNEL_ARGS(name, Params, items, ...) \
+  template <>                                       \
+  struct KernelArgs<KernelId::name> {               \
+    const Params& p;                                \
+    uint64_t items_;                                \
+    MASAV_BUFFER_MEMBERS(__VA_ARGS__)               \
+  };
+
+// A backend's own implementation of one kernel, run_own(const KernelArgs<KernelId::name>&).
+// Backends declare one for every kernel and define only those they implement themselves (a
+// kernel without a shared body, or a multi-pass one); run_kernel calls it only for those, so the
+// others need no definition.
+#define MASAV_KERNEL_OWN(name, Params, items, ...) \
+  void run_own(const KernelArgs<KernelId::name>& a);

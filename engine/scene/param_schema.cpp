@@ -5,6 +5,7 @@
 #include <charconv>
 #include <cmath>
 
+#include "engine/core/enum_names.h"
 #include "engine/core/error.h"
 
 namespace masav::scene {
@@ -26,19 +27,8 @@ std::string number(double v) {
 }  // namespace
 
 const char* param_type_name(ParamType t) {
-  switch (t) {
-    case ParamType::flag:
-      return "boolean";
-    case ParamType::integer:
-      return "integer";
-    case ParamType::real:
-      return "number";
-    case ParamType::choice:
-      return "choice";
-    case ParamType::text:
-      return "string";
-  }
-  return "?";
+  static const char* const names[] = {"boolean", "integer", "number", "choice", "string"};
+  return enum_name(t, names);
 }
 
 std::string format_value(const ParamValue& v) {

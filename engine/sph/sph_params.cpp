@@ -4,6 +4,7 @@
 
 #include <cmath>
 
+#include "engine/core/enum_names.h"
 #include "engine/core/error.h"
 #include "engine/kernels/kernel_checks.h"
 
@@ -44,51 +45,37 @@ void check_inside(std::string_view what, const Vec3d& lo, const Vec3d& hi, const
 
 }  // namespace
 
+namespace {
+const char* const kIntegrators[] = {"euler", "symplectic-euler", "rk4", "leapfrog"};
+const char* const kPressureModels[] = {"wcsph", "thesis"};
+const char* const kCflGuards[] = {"reduce", "stop", "off"};
+
+template <class E, size_t N>
+E parse(std::string_view s, std::string_view field, const char* const (&names)[N],
+        const char* allowed) {
+  if (auto v = enum_from_name<E>(s, names)) return *v;
+  throw_invalid(kWhere, field, std::string(s), allowed);
+}
+}  // namespace
+
 const char* to_string(SphIntegrator i) {
-  switch (i) {
-    case SphIntegrator::euler:
-      return "euler";
-    case SphIntegrator::symplectic_euler:
-      return "symplectic-euler";
-    case SphIntegrator::rk4:
-      return "rk4";
-    case SphIntegrator::leapfrog:
-      return "leapfrog";
-  }
-  return "?";
+  return enum_name(i, kIntegrators);
 }
 const char* to_string(SphPressureModel m) {
-  return m == SphPressureModel::thesis ? "thesis" : "wcsph";
+  return enum_name(m, kPressureModels);
 }
 const char* to_string(SphCflGuard g) {
-  switch (g) {
-    case SphCflGuard::reduce:
-      return "reduce";
-    case SphCflGuard::stop:
-      return "stop";
-    case SphCflGuard::off:
-      return "off";
-  }
-  return "?";
+  return enum_name(g, kCflGuards);
 }
 
 SphIntegrator parse_integrator(std::string_view s, std::string_view field) {
-  if (s == "euler") return SphIntegrator::euler;
-  if (s == "symplectic-euler") return SphIntegrator::symplectic_euler;
-  if (s == "rk4") return SphIntegrator::rk4;
-  if (s == "leapfrog") return SphIntegrator::leapfrog;
-  throw_invalid(kWhere, field, std::string(s), "euler, symplectic-euler, rk4 or leapfrog");
+  return parse<SphIntegrator>(s, field, kIntegrators, "euler, symplectic-euler, rk4 or leapfrog");
 }
 SphPressureModel parse_pressure_model(std::string_view s, std::string_view field) {
-  if (s == "wcsph") return SphPressureModel::wcsph;
-  if (s == "thesis") return SphPressureModel::thesis;
-  throw_invalid(kWhere, field, std::string(s), "wcsph or thesis");
+  return parse<SphPressureModel>(s, field, kPressureModels, "wcsph or thesis");
 }
 SphCflGuard parse_cfl_guard(std::string_view s, std::string_view field) {
-  if (s == "reduce") return SphCflGuard::reduce;
-  if (s == "stop") return SphCflGuard::stop;
-  if (s == "off") return SphCflGuard::off;
-  throw_invalid(kWhere, field, std::string(s), "reduce, stop or off");
+  return parse<SphCflGuard>(s, field, kCflGuards, "reduce, stop or off");
 }
 
 void validate(const SphScene& s) {

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <limits>
 
+#include "engine/core/enum_names.h"
 #include "engine/core/error.h"
 #include "engine/kernels/kernel_checks.h"
 #include "engine/sph/sph_coefficients.h"
@@ -51,18 +52,8 @@ void check_capacity(const Backend& b, const SphScene& s) {
 }  // namespace
 
 const char* to_string(SphStage s) {
-  switch (s) {
-    case SphStage::grid:
-      return "grid";
-    case SphStage::density:
-      return "density";
-    case SphStage::forces:
-      return "forces";
-    case SphStage::integrate:
-      return "integrate";
-    default:
-      return "?";
-  }
+  static const char* const names[] = {"grid", "density", "forces", "integrate"};
+  return enum_name(s, names);
 }
 
 SphSimulation::SphSimulation(Backend& backend, const SphScene& scene)

@@ -4,6 +4,7 @@
 
 #include <random>
 
+#include "engine/core/enum_names.h"
 #include "engine/core/error.h"
 #include "engine/util/chi_square.h"
 #include "engine/util/error_metrics.h"
@@ -20,15 +21,8 @@ const CheckOutput* find(const CheckOutputs& outs, const std::string& name) {
 }  // namespace
 
 const char* check_kind_name(CheckKind k) {
-  switch (k) {
-    case CheckKind::exact:
-      return "exact";
-    case CheckKind::tolerance:
-      return "tolerance";
-    case CheckKind::statistical:
-      return "statistical";
-  }
-  return "?";
+  static const char* const names[] = {"exact", "tolerance", "statistical"};
+  return enum_name(k, names);
 }
 
 std::string Tolerance::describe() const {
