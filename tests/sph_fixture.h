@@ -2,7 +2,10 @@
 // Particles for the SPH kernel tests: a jittered lattice (density varies by ~10%) with random
 // velocities, sorted into a hash grid on a backend, and the kernels' parameters. The same seed
 // gives the same particles, cells and sorted order on every backend.
+#include <doctest/doctest.h>
+
 #include <random>
+#include <string>
 #include <vector>
 
 #include "engine/grid/hash_grid.h"
@@ -58,6 +61,21 @@ inline void with_walls(SphCase& c, bool on) {
   c.params.walls = on;
   c.params.box_min = {0.06, 0.055, 0.065};
   c.params.box_max = {0.17, 0.16, 0.165};
+}
+
+// Runs body(c) on the side^3 case of `seed` for each pressure model, without and with walls,
+// the variant captured for a failing check's message.
+template <class Body>
+void for_each_model_and_walls(uint32_t side, uint64_t seed, Body body) {
+  for (const bool walls : {false, true})
+    for (SphPressureModel model : {SphPressureModel::wcsph, SphPressureModel::thesis}) {
+      const std::string name = to_string(model);
+      CAPTURE(name);
+      CAPTURE(walls);
+      SphCase c = make_sph_case(side, model, seed);
+      with_walls(c, walls);
+      body(c);
+    }
 }
 
 // The case's buffers on one backend, sorted into cell order.

@@ -11,10 +11,10 @@
 
 #include "engine/atom/orbital_tables.h"
 #include "engine/atom/scatter_cache.h"
-#include "engine/kernels/volume_math.h"
 #include "engine/core/error.h"
 #include "engine/grid/hash_grid.h"
 #include "engine/kernels/grid_cell.h"
+#include "engine/kernels/volume_math.h"
 #include "engine/util/error_metrics.h"
 #include "tests/backend_fixture.h"
 
@@ -47,7 +47,8 @@ double inside_length(hd::V3<double> a, hd::V3<double> b, double lo, double hi) {
   const hd::V3<double> d = b - a;
   const double len = hd::length(d);
   double t0 = 0, t1 = len;
-  if (!volume::slab(a, d * (1 / len), hd::V3<double>{lo, lo, lo}, hd::V3<double>{hi, hi, hi}, t0, t1))
+  if (!volume::slab(a, d * (1 / len), hd::V3<double>{lo, lo, lo}, hd::V3<double>{hi, hi, hi}, t0,
+                    t1))
     return 0;
   return t1 - t0;
 }
@@ -63,6 +64,15 @@ std::vector<double> illuminate(Backend& b, const NebulaLightParams& p,
   return b.download(out);
 }
 
+// n positions of the orbital whose tables are t, sampled on the reference.
+std::vector<Vec4f> sample_cloud(Backend& r, const atom::OrbitalTables& t, uint32_t n) {
+  auto tables = r.create<uint32_t>(t.cdf.size(), "tables");
+  r.upload(tables, t.cdf);
+  auto pos = r.create<Real4>(n, "positions");
+  r.orbital_sample(t.params, tables, pos);
+  return r.download_f32(pos);
+}
+
 }  // namespace
 
 TEST_CASE("cloud_density counts the hash grid's cells (probability per a0^3)") {
@@ -70,11 +80,7 @@ TEST_CASE("cloud_density counts the hash grid's cells (probability per a0^3)") {
   const uint32_t n = 20000;
   const auto t = atom::make_orbital_tables(s, OrbitalPlacement::exact, n, 5);
   Backend& r = test::reference();
-  auto tables = r.create<uint32_t>(t.cdf.size(), "tables");
-  r.upload(tables, t.cdf);
-  auto rpos = r.create<Real4>(n, "positions");
-  r.orbital_sample(t.params, tables, rpos);
-  const std::vector<Vec4f> pts = r.download_f32(rpos);
+  const std::vector<Vec4f> pts = sample_cloud(r, t, n);
   const float half = float(atom::box_half_width(s));
   const GridParams g = make_grid_params({-half, -half, -half}, 2 * half / 24, {24, 24, 24}, n);
   Backend& b = test::backend();
@@ -138,9 +144,9 @@ TEST_CASE("optical depth: the midpoint path's error falls with the step; light i
   auto tau_of = [&](const std::vector<double>& illum) {
     std::vector<double> tau(illum.size());
     for (size_t i = 0; i < illum.size(); ++i) {
-      const double r = std::max(double(p.core_radius_a0),
-                                std::sqrt(double(pts[i].x) * pts[i].x + double(pts[i].y) * pts[i].y +
-                                          double(pts[i].z) * pts[i].z));
+      const double r = std::max(double(p.core_radius_a0), std::sqrt(double(pts[i].x) * pts[i].x +
+                                                                    double(pts[i].y) * pts[i].y +
+                                                                    double(pts[i].z) * pts[i].z));
       tau[i] = -std::log(illum[i] * 4 * kPi * r * r);
     }
     return tau;
@@ -153,11 +159,12 @@ TEST_CASE("optical depth: the midpoint path's error falls with the step; light i
     p.step_a0 = step;
     const auto mid = tau_of(illuminate(test::backend(), p, pts, dens));
     double err = 0, mean_tau = 0;
-    for (size_t i = 0; i < mid.size(); ++i) err += std::abs(mid[i] - exact[i]), mean_tau += exact[i];
+    for (size_t i = 0; i < mid.size(); ++i)
+      err += std::abs(mid[i] - exact[i]), mean_tau += exact[i];
     err /= double(mid.size());
     mean_tau /= double(mid.size());
-    MESSAGE("midpoint step " << step << " a0: mean |tau error| " << err << " (mean tau "
-                             << mean_tau << ")");
+    MESSAGE("midpoint step " << step << " a0: mean |tau error| " << err << " (mean tau " << mean_tau
+                             << ")");
     if (prev > 0) CHECK(err < 0.75 * prev);  // O(step): about halves with the step
     prev = err;
   }
@@ -203,8 +210,8 @@ TEST_CASE("nebula_view equals illumination * P(tau, cos) * exp(-tau_view) for a 
   for (size_t i = 0; i < pts.size(); ++i) {
     const hd::V3<double> x{pts[i].x, pts[i].y, pts[i].z}, v{30, 10, 20};
     const double mu = hd::dot(x, v - x) / (hd::length(x) * hd::length(v - x));
-    const double per_sr = linear(tau_sct, std::clamp(mu, -mu_end, mu_end)) /
-                          (2 * kPi * 2.0 / p.table_bins);
+    const double per_sr =
+        linear(tau_sct, std::clamp(mu, -mu_end, mu_end)) / (2 * kPi * 2.0 / p.table_bins);
     want[i] = 3.0 * per_sr * std::exp(-0.2 * p.kappa_a2 / p.albedo * inside_length(x, v, -5, 5));
   }
   const ErrorStats e = compare(got, want, 1e-12);
@@ -217,11 +224,7 @@ TEST_CASE("nebula lighting of a real cloud matches the CPU reference") {
   const uint32_t n = 20000;
   const auto t = atom::make_orbital_tables(s, OrbitalPlacement::exact, n, 11);
   Backend& r = test::reference();
-  auto tables = r.create<uint32_t>(t.cdf.size(), "tables");
-  r.upload(tables, t.cdf);
-  auto rpos = r.create<Real4>(n, "positions");
-  r.orbital_sample(t.params, tables, rpos);
-  const std::vector<Vec4f> pts = r.download_f32(rpos);
+  const std::vector<Vec4f> pts = sample_cloud(r, t, n);
   ScatterTableParams sp;  // a smooth table: bilinear weights in fp32 carry ~1e-6 absolute error
   sp.rows = 100;
   sp.tau_step = 0.1f;
@@ -270,14 +273,17 @@ TEST_CASE("nebula kernels reject bad input, naming the field") {
   auto density = b.create<Real>(8000, "density");
   auto out = b.create<Real>(10, "out");
   p.albedo = 0;
-  CHECK_THROWS_WITH_AS(b.nebula_illuminate(p, pos, density, out), doctest::Contains("albedo"), Error);
+  CHECK_THROWS_WITH_AS(b.nebula_illuminate(p, pos, density, out), doctest::Contains("albedo"),
+                       Error);
   p.albedo = 0.6f;
   p.path = OpticalPath::midpoint;
   p.step_a0 = 1e-6f;
-  CHECK_THROWS_WITH_AS(b.nebula_illuminate(p, pos, density, out), doctest::Contains("step_a0"), Error);
+  CHECK_THROWS_WITH_AS(b.nebula_illuminate(p, pos, density, out), doctest::Contains("step_a0"),
+                       Error);
   p.path = OpticalPath::exact;
   p.viewer = {NAN, 0, 0};
-  CHECK_THROWS_WITH_AS(b.nebula_illuminate(p, pos, density, out), doctest::Contains("viewer"), Error);
+  CHECK_THROWS_WITH_AS(b.nebula_illuminate(p, pos, density, out), doctest::Contains("viewer"),
+                       Error);
   p.viewer = {0, 0, 10};
   auto small = b.create<Real>(100, "density");
   CHECK_THROWS_WITH_AS(b.nebula_illuminate(p, pos, small, out), doctest::Contains("density size"),

@@ -24,118 +24,105 @@ using namespace masav;
 TEST_CASE("sph_density equals the CPU reference and a brute-force poly6 sum") {
   Backend& b = test::backend();
   Backend& r = test::reference();
-  for (const bool walls : {false, true})
-    for (SphPressureModel model : {SphPressureModel::wcsph, SphPressureModel::thesis}) {
-      const std::string name = to_string(model);
-      CAPTURE(name);
-      CAPTURE(walls);
-      test::SphCase c = test::make_sph_case(14, model, 7);
-      test::with_walls(c, walls);
-      test::SphBuffers sb = test::upload_sph_case(b, c), sr = test::upload_sph_case(r, c);
-      REQUIRE(b.download(sb.grid.sorted_index) == r.download(sr.grid.sorted_index));
-      sph_density(b, c.params, {&sb.sorted_pos, sb.view(), &sb.density, &sb.pressure, &sb.stats});
-      sph_density(r, c.params, {&sr.sorted_pos, sr.view(), &sr.density, &sr.pressure, &sr.stats});
-      const auto rho = b.download(sb.density), rho_ref = r.download(sr.density);
-      const auto pr = b.download(sb.pressure), pr_ref = r.download(sr.pressure);
-      const ErrorStats e_rho = compare(rho, rho_ref, 1.0);
-      INFO("density: " << describe(e_rho));
-      CHECK(e_rho.rel_l2 < 1e-6);
-      CHECK(e_rho.max_rel < 5e-6);
-      // Pressure amplifies density errors (Tait: 7 B rho^6 / rho0^7): bound it by the EOS slope.
-      const ErrorStats e_p = compare(pr, pr_ref, 1e-3 * rms(pr_ref) + 1.0);
-      INFO("pressure: " << describe(e_p));
-      CHECK(e_p.rel_l2 < 1e-4);
+  test::for_each_model_and_walls(14, 7, [&](test::SphCase& c) {
+    test::SphBuffers sb = test::upload_sph_case(b, c), sr = test::upload_sph_case(r, c);
+    REQUIRE(b.download(sb.grid.sorted_index) == r.download(sr.grid.sorted_index));
+    sph_density(b, c.params, {&sb.sorted_pos, sb.view(), &sb.density, &sb.pressure, &sb.stats});
+    sph_density(r, c.params, {&sr.sorted_pos, sr.view(), &sr.density, &sr.pressure, &sr.stats});
+    const auto rho = b.download(sb.density), rho_ref = r.download(sr.density);
+    const auto pr = b.download(sb.pressure), pr_ref = r.download(sr.pressure);
+    const ErrorStats e_rho = compare(rho, rho_ref, 1.0);
+    INFO("density: " << describe(e_rho));
+    CHECK(e_rho.rel_l2 < 1e-6);
+    CHECK(e_rho.max_rel < 5e-6);
+    // Pressure amplifies density errors (Tait: 7 B rho^6 / rho0^7): bound it by the EOS slope.
+    const ErrorStats e_p = compare(pr, pr_ref, 1e-3 * rms(pr_ref) + 1.0);
+    INFO("pressure: " << describe(e_p));
+    CHECK(e_p.rel_l2 < 1e-4);
 
-      // Brute force over all pairs in double, at the fp32 positions both backends hold.
-      const auto sp = r.download_f32(sr.sorted_pos);
-      const double h2 = c.params.h * c.params.h;
-      const auto coef = device_params<double>(c.params);
-      double worst = 0;
-      for (size_t i = 0; i < sp.size(); i += 7) {
-        double sum = 0;
-        for (size_t j = 0; j < sp.size(); ++j) {
-          const double dx = double(sp[i].x) - sp[j].x, dy = double(sp[i].y) - sp[j].y,
-                       dz = double(sp[i].z) - sp[j].z;
-          const double r2 = dx * dx + dy * dy + dz * dz;
-          if (r2 < h2) sum += std::pow(1.0 - r2 / h2, 3);
-        }
-        const Vec4f& x = sp[i];
-        const double wall = coef.walls ? 1000.0 * sph::wall_density(sph::V3<double>{x.x, x.y, x.z},
-                                                                    coef, (sph::V3<double>*)nullptr)
-                                       : 0.0;
-        worst = std::max(worst, std::abs(coef.density * sum + wall - rho_ref[i]) / rho_ref[i]);
+    // Brute force over all pairs in double, at the fp32 positions both backends hold.
+    const auto sp = r.download_f32(sr.sorted_pos);
+    const double h2 = c.params.h * c.params.h;
+    const auto coef = device_params<double>(c.params);
+    double worst = 0;
+    for (size_t i = 0; i < sp.size(); i += 7) {
+      double sum = 0;
+      for (size_t j = 0; j < sp.size(); ++j) {
+        const double dx = double(sp[i].x) - sp[j].x, dy = double(sp[i].y) - sp[j].y,
+                     dz = double(sp[i].z) - sp[j].z;
+        const double r2 = dx * dx + dy * dy + dz * dz;
+        if (r2 < h2) sum += std::pow(1.0 - r2 / h2, 3);
       }
-      CHECK(worst < 1e-12);
-      // A particle deep inside the jittered lattice sits near rest density.
-      const auto words = b.download(sb.stats);
-      CHECK(words[kSphStatMaxNeighbors] > 20);
-      CHECK(words[kSphStatMaxNeighbors] < 80);
-      CHECK(words[kSphStatOverflow] == 0);
-      CHECK(words[kSphStatNonFinite] == 0);
-      CHECK(words[kSphStatMaxCandidates] == r.download(sr.stats)[kSphStatMaxCandidates]);
+      const Vec4f& x = sp[i];
+      const double wall = coef.walls ? 1000.0 * sph::wall_density(sph::V3<double>{x.x, x.y, x.z},
+                                                                  coef, (sph::V3<double>*)nullptr)
+                                     : 0.0;
+      worst = std::max(worst, std::abs(coef.density * sum + wall - rho_ref[i]) / rho_ref[i]);
     }
+    CHECK(worst < 1e-12);
+    // A particle deep inside the jittered lattice sits near rest density.
+    const auto words = b.download(sb.stats);
+    CHECK(words[kSphStatMaxNeighbors] > 20);
+    CHECK(words[kSphStatMaxNeighbors] < 80);
+    CHECK(words[kSphStatOverflow] == 0);
+    CHECK(words[kSphStatNonFinite] == 0);
+    CHECK(words[kSphStatMaxCandidates] == r.download(sr.stats)[kSphStatMaxCandidates]);
+  });
 }
 
 TEST_CASE("sph_forces equals the CPU reference for both pressure models") {
   Backend& b = test::backend();
   Backend& r = test::reference();
-  for (const bool walls : {false, true})
-    for (SphPressureModel model : {SphPressureModel::wcsph, SphPressureModel::thesis}) {
-      const std::string name = to_string(model);
-      CAPTURE(name);
-      CAPTURE(walls);
-      test::SphCase c = test::make_sph_case(14, model, 11);
-      test::with_walls(c, walls);
-      test::SphBuffers sb = test::upload_sph_case(b, c), sr = test::upload_sph_case(r, c);
-      sph_density(r, c.params, {&sr.sorted_pos, sr.view(), &sr.density, &sr.pressure, &sr.stats});
-      // The backend gets the reference's density and pressure: this tests the force kernel alone.
-      b.upload(sb.density, r.download(sr.density));
-      b.upload(sb.pressure, r.download(sr.pressure));
-      sph_forces(b, c.params,
-                 {&sb.sorted_pos, &sb.sorted_vel, &sb.density, &sb.pressure, sb.view(), &sb.accel,
-                  &sb.stats});
-      sph_forces(r, c.params,
-                 {&sr.sorted_pos, &sr.sorted_vel, &sr.density, &sr.pressure, sr.view(), &sr.accel,
-                  &sr.stats});
-      const auto got = b.download(sb.accel), want = r.download(sr.accel);
-      const auto g3 = xyz_components(got), w3 = xyz_components(want);
-      const ErrorStats e = compare(g3, w3, rms(w3));
-      INFO("accel: " << describe(e) << ", rms " << rms(w3));
-      CHECK(e.rel_l2 < 2e-6);
-      CHECK(e.max_rel < 2e-5);  // of the RMS acceleration
-      for (size_t i = 0; i < got.size(); ++i) REQUIRE(got[i].w == want[i].w);  // neighbour counts
+  test::for_each_model_and_walls(14, 11, [&](test::SphCase& c) {
+    test::SphBuffers sb = test::upload_sph_case(b, c), sr = test::upload_sph_case(r, c);
+    sph_density(r, c.params, {&sr.sorted_pos, sr.view(), &sr.density, &sr.pressure, &sr.stats});
+    // The backend gets the reference's density and pressure: this tests the force kernel alone.
+    b.upload(sb.density, r.download(sr.density));
+    b.upload(sb.pressure, r.download(sr.pressure));
+    sph_forces(b, c.params,
+               {&sb.sorted_pos, &sb.sorted_vel, &sb.density, &sb.pressure, sb.view(), &sb.accel,
+                &sb.stats});
+    sph_forces(r, c.params,
+               {&sr.sorted_pos, &sr.sorted_vel, &sr.density, &sr.pressure, sr.view(), &sr.accel,
+                &sr.stats});
+    const auto got = b.download(sb.accel), want = r.download(sr.accel);
+    const auto g3 = xyz_components(got), w3 = xyz_components(want);
+    const ErrorStats e = compare(g3, w3, rms(w3));
+    INFO("accel: " << describe(e) << ", rms " << rms(w3));
+    CHECK(e.rel_l2 < 2e-6);
+    CHECK(e.max_rel < 2e-5);  // of the RMS acceleration
+    for (size_t i = 0; i < got.size(); ++i) REQUIRE(got[i].w == want[i].w);  // neighbour counts
 
-      // Pinned particles do not accelerate; the others feel gravity on top of the pair forces.
-      const auto pos = r.download(sr.sorted_pos);
-      size_t pinned = 0;
-      for (size_t i = 0; i < pos.size(); ++i)
-        if (pos[i].w == 0) {
-          ++pinned;
-          CHECK(got[i].x == 0.0);
-          CHECK(got[i].y == 0.0);
-        }
-      CHECK(pinned > 0);
-
-      // wcsph pair forces are antisymmetric: with unit inverse masses and no gravity, the total
-      // force is zero to rounding.
-      if (model == SphPressureModel::wcsph && !walls) {
-        test::SphCase sym = c;
-        for (auto& p : sym.positions) p.w = 1.0f;
-        sym.params.gravity = {0, 0, 0};
-        test::SphBuffers s2 = test::upload_sph_case(r, sym);
-        sph_density(r, sym.params,
-                    {&s2.sorted_pos, s2.view(), &s2.density, &s2.pressure, &s2.stats});
-        sph_forces(r, sym.params,
-                   {&s2.sorted_pos, &s2.sorted_vel, &s2.density, &s2.pressure, s2.view(), &s2.accel,
-                    &s2.stats});
-        double fx = 0, fy = 0, fz = 0, scale = 0;
-        for (const auto& a : r.download(s2.accel)) {
-          fx += a.x, fy += a.y, fz += a.z;
-          scale += std::sqrt(a.x * a.x + a.y * a.y + a.z * a.z);
-        }
-        CHECK(std::sqrt(fx * fx + fy * fy + fz * fz) < 1e-12 * scale);
+    // Pinned particles do not accelerate; the others feel gravity on top of the pair forces.
+    const auto pos = r.download(sr.sorted_pos);
+    size_t pinned = 0;
+    for (size_t i = 0; i < pos.size(); ++i)
+      if (pos[i].w == 0) {
+        ++pinned;
+        CHECK(got[i].x == 0.0);
+        CHECK(got[i].y == 0.0);
       }
+    CHECK(pinned > 0);
+
+    // wcsph pair forces are antisymmetric: with unit inverse masses and no gravity, the total
+    // force is zero to rounding.
+    if (c.params.model == SphPressureModel::wcsph && !c.params.walls) {
+      test::SphCase sym = c;
+      for (auto& p : sym.positions) p.w = 1.0f;
+      sym.params.gravity = {0, 0, 0};
+      test::SphBuffers s2 = test::upload_sph_case(r, sym);
+      sph_density(r, sym.params, {&s2.sorted_pos, s2.view(), &s2.density, &s2.pressure, &s2.stats});
+      sph_forces(r, sym.params,
+                 {&s2.sorted_pos, &s2.sorted_vel, &s2.density, &s2.pressure, s2.view(), &s2.accel,
+                  &s2.stats});
+      double fx = 0, fy = 0, fz = 0, scale = 0;
+      for (const auto& a : r.download(s2.accel)) {
+        fx += a.x, fy += a.y, fz += a.z;
+        scale += std::sqrt(a.x * a.x + a.y * a.y + a.z * a.z);
+      }
+      CHECK(std::sqrt(fx * fx + fy * fy + fz * fz) < 1e-12 * scale);
     }
+  });
 }
 
 // The CPU reference keeps sph_density's neighbour lists for sph_forces (engine/cpu/

@@ -51,40 +51,34 @@ void host_bodies(const test::SphCase& c, const std::vector<Vec4d>& pos,
 
 TEST_CASE("sph::density_at and sph::force_at (the CUDA bodies) equal the CPU reference") {
   cpu::CpuBackend r;
-  for (const bool walls : {false, true})
-    for (SphPressureModel model : {SphPressureModel::wcsph, SphPressureModel::thesis}) {
-      const std::string name = to_string(model);
-      CAPTURE(name);
-      CAPTURE(walls);
-      test::SphCase c = test::make_sph_case(10, model, 31);
-      test::with_walls(c, walls);
-      test::SphBuffers s = test::upload_sph_case(r, c);
-      sph_density(r, c.params, {&s.sorted_pos, s.view(), &s.density, &s.pressure, &s.stats});
-      sph_forces(
-          r, c.params,
-          {&s.sorted_pos, &s.sorted_vel, &s.density, &s.pressure, s.view(), &s.accel, &s.stats});
-      const auto pos = r.download(s.sorted_pos), vel = r.download(s.sorted_vel);
-      const auto rho = r.download(s.density), pr = r.download(s.pressure);
-      const auto acc = r.download(s.accel);
-      const auto cells = r.download(s.grid.sorted_cells);
-      const auto start = r.download(s.grid.cell_start), end = r.download(s.grid.cell_end);
-      const auto k = device_params<double>(c.params);
+  test::for_each_model_and_walls(10, 31, [&](test::SphCase& c) {
+    test::SphBuffers s = test::upload_sph_case(r, c);
+    sph_density(r, c.params, {&s.sorted_pos, s.view(), &s.density, &s.pressure, &s.stats});
+    sph_forces(
+        r, c.params,
+        {&s.sorted_pos, &s.sorted_vel, &s.density, &s.pressure, s.view(), &s.accel, &s.stats});
+    const auto pos = r.download(s.sorted_pos), vel = r.download(s.sorted_vel);
+    const auto rho = r.download(s.density), pr = r.download(s.pressure);
+    const auto acc = r.download(s.accel);
+    const auto cells = r.download(s.grid.sorted_cells);
+    const auto start = r.download(s.grid.cell_start), end = r.download(s.grid.cell_end);
+    const auto k = device_params<double>(c.params);
 
-      std::vector<double> rho_d, rho_f;
-      std::vector<Vec4d> acc_d, acc_f;
-      host_bodies<double>(c, pos, vel, rho, pr, cells, start, end, k, rho_d, acc_d);
-      host_bodies<float>(c, pos, vel, rho, pr, cells, start, end, device_params<float>(c.params),
-                         rho_f, acc_f);
-      const double acc_scale = rms(xyz_components(acc));
-      // double: the same terms, summed in another order (lists vs the walk) -> rounding only.
-      CHECK(compare(rho_d, rho, 1.0).max_rel < 1e-12);
-      CHECK(compare(xyz_components(acc_d), xyz_components(acc), acc_scale).max_rel < 1e-10);
-      // float: the tolerances of the fp32 backends' kernel tests (test_sph_kernels.cpp).
-      CHECK(compare(rho_f, rho, 1.0).rel_l2 < 1e-6);
-      const ErrorStats ef = compare(xyz_components(acc_f), xyz_components(acc), acc_scale);
-      INFO("float accel: " << describe(ef));
-      CHECK(ef.rel_l2 < 2e-6);
-      CHECK(ef.max_rel < 2e-5);
-      for (uint32_t i = 0; i < c.params.n; ++i) REQUIRE(acc_d[i].w == acc[i].w);  // neighbours
-    }
+    std::vector<double> rho_d, rho_f;
+    std::vector<Vec4d> acc_d, acc_f;
+    host_bodies<double>(c, pos, vel, rho, pr, cells, start, end, k, rho_d, acc_d);
+    host_bodies<float>(c, pos, vel, rho, pr, cells, start, end, device_params<float>(c.params),
+                       rho_f, acc_f);
+    const double acc_scale = rms(xyz_components(acc));
+    // double: the same terms, summed in another order (lists vs the walk) -> rounding only.
+    CHECK(compare(rho_d, rho, 1.0).max_rel < 1e-12);
+    CHECK(compare(xyz_components(acc_d), xyz_components(acc), acc_scale).max_rel < 1e-10);
+    // float: the tolerances of the fp32 backends' kernel tests (test_sph_kernels.cpp).
+    CHECK(compare(rho_f, rho, 1.0).rel_l2 < 1e-6);
+    const ErrorStats ef = compare(xyz_components(acc_f), xyz_components(acc), acc_scale);
+    INFO("float accel: " << describe(ef));
+    CHECK(ef.rel_l2 < 2e-6);
+    CHECK(ef.max_rel < 2e-5);
+    for (uint32_t i = 0; i < c.params.n; ++i) REQUIRE(acc_d[i].w == acc[i].w);  // neighbours
+  });
 }

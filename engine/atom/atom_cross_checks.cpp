@@ -175,6 +175,24 @@ CheckVolume check_volume(const CheckInputs& in) {
   return v;
 }
 
+// The check volume and its transfer function on a backend, with its 8^3 bricks computed there.
+struct BrickedVolume {
+  Buffer<Real> volume;
+  Buffer<Real4> transfer, bricks;
+};
+
+BrickedVolume upload_bricked(Backend& b, const CheckVolume& v) {
+  BrickedVolume bv{b.create<Real>(v.values.size(), "check volume"),
+                   b.create<Real4>(v.tf.size(), "check transfer"),
+                   {}};
+  b.upload(bv.volume, v.values);
+  b.upload(bv.transfer, v.tf);
+  const UVec3 nb = brick_dims(v.desc, 8);
+  bv.bricks = b.create<Real4>(size_t(nb.x) * nb.y * nb.z, "check bricks");
+  b.volume_bricks({v.desc, 8, uint32_t(v.tf.size())}, bv.volume, bv.transfer, bv.bricks);
+  return bv;
+}
+
 }  // namespace
 
 std::vector<KernelCheck> atom_checks() {
@@ -279,31 +297,19 @@ std::vector<KernelCheck> atom_checks() {
                             {"sample", {}, b.download(sample)}};
       }));
   // volume_bricks: ranges and the largest alpha: fp32 of values in [0, 1].
-  c.push_back(tolerance_check(
-      KernelId::volume_bricks, {1e-6, 2e-6, 0}, [](Backend& b, const CheckInputs& in) {
-        const CheckVolume v = check_volume(in);
-        auto vol = b.create<Real>(v.values.size(), "check volume");
-        b.upload(vol, v.values);
-        auto tf = b.create<Real4>(v.tf.size(), "check transfer");
-        b.upload(tf, v.tf);
-        const UVec3 nb = brick_dims(v.desc, 8);
-        auto br = b.create<Real4>(size_t(nb.x) * nb.y * nb.z, "check bricks");
-        b.volume_bricks({v.desc, 8, uint32_t(v.tf.size())}, vol, tf, br);
-        return CheckOutputs{{"bricks", {}, flatten(b.download(br))}};
-      }));
+  c.push_back(tolerance_check(KernelId::volume_bricks, {1e-6, 2e-6, 0},
+                              [](Backend& b, const CheckInputs& in) {
+                                const CheckVolume v = check_volume(in);
+                                const BrickedVolume bv = upload_bricked(b, v);
+                                return CheckOutputs{{"bricks", {}, flatten(b.download(bv.bricks))}};
+                              }));
   // raymarch: fp32 compositing along ~100 steps: rel L2 1e-4; per channel 2e-3 absolute (the
   // kernel test's 1e-4 is for a gentle transfer function; the default one's opacity ramp is
   // steeper: measured 8.8e-4).
   c.push_back(
       tolerance_check(KernelId::raymarch, {1e-4, 2e-3, 0}, [](Backend& b, const CheckInputs& in) {
         const CheckVolume v = check_volume(in);
-        auto vol = b.create<Real>(v.values.size(), "check volume");
-        b.upload(vol, v.values);
-        auto tf = b.create<Real4>(v.tf.size(), "check transfer");
-        b.upload(tf, v.tf);
-        const UVec3 nb = brick_dims(v.desc, 8);
-        auto br = b.create<Real4>(size_t(nb.x) * nb.y * nb.z, "check bricks");
-        b.volume_bricks({v.desc, 8, uint32_t(v.tf.size())}, vol, tf, br);
+        const BrickedVolume bv = upload_bricked(b, v);
         const float h = v.desc.box_max.x;
         RaymarchParams rp;
         rp.volume = v.desc;
@@ -315,7 +321,7 @@ std::vector<KernelCheck> atom_checks() {
         rp.reference_step = 2 * rp.step;
         rp.tf_size = uint32_t(v.tf.size());
         auto img = b.create<Real4>(size_t(rp.width) * rp.height, "check image");
-        b.raymarch(rp, vol, tf, br, img);
+        b.raymarch(rp, bv.volume, bv.transfer, bv.bricks, img);
         return CheckOutputs{{"image", {}, flatten(b.download(img))}};
       }));
   return c;

@@ -83,10 +83,10 @@ struct OutputTolerance {
   double floor_abs = 0;
 };
 
-KernelCheck per_output_check(std::string kernel, std::vector<OutputTolerance> tols,
+KernelCheck per_output_check(KernelId kernel, std::vector<OutputTolerance> tols,
                              std::function<CheckOutputs(Backend&, const CheckInputs&)> run) {
   KernelCheck k;
-  k.kernel = std::move(kernel);
+  k.kernel = kernel_name(kernel);
   k.kind = CheckKind::tolerance;
   k.run = std::move(run);
   k.compare = [tols](const CheckOutputs& got, const CheckOutputs& want, const CheckInputs&) {
@@ -132,6 +132,21 @@ KernelCheck per_output_check(std::string kernel, std::vector<OutputTolerance> to
 
 const SphPressureModel kModels[] = {SphPressureModel::wcsph, SphPressureModel::thesis};
 
+// A check's run over both pressure models: the case of each model sorted into its grid on the
+// backend, then `body` runs the kernel and appends outputs named with the model.
+template <class Body>
+std::function<CheckOutputs(Backend&, const CheckInputs&)> for_each_model(Body body) {
+  return [body](Backend& b, const CheckInputs& in) {
+    CheckOutputs out;
+    for (SphPressureModel model : kModels) {
+      const SphCheckCase cs = make_case(in, model);
+      SphCaseBuffers s = upload_sph_case(b, cs.params, cs.positions, cs.velocities, "check sph");
+      body(b, cs, s, to_string(model), out);
+    }
+    return out;
+  };
+}
+
 }  // namespace
 
 std::vector<KernelCheck> sph_checks() {
@@ -140,58 +155,44 @@ std::vector<KernelCheck> sph_checks() {
   // equation of state's slope, so it is held to 1e-4 (rel L2) and each value to 1e-3 of the
   // RMS pressure (+1 Pa).
   c.push_back(per_output_check(
-      "sph_density",
+      KernelId::sph_density,
       {{"density", {1e-6, 0, 5e-6, 1.0}}, {"pressure", {1e-4, 0, 1.0, 1e-3}, true, 1.0}},
-      [](Backend& b, const CheckInputs& in) {
-        CheckOutputs out;
-        for (SphPressureModel model : kModels) {
-          const SphCheckCase cs = make_case(in, model);
-          SphCaseBuffers s =
-              upload_sph_case(b, cs.params, cs.positions, cs.velocities, "check sph");
-          sph_density(b, cs.params, {&s.sorted_pos, s.view(), &s.density, &s.pressure, &s.stats});
-          const std::string m = to_string(model);
-          out.push_back({"density " + m, {}, b.download(s.density)});
-          out.push_back({"pressure " + m, {}, b.download(s.pressure)});
-        }
-        return out;
-      }));
+      for_each_model([](Backend& b, const SphCheckCase& cs, SphCaseBuffers& s, const std::string& m,
+                        CheckOutputs& out) {
+        sph_density(b, cs.params, {&s.sorted_pos, s.view(), &s.density, &s.pressure, &s.stats});
+        out.push_back({"density " + m, {}, b.download(s.density)});
+        out.push_back({"pressure " + m, {}, b.download(s.pressure)});
+      })));
   // Accelerations to 2e-6 (rel L2) and each component to 2e-5 of the RMS acceleration; the
   // neighbour counts (accel w) exactly. Both backends get the same density and pressure
   // (a smooth field made on the host), so this checks the force kernel alone.
   c.push_back(per_output_check(
-      "sph_forces", {{"accel", {2e-6, 0, 2e-5, 1.0}, true}, {"neighbours", {0, 0, 0, 1.0}}},
-      [](Backend& b, const CheckInputs& in) {
-        CheckOutputs out;
-        for (SphPressureModel model : kModels) {
-          const SphCheckCase cs = make_case(in, model);
-          SphCaseBuffers s =
-              upload_sph_case(b, cs.params, cs.positions, cs.velocities, "check sph");
-          // Identical density and pressure on both backends: the rest density everywhere plus
-          // a smooth field, so the pressure force is not trivial.
-          std::vector<double> rho(cs.params.n), pr(cs.params.n);
-          const auto sp = b.download_f32(s.sorted_pos);
-          for (uint32_t i = 0; i < cs.params.n; ++i) {
-            rho[i] = 1000.0 * (1.0 + 0.05 * std::sin(97.0 * sp[i].x + 61.0 * sp[i].y));
-            pr[i] = 3000.0 * (1.0 + std::cos(83.0 * sp[i].z));
-          }
-          b.upload(s.density, rho);
-          b.upload(s.pressure, pr);
-          sph_forces(b, cs.params,
-                     {&s.sorted_pos, &s.sorted_vel, &s.density, &s.pressure, s.view(), &s.accel,
-                      &s.stats});
-          const auto a = b.download(s.accel);
-          std::vector<double> w(a.size());
-          for (size_t i = 0; i < a.size(); ++i) w[i] = a[i].w;
-          const std::string m = to_string(model);
-          out.push_back({"neighbours " + m, {}, w});
-          out.push_back({"accel " + m, {}, xyz_components(a)});
+      KernelId::sph_forces, {{"accel", {2e-6, 0, 2e-5, 1.0}, true}, {"neighbours", {0, 0, 0, 1.0}}},
+      for_each_model([](Backend& b, const SphCheckCase& cs, SphCaseBuffers& s, const std::string& m,
+                        CheckOutputs& out) {
+        // Identical density and pressure on both backends: the rest density everywhere plus
+        // a smooth field, so the pressure force is not trivial.
+        std::vector<double> rho(cs.params.n), pr(cs.params.n);
+        const auto sp = b.download_f32(s.sorted_pos);
+        for (uint32_t i = 0; i < cs.params.n; ++i) {
+          rho[i] = 1000.0 * (1.0 + 0.05 * std::sin(97.0 * sp[i].x + 61.0 * sp[i].y));
+          pr[i] = 3000.0 * (1.0 + std::cos(83.0 * sp[i].z));
         }
-        return out;
-      }));
+        b.upload(s.density, rho);
+        b.upload(s.pressure, pr);
+        sph_forces(
+            b, cs.params,
+            {&s.sorted_pos, &s.sorted_vel, &s.density, &s.pressure, s.view(), &s.accel, &s.stats});
+        const auto a = b.download(s.accel);
+        std::vector<double> w(a.size());
+        for (size_t i = 0; i < a.size(); ++i) w[i] = a[i].w;
+        out.push_back({"neighbours " + m, {}, w});
+        out.push_back({"accel " + m, {}, xyz_components(a)});
+      })));
   // Every integrator stage: velocities within 5e-5 m/s, positions within 1e-6 m, the RK4
   // velocity sums within 1e-4 (dt = 2 ms, accelerations up to 30 m/s^2), walls on.
   c.push_back(per_output_check(
-      "sph_integrate",
+      KernelId::sph_integrate,
       {{"v ", {1e-5, 5e-5, 0, 1.0}},
        {"x ", {1e-6, 1e-6, 0, 1.0}},
        {"sum_v ", {1e-5, 1e-4, 0, 1.0}}},
