@@ -145,8 +145,7 @@ void VulkanBackend::check_diagnostics() {
   const Diagnostics seen = *d;
   d->flags = 0;
   d->detail = UINT32_MAX;
-  raise_diagnostics(*this, seen.flags & kDiagNeighborOverflow ? "grid_count_neighbors" : "gather",
-                    seen.flags, seen.detail, pending_diag_limit_);
+  raise_diagnostics(*this, seen.flags, seen.detail, pending_diag_limit_);
 }
 
 std::optional<uint32_t> VulkanBackend::take_max_loop_ticks() {

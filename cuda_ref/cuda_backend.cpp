@@ -145,8 +145,7 @@ void CudaBackend::finish() {
   if (d[1] == 0) return;
   check(cudaMemcpy(diag_, kCleanDiagnostics, sizeof kCleanDiagnostics, cudaMemcpyHostToDevice),
         "finish", "cudaMemcpy(diagnostics)");
-  raise_diagnostics(*this, d[1] & kDiagNeighborOverflow ? "grid_count_neighbors" : "gather", d[1],
-                    d[2], pending_diag_limit_);
+  raise_diagnostics(*this, d[1], d[2], pending_diag_limit_);
 }
 
 TimestampId CudaBackend::timestamp() {

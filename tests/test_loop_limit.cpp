@@ -17,28 +17,11 @@
 #include "engine/sph/sph_kernel_calls.h"
 #include "engine/sph/sph_particles.h"
 #include "tests/backend_fixture.h"
+#include "tests/loop_limit.h"
 
 using namespace masav;
 
 namespace {
-
-// The kernels that have a loop-limit case (each case names the kernels it drives).
-std::set<KernelId>& covered() {
-  static std::set<KernelId> kernels;
-  return kernels;
-}
-struct Covers {
-  Covers(std::initializer_list<KernelId> kernels) { covered().insert(kernels); }
-};
-#define LOOP_LIMIT_CASE(name, ...)                                             \
-  static const Covers MASAV_PP_CAT(loop_limit_covers_, __LINE__){__VA_ARGS__}; \
-  TEST_CASE(name* doctest::test_suite("loop limit"))
-
-uint32_t ticks_of(Backend& b) {
-  const std::optional<uint32_t> t = b.take_max_loop_ticks();
-  REQUIRE(t.has_value());
-  return *t;
-}
 
 std::vector<Vec4f> cluster(uint32_t n, float extent, uint64_t seed) {
   std::mt19937_64 rng(seed);
@@ -53,7 +36,7 @@ std::vector<Vec4f> cluster(uint32_t n, float extent, uint64_t seed) {
 TEST_CASE("every kernel of kernels.inc has a loop-limit case") {
   for (KernelId k : kAllKernels) {
     CAPTURE(kernel_name(k));
-    CHECK(covered().count(k) == 1);
+    CHECK(test::loop_limit_covered().count(k) == 1);
   }
 }
 
@@ -62,7 +45,7 @@ LOOP_LIMIT_CASE("philox kernels loop a fixed, small number of times", KernelId::
   Backend& b = test::loop_counter();
   auto out = b.create<uint32_t>(1 << 16, "words");
   b.philox_u32({1, 2, 3}, out);
-  const uint32_t ticks = ticks_of(b);
+  const uint32_t ticks = test::ticks_of(b);
   CHECK(ticks == 10 + 4);  // ten rounds, four output words
 }
 
@@ -77,7 +60,7 @@ LOOP_LIMIT_CASE("radix sort and its scans stay far below the loop limit at 2^20 
   auto vb = b.create<uint32_t>(n, "values");
   b.upload(kb, keys);
   b.radix_sort({n, 32}, kb, &vb);
-  const uint32_t ticks = ticks_of(b);
+  const uint32_t ticks = test::ticks_of(b);
   MESSAGE("radix_sort worst invocation: " << ticks << " loop iterations");
   CHECK(ticks > 0);
   // Independent of n. Tiled scatter: a few loops over the tile and the subgroups (~300).
@@ -94,12 +77,12 @@ LOOP_LIMIT_CASE("neighbour count: loop ticks = 27 cells + candidates, capped bel
   b.upload(pos, cluster(n, 1.0f, 9));
   HashGrid g = make_hash_grid(b, gp, n);
   build_hash_grid(b, g, pos);
-  (void)ticks_of(b);
+  (void)test::ticks_of(b);
   auto counts = b.create<uint32_t>(n, "counts");
   NeighborParams np = make_neighbor_params(gp, 1.0f);
   np.max_candidates = n;
   b.grid_count_neighbors(np, pos, g.cell_start, g.cell_end, counts);
-  CHECK(ticks_of(b) == 27 + n);  // the counter measures what we think it does
+  CHECK(test::ticks_of(b) == 27 + n);  // the counter measures what we think it does
   // The validated maximum of max_candidates keeps the worst invocation under the limit.
   NeighborParams worst = np;
   worst.max_candidates = 65000;
@@ -117,13 +100,13 @@ LOOP_LIMIT_CASE("grid assignment, ranges and gather do not loop", KernelId::grid
   b.upload(pos, cluster(n, 1.0f, 4));
   HashGrid g = make_hash_grid(b, gp, n);
   b.grid_assign_cells(gp, pos, g.sorted_cells, g.sorted_index);
-  CHECK(ticks_of(b) == 0);
+  CHECK(test::ticks_of(b) == 0);
   b.radix_sort({n, grid_key_bits(gp)}, g.sorted_cells, &g.sorted_index);
-  (void)ticks_of(b);
+  (void)test::ticks_of(b);
   b.grid_cell_ranges(gp, g.sorted_cells, g.cell_start, g.cell_end);
   auto sorted = b.create<Real4>(n, "sorted");
   reorder(b, g, pos.impl(), sorted.impl());
-  CHECK(ticks_of(b) == 0);
+  CHECK(test::ticks_of(b) == 0);
 }
 
 LOOP_LIMIT_CASE("orbital_sample: three bounded binary searches (exact) or one (shells)",
@@ -134,9 +117,9 @@ LOOP_LIMIT_CASE("orbital_sample: three bounded binary searches (exact) or one (s
     auto tables = b.create<uint32_t>(t.cdf.size(), "tables");
     b.upload(tables, t.cdf);
     auto pos = b.create<Real4>(t.params.count, "positions");
-    (void)ticks_of(b);
+    (void)test::ticks_of(b);
     b.orbital_sample(t.params, tables, pos);
-    const uint32_t ticks = ticks_of(b);
+    const uint32_t ticks = test::ticks_of(b);
     MESSAGE("orbital_sample (placement " << int(pl) << "): " << ticks << " loop iterations");
     CHECK(ticks > 10);
     CHECK(ticks <= 10 + 3 * 25);  // Philox's ten rounds + at most 25 halvings per table (2^24 bins)
@@ -151,9 +134,9 @@ LOOP_LIMIT_CASE("cloud_density does not loop", KernelId::cloud_density) {
   auto density = b.create<Real>(16 * 16 * 16, "density");
   b.fill(start, 0u);
   b.fill(end, 0u);
-  (void)ticks_of(b);
+  (void)test::ticks_of(b);
   b.cloud_density({g, 1000}, start, end, density);
-  CHECK(ticks_of(b) == 0);
+  CHECK(test::ticks_of(b) == 0);
 }
 
 LOOP_LIMIT_CASE("scatter_table: the event cap bounds a photon that never escapes",
@@ -171,9 +154,9 @@ LOOP_LIMIT_CASE("scatter_table: the event cap bounds a photon that never escapes
   const uint32_t entries = p.bins + kScatterExtras;
   auto table = b.create<Real>(entries, "table");
   auto hits = b.create<uint32_t>(entries, "hits");
-  (void)ticks_of(b);
+  (void)test::ticks_of(b);
   b.scatter_table(p, table, hits);
-  const uint32_t ticks = ticks_of(b);
+  const uint32_t ticks = test::ticks_of(b);
   MESSAGE("scatter_table at 5000 events: " << ticks << " loop iterations");
   CHECK(ticks >= 5001 * 11);  // each event: one iteration plus Philox's ten rounds
   CHECK(ticks < test::loop_counter().caps().max_loop_iterations);
@@ -197,10 +180,10 @@ LOOP_LIMIT_CASE("nebula paths: voxel traversal and the smallest midpoint step st
     p.path = path;
     p.step_a0 =
         path == OpticalPath::midpoint ? float(16 * std::sqrt(3.0) / kMaxPathSteps) * 1.0001f : 0.1f;
-    (void)ticks_of(b);
+    (void)test::ticks_of(b);
     b.nebula_illuminate(p, pos, density, ill);
     b.nebula_view(p, pos, density, table, ill, light);
-    const uint32_t ticks = ticks_of(b);
+    const uint32_t ticks = test::ticks_of(b);
     MESSAGE("nebula path " << int(path) << ": " << ticks << " loop iterations");
     CHECK(ticks < test::loop_counter().caps().max_loop_iterations);
     if (path == OpticalPath::exact)
@@ -222,9 +205,9 @@ LOOP_LIMIT_CASE("voxelize does not loop; volume_bricks at the largest brick stay
   auto light = b.create<Real>(1000, "light");
   b.upload(light, std::vector<double>(1000, 0.5));
   auto p = b.create<Real>(1000, "p"), g = b.create<Real>(1000, "g"), s = b.create<Real>(1000, "s");
-  (void)ticks_of(b);
+  (void)test::ticks_of(b);
   b.voxelize(vp, pos, light, p, g, s);
-  CHECK(ticks_of(b) == 0);
+  CHECK(test::ticks_of(b) == 0);
   const VolumeDesc vol = make_volume_desc({64, 64, 64}, {0, 0, 0}, {1, 1, 1});
   auto v = b.create<Real>(64 * 64 * 64, "volume");
   b.upload(v, std::vector<double>(64 * 64 * 64, 0.5));
@@ -233,7 +216,7 @@ LOOP_LIMIT_CASE("voxelize does not loop; volume_bricks at the largest brick stay
   b.upload(tf, tfv);
   auto bricks = b.create<Real4>(8, "bricks");
   b.volume_bricks({vol, 32, 4096}, v, tf, bricks);
-  const uint32_t ticks = ticks_of(b);
+  const uint32_t ticks = test::ticks_of(b);
   MESSAGE("volume_bricks, brick 32: " << ticks << " loop iterations");
   CHECK(ticks == 33 * 33 * 33 + 2);  // voxels of the first brick and its apron + 2 TF entries
   CHECK(ticks < test::loop_counter().caps().max_loop_iterations);
@@ -265,9 +248,9 @@ LOOP_LIMIT_CASE(
     b.upload(v, std::vector<double>(64 * 64 * 64, value));
     b.upload(tf, std::vector<Vec4d>{{1, 1, 1, alpha}, {1, 1, 1, alpha}});
     b.volume_bricks({vol, rp.brick, 2}, v, tf, bricks);
-    (void)ticks_of(b);
+    (void)test::ticks_of(b);
     b.raymarch(rp, v, tf, bricks, img);
-    return ticks_of(b);
+    return test::ticks_of(b);
   };
   const uint32_t worst = run(0.5, 1e-6);
   MESSAGE("raymarch at the smallest step: " << worst << " loop iterations");
@@ -294,12 +277,12 @@ LOOP_LIMIT_CASE("drift_points loops three times (one per axis), independent of n
   auto pos = b.create<Real4>(n, "positions");
   b.philox_uniform({1, 0, 0}, start);
   b.philox_uniform({1, 1, 0}, dir);
-  (void)ticks_of(b);
+  (void)test::ticks_of(b);
   DriftParams p;
   p.n = n;
   p.time_s = 100.0f;
   b.drift_points(p, start, dir, pos);
-  CHECK(ticks_of(b) == 3);
+  CHECK(test::ticks_of(b) == 3);
 }
 
 LOOP_LIMIT_CASE("sph kernels: loop ticks = rows + cells + candidates, capped below the limit",
@@ -329,14 +312,14 @@ LOOP_LIMIT_CASE("sph kernels: loop ticks = rows + cells + candidates, capped bel
   auto acc = b.create<Real4>(n, "acc");
   auto stats = b.create<uint32_t>(kSphStatWords, "stats");
   b.fill(stats, 0u);
-  (void)ticks_of(b);
+  (void)test::ticks_of(b);
   const SphGridView view{&g.sorted_cells, &g.cell_start, &g.cell_end};
   sph_density(b, p, {&pos, view, &rho, &pr, &stats});
   // x loop 3 + y loop 3 (one x in the grid) + 1 cell in the row + n candidates + 48 wall ticks.
   const uint32_t walls = 6 + 6 * 7;
-  CHECK(ticks_of(b) == 3 + 3 + 1 + n + walls);
+  CHECK(test::ticks_of(b) == 3 + 3 + 1 + n + walls);
   sph_forces(b, p, {&pos, &vel, &rho, &pr, view, &acc, &stats});
-  CHECK(ticks_of(b) == 3 + 3 + 1 + n + walls + 6);  // + the no-slip weight
+  CHECK(test::ticks_of(b) == 3 + 3 + 1 + n + walls + 6);  // + the no-slip weight
   // The worst any SPH kernel can do: 3 + 9 row loops, 27 cells, the validated maximum of
   // candidates (65000) and the walls' 48 stay under lavapipe's limit; one more is refused.
   CHECK(3 + 9 + 27 + 65000 + walls + 6 < test::loop_counter().caps().max_loop_iterations);
@@ -351,5 +334,5 @@ LOOP_LIMIT_CASE("sph kernels: loop ticks = rows + cells + candidates, capped bel
   ip.box_max = {0.5 * h, 0.5 * h, 0.5 * h};
   auto xo = b.create<Real4>(n, "xo"), vo = b.create<Real4>(n, "vo");
   sph_integrate(b, ip, {&pos, &vel, nullptr, &acc, &xo, &vo, nullptr, nullptr, &stats});
-  CHECK(ticks_of(b) <= 6);
+  CHECK(test::ticks_of(b) <= 6);
 }

@@ -9,6 +9,10 @@
 #endif
 
 #include <math.h>
+#include <stdint.h>
+#if !defined(__CUDA_ARCH__)
+#include <atomic>
+#endif
 
 namespace masav::hd {
 
@@ -38,6 +42,17 @@ MASAV_HD inline float sqrt_rn(float a) {
   return __fsqrt_rn(a);
 #else
   return sqrtf(a);
+#endif
+}
+
+// *p += v as one atomic step, returning the old value: bodies that count into shared cells run
+// concurrently on the CPU reference's thread pool as on the GPU. Relaxed: integer sums come out
+// the same in any order.
+MASAV_HD inline uint32_t atomic_add(uint32_t* p, uint32_t v) {
+#if defined(__CUDA_ARCH__)
+  return atomicAdd(p, v);
+#else
+  return std::atomic_ref<uint32_t>(*p).fetch_add(v, std::memory_order_relaxed);
 #endif
 }
 

@@ -53,7 +53,7 @@ void run_shared_body(const Backend& backend, ThreadPool& pool, const Params& p, 
         ptrs);
   });
   if (diag.flags()) {
-    raise_diagnostics(backend, kernel_name(K), diag.flags(), diag.detail(), diag_limit(layout));
+    raise_diagnostics(backend, diag.flags(), diag.detail(), diag_limit(layout));
   }
 }
 

@@ -41,7 +41,7 @@ void CpuBackend::run_own(const KernelArgs<KernelId::gather>& a) {
       std::memcpy(d + i * eb, s + size_t(o[i]) * eb, eb);
     }
   });
-  if (diag.flags()) raise_diagnostics(*this, "gather", diag.flags(), diag.detail(), 0);
+  if (diag.flags()) raise_diagnostics(*this, diag.flags(), diag.detail(), 0);
 }
 
 }  // namespace masav::cpu

@@ -33,7 +33,8 @@ MASAV_LAYOUT(GatherLayout) {
 };
 
 // What a kernel reports through the backend's diagnostics word (kernel_body.h, kernel_base.glsl):
-// the flag, and the smallest index that raised it.
+// the flag, and the smallest index that raised it. Each flag belongs to one kernel, so the
+// message (raise_diagnostics, engine/kernels/kernel_checks.cpp) names it whichever backend ran.
 MASAV_CONSTANT(kDiagGatherIndexOutOfRange, 1)  // gather: order[i] past the source
 MASAV_CONSTANT(kDiagNeighborOverflow, 2)       // grid_count_neighbors: over max_candidates
 

@@ -125,15 +125,14 @@ void check_candidates(const DeviceApi& dev, uint32_t max_candidates, std::string
                               most, dev.caps().max_loop_iterations, dev.caps().device_name));
 }
 
-void raise_diagnostics(const DeviceApi& dev, std::string_view kernel, uint32_t flags,
-                       uint32_t detail, uint32_t limit) {
+void raise_diagnostics(const DeviceApi& dev, uint32_t flags, uint32_t detail, uint32_t limit) {
   if (flags & kDiagGatherIndexOutOfRange)
-    throw Error(dev.name(), std::string(kernel),
+    throw Error(dev.name(), "gather",
                 fmt::format("order[{}] points past the source buffer", detail),
                 "pass indices below the source buffer's size");
   if (flags & kDiagNeighborOverflow)
     throw Error(
-        dev.name(), std::string(kernel),
+        dev.name(), "grid_count_neighbors",
         fmt::format("sorted point {} has more than {} candidates in its 27 cells", detail, limit),
         fmt::format("use smaller cells (or fewer points per cell): a shader invocation runs at "
                     "most {} loop iterations on {}",

@@ -16,9 +16,9 @@ uint32_t max_walk_candidates(const DeviceApi& dev);
 // throw_invalid for a candidate cap outside [1, max_walk_candidates(dev)].
 void check_candidates(const DeviceApi& dev, uint32_t max_candidates, std::string_view kernel);
 
-// Throws the kernel's error for a non-zero flags word (kDiag* in engine/kernels/grid_params.h);
-// `detail` is the first offending index.
-void raise_diagnostics(const DeviceApi& dev, std::string_view kernel, uint32_t flags,
-                       uint32_t detail, uint32_t limit);
+// Throws the error of the kernel that raised a flag of a non-zero flags word (each kDiag* flag
+// belongs to one kernel: engine/kernels/grid_params.h); `detail` is the first offending index,
+// `limit` what diag_limit() of its parameters gave.
+void raise_diagnostics(const DeviceApi& dev, uint32_t flags, uint32_t detail, uint32_t limit);
 
 }  // namespace masav
