@@ -1,5 +1,6 @@
 // Hash grid: cells, sorted (cell, index), cell ranges and reorder equal the CPU reference bit for
-// bit and a brute-force grouping; the 27-cell neighbour count equals an O(n^2) search.
+// bit and a brute-force grouping; the 27-cell neighbour count equals an O(n^2) search; the cell
+// counts of a counting sort equal a host count and the grid's cell ranges.
 #include <doctest/doctest.h>
 
 #include <cstring>
@@ -11,6 +12,7 @@
 #include "engine/grid/hash_grid.h"
 #include "engine/kernels/grid_cell.h"
 #include "tests/backend_fixture.h"
+#include "tests/loop_limit.h"
 
 using namespace masav;
 
@@ -219,4 +221,83 @@ TEST_CASE("grid parameters out of range are rejected, naming the field") {
   CHECK_THROWS_WITH_AS(
       b.grid_count_neighbors(make_neighbor_params(ok, 1.5f), pos, start, end, cells),
       doctest::Contains("radius"), Error);
+}
+
+// Counts of `n` cell ids counted onto `start` on backend b.
+std::vector<uint32_t> count_cells_on(Backend& b, const std::vector<uint32_t>& ids,
+                                     const std::vector<uint32_t>& start, uint32_t n) {
+  auto cells = b.create<uint32_t>(ids.size(), "cells");
+  auto counts = b.create<uint32_t>(start.size(), "counts");
+  b.upload(cells, ids);
+  b.upload(counts, start);
+  b.grid_count_cells({n, uint32_t(start.size())}, cells, counts);
+  return b.download(counts);
+}
+
+TEST_CASE("grid_count_cells adds each cell's count, equal to a host count and the CPU reference") {
+  std::mt19937 rng(41);
+  for (const uint32_t n : {0u, 1u, 1000u, 300007u})
+    for (const uint32_t cell_count : {1u, 7u, 4096u, 1u << 20}) {
+      CAPTURE(n);
+      CAPTURE(cell_count);
+      // A third of the ids in one hot cell (contended atomics), the rest spread; the table
+      // starts non-zero, since the kernel adds; a few ids past n must not count.
+      std::vector<uint32_t> ids(n + 5), start(cell_count), want(cell_count);
+      for (auto& id : ids) id = rng() % 3 == 0 ? cell_count / 2 : rng() % cell_count;
+      for (uint32_t c = 0; c < cell_count; ++c) start[c] = want[c] = c % 5;
+      for (uint32_t i = 0; i < n; ++i) ++want[ids[i]];
+      const auto got = count_cells_on(test::backend(), ids, start, n);
+      CHECK(got == want);
+      CHECK(got == count_cells_on(test::reference(), ids, start, n));
+    }
+}
+
+TEST_CASE("grid_count_cells of a hash grid's cells equals its cell ranges") {
+  Backend& b = test::backend();
+  const Scene s = make_scene(50000, {40, 24, 32}, 0.05f, 9);
+  HashGrid g;
+  const GridResult r = build_on(b, s, &g);
+  const uint32_t cells = uint32_t(grid_cell_count(s.params));
+  auto counts = b.create<uint32_t>(cells, "counts");
+  b.fill(counts, 0u);
+  b.grid_count_cells({uint32_t(s.points.size()), cells}, g.sorted_cells, counts);
+  const auto got = b.download(counts);
+  uint32_t mismatches = 0;
+  for (uint32_t c = 0; c < cells; ++c) mismatches += got[c] != r.end[c] - r.start[c];
+  CHECK(mismatches == 0);
+}
+
+TEST_CASE("grid_count_cells rejects cells past the table and sizes past its buffers") {
+  Backend& b = test::backend();
+  auto cells = b.create<uint32_t>(4, "cells");
+  auto counts = b.create<uint32_t>(8, "counts");
+  b.upload(cells, std::vector<uint32_t>{0, 7, 8, 3});
+  b.fill(counts, 0u);
+  CHECK_THROWS_WITH_AS(
+      {
+        b.grid_count_cells({4, 8}, cells, counts);
+        b.finish();
+      },
+      doctest::Contains("cells[2] is not below cell_count 8"), Error);
+  CHECK_THROWS_WITH_AS(b.grid_count_cells({4, 9}, cells, counts), doctest::Contains("cell_count"),
+                       Error);
+  CHECK_THROWS_WITH_AS(b.grid_count_cells({4, 0}, cells, counts), doctest::Contains("cell_count"),
+                       Error);
+  CHECK_THROWS_WITH_AS(b.grid_count_cells({5, 8}, cells, counts), doctest::Contains("n"), Error);
+  // The cells before the bad one may have counted; the first two alone count exactly.
+  b.fill(counts, 0u);
+  b.grid_count_cells({2, 8}, cells, counts);
+  CHECK(b.download(counts) == std::vector<uint32_t>{1, 0, 0, 0, 0, 0, 0, 1});
+}
+
+LOOP_LIMIT_CASE("grid_count_cells does not loop", KernelId::grid_count_cells) {
+  Backend& b = test::loop_counter();
+  const uint32_t n = 1 << 16;
+  auto cells = b.create<uint32_t>(n, "cells");
+  auto counts = b.create<uint32_t>(1, "counts");
+  b.fill(cells, 0u);
+  b.fill(counts, 0u);
+  b.grid_count_cells({n, 1}, cells, counts);  // every invocation on one cell
+  CHECK(test::ticks_of(b) == 0);
+  CHECK(b.download(counts)[0] == n);
 }

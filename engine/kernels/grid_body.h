@@ -1,7 +1,7 @@
 #pragma once
-// grid_assign_cells and grid_count_neighbors: one point per invocation, on the fp32 cell rule and
-// the 27-cell walk of engine/kernels/grid_cell.h. shaders/grid_assign_cells.comp and
-// grid_count_neighbors.comp are the GLSL twins.
+// grid_assign_cells, grid_count_neighbors and grid_count_cells: one point per invocation, on the
+// fp32 cell rule and the 27-cell walk of engine/kernels/grid_cell.h. shaders/<kernel>.comp are
+// the GLSL twins.
 #include "engine/kernels/grid_cell.h"
 #include "engine/kernels/grid_params.h"
 #include "engine/kernels/kernel_body.h"
@@ -48,6 +48,22 @@ struct KernelBody<KernelId::grid_count_neighbors> {
     counts[i] = grid::count_neighbors(pos_at(i), pos_at, origin, p.grid.inv_cell, dims, cell_start,
                                       cell_end, p.radius2, p.max_candidates, over);
     if (over) diag.report(kDiagNeighborOverflow, i);
+  }
+};
+
+template <>
+struct KernelBody<KernelId::grid_count_cells> {
+  static constexpr uint32_t kCpuGrain = 16384;
+  // counts[cells[i]] += 1; integer atomics, so the counts are the same in any order.
+  template <class F, class Diag>
+  MASAV_HD static void run(uint32_t i, const CellCountParams& p, Diag& diag, const uint32_t* cells,
+                           uint32_t* counts) {
+    const uint32_t c = cells[i];
+    if (c >= p.cell_count) {
+      diag.report(kDiagCellOutOfRange, i);
+      return;
+    }
+    hd::atomic_add(&counts[c], 1u);
   }
 };
 

@@ -1,5 +1,6 @@
 // Parameters of the hash-grid kernels (thesis §4.2.2): grid_assign_cells, grid_cell_ranges,
-// gather, grid_count_neighbors. Shared by C++, CUDA and GLSL (engine/core/layout.h).
+// gather, grid_count_neighbors, grid_count_cells. Shared by C++, CUDA and GLSL
+// (engine/core/layout.h).
 #ifndef MASAV_KERNELS_GRID_PARAMS_H
 #define MASAV_KERNELS_GRID_PARAMS_H
 #include "engine/core/layout.h"
@@ -32,16 +33,28 @@ MASAV_LAYOUT(GatherLayout) {
   uint src_count;
 };
 
+// The first pass of a counting sort by cell: counts[c] += the number of i < n with cells[i] == c,
+// for c < cell_count. It adds, so one table can count several particle sets; fill it with 0
+// first for one set's counts. A cell id of cell_count or more is reported.
+MASAV_LAYOUT(CellCountParams) {
+  uint n;
+  uint cell_count;
+};
+
 // What a kernel reports through the backend's diagnostics word (kernel_body.h, kernel_base.glsl):
 // the flag, and the smallest index that raised it. Each flag belongs to one kernel, so the
 // message (raise_diagnostics, engine/kernels/kernel_checks.cpp) names it whichever backend ran.
 MASAV_CONSTANT(kDiagGatherIndexOutOfRange, 1)  // gather: order[i] past the source
 MASAV_CONSTANT(kDiagNeighborOverflow, 2)       // grid_count_neighbors: over max_candidates
+MASAV_CONSTANT(kDiagCellOutOfRange, 4)         // grid_count_cells: cells[i] >= cell_count
 
 MASAV_NAMESPACE_END
 
 #ifdef __cplusplus
+#include <string>
+
 #include "engine/core/buffer.h"
+#include "engine/core/error.h"
 
 namespace masav {
 
@@ -49,6 +62,7 @@ MASAV_LAYOUT_CHECK(GridParams, 48, (origin, 0), (cell_size, 12), (dims, 16), (n,
                    (inv_cell, 32))
 MASAV_LAYOUT_CHECK(NeighborParams, 64, (grid, 0), (radius, 48), (radius2, 52), (max_candidates, 56))
 MASAV_LAYOUT_CHECK(GatherLayout, 16, (n, 0), (src_count, 4))
+MASAV_LAYOUT_CHECK(CellCountParams, 16, (n, 0), (cell_count, 4))
 
 GridParams make_grid_params(Vec3f origin, float cell_size, UVec3 dims, uint32_t n);
 uint64_t grid_cell_count(const GridParams& g);
@@ -71,6 +85,20 @@ GatherLayout device_params(const GatherParams& p, const Buffer<uint32_t>&, const
 }
 
 class DeviceApi;
+inline void validate(const DeviceApi&, const CellCountParams& p, const Buffer<uint32_t>& cells,
+                     const Buffer<uint32_t>& counts) {
+  if (p.n > cells.size())
+    throw_invalid("grid_count_cells", "n", std::to_string(p.n),
+                  "at most the cell buffer's size " + std::to_string(cells.size()));
+  if (p.cell_count < 1 || p.cell_count > counts.size())
+    throw_invalid("grid_count_cells", "cell_count", std::to_string(p.cell_count),
+                  "in [1, the count buffer's size " + std::to_string(counts.size()) + "]");
+}
+// What a cell out of range names.
+inline uint32_t diag_limit(const CellCountParams& p) {
+  return p.cell_count;
+}
+
 // Checked before any backend runs the kernel (engine/kernels/kernel_checks.cpp); each throws
 // masav::Error naming the kernel, the field, its value and the allowed range.
 void validate(const DeviceApi& dev, const GridParams& g, const Buffer<Real4>& positions,

@@ -137,6 +137,10 @@ void raise_diagnostics(const DeviceApi& dev, uint32_t flags, uint32_t detail, ui
         fmt::format("use smaller cells (or fewer points per cell): a shader invocation runs at "
                     "most {} loop iterations on {}",
                     dev.caps().max_loop_iterations, dev.caps().device_name));
+  if (flags & kDiagCellOutOfRange)
+    throw Error(dev.name(), "grid_count_cells",
+                fmt::format("cells[{}] is not below cell_count {}", detail, limit),
+                "pass cell ids below cell_count (grid_assign_cells makes them so)");
 }
 
 }  // namespace masav

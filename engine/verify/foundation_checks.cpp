@@ -1,4 +1,5 @@
-// Cross-checks of the foundation's kernels: Philox, the radix sort and the hash-grid kernels,
+// Cross-checks of the foundation's kernels: Philox, the radix sort and the hash-grid kernels
+// (cell counts included),
 // all integer results, so bit for bit. Inputs come from the scene (its point count, seed and
 // grid), generated on the host and uploaded identically to both backends.
 #include "engine/verify/foundation_checks.h"
@@ -95,6 +96,21 @@ std::vector<KernelCheck> foundation_checks() {
     const float r = in.neighbor_radius > 0 ? in.neighbor_radius : g.params.cell_size;
     b.grid_count_neighbors(make_neighbor_params(g.params, r), sorted, g.cell_start, g.cell_end,
                            counts);
+    return CheckOutputs{{"counts", b.download(counts), {}}};
+  }));
+  // grid_count_cells: ids drawn on the host, a third in one cell so the atomics contend, counted
+  // onto a table that already holds counts (the kernel adds).
+  c.push_back(exact_check(KernelId::grid_count_cells, [](Backend& b, const CheckInputs& in) {
+    const uint32_t cell_count = uint32_t(grid_cell_count(grid_or_default(in)));
+    std::mt19937 rng(uint32_t(in.seed));
+    std::vector<uint32_t> ids(in.points), start(cell_count);
+    for (auto& id : ids) id = rng() % 3 == 0 ? cell_count / 2 : rng() % cell_count;
+    std::iota(start.begin(), start.end(), 0u);
+    auto cells = b.create<uint32_t>(ids.size(), "check cells");
+    auto counts = b.create<uint32_t>(cell_count, "check counts");
+    b.upload(cells, ids);
+    b.upload(counts, start);
+    b.grid_count_cells({in.points, cell_count}, cells, counts);
     return CheckOutputs{{"counts", b.download(counts), {}}};
   }));
   return c;
