@@ -13,25 +13,17 @@ constexpr uint32_t kBuffersPerSet = 16;
 }  // namespace
 
 Stream::Stream(const Context& ctx, uint32_t max_timestamps)
-    : ctx_(ctx), max_timestamps_(max_timestamps) {
-  pool_ = ::vk::raii::CommandPool(
-      ctx_.device(), ::vk::CommandPoolCreateInfo(::vk::CommandPoolCreateFlagBits::eResetCommandBuffer,
-                                                 ctx_.queue_family()));
-  ::vk::raii::CommandBuffers bufs(ctx_.device(), ::vk::CommandBufferAllocateInfo(
-                                                     *pool_, ::vk::CommandBufferLevel::ePrimary, 1));
-  cmd_ = std::move(bufs.front());
-  fence_ = ::vk::raii::Fence(ctx_.device(), ::vk::FenceCreateInfo());
+    : ctx_(ctx), cmds_(ctx), max_timestamps_(max_timestamps) {
   queries_ = ::vk::raii::QueryPool(
       ctx_.device(), ::vk::QueryPoolCreateInfo({}, ::vk::QueryType::eTimestamp, max_timestamps_));
 }
 
 void Stream::begin() {
-  if (recording_) return;
-  cmd_.begin(::vk::CommandBufferBeginInfo(::vk::CommandBufferUsageFlagBits::eOneTimeSubmit));
-  recording_ = true;
+  if (cmds_.recording()) return;
+  cmds_.begin();
   commands_recorded_ = false;
   if (queries_need_reset_) {
-    cmd_.resetQueryPool(*queries_, 0, max_timestamps_);
+    cmds_.cmd().resetQueryPool(*queries_, 0, max_timestamps_);
     queries_need_reset_ = false;
   }
 }
@@ -46,8 +38,8 @@ void Stream::barrier() {
   using A = ::vk::AccessFlagBits;
   ::vk::MemoryBarrier mb(A::eShaderWrite | A::eTransferWrite,
                          A::eShaderRead | A::eShaderWrite | A::eTransferRead | A::eTransferWrite);
-  cmd_.pipelineBarrier(S::eComputeShader | S::eTransfer, S::eComputeShader | S::eTransfer, {}, mb,
-                       {}, {});
+  cmds_.cmd().pipelineBarrier(S::eComputeShader | S::eTransfer, S::eComputeShader | S::eTransfer,
+                              {}, mb, {}, {});
 }
 
 ::vk::DescriptorSet Stream::allocate_set(const Kernel& k) {
@@ -69,8 +61,9 @@ void Stream::dispatch(const Kernel& k, const std::shared_ptr<Allocation>& diag,
                       std::span<const std::shared_ptr<Allocation>> buffers, const void* push,
                       uint64_t groups) {
   if (buffers.size() != k.buffers)
-    throw Error("vulkan", k.name, fmt::format("{} buffers bound, kernel takes {}", buffers.size(),
-                                              k.buffers), "internal error: report it");
+    throw Error("vulkan", k.name,
+                fmt::format("{} buffers bound, kernel takes {}", buffers.size(), k.buffers),
+                "internal error: report it");
   if (k.buffers + 1 > kBuffersPerSet)
     throw Error("vulkan", k.name, "too many buffers for one descriptor set", "internal error");
   if (groups == 0) return;
@@ -94,13 +87,13 @@ void Stream::dispatch(const Kernel& k, const std::shared_ptr<Allocation>& diag,
   for (uint32_t i = 0; i < infos.size(); ++i)
     writes.emplace_back(set, i, 0, 1, ::vk::DescriptorType::eStorageBuffer, nullptr, &infos[i]);
   ctx_.device().updateDescriptorSets(writes, {});
-  cmd_.bindPipeline(::vk::PipelineBindPoint::eCompute, *k.pipeline);
-  cmd_.bindDescriptorSets(::vk::PipelineBindPoint::eCompute, *k.layout, 0, set, {});
+  cmds_.cmd().bindPipeline(::vk::PipelineBindPoint::eCompute, *k.pipeline);
+  cmds_.cmd().bindDescriptorSets(::vk::PipelineBindPoint::eCompute, *k.layout, 0, set, {});
   if (k.push_bytes)
-    cmd_.pushConstants<uint8_t>(*k.layout, ::vk::ShaderStageFlagBits::eCompute, 0,
-                                ::vk::ArrayProxy<const uint8_t>(k.push_bytes,
-                                                                static_cast<const uint8_t*>(push)));
-  cmd_.dispatch(gx, uint32_t(gy), 1);
+    cmds_.cmd().pushConstants<uint8_t>(
+        *k.layout, ::vk::ShaderStageFlagBits::eCompute, 0,
+        ::vk::ArrayProxy<const uint8_t>(k.push_bytes, static_cast<const uint8_t*>(push)));
+  cmds_.cmd().dispatch(gx, uint32_t(gy), 1);
 }
 
 void Stream::copy(const std::shared_ptr<Allocation>& src, ::vk::DeviceSize src_offset,
@@ -108,14 +101,15 @@ void Stream::copy(const std::shared_ptr<Allocation>& src, ::vk::DeviceSize src_o
                   ::vk::DeviceSize bytes) {
   if (bytes == 0) return;
   barrier();
-  cmd_.copyBuffer(*src->buffer, *dst->buffer, ::vk::BufferCopy(src_offset, dst_offset, bytes));
+  cmds_.cmd().copyBuffer(*src->buffer, *dst->buffer,
+                         ::vk::BufferCopy(src_offset, dst_offset, bytes));
   keep(src);
   keep(dst);
 }
 
 void Stream::fill(const std::shared_ptr<Allocation>& dst, uint32_t value) {
   barrier();
-  cmd_.fillBuffer(*dst->buffer, 0, VK_WHOLE_SIZE, value);
+  cmds_.cmd().fillBuffer(*dst->buffer, 0, VK_WHOLE_SIZE, value);
   keep(dst);
 }
 
@@ -124,7 +118,8 @@ uint32_t Stream::timestamp() {
     throw Error("vulkan", "timestamp", fmt::format("more than {} timestamps", max_timestamps_),
                 "call reset_timestamps() between measurements");
   barrier();
-  cmd_.writeTimestamp(::vk::PipelineStageFlagBits::eBottomOfPipe, *queries_, timestamps_used_);
+  cmds_.cmd().writeTimestamp(::vk::PipelineStageFlagBits::eBottomOfPipe, *queries_,
+                             timestamps_used_);
   return timestamps_used_++;
 }
 
@@ -134,27 +129,16 @@ void Stream::reset_timestamps() {
 }
 
 void Stream::submit_and_wait() {
-  if (!recording_) return;
+  if (!cmds_.recording()) return;
   // Make device writes visible to the host's mapped reads after the fence.
-  ::vk::MemoryBarrier to_host(::vk::AccessFlagBits::eShaderWrite | ::vk::AccessFlagBits::eTransferWrite,
-                              ::vk::AccessFlagBits::eHostRead);
-  cmd_.pipelineBarrier(::vk::PipelineStageFlagBits::eComputeShader |
-                           ::vk::PipelineStageFlagBits::eTransfer,
-                       ::vk::PipelineStageFlagBits::eHost, {}, to_host, {}, {});
-  cmd_.end();
-  recording_ = false;
-  ::vk::CommandBuffer raw = *cmd_;
-  ::vk::SubmitInfo submit({}, {}, raw);
-  try {
-    ctx_.queue().submit(submit, *fence_);
-    while (ctx_.device().waitForFences(*fence_, VK_TRUE, UINT64_MAX) == ::vk::Result::eTimeout) {
-    }
-  } catch (const ::vk::DeviceLostError&) {
-    throw Error("vulkan", "submit", fmt::format("device lost on {}", ctx_.caps().device_name),
-                "the GPU reset or a kernel faulted; restart masav, and report the scene");
-  }
-  ctx_.device().resetFences(*fence_);
-  cmd_.reset();
+  ::vk::MemoryBarrier to_host(
+      ::vk::AccessFlagBits::eShaderWrite | ::vk::AccessFlagBits::eTransferWrite,
+      ::vk::AccessFlagBits::eHostRead);
+  cmds_.cmd().pipelineBarrier(
+      ::vk::PipelineStageFlagBits::eComputeShader | ::vk::PipelineStageFlagBits::eTransfer,
+      ::vk::PipelineStageFlagBits::eHost, {}, to_host, {}, {});
+  cmds_.submit_and_wait("vulkan",
+                        "the GPU reset or a kernel faulted; restart masav, and report the scene");
   for (auto& p : descriptor_pools_) p.reset();
   if (descriptor_pools_.size() > 1)
     descriptor_pools_.erase(descriptor_pools_.begin() + 1, descriptor_pools_.end());

@@ -6,6 +6,7 @@
 #include <span>
 #include <vector>
 
+#include "compute/device/vk_commands.h"
 #include "compute/device/vk_memory.h"
 #include "compute/vk_pipelines.h"
 
@@ -27,7 +28,7 @@ class Stream {
   uint32_t timestamp();
   void reset_timestamps();
 
-  bool has_work() const { return recording_; }
+  bool has_work() const { return cmds_.recording(); }
   void submit_and_wait();
   // Device time of timestamp `id` in nanoseconds (after submit_and_wait).
   double timestamp_ns(uint32_t id);
@@ -39,16 +40,13 @@ class Stream {
   ::vk::DescriptorSet allocate_set(const Kernel& k);
 
   const Context& ctx_;
-  ::vk::raii::CommandPool pool_ = nullptr;
-  ::vk::raii::CommandBuffer cmd_ = nullptr;
-  ::vk::raii::Fence fence_ = nullptr;
+  Commands cmds_;
   ::vk::raii::QueryPool queries_ = nullptr;
   std::vector<::vk::raii::DescriptorPool> descriptor_pools_;
   uint32_t sets_in_last_pool_ = 0;
   uint32_t max_timestamps_;
   uint32_t timestamps_used_ = 0;
   bool queries_need_reset_ = true;
-  bool recording_ = false;
   bool commands_recorded_ = false;
   std::vector<std::shared_ptr<Allocation>> alive_;
 };

@@ -35,13 +35,7 @@ RenderDevice::RenderDevice(Backend& compute, const vk::ContextOptions& options)
     }
     ctx_ = owned_.get();
   }
-  pool_ = ::vk::raii::CommandPool(
-      device(), ::vk::CommandPoolCreateInfo(::vk::CommandPoolCreateFlagBits::eResetCommandBuffer,
-                                            ctx_->queue_family()));
-  ::vk::raii::CommandBuffers bufs(
-      device(), ::vk::CommandBufferAllocateInfo(*pool_, ::vk::CommandBufferLevel::ePrimary, 1));
-  cmd_ = std::move(bufs.front());
-  fence_ = ::vk::raii::Fence(device(), ::vk::FenceCreateInfo());
+  cmds_ = std::make_unique<vk::Commands>(*ctx_);
 }
 
 RenderDevice::~RenderDevice() {
@@ -52,33 +46,14 @@ RenderDevice::~RenderDevice() {
 }
 
 const ::vk::raii::CommandBuffer& RenderDevice::begin() {
-  if (!recording_) {
-    cmd_.reset();
-    cmd_.begin(::vk::CommandBufferBeginInfo(::vk::CommandBufferUsageFlagBits::eOneTimeSubmit));
-    recording_ = true;
-  }
-  return cmd_;
+  return cmds_->begin();
 }
 
 void RenderDevice::submit(::vk::Semaphore wait, ::vk::PipelineStageFlags wait_stage,
                           ::vk::Semaphore signal) {
-  if (!recording_) return;
-  cmd_.end();
-  recording_ = false;
-  ::vk::CommandBuffer raw = *cmd_;
-  ::vk::SubmitInfo info;
-  info.setCommandBuffers(raw);
-  if (wait) info.setWaitSemaphores(wait).setWaitDstStageMask(wait_stage);
-  if (signal) info.setSignalSemaphores(signal);
-  try {
-    ctx_->queue().submit(info, *fence_);
-    while (device().waitForFences(*fence_, VK_TRUE, UINT64_MAX) == ::vk::Result::eTimeout) {
-    }
-  } catch (const ::vk::DeviceLostError&) {
-    throw Error("render", "submit", fmt::format("device lost on {}", ctx_->caps().device_name),
-                "the GPU reset or a draw faulted; restart masav, and report the scene");
-  }
-  device().resetFences(*fence_);
+  cmds_->submit_and_wait("render",
+                         "the GPU reset or a draw faulted; restart masav, and report the scene",
+                         wait, wait_stage, signal);
 }
 
 ImageMemory make_image(const vk::Context& ctx, const ::vk::ImageCreateInfo& info,

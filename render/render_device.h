@@ -7,6 +7,7 @@
 #include <memory>
 #include <string>
 
+#include "compute/device/vk_commands.h"
 #include "compute/device/vk_context.h"
 #include "engine/kernels/backend.h"
 
@@ -45,10 +46,7 @@ class RenderDevice {
   const VulkanInterop* shared_ = nullptr;
   std::unique_ptr<vk::Context> owned_;
   const vk::Context* ctx_ = nullptr;
-  ::vk::raii::CommandPool pool_ = nullptr;
-  ::vk::raii::CommandBuffer cmd_ = nullptr;
-  ::vk::raii::Fence fence_ = nullptr;
-  bool recording_ = false;
+  std::unique_ptr<vk::Commands> cmds_;
 };
 
 // Device memory for an image (the render targets), device-local.
