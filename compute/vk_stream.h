@@ -28,7 +28,6 @@ class Stream {
   uint32_t timestamp();
   void reset_timestamps();
 
-  bool has_work() const { return cmds_.recording(); }
   void submit_and_wait();
   // Device time of timestamp `id` in nanoseconds (after submit_and_wait).
   double timestamp_ns(uint32_t id);

@@ -1,7 +1,7 @@
 #version 450
 #extension GL_GOOGLE_include_directive : require
 // density[c] = (cell_end[c] - cell_start[c]) / (particles * cell^3). Twin of
-// KernelBody<cloud_density> (engine/kernels/nebula_math.h).
+// KernelBody<cloud_density> (engine/kernels/atom_body.h).
 #include "kernel_base.glsl"
 #include "engine/kernels/atom_params.h"
 

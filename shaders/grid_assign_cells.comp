@@ -1,7 +1,7 @@
 #version 450
 #extension GL_GOOGLE_include_directive : require
 // cells[i] = grid cell of positions[i] (thesis Eq. 4.1-4.2, clamped to the box), indices[i] = i.
-// Twin of KernelBody<grid_assign_cells> (engine/kernels/grid_cell.h).
+// Twin of KernelBody<grid_assign_cells> (engine/kernels/grid_body.h).
 #include "kernel_base.glsl"
 #include "grid_cell.glsl"
 #include "engine/kernels/grid_params.h"

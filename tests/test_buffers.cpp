@@ -1,7 +1,6 @@
 // Buffers and ordering on every backend: round trips of each element kind, offsets, copy, fill,
 // empty buffers, Real precision, device timestamps, and sizes over the device's limit.
 #include <doctest/doctest.h>
-
 #include <fmt/format.h>
 
 #include <numeric>
@@ -87,6 +86,29 @@ TEST_CASE("device timestamps are ordered") {
   b.finish();
   CHECK(b.timestamp_ns(t1) >= b.timestamp_ns(t0));
   CHECK_THROWS_AS(b.timestamp_ns(t1 + 1), Error);
+}
+
+TEST_CASE("kernel timing records each call that ran, by kernel, in call order") {
+  Backend& b = test::backend();
+  auto x = b.create<uint32_t>(1 << 16, "x");
+  auto empty = b.create<uint32_t>(0, "empty");
+  b.finish();
+  b.reset_timestamps();
+  b.philox_u32({1, 1, 0}, x);  // before timing is on: not recorded
+  b.set_kernel_timing(true);
+  b.philox_u32({1, 2, 0}, x);
+  b.philox_u32({1, 3, 0}, empty);  // empty work runs nothing: not recorded
+  b.radix_sort({1 << 16, 32}, x, nullptr);
+  b.set_kernel_timing(false);
+  b.philox_u32({1, 4, 0}, x);
+  b.finish();
+  const std::vector<KernelTiming> t = b.take_kernel_timings();
+  REQUIRE(t.size() == 2);
+  CHECK(t[0].kernel == KernelId::philox_u32);
+  CHECK(t[1].kernel == KernelId::radix_sort);
+  for (const KernelTiming& k : t) CHECK(b.timestamp_ns(k.end) >= b.timestamp_ns(k.begin));
+  CHECK(b.timestamp_ns(t[1].begin) >= b.timestamp_ns(t[0].end));
+  CHECK(b.take_kernel_timings().empty());  // taken once
 }
 
 TEST_CASE("a buffer over the device's limit is refused with the largest size that fits") {

@@ -13,8 +13,12 @@ namespace {
 
 constexpr double kPi = 3.14159265358979323846;
 
-double dsqrt(double x) { return std::sqrt(x); }
-double dexp(double x) { return std::exp(x); }
+double dsqrt(double x) {
+  return std::sqrt(x);
+}
+double dexp(double x) {
+  return std::exp(x);
+}
 
 // Thesis Table 2.1.
 constexpr OrbitalState kPresets[10] = {{1, 0, 0}, {2, 0, 0}, {2, 1, 0}, {2, 1, 1}, {3, 0, 0},
@@ -46,7 +50,8 @@ OrbitalState preset_state(std::string_view name) {
   const auto& names = preset_names();
   for (size_t i = 0; i < names.size(); ++i)
     if (names[i] == name) return kPresets[i];
-  throw_invalid("orbital", "state", std::string(name), "one of state1 .. state10 (thesis Table 2.1)");
+  throw_invalid("orbital", "state", std::string(name),
+                "one of state1 .. state10 (thesis Table 2.1)");
 }
 
 std::string describe(const OrbitalState& s) {
@@ -76,12 +81,6 @@ double density(const OrbitalState& s, double r, double cos_theta, double phi) {
   return R * R * angular_density(s, cos_theta, phi);
 }
 
-double density_xyz(const OrbitalState& s, double x, double y, double z) {
-  const double r = std::sqrt(x * x + y * y + z * z);
-  const double ct = r > 0 ? z / r : 1.0;
-  return density(s, r, ct, std::atan2(y, x));
-}
-
 double peak_density(const OrbitalState& s) {
   // Separable: the maximum is max_r R^2 times max over angles of |Y|^2.
   double rmax = 0, amax = 0;
@@ -98,9 +97,15 @@ double peak_density(const OrbitalState& s) {
   return rmax * amax;
 }
 
-double expect_r(int n, int l) { return 0.5 * (3.0 * n * n - l * (l + 1.0)); }
-double expect_r2(int n, int l) { return 0.5 * n * n * (5.0 * n * n + 1.0 - 3.0 * l * (l + 1.0)); }
-double expect_inv_r(int n) { return 1.0 / (double(n) * n); }
+double expect_r(int n, int l) {
+  return 0.5 * (3.0 * n * n - l * (l + 1.0));
+}
+double expect_r2(int n, int l) {
+  return 0.5 * n * n * (5.0 * n * n + 1.0 - 3.0 * l * (l + 1.0));
+}
+double expect_inv_r(int n) {
+  return 1.0 / (double(n) * n);
+}
 double expect_cos2(int l, int m) {
   return (2.0 * l * l + 2.0 * l - 1.0 - 2.0 * m * m) / ((2.0 * l - 1.0) * (2.0 * l + 3.0));
 }
@@ -120,8 +125,10 @@ std::vector<double> radial_nodes(int n, int l) {
       double lo = a, hi = b, flo = fa;
       for (int it = 0; it < 200 && hi - lo > 1e-13 * std::max(1.0, hi); ++it) {
         const double mid = 0.5 * (lo + hi), fm = f(mid);
-        if ((fm < 0) == (flo < 0)) lo = mid, flo = fm;
-        else hi = mid;
+        if ((fm < 0) == (flo < 0))
+          lo = mid, flo = fm;
+        else
+          hi = mid;
       }
       roots.push_back(0.5 * (lo + hi));
     }

@@ -14,7 +14,8 @@ struct OrbitalState {
   int n = 1;
   int l = 0;
   int m = 0;
-  bool real = false;  // real orbitals: cos(m phi) (m > 0) or sin(|m| phi) (m < 0) instead of e^{imphi}
+  bool real =
+      false;  // real orbitals: cos(m phi) (m > 0) or sin(|m| phi) (m < 0) instead of e^{imphi}
 };
 
 // Throws masav::Error naming the field (n, l or m), its value and the allowed range.
@@ -30,7 +31,6 @@ double radial_R(int n, int l, double r_a0);
 double angular_density(const OrbitalState& s, double cos_theta, double phi);
 // |psi|^2 in a0^-3 at spherical coordinates.
 double density(const OrbitalState& s, double r_a0, double cos_theta, double phi);
-double density_xyz(const OrbitalState& s, double x, double y, double z);
 // Largest |psi|^2 over space (a fine search; used to scale optical depths between states).
 double peak_density(const OrbitalState& s);
 

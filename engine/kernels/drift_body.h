@@ -1,5 +1,5 @@
 #pragma once
-// The periodic drift of `drift_points` (engine/points/drift_params.h), shared by the CPU
+// The periodic drift of `drift_points` (engine/kernels/drift_params.h), shared by the CPU
 // reference (in double) and CUDA (in float, one rounding per operation as GLSL `precise` does).
 // shaders/common/drift.glsl is the GLSL twin.
 #include <cmath>

@@ -1,4 +1,4 @@
-// GLSL twin of engine/kernels/drift.h: the periodic drift of drift_points, in fp32 with one
+// GLSL twin of engine/kernels/drift_body.h: the periodic drift of drift_points, in fp32 with one
 // rounding per operation (`precise`).
 
 float drift_axis_fraction(float u, float w, float speed_t) {
