@@ -5,6 +5,7 @@
 
 #include <chrono>
 #include <cmath>
+#include <ctime>  // clock_gettime (POSIX): the calling thread's CPU time
 #include <sstream>
 
 #include "app/bench_common.h"
@@ -38,30 +39,56 @@ std::vector<std::string> split(const std::string& s) {
   return out;
 }
 
+// What one step asks of the device, averaged over an unprofiled run (profiling adds a wait).
+struct StepCounts {
+  double launches = 0, barriers = 0, host_syncs = 0, fills = 0, device_copies = 0;
+  double bytes_to_device = 0, bytes_to_host = 0;
+  double host_ms = 0;  // CPU time of the calling thread: recording, submitting, reading stats
+};
+
 struct Throughput {
   double step_ms = 0, wall_ms = 0;  // device time per step (sum of stages), wall time per step
   std::array<double, size_t(SphStage::count)> stage_ms{};
+  StepCounts per_step;
   int steps = 0;
   uint32_t particles = 0;
   double dt = 0;
 };
 
+double thread_cpu_ms() {
+  timespec ts{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
+  return double(ts.tv_sec) * 1e3 + double(ts.tv_nsec) * 1e-6;
+}
+
 Throughput measure(Backend& b, const SphScene& scene, int steps) {
   SphSimulation sim(b, scene);
   sim.run(2);  // warm-up: pipelines, caches, the first adaptive steps
-  sim.set_profiling(true);
-  sim.reset_stage_ms();
-  const uint64_t sub0 = sim.substeps();
+  Throughput t;
+  // Wall time, counts and host time without profiling.
+  b.reset_counters();
+  uint64_t sub0 = sim.substeps();
+  const double cpu0 = thread_cpu_ms();
   const auto t0 = std::chrono::steady_clock::now();
   sim.run(uint64_t(steps));
   const double wall =
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-  Throughput t;
+  const double counted = double(sim.substeps() - sub0);
+  const DeviceCounters& c = b.counters();
+  t.per_step = {double(c.launches) / counted,        double(c.barriers) / counted,
+                double(c.host_syncs) / counted,      double(c.fills) / counted,
+                double(c.device_copies) / counted,   double(c.bytes_to_device) / counted,
+                double(c.bytes_to_host) / counted,   (thread_cpu_ms() - cpu0) / counted};
+  t.wall_ms = wall / counted;
+  // Device time per stage, from timestamps, in a second run.
+  sim.set_profiling(true);
+  sim.reset_stage_ms();
+  sub0 = sim.substeps();
+  sim.run(uint64_t(steps));
   t.stage_ms = sim.stage_ms();
   const double taken = double(sim.substeps() - sub0);
   for (double& s : t.stage_ms) s /= taken;
   for (double s : t.stage_ms) t.step_ms += s;
-  t.wall_ms = wall / taken;
   t.steps = int(taken);
   t.particles = sim.particle_count();
   t.dt = sim.last_dt();
@@ -135,8 +162,8 @@ int run_sph_bench(const SphBenchOptions& o, JsonWriter& j) {
   j.end_object();
   j.key("throughput").begin_array();
   fmt::print(
-      "bench sph: preset {}, device time per step by stage (ms), median of the timed "
-      "steps' sums\n",
+      "bench sph: preset {}, device time per step by stage (ms, a profiled run), wall time and "
+      "device work per step (an unprofiled run)\n",
       o.preset);
   fmt::print("  {:<7} {:<10} {:>9} {:>8} {:>8} {:>8} {:>9} {:>9} {:>9} {:>9} {:>12}\n", "backend",
              "integrator", "particles", "grid", "density", "forces", "integrate", "step", "wall",
@@ -156,6 +183,13 @@ int run_sph_bench(const SphBenchOptions& o, JsonWriter& j) {
               "{:>9.2f} {:>12.3f}\n",
               b->name(), to_string(integ), t.particles, t.stage_ms[0], t.stage_ms[1], t.stage_ms[2],
               t.stage_ms[3], t.step_ms, t.wall_ms, sps, sps * t.particles * 1e-6);
+          const StepCounts& c = t.per_step;
+          fmt::print(
+              "  {:<7} {:<10} {:>9} per step: {:.1f} launches, {:.1f} barriers, {:.1f} host "
+              "syncs, {:.1f} fills, {:.1f} device copies, {:.0f} B to device, {:.0f} B to host, "
+              "{:.3f} ms host CPU\n",
+              "", "", "", c.launches, c.barriers, c.host_syncs, c.fills, c.device_copies,
+              c.bytes_to_device, c.bytes_to_host, c.host_ms);
           begin_row(j, *b);
           j.field("integrator", to_string(integ)).field("particles", t.particles);
           j.field("timed_steps", t.steps).field("dt_s", t.dt);
@@ -165,6 +199,12 @@ int run_sph_bench(const SphBenchOptions& o, JsonWriter& j) {
           j.end_object();
           j.field("device_ms_per_step", t.step_ms).field("wall_ms_per_step", t.wall_ms);
           j.field("steps_per_s", sps).field("particle_steps_per_s", sps * t.particles);
+          j.key("per_step").begin_object();
+          j.field("launches", c.launches).field("barriers", c.barriers);
+          j.field("host_syncs", c.host_syncs).field("fills", c.fills);
+          j.field("device_copies", c.device_copies).field("bytes_to_device", c.bytes_to_device);
+          j.field("bytes_to_host", c.bytes_to_host).field("host_cpu_ms", c.host_ms);
+          j.end_object();
           j.end_object();
         };
         // A count over the device's buffers is skipped: the other rows still say something.

@@ -51,7 +51,7 @@ VulkanBackend::VulkanBackend(const BackendOptions& options)
     : options_(options),
       ctx_(options.context),
       pipelines_(ctx_, options.workgroup_size, options.count_loop_ticks),
-      stream_(ctx_, 4096) {
+      stream_(ctx_, 4096, counters_) {
   if (tile_size() >= 65536)
     throw_invalid("vulkan", "workgroup_size * items_per_thread", std::to_string(tile_size()),
                   "below 65536 (the sort packs tile counts in 16 bits)");

@@ -12,8 +12,8 @@ constexpr uint32_t kBuffersPerSet = 16;
 
 }  // namespace
 
-Stream::Stream(const Context& ctx, uint32_t max_timestamps)
-    : ctx_(ctx), cmds_(ctx), max_timestamps_(max_timestamps) {
+Stream::Stream(const Context& ctx, uint32_t max_timestamps, DeviceCounters& counters)
+    : ctx_(ctx), counters_(counters), cmds_(ctx), max_timestamps_(max_timestamps) {
   queries_ = ::vk::raii::QueryPool(
       ctx_.device(), ::vk::QueryPoolCreateInfo({}, ::vk::QueryType::eTimestamp, max_timestamps_));
 }
@@ -40,6 +40,7 @@ void Stream::barrier() {
                          A::eShaderRead | A::eShaderWrite | A::eTransferRead | A::eTransferWrite);
   cmds_.cmd().pipelineBarrier(S::eComputeShader | S::eTransfer, S::eComputeShader | S::eTransfer,
                               {}, mb, {}, {});
+  ++counters_.barriers;
 }
 
 ::vk::DescriptorSet Stream::allocate_set(const Kernel& k) {
@@ -94,6 +95,7 @@ void Stream::dispatch(const Kernel& k, const std::shared_ptr<Allocation>& diag,
         *k.layout, ::vk::ShaderStageFlagBits::eCompute, 0,
         ::vk::ArrayProxy<const uint8_t>(k.push_bytes, static_cast<const uint8_t*>(push)));
   cmds_.cmd().dispatch(gx, uint32_t(gy), 1);
+  ++counters_.launches;
 }
 
 void Stream::copy(const std::shared_ptr<Allocation>& src, ::vk::DeviceSize src_offset,
@@ -111,6 +113,7 @@ void Stream::fill(const std::shared_ptr<Allocation>& dst, uint32_t value) {
   barrier();
   cmds_.cmd().fillBuffer(*dst->buffer, 0, VK_WHOLE_SIZE, value);
   keep(dst);
+  ++counters_.fills;
 }
 
 uint32_t Stream::timestamp() {
@@ -139,6 +142,7 @@ void Stream::submit_and_wait() {
       ::vk::PipelineStageFlagBits::eHost, {}, to_host, {}, {});
   cmds_.submit_and_wait("vulkan",
                         "the GPU reset or a kernel faulted; restart masav, and report the scene");
+  ++counters_.host_syncs;
   for (auto& p : descriptor_pools_) p.reset();
   if (descriptor_pools_.size() > 1)
     descriptor_pools_.erase(descriptor_pools_.begin() + 1, descriptor_pools_.end());

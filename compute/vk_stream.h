@@ -9,12 +9,14 @@
 #include "compute/device/vk_commands.h"
 #include "compute/device/vk_memory.h"
 #include "compute/vk_pipelines.h"
+#include "engine/core/device_api.h"
 
 namespace masav::vk {
 
 class Stream {
  public:
-  Stream(const Context& ctx, uint32_t max_timestamps);
+  // Counts dispatches, barriers, fills and host waits into `counters` (the backend's).
+  Stream(const Context& ctx, uint32_t max_timestamps, DeviceCounters& counters);
 
   // Binds `diag` at binding 0 and `buffers` at 1..n; groups beyond maxComputeWorkGroupCount[0]
   // spill into y (kernels flatten them with flat_group_id()).
@@ -39,6 +41,7 @@ class Stream {
   ::vk::DescriptorSet allocate_set(const Kernel& k);
 
   const Context& ctx_;
+  DeviceCounters& counters_;
   Commands cmds_;
   ::vk::raii::QueryPool queries_ = nullptr;
   std::vector<::vk::raii::DescriptorPool> descriptor_pools_;

@@ -54,11 +54,13 @@ void DeviceApi::check_range(const BufferImpl& b, size_t bytes, size_t offset,
 void DeviceApi::upload_bytes(BufferImpl& dst, const void* src, size_t bytes, size_t offset) {
   check_range(dst, bytes, offset, "upload");
   if (bytes) write_bytes(dst, src, bytes, offset);
+  counters_.bytes_to_device += bytes;
 }
 
 void DeviceApi::download_bytes(const BufferImpl& src, void* dst, size_t bytes, size_t offset) {
   check_range(src, bytes, offset, "download");
   if (bytes) read_bytes(src, dst, bytes, offset);
+  counters_.bytes_to_host += bytes;
 }
 
 void DeviceApi::copy_bytes(const BufferImpl& src, BufferImpl& dst, size_t bytes) {
@@ -70,6 +72,7 @@ void DeviceApi::copy_bytes(const BufferImpl& src, BufferImpl& dst, size_t bytes)
         fmt::format("{} bytes from '{}' to '{}' overrun a buffer", bytes, src.label(), dst.label()),
         "copy within both buffers");
   if (bytes) copy_buffer(src, dst, bytes);
+  counters_.device_copies += bytes ? 1 : 0;
 }
 
 void DeviceApi::upload_reals(BufferImpl& dst, const double* src, size_t scalars) {

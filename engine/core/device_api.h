@@ -13,6 +13,19 @@ namespace masav {
 
 using TimestampId = uint32_t;
 
+// What a backend asked of the device since the last reset_counters(): `masav bench sph` reports
+// them per step, so a pipeline that syncs, copies or launches more than it should shows it.
+// Byte counts are kept here for every backend; the rest by each backend where it does the work.
+struct DeviceCounters {
+  uint64_t launches = 0;         // kernel launches (CUDA) / dispatches (Vulkan) / kernel runs (CPU)
+  uint64_t barriers = 0;         // pipeline barriers recorded (Vulkan)
+  uint64_t host_syncs = 0;       // times the host blocked until the device finished its work
+  uint64_t fills = 0;            // buffer fills / memsets
+  uint64_t device_copies = 0;    // device-to-device copies
+  uint64_t bytes_to_device = 0;  // host -> device (uploads)
+  uint64_t bytes_to_host = 0;    // device -> host (downloads, including asynchronous reads)
+};
+
 class DeviceApi {
  public:
   virtual ~DeviceApi() = default;
@@ -39,6 +52,9 @@ class DeviceApi {
   virtual TimestampId timestamp() = 0;  // records a device timestamp after the work so far
   virtual double timestamp_ns(TimestampId id) = 0;  // valid after finish()
   virtual void reset_timestamps() = 0;
+
+  const DeviceCounters& counters() const { return counters_; }
+  void reset_counters() { counters_ = {}; }
 
   // ---- typed helpers (convert Real/Real4 to the backend's precision)
   void upload(Buffer<uint32_t>& b, std::span<const uint32_t> v);
@@ -77,6 +93,8 @@ class DeviceApi {
   void upload_reals(BufferImpl& dst, const double* src, size_t scalars);
   void upload_reals(BufferImpl& dst, const float* src, size_t scalars);
   std::vector<double> download_reals(const BufferImpl& src, size_t scalars);
+
+  DeviceCounters counters_;
 };
 
 // Checks every backend runs the same way: `b` was created by `dev`; `count` elements of `kind`

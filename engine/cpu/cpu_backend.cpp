@@ -88,6 +88,7 @@ void CpuBackend::copy_buffer(const BufferImpl& src, BufferImpl& dst, size_t byte
 
 void CpuBackend::fill_u32(BufferImpl& dst, uint32_t value) {
   auto& d = own(dst, "fill");
+  ++counters_.fills;
   std::fill_n(d.as<uint32_t>(), d.bytes() / 4, value);
 }
 
