@@ -1,19 +1,28 @@
-// CUDA backend, host side: device set-up, buffers, ordering, timestamps, diagnostics.
+// CUDA backend, host side: device set-up, buffers, scratch memory, timestamps (the stream's
+// launches, copies and waits: cuda_stream.cpp).
 #include "cuda_ref/cuda_backend.h"
 
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <cstdlib>
+#include <string_view>
 
 #include "cuda_ref/cuda_check.h"
 #include "cuda_ref/cuda_launch.h"
 #include "engine/core/error.h"
-#include "engine/kernels/kernel_checks.h"
 
 namespace masav::cuda {
 namespace {
 constexpr uint32_t kMaxTimestamps = 4096;
-constexpr uint32_t kCleanDiagnostics[4] = {0, 0, UINT32_MAX, 0};
+
+// MASAV_CUDA_SYNC=1: wait for every kernel, so that a fault names its kernel (slow: for
+// debugging, never for timings).
+bool sync_each_launch_requested() {
+  const char* v = std::getenv("MASAV_CUDA_SYNC");
+  return v && std::string_view(v) == "1";
+}
+
 }  // namespace
 
 CudaBuffer::~CudaBuffer() {
@@ -24,17 +33,22 @@ DeviceScratch::~DeviceScratch() {
   if (ptr) cudaFree(ptr);
 }
 
-void* DeviceScratch::reserve(size_t want, const char* kernel) {
-  if (want <= bytes) return ptr;
-  if (ptr) check(cudaFree(ptr), kernel, "cudaFree(scratch)");  // synchronises the device
-  ptr = nullptr;
-  bytes = 0;
-  check(cudaMalloc(&ptr, std::max<size_t>(want, 16)), kernel, "cudaMalloc(scratch)");
-  bytes = want;
-  return ptr;
+void* CudaBackend::scratch(const std::string& name, size_t bytes, const char* kernel) {
+  DeviceScratch& s = scratch_[name];
+  if (bytes <= s.bytes) return s.ptr;
+  if (s.ptr) {
+    ++counters_.host_syncs;  // cudaFree waits for the whole device
+    check_stream(cudaFree(s.ptr), kernel, "cudaFree(scratch)");
+  }
+  s.ptr = nullptr;
+  s.bytes = 0;
+  check(cudaMalloc(&s.ptr, std::max<size_t>(bytes, 16)), kernel, "cudaMalloc(scratch)");
+  s.bytes = bytes;
+  return s.ptr;
 }
 
-CudaBackend::CudaBackend(int device) : device_(device) {
+CudaBackend::CudaBackend(int device)
+    : device_(device), sync_each_launch_(sync_each_launch_requested()) {
   check(cudaSetDevice(device), "init", "cudaSetDevice");
   cudaDeviceProp prop{};
   check(cudaGetDeviceProperties(&prop, device), "init", "cudaGetDeviceProperties");
@@ -57,10 +71,9 @@ CudaBackend::CudaBackend(int device) : device_(device) {
   caps_.timestamp_period_ns = 500.0;  // cudaEventElapsedTime resolves about 0.5 us
   caps_.real_is_double = false;
   check(cudaStreamCreateWithFlags(&stream_, cudaStreamNonBlocking), "init", "cudaStreamCreate");
-  check(cudaMalloc(reinterpret_cast<void**>(&diag_), sizeof kCleanDiagnostics), "init",
+  check(cudaMalloc(reinterpret_cast<void**>(&diag_), launch::kDiagWords * sizeof(uint32_t)), "init",
         "cudaMalloc(diagnostics)");
-  check(cudaMemcpy(diag_, kCleanDiagnostics, sizeof kCleanDiagnostics, cudaMemcpyHostToDevice),
-        "init", "cudaMemcpy(diagnostics)");
+  clear_diagnostics("init");
 }
 
 CudaBackend::~CudaBackend() {
@@ -109,45 +122,6 @@ std::unique_ptr<BufferImpl> CudaBackend::create_buffer(ElemKind kind, size_t cou
   return std::make_unique<CudaBuffer>(this, kind, count, bytes, std::string(label), p);
 }
 
-void CudaBackend::write_bytes(BufferImpl& dst, const void* src, size_t bytes, size_t offset) {
-  // Ordered on the stream; from pageable memory the call returns once `src` has been staged.
-  check(cudaMemcpyAsync(static_cast<char*>(ptr(dst, "upload")) + offset, src, bytes,
-                        cudaMemcpyHostToDevice, stream_),
-        "upload", "cudaMemcpyAsync");
-}
-
-void CudaBackend::read_bytes(const BufferImpl& src, void* dst, size_t bytes, size_t offset) {
-  check(cudaMemcpyAsync(dst, static_cast<const char*>(ptr(src, "download")) + offset, bytes,
-                        cudaMemcpyDeviceToHost, stream_),
-        "download", "cudaMemcpyAsync");
-  finish();
-}
-
-void CudaBackend::copy_buffer(const BufferImpl& src, BufferImpl& dst, size_t bytes) {
-  check(
-      cudaMemcpyAsync(ptr(dst, "copy"), ptr(src, "copy"), bytes, cudaMemcpyDeviceToDevice, stream_),
-      "copy", "cudaMemcpyAsync");
-}
-
-void CudaBackend::fill_u32(BufferImpl& dst, uint32_t value) {
-  const size_t words = dst.bytes() / 4;
-  if (!words) return;
-  check(launch::fill_u32(stream_, grid_for_items(words, "fill"),
-                         static_cast<uint32_t*>(ptr(dst, "fill")), words, value),
-        "fill", "launch");
-}
-
-void CudaBackend::finish() {
-  check(cudaStreamSynchronize(stream_), "finish", "cudaStreamSynchronize");
-  uint32_t d[4];
-  check(cudaMemcpy(d, diag_, sizeof d, cudaMemcpyDeviceToHost), "finish",
-        "cudaMemcpy(diagnostics)");
-  if (d[1] == 0) return;
-  check(cudaMemcpy(diag_, kCleanDiagnostics, sizeof kCleanDiagnostics, cudaMemcpyHostToDevice),
-        "finish", "cudaMemcpy(diagnostics)");
-  raise_diagnostics(*this, d[1], d[2], pending_diag_limit_);
-}
-
 TimestampId CudaBackend::timestamp() {
   if (events_used_ >= kMaxTimestamps)
     throw Error("cuda", "timestamp", fmt::format("more than {} timestamps", kMaxTimestamps),
@@ -157,7 +131,7 @@ TimestampId CudaBackend::timestamp() {
     check(cudaEventCreate(&e), "timestamp", "cudaEventCreate");
     events_.push_back(e);
   }
-  check(cudaEventRecord(events_[events_used_], stream_), "timestamp", "cudaEventRecord");
+  check_stream(cudaEventRecord(events_[events_used_], stream_), "timestamp", "cudaEventRecord");
   return events_used_++;
 }
 
@@ -166,7 +140,8 @@ double CudaBackend::timestamp_ns(TimestampId id) {
     throw Error("cuda", "timestamp", fmt::format("no timestamp {}", id),
                 "use an id returned by timestamp() since the last reset");
   float ms = 0;
-  check(cudaEventElapsedTime(&ms, events_[0], events_[id]), "timestamp", "cudaEventElapsedTime");
+  check_stream(cudaEventElapsedTime(&ms, events_[0], events_[id]), "timestamp",
+               "cudaEventElapsedTime");
   return double(ms) * 1e6;
 }
 

@@ -1,11 +1,13 @@
 #pragma once
 // The CUDA backend (host side, plain C++): memory, stream, events and checks. The kernels live
-// in *_kernels.cu and call the shared MASAV_HD math (the code the CPU reference runs). Work is
-// queued on one stream; finish() synchronises it and reads the kernels' diagnostics.
+// in *_kernels.cu and call the shared MASAV_HD math (the code the CPU reference runs). Every
+// launch, copy and memset is queued on one non-blocking stream; the host waits for it only where
+// it needs data (downloads, finish()), and finish() also reads the kernels' diagnostics.
 #include <cuda_runtime_api.h>
 
 #include <map>
 #include <memory>
+#include <string>
 #include <vector>
 
 #include "engine/kernels/backend.h"
@@ -24,12 +26,11 @@ class CudaBuffer final : public BufferImpl {
   void* ptr_;
 };
 
-// Device scratch memory that grows and is freed on destruction.
+// Device scratch memory, freed on destruction; CudaBackend::scratch grows it.
 struct DeviceScratch {
   void* ptr = nullptr;
   size_t bytes = 0;
   ~DeviceScratch();
-  void* reserve(size_t want, const char* kernel);
 };
 
 class CudaBackend final : public Backend {
@@ -65,6 +66,23 @@ class CudaBackend final : public Backend {
   T* device_ptr(const Buffer<E>& b, const char* kernel) const {
     return static_cast<T*>(ptr(b.impl(), kernel));
   }
+  // Every launch ends here: checks and counts it and remembers it, so that a fault CUDA reports
+  // later can name it; with MASAV_CUDA_SYNC=1 it also waits for the kernel, so a fault names its
+  // kernel exactly. `step`: the kernel's pass within a multi-launch run, or null.
+  void launched(cudaError_t status, const char* kernel, const char* step = nullptr);
+  // Checks a call on the stream, where a fault of an earlier kernel may surface.
+  void check_stream(cudaError_t status, const char* where, const char* what) const;
+  std::string last_launch() const;
+  void wait(const char* where);  // the host blocks until the stream has run dry
+  // Waits for the stream and raises what the kernels flagged in the diagnostics words.
+  void settle(const char* where);
+  void clear_diagnostics(const char* where);
+  // Stream-ordered, counted memset to zero and device-to-device copy.
+  void zero(void* dst, size_t bytes, const char* kernel);
+  void copy_device(void* dst, const void* src, size_t bytes, const char* kernel);
+  // Scratch memory `name` of at least `bytes`. Growing it frees the old block, which waits for
+  // the whole device (cudaFree); a scene's sizes settle after its first step.
+  void* scratch(const std::string& name, size_t bytes, const char* kernel);
   void sort_portable(uint32_t n, uint32_t key_bits, uint32_t* keys, uint32_t* values);
   void sort_cub(uint32_t n, uint32_t key_bits, uint32_t* keys, uint32_t* values);
   void exclusive_scan(uint32_t* data, uint32_t count, uint32_t level);
@@ -77,6 +95,9 @@ class CudaBackend final : public Backend {
   uint32_t events_used_ = 0;
   uint32_t pending_diag_limit_ = 0;
   std::map<std::string, DeviceScratch> scratch_;
+  bool sync_each_launch_ = false;      // MASAV_CUDA_SYNC=1 at creation
+  const char* last_kernel_ = nullptr;  // the last launch (static strings), for fault messages
+  const char* last_step_ = nullptr;
 };
 
 }  // namespace masav::cuda

@@ -3,7 +3,6 @@
 #include <fmt/format.h>
 
 #include "cuda_ref/cuda_backend.h"
-#include "cuda_ref/cuda_check.h"
 #include "cuda_ref/cuda_launch.h"
 #include "engine/core/error.h"
 
@@ -14,12 +13,13 @@ void CudaBackend::run_own(const KernelArgs<KernelId::grid_cell_ranges>& a) {
   const char* k = "grid_cell_ranges";
   auto* start = static_cast<uint32_t*>(ptr(cell_start.impl(), k));
   auto* end = static_cast<uint32_t*>(ptr(cell_end.impl(), k));
-  check(cudaMemsetAsync(start, 0, cell_start.impl().bytes(), stream_), k, "cudaMemsetAsync");
-  check(cudaMemsetAsync(end, 0, cell_end.impl().bytes(), stream_), k, "cudaMemsetAsync");
+  zero(start, cell_start.impl().bytes(), k);
+  zero(end, cell_end.impl().bytes(), k);
   if (!g.n) return;
-  check(launch::cell_ranges(stream_, grid_for_items(g.n, k), g,
-                            static_cast<const uint32_t*>(ptr(sorted_cells.impl(), k)), start, end),
-        k, "launch");
+  launched(
+      launch::cell_ranges(stream_, grid_for_items(g.n, k), g,
+                          static_cast<const uint32_t*>(ptr(sorted_cells.impl(), k)), start, end),
+      k);
 }
 
 void CudaBackend::run_own(const KernelArgs<KernelId::gather>& a) {
@@ -28,11 +28,11 @@ void CudaBackend::run_own(const KernelArgs<KernelId::gather>& a) {
   if (eb != 4 && eb != 16)
     throw Error("cuda", "gather", fmt::format("no gather for {}-byte elements", eb),
                 "internal error: report it");
-  check(launch::gather(stream_, grid_for_items(p.n, "gather"),
-                       device_params<float>(p, order, src, dst),
-                       static_cast<const uint32_t*>(ptr(order.impl(), "gather")),
-                       ptr(src, "gather"), ptr(dst, "gather"), uint32_t(eb), diag_),
-        "gather", "launch");
+  launched(launch::gather(stream_, grid_for_items(p.n, "gather"),
+                          device_params<float>(p, order, src, dst),
+                          static_cast<const uint32_t*>(ptr(order.impl(), "gather")),
+                          ptr(src, "gather"), ptr(dst, "gather"), uint32_t(eb), diag_),
+           "gather");
 }
 
 }  // namespace masav::cuda

@@ -19,7 +19,7 @@ void CudaBackend::run_kernel(const Params& p, uint64_t items, Buffers&... buffer
     const char* name = kernel_name(K).data();
     shared_body_kernel<K><<<grid_for_items(items, name), launch::kBlock, 0, stream_>>>(
         items, layout, diag_, body_pointer(buffers)...);
-    check_launch(name);
+    launched(cudaGetLastError(), name);
   } else {
     run_own(KernelArgs<K>{p, items, buffers...});
   }

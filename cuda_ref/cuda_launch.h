@@ -1,7 +1,8 @@
 #pragma once
 // The .cu side of the CUDA backend: kernels and their launchers, nothing else. Each launcher
-// returns the launch status (cudaGetLastError); the host code (cuda_*.cpp, compiled by the C++
-// compiler) checks it and turns failures into masav::Error.
+// (cub_sort aside) launches one kernel and returns the launch status (cudaGetLastError); the host
+// code (cuda_*.cpp, compiled by the C++ compiler) hands it to CudaBackend::launched, which checks
+// and counts it.
 #include <cuda_runtime_api.h>
 
 #include <cstddef>
@@ -18,6 +19,8 @@ constexpr uint32_t kSortItems = 8;
 constexpr uint32_t kSortTile = kSortThreads * kSortItems;  // < 65536 (16-bit packed counts)
 
 // Diagnostics words: {max_loop_ticks, flags, detail, reserved}.
+constexpr uint32_t kDiagWords = 4;
+
 cudaError_t fill_u32(cudaStream_t s, dim3 grid, uint32_t* dst, size_t words, uint32_t value);
 
 cudaError_t radix_histogram(cudaStream_t s, dim3 grid, const uint32_t* keys, uint32_t* hist,

@@ -14,67 +14,61 @@ namespace masav::cuda {
 void CudaBackend::exclusive_scan(uint32_t* data, uint32_t count, uint32_t level) {
   const uint32_t tiles = (count + launch::kSortTile - 1) / launch::kSortTile;
   auto* sums = static_cast<uint32_t*>(
-      scratch_[fmt::format("scan level {}", level)].reserve(size_t(tiles) * 4, "radix_sort"));
+      scratch(fmt::format("scan level {}", level), size_t(tiles) * 4, "radix_sort"));
   const dim3 grid = grid_for(tiles, "radix_sort");
   const ScanParams scan{count, tiles};
-  check(launch::scan_tiles(stream_, grid, data, sums, scan), "radix_sort", "scan_tiles");
+  launched(launch::scan_tiles(stream_, grid, data, sums, scan), "radix_sort", "scan_tiles");
   if (tiles > 1) {
     exclusive_scan(sums, tiles, level + 1);
-    check(launch::scan_add(stream_, grid, data, sums, scan), "radix_sort", "scan_add");
+    launched(launch::scan_add(stream_, grid, data, sums, scan), "radix_sort", "scan_add");
   }
 }
 
 void CudaBackend::sort_portable(uint32_t n, uint32_t key_bits, uint32_t* keys, uint32_t* values) {
   const uint32_t num_tiles = (n + launch::kSortTile - 1) / launch::kSortTile;
   auto* hist = static_cast<uint32_t*>(
-      scratch_["histogram"].reserve(size_t(radix::kRadix) * num_tiles * 4, "radix_sort"));
+      scratch("histogram", size_t(radix::kRadix) * num_tiles * 4, "radix_sort"));
   uint32_t* k_src = keys;
-  auto* k_dst = static_cast<uint32_t*>(scratch_["keys"].reserve(size_t(n) * 4, "radix_sort"));
+  auto* k_dst = static_cast<uint32_t*>(scratch("keys", size_t(n) * 4, "radix_sort"));
   uint32_t* v_src = values;
   uint32_t* v_dst =
-      values ? static_cast<uint32_t*>(scratch_["values"].reserve(size_t(n) * 4, "radix_sort"))
-             : nullptr;
+      values ? static_cast<uint32_t*>(scratch("values", size_t(n) * 4, "radix_sort")) : nullptr;
   const dim3 grid = grid_for(num_tiles, "radix_sort");
   const uint32_t passes = radix::pass_count(key_bits);
   for (uint32_t pass = 0; pass < passes; ++pass) {
     const RadixPassParams step{n, pass * radix::kDigitBits, radix::pass_bits(key_bits, pass),
                                num_tiles};
-    check(launch::radix_histogram(stream_, grid, k_src, hist, step), "radix_sort", "histogram");
+    launched(launch::radix_histogram(stream_, grid, k_src, hist, step), "radix_sort", "histogram");
     exclusive_scan(hist, (1u << step.bits) * num_tiles, 0);
-    check(launch::radix_scatter(stream_, grid, k_src, v_src, k_dst, v_dst, hist, step),
-          "radix_sort", "scatter");
+    launched(launch::radix_scatter(stream_, grid, k_src, v_src, k_dst, v_dst, hist, step),
+             "radix_sort", "scatter");
     std::swap(k_src, k_dst);
     std::swap(v_src, v_dst);
   }
   if (k_src != keys) {  // odd pass count: the result sits in scratch
-    check(cudaMemcpyAsync(keys, k_src, size_t(n) * 4, cudaMemcpyDeviceToDevice, stream_),
-          "radix_sort", "cudaMemcpyAsync");
-    if (values)
-      check(cudaMemcpyAsync(values, v_src, size_t(n) * 4, cudaMemcpyDeviceToDevice, stream_),
-            "radix_sort", "cudaMemcpyAsync");
+    copy_device(keys, k_src, size_t(n) * 4, "radix_sort");
+    if (values) copy_device(values, v_src, size_t(n) * 4, "radix_sort");
   }
 }
 
 void CudaBackend::sort_cub(uint32_t n, uint32_t key_bits, uint32_t* keys, uint32_t* values) {
-  auto* k_alt = static_cast<uint32_t*>(scratch_["keys"].reserve(size_t(n) * 4, "radix_sort"));
+  auto* k_alt = static_cast<uint32_t*>(scratch("keys", size_t(n) * 4, "radix_sort"));
   auto* v_alt =
-      values ? static_cast<uint32_t*>(scratch_["values"].reserve(size_t(n) * 4, "radix_sort"))
-             : nullptr;
+      values ? static_cast<uint32_t*>(scratch("values", size_t(n) * 4, "radix_sort")) : nullptr;
   size_t temp_bytes = 0;
   bool in_alt = false;
   check(launch::cub_sort(stream_, nullptr, temp_bytes, keys, k_alt, values, v_alt, n, key_bits,
                          in_alt),
         "radix_sort", "cub sort (temporary size)");
-  void* temp = scratch_["cub temp"].reserve(temp_bytes, "radix_sort");
-  check(
+  void* temp = scratch("cub temp", temp_bytes, "radix_sort");
+  // Counted as one launch, though CUB queues several kernels and memsets (histogram, scan, one
+  // kernel per 8-bit pass; one kernel for a small n), chosen per GPU and size out of our sight.
+  launched(
       launch::cub_sort(stream_, temp, temp_bytes, keys, k_alt, values, v_alt, n, key_bits, in_alt),
-      "radix_sort", "cub sort");
+      "radix_sort", "CUB DeviceRadixSort");
   if (in_alt) {
-    check(cudaMemcpyAsync(keys, k_alt, size_t(n) * 4, cudaMemcpyDeviceToDevice, stream_),
-          "radix_sort", "cudaMemcpyAsync");
-    if (values)
-      check(cudaMemcpyAsync(values, v_alt, size_t(n) * 4, cudaMemcpyDeviceToDevice, stream_),
-            "radix_sort", "cudaMemcpyAsync");
+    copy_device(keys, k_alt, size_t(n) * 4, "radix_sort");
+    if (values) copy_device(values, v_alt, size_t(n) * 4, "radix_sort");
   }
 }
 

@@ -1,7 +1,6 @@
 // SPH kernels on CUDA, host side: the layouts computed once (device_params), then the launches
 // in sph_kernels.cu.
 #include "cuda_ref/cuda_backend.h"
-#include "cuda_ref/cuda_check.h"
 #include "cuda_ref/sph_launch.h"
 
 namespace masav::cuda {
@@ -14,36 +13,36 @@ using V4 = hd::V4<float>;
 void CudaBackend::run_own(const KernelArgs<KernelId::sph_density>& a) {
   auto& [p, items_, positions, cells, cell_start, cell_end, density, pressure, stats] = a;
   const char* k = "sph_density";
-  check(launch::sph_density(stream_, grid_for_items(p.n, k), device_params<float>(p),
-                            device_ptr<V4>(positions, k), device_ptr<uint32_t>(cells, k),
-                            device_ptr<uint32_t>(cell_start, k), device_ptr<uint32_t>(cell_end, k),
-                            device_ptr<float>(density, k), device_ptr<float>(pressure, k),
-                            device_ptr<uint32_t>(stats, k)),
-        k, "launch");
+  launched(launch::sph_density(stream_, grid_for_items(p.n, k), device_params<float>(p),
+                               device_ptr<V4>(positions, k), device_ptr<uint32_t>(cells, k),
+                               device_ptr<uint32_t>(cell_start, k),
+                               device_ptr<uint32_t>(cell_end, k), device_ptr<float>(density, k),
+                               device_ptr<float>(pressure, k), device_ptr<uint32_t>(stats, k)),
+           k);
 }
 
 void CudaBackend::run_own(const KernelArgs<KernelId::sph_forces>& a) {
   auto& [p, items_, positions, velocities, density, pressure, cells, cell_start, cell_end, accel,
          stats] = a;
   const char* k = "sph_forces";
-  check(launch::sph_forces(stream_, grid_for_items(p.n, k), device_params<float>(p),
-                           device_ptr<V4>(positions, k), device_ptr<V4>(velocities, k),
-                           device_ptr<float>(density, k), device_ptr<float>(pressure, k),
-                           device_ptr<uint32_t>(cells, k), device_ptr<uint32_t>(cell_start, k),
-                           device_ptr<uint32_t>(cell_end, k), device_ptr<V4>(accel, k),
-                           device_ptr<uint32_t>(stats, k)),
-        k, "launch");
+  launched(launch::sph_forces(stream_, grid_for_items(p.n, k), device_params<float>(p),
+                              device_ptr<V4>(positions, k), device_ptr<V4>(velocities, k),
+                              device_ptr<float>(density, k), device_ptr<float>(pressure, k),
+                              device_ptr<uint32_t>(cells, k), device_ptr<uint32_t>(cell_start, k),
+                              device_ptr<uint32_t>(cell_end, k), device_ptr<V4>(accel, k),
+                              device_ptr<uint32_t>(stats, k)),
+           k);
 }
 
 void CudaBackend::run_own(const KernelArgs<KernelId::sph_integrate>& a) {
   auto& [p, items_, x0, v0, vk, accel, x_out, v_out, sum_x, sum_v, stats] = a;
   const char* k = "sph_integrate";
   auto opt = [&](const Buffer<Real4>* b) { return b ? device_ptr<V4>(*b, k) : nullptr; };
-  check(launch::sph_integrate(stream_, grid_for_items(p.n, k), device_params<float>(p), opt(x0),
-                              device_ptr<V4>(v0, k), opt(vk), device_ptr<V4>(accel, k), opt(x_out),
-                              device_ptr<V4>(v_out, k), opt(sum_x), opt(sum_v),
-                              device_ptr<uint32_t>(stats, k)),
-        k, "launch");
+  launched(launch::sph_integrate(stream_, grid_for_items(p.n, k), device_params<float>(p), opt(x0),
+                                 device_ptr<V4>(v0, k), opt(vk), device_ptr<V4>(accel, k),
+                                 opt(x_out), device_ptr<V4>(v_out, k), opt(sum_x), opt(sum_v),
+                                 device_ptr<uint32_t>(stats, k)),
+           k);
 }
 
 }  // namespace masav::cuda
