@@ -24,7 +24,7 @@ BackendStatus backend_status() {
     if (s.devices.empty())
       s.reason = "no Vulkan device (install mesa-vulkan-drivers for lavapipe, or a GPU driver)";
     else if (!s.available)
-      s.reason = "no device meets masav's needs (Vulkan 1.1, subgroup arithmetic)";
+      s.reason = "no device meets masav's needs (Vulkan 1.1, subgroup arithmetic and shuffle)";
   } catch (const Error& e) {
     s.reason = e.what();
   } catch (const std::exception& e) {

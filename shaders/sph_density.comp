@@ -1,6 +1,7 @@
 #version 450
 #extension GL_GOOGLE_include_directive : require
 #extension GL_KHR_shader_subgroup_arithmetic : require
+#extension GL_KHR_shader_subgroup_shuffle : require
 // Density (poly6, thesis Eq. 4.4) and pressure of each sorted particle over the neighbours
 // within h in the 27 cells around cells[i], walked as 9 rows of 3 consecutive cells. The
 // candidates per invocation are capped (max_candidates) and an overflow is reported, never
@@ -17,6 +18,7 @@ layout(std430, binding = 7) buffer Stats { uint stats[]; };
 
 #include "sph.glsl"
 #include "sph_walk.glsl"
+#include "sph_coop.glsl"
 
 MASAV_PUSH(SphStepLayout);
 
@@ -25,25 +27,49 @@ void main() {
   const bool live = i < p.n;
   uint candidates = 0u, within = 0u;
   bool overflow = false, bad = false;
+  // Every lane of the subgroup runs the row loops (the cooperative rows need them all);
+  // lanes past n or whose rows leave the grid have empty ranges.
+  vec3 xi = vec3(0.0);
+  ivec3 cc = ivec3(-4);
   if (live) {
-    const vec3 xi = positions[i].xyz;
-    const uvec3 dims = p.dims;
-    const ivec3 cc = sph_cell_coords(cells[i], dims);
-    float sum = 0.0;
-    for (int dx = -1; dx <= 1 && !overflow; ++dx) {
+    xi = positions[i].xyz;
+    cc = sph_cell_coords(cells[i], p.dims);
+  }
+  const uvec3 dims = p.dims;
+  uint spent = 0u;
+  float sum = 0.0;
+  for (int dx = -1; dx <= 1; ++dx) {
+    LOOP_TICK();
+    for (int dy = -1; dy <= 1; ++dy) {
       LOOP_TICK();
-      const int x = cc.x + dx;
-      if (x < 0 || x >= int(dims.x)) continue;
-      for (int dy = -1; dy <= 1; ++dy) {
-        LOOP_TICK();
-        const int y = cc.y + dy;
-        if (y < 0 || y >= int(dims.y)) continue;
-        const uvec2 r = sph_row_range(x, y, cc.z, dims);
+      const int x = cc.x + dx, y = cc.y + dy;
+      uvec2 r = uvec2(0u);
+      if (live && !overflow && x >= 0 && x < int(dims.x) && y >= 0 && y < int(dims.y)) {
+        r = sph_row_range(x, y, cc.z, dims);
         if (r.y - r.x > p.max_candidates - candidates) {
           overflow = true;
-          break;
+          r = uvec2(0u);
         }
         candidates += r.y - r.x;
+      }
+      uvec2 u;
+      if (sph_coop_row(r, spent, u)) {
+        for (uint base = u.x; base < u.y; base += kSphCoop) {
+          LOOP_TICK();
+          const uint mine = base + sph_coop_lane();
+          const vec3 xc = mine < u.y ? positions[mine].xyz : vec3(0.0);
+          for (uint k = 0u; k < kSphCoop; ++k) {
+            LOOP_TICK();
+            const vec3 xj = subgroupShuffle(xc, sph_coop_source(k));
+            const uint j = base + ((sph_coop_lane() + k) & (kSphCoop - 1u));
+            const vec3 d = xi - xj;
+            const float r2 = dot(d, d);
+            const bool in_row = j >= r.x && j < r.y;
+            sum += in_row ? sph_density_term(r2, p) : 0.0;
+            within += in_row && r2 < p.h2 ? 1u : 0u;
+          }
+        }
+      } else {
         for (uint j = r.x; j < r.y; ++j) {
           LOOP_TICK();
           const vec3 d = xi - positions[j].xyz;
@@ -53,6 +79,8 @@ void main() {
         }
       }
     }
+  }
+  if (live) {
     float rho = p.density * sum;
     if (p.walls != 0u) {
       vec3 unused;

@@ -5,6 +5,7 @@
 // suite (test_main.cpp says so); the coverage test below runs everywhere.
 #include <doctest/doctest.h>
 
+#include <bit>
 #include <cmath>
 #include <random>
 #include <set>
@@ -315,14 +316,20 @@ LOOP_LIMIT_CASE("sph kernels: loop ticks = rows + cells + candidates, capped bel
   (void)test::ticks_of(b);
   const SphGridView view{&g.sorted_cells, &g.cell_start, &g.cell_end};
   sph_density(b, p, {&pos, view, &rho, &pr, &stats});
-  // x loop 3 + y loop 3 (one x in the grid) + 1 cell in the row + n candidates + 48 wall ticks.
+  // x loop 3 + y loop 9 + the cooperative walk's row unions (3 butterflies of log2(C) steps for
+  // each of the 9 rows, C the smallest subgroup) + 1 cell in the row + n candidates (walked per
+  // lane: walking n together would cost n / C more than the extra budget allows) + 48 walls.
   const uint32_t walls = 6 + 6 * 7;
-  CHECK(test::ticks_of(b) == 3 + 3 + 1 + n + walls);
+  const uint32_t unions = 9 * 3 * uint32_t(std::countr_zero(b.caps().min_subgroup_size));
+  CHECK(test::ticks_of(b) == 3 + 9 + unions + 1 + n + walls);
   sph_forces(b, p, {&pos, &vel, &rho, &pr, view, &acc, &stats});
-  CHECK(test::ticks_of(b) == 3 + 3 + 1 + n + walls + 6);  // + the no-slip weight
-  // The worst any SPH kernel can do: 3 + 9 row loops, 27 cells, the validated maximum of
-  // candidates (65000) and the walls' 48 stay under lavapipe's limit; one more is refused.
-  CHECK(3 + 9 + 27 + 65000 + walls + 6 < test::loop_counter().caps().max_loop_iterations);
+  CHECK(test::ticks_of(b) == 3 + 9 + unions + 1 + n + walls + 6);  // + the no-slip weight
+  // The worst any SPH kernel can do: 3 + 9 row loops, 27 cells, the unions at subgroups of 64,
+  // the cooperative walk's extra budget (260, shaders/common/sph_coop.glsl), the validated
+  // maximum of candidates (65000) and the walls' 48 stay under lavapipe's limit; one more
+  // candidate is refused.
+  CHECK(3 + 9 + 27 + 9 * 3 * 6 + 260 + 65000 + walls + 6 <
+        test::loop_counter().caps().max_loop_iterations);
   p.max_candidates = 65001;
   CHECK_THROWS_AS(sph_density(b, p, {&pos, view, &rho, &pr, &stats}), Error);
 

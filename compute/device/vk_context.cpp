@@ -197,9 +197,11 @@ std::string unusable_reason(const raii::PhysicalDevice& pd) {
   const auto& sg = chain.get<::vk::PhysicalDeviceSubgroupProperties>();
   if (!(sg.supportedStages & ::vk::ShaderStageFlagBits::eCompute))
     return "no subgroup operations in compute shaders";
-  const auto need =
-      ::vk::SubgroupFeatureFlagBits::eBasic | ::vk::SubgroupFeatureFlagBits::eArithmetic;
-  if ((sg.supportedOperations & need) != need) return "no subgroup arithmetic";
+  // Shuffles carry the SPH kernels' cooperative neighbour walk (every desktop driver has them).
+  const auto need = ::vk::SubgroupFeatureFlagBits::eBasic |
+                    ::vk::SubgroupFeatureFlagBits::eArithmetic |
+                    ::vk::SubgroupFeatureFlagBits::eShuffle;
+  if ((sg.supportedOperations & need) != need) return "no subgroup arithmetic or shuffle";
   if (sg.subgroupSize < 4 || sg.subgroupSize > 128)
     return fmt::format("subgroup size {} outside [4, 128]", sg.subgroupSize);
   if (props.limits.maxComputeSharedMemorySize < 16384) return "less than 16 KiB shared memory";
@@ -343,8 +345,8 @@ Context::Context(const ContextOptions& options) {
                   options.graphics
                       ? "masav renders with Vulkan 1.1 on a queue that computes and draws; "
                         "mesa-vulkan-drivers (lavapipe) provides one on any CPU"
-                      : "masav needs Vulkan 1.1 with subgroup arithmetic in compute shaders; "
-                        "mesa-vulkan-drivers (lavapipe) provides it on any CPU");
+                      : "masav needs Vulkan 1.1 with subgroup arithmetic and shuffle in compute "
+                        "shaders; mesa-vulkan-drivers (lavapipe) provides it on any CPU");
     }
   }
   physical_ = std::make_unique<raii::PhysicalDevice>(std::move(devices[*chosen]));

@@ -9,7 +9,9 @@ namespace masav {
 
 void check_grid(const GridParams& g, std::string_view kernel);
 
-// The loops of a neighbour walk besides its candidates (cells, rows, walls): fewer than this.
+// The loops of a neighbour walk besides its candidates (rows, cells, walls, and the SPH kernels'
+// cooperative walk: its row unions and chunk rounding, shaders/common/sph_coop.glsl): fewer
+// than this.
 inline constexpr uint32_t kWalkLoopOverhead = 535;
 // The candidates a neighbour walk may examine on `dev`: its loop budget less that overhead.
 uint32_t max_walk_candidates(const DeviceApi& dev);

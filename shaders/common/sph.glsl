@@ -75,9 +75,9 @@ float sph_density_term(float r2, SphStepLayout c) {
   return u * u * u;
 }
 
-// Pair acceleration from neighbour (xo, vo, rho_o, p_o) on (xi, vi, rho_i), d = xi - xo.
-vec3 sph_pair_accel(vec3 vi, float rho_i, float pi_over_rho2, vec3 vo, float rho_o, float p_o,
-                    vec3 d, float r2, SphStepLayout c) {
+// Pair acceleration from neighbour (xo, vo, rho_o, p_o / rho_o^2) on (xi, vi, rho_i), d = xi - xo.
+vec3 sph_pair_accel(vec3 vi, float rho_i, float pi_over_rho2, vec3 vo, float rho_o,
+                    float po_over_rho2, vec3 d, float r2, SphStepLayout c) {
   const bool thesis = c.model == SphPressureModel_thesis;
   const float r = sqrt(r2);
   const float u = 1.0 - r * c.inv_h;
@@ -85,7 +85,7 @@ vec3 sph_pair_accel(vec3 vi, float rho_i, float pi_over_rho2, vec3 vo, float rho
   if (r2 > 0.0) {
     float s;
     if (thesis) s = c.pressure * ((rho_o - rho_i) / rho_o) * (u * u * u);
-    else s = c.pressure * (pi_over_rho2 + p_o / (rho_o * rho_o)) * (u * u);
+    else s = c.pressure * (pi_over_rho2 + po_over_rho2) * (u * u);
     a = (s / r) * d;
   }
   const float w = thesis ? c.viscosity * u / rho_o : c.viscosity * u * (2.0 / (rho_i + rho_o));
