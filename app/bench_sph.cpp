@@ -9,8 +9,8 @@
 #include <sstream>
 
 #include "app/bench_common.h"
-#include "engine/cpu/cpu_backend.h"
 #include "engine/core/error.h"
+#include "engine/cpu/cpu_backend.h"
 #include "engine/sph/sph_coefficients.h"
 #include "engine/sph/sph_diagnostics.h"
 #include "engine/sph/sph_presets.h"
@@ -75,10 +75,10 @@ Throughput measure(Backend& b, const SphScene& scene, int steps) {
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
   const double counted = double(sim.substeps() - sub0);
   const DeviceCounters& c = b.counters();
-  t.per_step = {double(c.launches) / counted,        double(c.barriers) / counted,
-                double(c.host_syncs) / counted,      double(c.fills) / counted,
-                double(c.device_copies) / counted,   double(c.bytes_to_device) / counted,
-                double(c.bytes_to_host) / counted,   (thread_cpu_ms() - cpu0) / counted};
+  t.per_step = {double(c.launches) / counted,      double(c.barriers) / counted,
+                double(c.host_syncs) / counted,    double(c.fills) / counted,
+                double(c.device_copies) / counted, double(c.bytes_to_device) / counted,
+                double(c.bytes_to_host) / counted, (thread_cpu_ms() - cpu0) / counted};
   t.wall_ms = wall / counted;
   // Device time per stage, from timestamps, in a second run.
   sim.set_profiling(true);

@@ -9,6 +9,12 @@ namespace {
 
 constexpr uint32_t kSetsPerPool = 256;
 constexpr uint32_t kBuffersPerSet = 16;
+constexpr uint32_t kCachedSets = 1024;
+
+::vk::raii::DescriptorPool make_pool(const Context& ctx, uint32_t sets) {
+  ::vk::DescriptorPoolSize size(::vk::DescriptorType::eStorageBuffer, sets * kBuffersPerSet);
+  return ::vk::raii::DescriptorPool(ctx.device(), ::vk::DescriptorPoolCreateInfo({}, sets, size));
+}
 
 }  // namespace
 
@@ -45,10 +51,7 @@ void Stream::barrier() {
 
 ::vk::DescriptorSet Stream::allocate_set(const Kernel& k) {
   if (descriptor_pools_.empty() || sets_in_last_pool_ == kSetsPerPool) {
-    ::vk::DescriptorPoolSize size(::vk::DescriptorType::eStorageBuffer,
-                                  kSetsPerPool * kBuffersPerSet);
-    descriptor_pools_.emplace_back(ctx_.device(),
-                                   ::vk::DescriptorPoolCreateInfo({}, kSetsPerPool, size));
+    descriptor_pools_.push_back(make_pool(ctx_, kSetsPerPool));
     sets_in_last_pool_ = 0;
   }
   ++sets_in_last_pool_;
@@ -75,19 +78,12 @@ void Stream::dispatch(const Kernel& k, const std::shared_ptr<Allocation>& diag,
     throw Error("vulkan", k.name, fmt::format("{} workgroups exceed this device's grid", groups),
                 "use fewer elements");
   barrier();
-  const ::vk::DescriptorSet set = allocate_set(k);
-  std::vector<::vk::DescriptorBufferInfo> infos;
-  infos.reserve(buffers.size() + 1);
-  infos.emplace_back(*diag->buffer, 0, VK_WHOLE_SIZE);
-  keep(diag);
-  for (const auto& b : buffers) {
-    infos.emplace_back(*b->buffer, 0, VK_WHOLE_SIZE);
-    keep(b);
-  }
-  std::vector<::vk::WriteDescriptorSet> writes;
-  for (uint32_t i = 0; i < infos.size(); ++i)
-    writes.emplace_back(set, i, 0, 1, ::vk::DescriptorType::eStorageBuffer, nullptr, &infos[i]);
-  ctx_.device().updateDescriptorSets(writes, {});
+  std::vector<std::shared_ptr<Allocation>> bound;
+  bound.reserve(buffers.size() + 1);
+  bound.push_back(diag);
+  bound.insert(bound.end(), buffers.begin(), buffers.end());
+  for (const auto& b : bound) keep(b);
+  const ::vk::DescriptorSet set = set_for(k, bound);
   cmds_.cmd().bindPipeline(::vk::PipelineBindPoint::eCompute, *k.pipeline);
   cmds_.cmd().bindDescriptorSets(::vk::PipelineBindPoint::eCompute, *k.layout, 0, set, {});
   if (k.push_bytes)
@@ -96,6 +92,37 @@ void Stream::dispatch(const Kernel& k, const std::shared_ptr<Allocation>& diag,
         ::vk::ArrayProxy<const uint8_t>(k.push_bytes, static_cast<const uint8_t*>(push)));
   cmds_.cmd().dispatch(gx, uint32_t(gy), 1);
   ++counters_.launches;
+}
+
+::vk::DescriptorSet Stream::set_for(const Kernel& k,
+                                    std::span<const std::shared_ptr<Allocation>> buffers) {
+  SetKey key{*k.set_layout, {}};
+  key.second.reserve(buffers.size());
+  for (const auto& b : buffers) key.second.push_back(b->serial);
+  if (const auto it = set_cache_.find(key); it != set_cache_.end()) return it->second;
+  ::vk::DescriptorSet set;
+  const bool cacheable = cached_sets_ < kCachedSets;
+  if (cacheable) {
+    // Sets of the cache pool live until it is reset (only between submissions, below).
+    if (!*cache_pool_) cache_pool_ = make_pool(ctx_, kCachedSets);
+    ::vk::DescriptorSetLayout layout = *k.set_layout;
+    set = (*ctx_.device())
+              .allocateDescriptorSets(::vk::DescriptorSetAllocateInfo(*cache_pool_, layout),
+                                      *ctx_.device().getDispatcher())
+              .front();
+    ++cached_sets_;
+  } else {
+    set = allocate_set(k);  // the cache is full until the next submission: a transient set
+  }
+  std::vector<::vk::DescriptorBufferInfo> infos;
+  infos.reserve(buffers.size());
+  for (const auto& b : buffers) infos.emplace_back(*b->buffer, 0, VK_WHOLE_SIZE);
+  std::vector<::vk::WriteDescriptorSet> writes;
+  for (uint32_t i = 0; i < infos.size(); ++i)
+    writes.emplace_back(set, i, 0, 1, ::vk::DescriptorType::eStorageBuffer, nullptr, &infos[i]);
+  ctx_.device().updateDescriptorSets(writes, {});
+  if (cacheable) set_cache_.emplace(std::move(key), set);
+  return set;
 }
 
 void Stream::copy(const std::shared_ptr<Allocation>& src, ::vk::DeviceSize src_offset,
@@ -147,6 +174,12 @@ void Stream::submit_and_wait() {
   if (descriptor_pools_.size() > 1)
     descriptor_pools_.erase(descriptor_pools_.begin() + 1, descriptor_pools_.end());
   sets_in_last_pool_ = 0;
+  if (cached_sets_ >= kCachedSets) {
+    // Full: start over (no recorded work uses a set any more).
+    set_cache_.clear();
+    cache_pool_.reset();
+    cached_sets_ = 0;
+  }
   alive_.clear();
 }
 

@@ -1,7 +1,10 @@
 #pragma once
 // Records dispatches, copies, fills and timestamps into one command buffer, with a memory
 // barrier between consecutive commands, and submits it on finish. Every allocation a recorded
-// command touches is kept alive until the fence signals.
+// command touches is kept alive until the fence signals. A dispatch's descriptor set is cached
+// by (kernel, buffers): a simulation binds the same few buffer combinations every step, so after
+// the first step no set is allocated or written.
+#include <map>
 #include <memory>
 #include <span>
 #include <vector>
@@ -39,6 +42,13 @@ class Stream {
   void barrier();
   void keep(const std::shared_ptr<Allocation>& a) { alive_.push_back(a); }
   ::vk::DescriptorSet allocate_set(const Kernel& k);
+  // The set binding `buffers` (diagnostics first) for `k`: cached, or written now.
+  ::vk::DescriptorSet set_for(const Kernel& k,
+                              std::span<const std::shared_ptr<Allocation>> buffers);
+
+  // The kernel's set layout and the serials of the allocations bound (Allocation::serial), so a
+  // key never matches a set written for buffers that were freed since.
+  using SetKey = std::pair<VkDescriptorSetLayout, std::vector<uint64_t>>;
 
   const Context& ctx_;
   DeviceCounters& counters_;
@@ -46,6 +56,9 @@ class Stream {
   ::vk::raii::QueryPool queries_ = nullptr;
   std::vector<::vk::raii::DescriptorPool> descriptor_pools_;
   uint32_t sets_in_last_pool_ = 0;
+  ::vk::raii::DescriptorPool cache_pool_ = nullptr;  // the cached sets; reset when full
+  uint32_t cached_sets_ = 0;
+  std::map<SetKey, ::vk::DescriptorSet> set_cache_;
   uint32_t max_timestamps_;
   uint32_t timestamps_used_ = 0;
   bool queries_need_reset_ = true;

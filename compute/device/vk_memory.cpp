@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <atomic>
 #include <optional>
 
 #include "engine/core/error.h"
@@ -22,7 +23,9 @@ std::optional<uint32_t> find_type(const ::vk::PhysicalDeviceMemoryProperties& me
 
 std::shared_ptr<Allocation> allocate(const Context& ctx, ::vk::DeviceSize bytes, MemoryUse use,
                                      const std::string& label) {
+  static std::atomic<uint64_t> next_serial{1};
   auto a = std::make_shared<Allocation>();
+  a->serial = next_serial.fetch_add(1, std::memory_order_relaxed);
   a->label = label;
   a->bytes = std::max<::vk::DeviceSize>(bytes, 16);  // Vulkan has no empty buffers
   using BU = ::vk::BufferUsageFlagBits;

@@ -22,6 +22,9 @@ struct Allocation {
   void* mapped = nullptr;  // non-null when host-visible
   bool coherent = true;
   std::string label;
+  // Unique for the process's lifetime (addresses and handles of freed buffers are reused), so
+  // that what was bound to it can be cached under it.
+  uint64_t serial = 0;
 };
 
 std::shared_ptr<Allocation> allocate(const Context& ctx, ::vk::DeviceSize bytes, MemoryUse use,
