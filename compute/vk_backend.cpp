@@ -159,14 +159,15 @@ std::optional<uint32_t> VulkanBackend::take_max_loop_ticks() {
 
 void VulkanBackend::run(const KernelSpec& spec,
                         std::initializer_list<std::shared_ptr<Allocation>> buffers,
-                        const void* push, uint64_t groups) {
+                        const void* push, uint64_t groups, uint32_t written) {
   stream_.dispatch(pipelines_.get(spec), diag_,
                    std::span<const std::shared_ptr<Allocation>>(buffers.begin(), buffers.size()),
-                   push, groups);
+                   push, groups, written);
 }
 
 void VulkanBackend::dispatch_kernel(KernelId kernel, std::span<const BufferImpl* const> buffers,
-                                    const void* push, uint32_t push_bytes, uint64_t items) {
+                                    const void* push, uint32_t push_bytes, uint64_t items,
+                                    uint32_t written) {
   const std::string_view name = kernel_name(kernel);
   const BufferImpl* any = nullptr;
   for (const BufferImpl* b : buffers) any = any ? any : b;
@@ -174,7 +175,7 @@ void VulkanBackend::dispatch_kernel(KernelId kernel, std::span<const BufferImpl*
   for (const BufferImpl* b : buffers) allocs.push_back(alloc(b ? *b : *any, name));
   const uint32_t wg = options_.workgroup_size;
   stream_.dispatch(pipelines_.get({name.data(), uint32_t(allocs.size()), push_bytes, {}}), diag_,
-                   allocs, push, (items + wg - 1) / wg);
+                   allocs, push, (items + wg - 1) / wg, written);
 }
 
 }  // namespace masav::vk

@@ -69,13 +69,14 @@ class VulkanBackend final : public Backend, public VulkanInterop {
  private:
   const std::shared_ptr<Allocation>& alloc(const BufferImpl& b, std::string_view kernel) const;
   std::shared_ptr<Allocation> scratch(const std::string& slot, size_t bytes);
+  // One pass of a multi-pass kernel; bit i of `written`: it writes buffers[i] (Stream::dispatch).
   void run(const KernelSpec& spec, std::initializer_list<std::shared_ptr<Allocation>> buffers,
-           const void* push, uint64_t groups);
+           const void* push, uint64_t groups, uint32_t written = ~0u);
   // One dispatch of shaders/<kernel>.comp over `items` invocations: `buffers` bound at 1..n in
   // the order of kernels.inc (a null one, unused by the call, gets the first non-null one's
-  // memory), `push` the kernel's layout.
+  // memory), `push` the kernel's layout, `written` the buffers it writes (bit i: buffers[i]).
   void dispatch_kernel(KernelId kernel, std::span<const BufferImpl* const> buffers,
-                       const void* push, uint32_t push_bytes, uint64_t items);
+                       const void* push, uint32_t push_bytes, uint64_t items, uint32_t written);
   void exclusive_scan(const std::shared_ptr<Allocation>& data, uint32_t count, uint32_t level);
   void check_diagnostics();
   SortScatter choose_sort_scatter(SortScatter wanted) const;

@@ -30,7 +30,7 @@ void VulkanBackend::run_own(const KernelArgs<KernelId::gather>& a) {
   const uint32_t wg = options_.workgroup_size;
   run({eb == 16 ? "gather_u32x4" : "gather_u32", 3, sizeof push, {}},
       {alloc(order.impl(), "gather"), alloc(src, "gather"), alloc(dst, "gather")}, &push,
-      (p.n + wg - 1) / wg);
+      (p.n + wg - 1) / wg, /*written: dst*/ 1u << 2);
 }
 
 }  // namespace masav::vk

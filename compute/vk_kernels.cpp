@@ -13,8 +13,13 @@ void VulkanBackend::run_kernel(const Params& p, uint64_t items, Buffers&... buff
     const auto& layout = device_params<float>(p, buffers...);
     static_assert(sizeof(layout) <= 128, "push constants beyond the 128 bytes every device has");
     const BufferImpl* const impls[] = {impl_of(buffers)...};
+    // The kernel writes the buffers it takes by non-const reference or pointer (kernels.inc's
+    // out, inout and opt_out), so a barrier goes only where a later command depends on it.
+    const bool writes[] = {!std::is_const_v<std::remove_pointer_t<Buffers>>...};
+    uint32_t written = 0;
+    for (size_t i = 0; i < sizeof...(Buffers); ++i) written |= writes[i] ? 1u << i : 0u;
     if (const uint32_t limit = diag_limit(layout)) pending_diag_limit_ = limit;
-    dispatch_kernel(K, impls, &layout, sizeof(layout), items);
+    dispatch_kernel(K, impls, &layout, sizeof(layout), items, written);
   }
 }
 

@@ -2,6 +2,8 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
+
 #include "engine/core/error.h"
 
 namespace masav::vk {
@@ -34,12 +36,7 @@ void Stream::begin() {
   }
 }
 
-void Stream::barrier() {
-  begin();
-  if (!commands_recorded_) {
-    commands_recorded_ = true;
-    return;
-  }
+void Stream::record_barrier() {
   using S = ::vk::PipelineStageFlagBits;
   using A = ::vk::AccessFlagBits;
   ::vk::MemoryBarrier mb(A::eShaderWrite | A::eTransferWrite,
@@ -47,6 +44,29 @@ void Stream::barrier() {
   cmds_.cmd().pipelineBarrier(S::eComputeShader | S::eTransfer, S::eComputeShader | S::eTransfer,
                               {}, mb, {}, {});
   ++counters_.barriers;
+  read_.clear();
+  written_.clear();
+}
+
+void Stream::barrier() {
+  begin();
+  if (commands_recorded_) record_barrier();
+  commands_recorded_ = true;
+}
+
+void Stream::order(std::span<const Allocation* const> reads,
+                   std::span<const Allocation* const> writes) {
+  begin();
+  auto in = [](const std::vector<const Allocation*>& set, const Allocation* a) {
+    return std::find(set.begin(), set.end(), a) != set.end();
+  };
+  bool depends = false;
+  for (const Allocation* r : reads) depends = depends || in(written_, r);
+  for (const Allocation* w : writes) depends = depends || in(written_, w) || in(read_, w);
+  if (depends && commands_recorded_) record_barrier();
+  commands_recorded_ = true;
+  read_.insert(read_.end(), reads.begin(), reads.end());
+  written_.insert(written_.end(), writes.begin(), writes.end());
 }
 
 ::vk::DescriptorSet Stream::allocate_set(const Kernel& k) {
@@ -63,7 +83,7 @@ void Stream::barrier() {
 
 void Stream::dispatch(const Kernel& k, const std::shared_ptr<Allocation>& diag,
                       std::span<const std::shared_ptr<Allocation>> buffers, const void* push,
-                      uint64_t groups) {
+                      uint64_t groups, uint32_t written) {
   if (buffers.size() != k.buffers)
     throw Error("vulkan", k.name,
                 fmt::format("{} buffers bound, kernel takes {}", buffers.size(), k.buffers),
@@ -77,7 +97,10 @@ void Stream::dispatch(const Kernel& k, const std::shared_ptr<Allocation>& diag,
   if (gy > 65535)
     throw Error("vulkan", k.name, fmt::format("{} workgroups exceed this device's grid", groups),
                 "use fewer elements");
-  barrier();
+  std::vector<const Allocation*> reads, writes;
+  for (size_t i = 0; i < buffers.size(); ++i)
+    ((written >> i) & 1u ? writes : reads).push_back(buffers[i].get());
+  order(reads, writes);
   std::vector<std::shared_ptr<Allocation>> bound;
   bound.reserve(buffers.size() + 1);
   bound.push_back(diag);
@@ -129,7 +152,9 @@ void Stream::copy(const std::shared_ptr<Allocation>& src, ::vk::DeviceSize src_o
                   const std::shared_ptr<Allocation>& dst, ::vk::DeviceSize dst_offset,
                   ::vk::DeviceSize bytes) {
   if (bytes == 0) return;
-  barrier();
+  const Allocation* read[] = {src.get()};
+  const Allocation* write[] = {dst.get()};
+  order(read, write);
   cmds_.cmd().copyBuffer(*src->buffer, *dst->buffer,
                          ::vk::BufferCopy(src_offset, dst_offset, bytes));
   keep(src);
@@ -137,7 +162,8 @@ void Stream::copy(const std::shared_ptr<Allocation>& src, ::vk::DeviceSize src_o
 }
 
 void Stream::fill(const std::shared_ptr<Allocation>& dst, uint32_t value) {
-  barrier();
+  const Allocation* write[] = {dst.get()};
+  order({}, write);
   cmds_.cmd().fillBuffer(*dst->buffer, 0, VK_WHOLE_SIZE, value);
   keep(dst);
   ++counters_.fills;
@@ -174,6 +200,8 @@ void Stream::submit_and_wait() {
   if (descriptor_pools_.size() > 1)
     descriptor_pools_.erase(descriptor_pools_.begin() + 1, descriptor_pools_.end());
   sets_in_last_pool_ = 0;
+  read_.clear();
+  written_.clear();
   if (cached_sets_ >= kCachedSets) {
     // Full: start over (no recorded work uses a set any more).
     set_cache_.clear();
