@@ -118,11 +118,14 @@ void VulkanBackend::read_bytes(const BufferImpl& src, void* dst, size_t bytes, s
     std::memcpy(dst, static_cast<const uint8_t*>(a->mapped) + offset, bytes);
     return;
   }
-  auto staging = allocate(ctx_, bytes, MemoryUse::readback, "download staging");
-  stream_.copy(a, offset, staging, 0, bytes);
+  // One readback buffer, grown as needed and reused: the copy is waited for right here, so no
+  // earlier download can still be using it (a per-step stats read allocates nothing).
+  if (!readback_ || readback_->bytes < bytes)
+    readback_ = allocate(ctx_, bytes, MemoryUse::readback, "download staging");
+  stream_.copy(a, offset, readback_, 0, bytes);
   finish();
-  invalidate_for_host(ctx_, *staging);
-  std::memcpy(dst, staging->mapped, bytes);
+  invalidate_for_host(ctx_, *readback_);
+  std::memcpy(dst, readback_->mapped, bytes);
 }
 
 void VulkanBackend::copy_buffer(const BufferImpl& src, BufferImpl& dst, size_t bytes) {

@@ -87,6 +87,7 @@ class VulkanBackend final : public Backend, public VulkanInterop {
   Stream stream_;
   std::shared_ptr<Allocation> diag_;
   std::map<std::string, std::shared_ptr<Allocation>> scratch_;
+  std::shared_ptr<Allocation> readback_;  // staging of downloads from device-only memory
   uint32_t pending_diag_limit_ = 0;  // the limit a pending diagnostic's message names
   SortScatter scatter_ = SortScatter::tiled;
 };
