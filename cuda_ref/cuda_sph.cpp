@@ -11,27 +11,32 @@ using V4 = hd::V4<float>;
 }  // namespace
 
 void CudaBackend::run_own(const KernelArgs<KernelId::sph_density>& a) {
-  auto& [p, items_, positions, cells, cell_start, cell_end, density, pressure, stats] = a;
+  auto& [p, items_, positions, cells, cell_start, cell_end, density, pressure, stats,
+         neighbor_rows] = a;
   const char* k = "sph_density";
-  launched(launch::sph_density(stream_, grid_for_items(p.n, k), device_params<float>(p),
-                               device_ptr<V4>(positions, k), device_ptr<uint32_t>(cells, k),
-                               device_ptr<uint32_t>(cell_start, k),
-                               device_ptr<uint32_t>(cell_end, k), device_ptr<float>(density, k),
-                               device_ptr<float>(pressure, k), device_ptr<uint32_t>(stats, k)),
-           k);
+  uint32_t* rows = neighbor_rows ? device_ptr<uint32_t>(*neighbor_rows, k) : nullptr;
+  launched(
+      launch::sph_density(stream_, grid_for_items(p.n, k), device_params<float>(p, neighbor_rows),
+                          device_ptr<V4>(positions, k), device_ptr<uint32_t>(cells, k),
+                          device_ptr<uint32_t>(cell_start, k), device_ptr<uint32_t>(cell_end, k),
+                          device_ptr<float>(density, k), device_ptr<float>(pressure, k),
+                          device_ptr<uint32_t>(stats, k), rows),
+      k);
 }
 
 void CudaBackend::run_own(const KernelArgs<KernelId::sph_forces>& a) {
   auto& [p, items_, positions, velocities, density, pressure, cells, cell_start, cell_end, accel,
-         stats] = a;
+         stats, neighbor_rows] = a;
   const char* k = "sph_forces";
-  launched(launch::sph_forces(stream_, grid_for_items(p.n, k), device_params<float>(p),
-                              device_ptr<V4>(positions, k), device_ptr<V4>(velocities, k),
-                              device_ptr<float>(density, k), device_ptr<float>(pressure, k),
-                              device_ptr<uint32_t>(cells, k), device_ptr<uint32_t>(cell_start, k),
-                              device_ptr<uint32_t>(cell_end, k), device_ptr<V4>(accel, k),
-                              device_ptr<uint32_t>(stats, k)),
-           k);
+  const uint32_t* rows = neighbor_rows ? device_ptr<uint32_t>(*neighbor_rows, k) : nullptr;
+  launched(
+      launch::sph_forces(stream_, grid_for_items(p.n, k), device_params<float>(p, neighbor_rows),
+                         device_ptr<V4>(positions, k), device_ptr<V4>(velocities, k),
+                         device_ptr<float>(density, k), device_ptr<float>(pressure, k),
+                         device_ptr<uint32_t>(cells, k), device_ptr<uint32_t>(cell_start, k),
+                         device_ptr<uint32_t>(cell_end, k), device_ptr<V4>(accel, k),
+                         device_ptr<uint32_t>(stats, k), rows),
+      k);
 }
 
 void CudaBackend::run_own(const KernelArgs<KernelId::sph_integrate>& a) {

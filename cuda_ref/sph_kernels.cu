@@ -29,14 +29,16 @@ __device__ bool lane0() {
 __global__ void density_kernel(SphStepLayout<float> c, const V4* __restrict__ pos,
                                const uint32_t* __restrict__ cells,
                                const uint32_t* __restrict__ start, const uint32_t* __restrict__ end,
-                               float* density, float* pressure, uint32_t* stats) {
+                               float* density, float* pressure, uint32_t* stats,
+                               uint32_t* neighbor_rows) {
   const uint64_t i = sph_thread();
   uint32_t cand = 0, within = 0, over = 0, bad = 0;
   if (i < c.n) {
     const uint32_t dims[3] = {c.dims.x, c.dims.y, c.dims.z};
     auto pos_at = [pos](uint32_t j) { return sph::xyz(pos[j]); };
-    const auto r = sph::density_at<float>(pos_at(uint32_t(i)), cells[i], dims, start, end,
-                                          c.max_candidates, c, pos_at);
+    const auto r =
+        sph::density_at<float>(pos_at(uint32_t(i)), cells[i], dims, start, end, c.max_candidates, c,
+                               pos_at, sph::row_masks(neighbor_rows, uint32_t(i), c.n));
     const float p = sph::pressure_of(r.density, c);
     density[i] = r.density;
     pressure[i] = p;
@@ -62,7 +64,8 @@ __global__ void forces_kernel(SphStepLayout<float> c, const V4* __restrict__ pos
                               const float* __restrict__ pressure,
                               const uint32_t* __restrict__ cells,
                               const uint32_t* __restrict__ start, const uint32_t* __restrict__ end,
-                              V4* accel, uint32_t* stats) {
+                              V4* accel, uint32_t* stats,
+                              const uint32_t* __restrict__ neighbor_rows) {
   const uint64_t i = sph_thread();
   uint32_t cand = 0, over = 0, bad = 0, a2 = 0;
   if (i < c.n) {
@@ -73,8 +76,9 @@ __global__ void forces_kernel(SphStepLayout<float> c, const V4* __restrict__ pos
     };
     const V4 pw = pos[i];
     const sph::Neighbor<float> me = fetch(uint32_t(i));
-    const auto r = sph::force_at<float>(uint32_t(i), me, cells[i], dims, start, end,
-                                        c.max_candidates, c, pos_at, fetch);
+    const auto r =
+        sph::force_at<float>(uint32_t(i), me, cells[i], dims, start, end, c.max_candidates, c,
+                             pos_at, fetch, sph::row_masks(neighbor_rows, uint32_t(i), c.n));
     const sph::V3<float> a = sph::total_accel(r.accel, pw.w, c);
     accel[i] = V4{a.x, a.y, a.z, float(r.neighbors)};
     cand = r.candidates;
@@ -128,17 +132,18 @@ __global__ void integrate_kernel(SphIntegrateLayout<float> p, const V4* x0, cons
 
 cudaError_t sph_density(cudaStream_t s, dim3 grid, const SphStepLayout<float>& c, const V4* pos,
                         const uint32_t* cells, const uint32_t* start, const uint32_t* end,
-                        float* density, float* pressure, uint32_t* stats) {
-  density_kernel<<<grid, kBlock, 0, s>>>(c, pos, cells, start, end, density, pressure, stats);
+                        float* density, float* pressure, uint32_t* stats, uint32_t* neighbor_rows) {
+  density_kernel<<<grid, kBlock, 0, s>>>(c, pos, cells, start, end, density, pressure, stats,
+                                         neighbor_rows);
   return cudaGetLastError();
 }
 
 cudaError_t sph_forces(cudaStream_t s, dim3 grid, const SphStepLayout<float>& c, const V4* pos,
                        const V4* vel, const float* density, const float* pressure,
                        const uint32_t* cells, const uint32_t* start, const uint32_t* end, V4* accel,
-                       uint32_t* stats) {
+                       uint32_t* stats, const uint32_t* neighbor_rows) {
   forces_kernel<<<grid, kBlock, 0, s>>>(c, pos, vel, density, pressure, cells, start, end, accel,
-                                        stats);
+                                        stats, neighbor_rows);
   return cudaGetLastError();
 }
 

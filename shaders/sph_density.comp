@@ -5,7 +5,9 @@
 // Density (poly6, thesis Eq. 4.4) and pressure of each sorted particle over the neighbours
 // within h in the 27 cells around cells[i], walked as 9 rows of 3 consecutive cells. The
 // candidates per invocation are capped (max_candidates) and an overflow is reported, never
-// silently truncated. Twin of sph::density_at (engine/kernels/sph_kernels.h).
+// silently truncated. With neighbor_rows bound (p.neighbor_rows != 0), also records which
+// candidates of each row lie within h, for sph_forces (kSphRowMaskBits in
+// engine/kernels/sph_kernel_params.h). Twin of sph::density_at (engine/kernels/sph_kernels.h).
 #include "kernel_base.glsl"
 
 layout(std430, binding = 1) readonly buffer Positions { vec4 positions[]; };
@@ -15,6 +17,7 @@ layout(std430, binding = 4) readonly buffer End { uint cell_end[]; };
 layout(std430, binding = 5) writeonly buffer Density { float density[]; };
 layout(std430, binding = 6) writeonly buffer Pressure { float pressure[]; };
 layout(std430, binding = 7) buffer Stats { uint stats[]; };
+layout(std430, binding = 8) writeonly buffer NeighborRows { uint neighbor_rows[]; };
 
 #include "sph.glsl"
 #include "sph_walk.glsl"
@@ -42,16 +45,8 @@ void main() {
     LOOP_TICK();
     for (int dy = -1; dy <= 1; ++dy) {
       LOOP_TICK();
-      const int x = cc.x + dx, y = cc.y + dy;
-      uvec2 r = uvec2(0u);
-      if (live && !overflow && x >= 0 && x < int(dims.x) && y >= 0 && y < int(dims.y)) {
-        r = sph_row_range(x, y, cc.z, dims);
-        if (r.y - r.x > p.max_candidates - candidates) {
-          overflow = true;
-          r = uvec2(0u);
-        }
-        candidates += r.y - r.x;
-      }
+      const uvec2 r = sph_lane_row(live, cc, dx, dy, dims, p.max_candidates, candidates, overflow);
+      uvec2 bits = uvec2(0u);  // this row's mask, in both walks
       uvec2 u;
       if (sph_coop_row(r, spent, u)) {
         for (uint base = u.x; base < u.y; base += kSphCoop) {
@@ -65,8 +60,10 @@ void main() {
             const vec3 d = xi - xj;
             const float r2 = dot(d, d);
             const bool in_row = j >= r.x && j < r.y;
+            const bool near = in_row && r2 < p.h2;
             sum += in_row ? sph_density_term(r2, p) : 0.0;
-            within += in_row && r2 < p.h2 ? 1u : 0u;
+            within += near ? 1u : 0u;
+            bits = sph_mask_set(bits, j - r.x, near);
           }
         }
       } else {
@@ -74,9 +71,17 @@ void main() {
           LOOP_TICK();
           const vec3 d = xi - positions[j].xyz;
           const float r2 = dot(d, d);
+          const bool near = r2 < p.h2;
           sum += sph_density_term(r2, p);
-          within += r2 < p.h2 ? 1u : 0u;
+          within += near ? 1u : 0u;
+          bits = sph_mask_set(bits, j - r.x, near);
         }
+      }
+      if (p.neighbor_rows != 0u && live) {
+        const uint row = sph_row_index(dx, dy);
+        if (!sph_row_fits_mask(r)) bits = uvec2(0u);
+        neighbor_rows[sph_mask_word(row, 0u, i, p.n)] = bits.x;
+        neighbor_rows[sph_mask_word(row, 1u, i, p.n)] = bits.y;
       }
     }
   }

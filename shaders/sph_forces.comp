@@ -4,9 +4,12 @@
 #extension GL_KHR_shader_subgroup_shuffle : require
 // Acceleration of each sorted particle: pressure (spiky gradient) and viscosity (its laplacian)
 // per the pressure model, times the inverse mass (positions' w), plus gravity. One invocation
-// per particle, no atomics in the neighbour loop, neighbours walked cooperatively
-// (sph_coop.glsl) with p / rho^2 computed once per loaded candidate. Twin of sph::force_at
-// (engine/kernels/sph_kernels.h).
+// per particle, no atomics in the neighbour loop. Neighbours are walked cooperatively
+// (sph_coop.glsl) with p / rho^2 computed once per loaded candidate or, with neighbor_rows
+// bound (p.neighbor_rows != 0), per lane over only the candidates sph_density found within h.
+// The masked walk sums in ascending order within a row, the cooperative one in an order rotated
+// within chunks, so the two differ by float rounding (the neighbours are the same). Twin of
+// sph::force_at (engine/kernels/sph_kernels.h).
 #include "kernel_base.glsl"
 
 layout(std430, binding = 1) readonly buffer Positions { vec4 positions[]; };
@@ -18,6 +21,7 @@ layout(std430, binding = 6) readonly buffer Start { uint cell_start[]; };
 layout(std430, binding = 7) readonly buffer End { uint cell_end[]; };
 layout(std430, binding = 8) writeonly buffer Accel { vec4 accel[]; };
 layout(std430, binding = 9) buffer Stats { uint stats[]; };
+layout(std430, binding = 10) readonly buffer NeighborRows { uint neighbor_rows[]; };
 
 #include "sph.glsl"
 #include "sph_walk.glsl"
@@ -25,43 +29,43 @@ layout(std430, binding = 9) buffer Stats { uint stats[]; };
 
 MASAV_PUSH(SphStepLayout);
 
-void main() {
-  const uint i = flat_invocation_id();
-  const bool live = i < p.n;
-  uint candidates = 0u;
-  bool overflow = false, bad = false;
-  float accel2 = 0.0;
-  // Every lane runs the row loops (see sph_coop.glsl); dead lanes have empty rows.
-  vec4 pw = vec4(0.0);
-  vec3 v = vec3(0.0);
-  float rho = 1.0, pi_over_rho2 = 0.0;
-  ivec3 cc = ivec3(-4);
-  if (live) {
-    pw = positions[i];
-    v = velocities[i].xyz;
-    rho = density[i];
-    pi_over_rho2 = pressure[i] / (rho * rho);
-    cc = sph_cell_coords(cells[i], p.dims);
-  }
-  const vec3 xi = pw.xyz;
-  const uvec3 dims = p.dims;
+// The particle an invocation computes (sph::Neighbor): sorted index, position, velocity,
+// density and p / rho^2.
+struct Me {
+  uint i;
+  vec3 x, v;
+  float rho, p_rho2;
+};
+
+// What the walk sums.
+struct Sum {
+  vec3 acc;
+  uint neighbors, candidates;
+  bool overflow;
+};
+
+// Candidate j's pair term, if it is another particle within h (the per-lane test).
+void add_candidate(Me me, uint j, inout Sum s) {
+  if (j == me.i) return;
+  const vec3 d = me.x - positions[j].xyz;
+  const float r2 = dot(d, d);
+  if (!(r2 < p.h2)) return;
+  ++s.neighbors;
+  const float rho_j = density[j];
+  s.acc += sph_pair_accel(me.v, me.rho, me.p_rho2, velocities[j].xyz, rho_j,
+                          pressure[j] / (rho_j * rho_j), d, r2, p);
+}
+
+// Every lane runs the row loops (the cooperative rows need the whole subgroup); dead lanes have
+// empty rows.
+void walk_cooperative(bool live, ivec3 cc, Me me, inout Sum s) {
   uint spent = 0u;
-  vec3 acc = vec3(0.0);
-  uint neighbors = 0u;
   for (int dx = -1; dx <= 1; ++dx) {
     LOOP_TICK();
     for (int dy = -1; dy <= 1; ++dy) {
       LOOP_TICK();
-      const int x = cc.x + dx, y = cc.y + dy;
-      uvec2 r = uvec2(0u);
-      if (live && !overflow && x >= 0 && x < int(dims.x) && y >= 0 && y < int(dims.y)) {
-        r = sph_row_range(x, y, cc.z, dims);
-        if (r.y - r.x > p.max_candidates - candidates) {
-          overflow = true;
-          r = uvec2(0u);
-        }
-        candidates += r.y - r.x;
-      }
+      const uvec2 r = sph_lane_row(live, cc, dx, dy, p.dims, p.max_candidates, s.candidates,
+                                   s.overflow);
       uvec2 u;
       if (sph_coop_row(r, spent, u)) {
         for (uint base = u.x; base < u.y; base += kSphCoop) {
@@ -84,44 +88,97 @@ void main() {
             const float rho_j = subgroupShuffle(rc, src);
             const float q_j = subgroupShuffle(qc, src);
             const uint j = base + ((sph_coop_lane() + k) & (kSphCoop - 1u));
-            const vec3 d = xi - xj;
+            const vec3 d = me.x - xj;
             const float r2 = dot(d, d);
-            if (j >= r.x && j < r.y && j != i && r2 < p.h2) {
-              ++neighbors;
-              acc += sph_pair_accel(v, rho, pi_over_rho2, vj, rho_j, q_j, d, r2, p);
+            if (j >= r.x && j < r.y && j != me.i && r2 < p.h2) {
+              ++s.neighbors;
+              s.acc += sph_pair_accel(me.v, me.rho, me.p_rho2, vj, rho_j, q_j, d, r2, p);
             }
           }
         }
       } else {
         for (uint j = r.x; j < r.y; ++j) {
           LOOP_TICK();
-          if (j == i) continue;
-          const vec3 d = xi - positions[j].xyz;
-          const float r2 = dot(d, d);
-          if (!(r2 < p.h2)) continue;
-          ++neighbors;
-          const float rho_j = density[j];
-          acc += sph_pair_accel(v, rho, pi_over_rho2, velocities[j].xyz, rho_j,
-                                pressure[j] / (rho_j * rho_j), d, r2, p);
+          add_candidate(me, j, s);
         }
       }
     }
   }
+}
+
+// Per lane, each row's set mask bits in ascending order, or every candidate of a row too long
+// for its mask. One loop per row does both, so that a subgroup whose lanes take different kinds
+// of rows iterates at most as often as its longest row (lavapipe's loop cap counts the passes).
+// The distance test is repeated: a compiler that rounds r2 differently here than in sph_density
+// can then drop a pair but never sum one beyond h.
+void walk_masked(bool live, ivec3 cc, Me me, inout Sum s) {
+  for (int dx = -1; dx <= 1; ++dx) {
+    LOOP_TICK();
+    for (int dy = -1; dy <= 1; ++dy) {
+      LOOP_TICK();
+      const uvec2 r = sph_lane_row(live, cc, dx, dy, p.dims, p.max_candidates, s.candidates,
+                                   s.overflow);
+      const bool whole = !sph_row_fits_mask(r);
+      uvec2 bits = uvec2(0u);
+      if (!whole && r.y > r.x) {
+        const uint row = sph_row_index(dx, dy);
+        bits = uvec2(neighbor_rows[sph_mask_word(row, 0u, me.i, p.n)],
+                     neighbor_rows[sph_mask_word(row, 1u, me.i, p.n)]);
+      }
+      uint next = r.x;
+      while (whole ? next < r.y : (bits.x | bits.y) != 0u) {
+        LOOP_TICK();
+        uint j;
+        if (whole) {
+          j = next;
+          ++next;
+        } else {
+          j = r.x + sph_mask_take(bits);
+        }
+        add_candidate(me, j, s);
+      }
+    }
+  }
+}
+
+void main() {
+  const uint i = flat_invocation_id();
+  const bool live = i < p.n;
+  float accel2 = 0.0;
+  bool bad = false;
+  vec4 pw = vec4(0.0);
+  Me me = Me(i, vec3(0.0), vec3(0.0), 1.0, 0.0);
+  ivec3 cc = ivec3(-4);
   if (live) {
+    pw = positions[i];
+    me.x = pw.xyz;
+    me.v = velocities[i].xyz;
+    me.rho = density[i];
+    me.p_rho2 = pressure[i] / (me.rho * me.rho);
+    cc = sph_cell_coords(cells[i], p.dims);
+  }
+  Sum s = Sum(vec3(0.0), 0u, 0u, false);
+  if (p.neighbor_rows != 0u) {
+    walk_masked(live, cc, me, s);
+  } else {
+    walk_cooperative(live, cc, me, s);
+  }
+  if (live) {
+    vec3 acc = s.acc;
     if (p.walls != 0u) {
       vec3 n;
-      sph_wall_density(xi, p, n);
-      const float damp = p.wall_viscosity * (2.0 * p.rest_density / (rho + p.rest_density)) *
-                         sph_wall_viscous_weight(xi, p);
-      acc += (2.0 * pi_over_rho2 * p.rest_density * p.inv_h) * n - damp * v;
+      sph_wall_density(me.x, p, n);
+      const float damp = p.wall_viscosity * (2.0 * p.rest_density / (me.rho + p.rest_density)) *
+                         sph_wall_viscous_weight(me.x, p);
+      acc += (2.0 * me.p_rho2 * p.rest_density * p.inv_h) * n - damp * me.v;
     }
     const vec3 a = sph_total_accel(acc, pw.w, p);
-    accel[i] = vec4(a, float(neighbors));
+    accel[i] = vec4(a, float(s.neighbors));
     bad = !sph_finite(a);
     if (!bad && pw.w > 0.0) accel2 = dot(a, a);
   }
-  const uint max_cand = subgroupMax(candidates);
-  const uint over = subgroupMax(overflow ? ~i : 0u);
+  const uint max_cand = subgroupMax(s.candidates);
+  const uint over = subgroupMax(s.overflow ? ~i : 0u);
   const uint nonfinite = subgroupMax(bad ? ~i : 0u);
   const uint max_a2 = subgroupMax(floatBitsToUint(accel2));
   if (subgroupElect()) {

@@ -5,6 +5,7 @@
 // suite (test_main.cpp says so); the coverage test below runs everywhere.
 #include <doctest/doctest.h>
 
+#include <algorithm>
 #include <bit>
 #include <cmath>
 #include <random>
@@ -330,6 +331,38 @@ LOOP_LIMIT_CASE("sph kernels: loop ticks = rows + cells + candidates, capped bel
   // candidate is refused.
   CHECK(3 + 9 + 27 + 9 * 3 * 6 + 260 + 65000 + walls + 6 <
         test::loop_counter().caps().max_loop_iterations);
+
+  // Over neighbour row masks: recording them adds no loop to sph_density; sph_forces walks per
+  // lane (no row unions) a row too long for its mask whole, so the crowded row costs what it
+  // did, and a row that fits one pass per neighbour (at most its candidates). Its worst case,
+  // 3 + 9 + 27 + 65000 + walls + 6, is then below the cooperative walk's bound above.
+  auto rows = b.create<uint32_t>(size_t(kSphRowMaskWords) * n, "rows");
+  sph_density(b, p, {&pos, view, &rho, &pr, &stats, &rows});
+  CHECK(test::ticks_of(b) == 3 + 9 + unions + 1 + n + walls);
+  sph_forces(b, p, {&pos, &vel, &rho, &pr, view, &acc, &stats, &rows});
+  CHECK(test::ticks_of(b) == 3 + 9 + 1 + n + walls + 6);
+  const uint32_t few = 50;  // one row that fits a mask
+  SphStepParams q = p;
+  q.grid.n = q.n = q.max_candidates = few;
+  auto pos_q = b.create<Real4>(few, "pos few");
+  b.upload(pos_q, std::vector<Vec4f>(pts.begin(), pts.begin() + few));
+  HashGrid gq = make_hash_grid(b, q.grid, few);
+  build_hash_grid(b, gq, pos_q);
+  const SphGridView vq{&gq.sorted_cells, &gq.cell_start, &gq.cell_end};
+  sph_density(b, q, {&pos_q, vq, &rho, &pr, &stats, &rows});
+  (void)test::ticks_of(b);
+  sph_forces(b, q, {&pos_q, &vel, &rho, &pr, vq, &acc, &stats, &rows});
+  const std::vector<uint32_t> words = b.download(rows);
+  uint32_t most = 0;  // the most neighbours any particle has, itself included
+  for (uint32_t i = 0; i < few; ++i) {
+    uint32_t bits = 0;
+    for (uint32_t w = 0; w < kSphRowMaskWords; ++w) bits += std::popcount(words[w * few + i]);
+    most = std::max(most, bits);
+  }
+  CHECK(most > 1);
+  CHECK(most <= few);
+  CHECK(test::ticks_of(b) == 3 + 9 + 1 + most + walls + 6);
+
   p.max_candidates = 65001;
   CHECK_THROWS_AS(sph_density(b, p, {&pos, view, &rho, &pr, &stats}), Error);
 

@@ -2,7 +2,8 @@
 // engine/kernels/sph_kernels.h in double precision, one contiguous chunk of sorted particles per
 // task. Statistics are gathered per chunk and merged once, in chunk order. sph_density finds the
 // neighbour lists (cpu_sph_lists.h) that sph_forces then reuses; the candidate test runs on
-// structure-of-arrays positions (cpu_sph_rows.h).
+// structure-of-arrays positions (cpu_sph_rows.h). The neighbour row masks, the GPU backends'
+// form of those lists, are written from the lists when asked for and never read here.
 #include <algorithm>
 #include <bit>
 #include <cmath>
@@ -81,6 +82,25 @@ const Soa& soa_positions(ThreadPool& pool, const double* pos, size_t n) {
   return s;
 }
 
+// Particle i's neighbour row masks (sph::RowMasks) from its neighbour list, which holds the
+// same test (r2 < h2) in walk order -- ascending within a row, rows in walk order -- without
+// the particle itself, which the masks include.
+void write_row_masks(const SphListInputs& in, uint32_t i, const uint32_t* list, uint32_t count,
+                     uint32_t* neighbor_rows) {
+  const sph::RowMasks<uint32_t> masks = sph::row_masks(neighbor_rows, i, in.n);
+  uint32_t k = 0;
+  bool overflow = false;
+  sph::walk_rows(in.cells[i], in.dims, in.cell_start, in.cell_end, in.max_candidates, overflow,
+                 [&](uint32_t row, uint32_t first, uint32_t last) {
+                   uint64_t bits = 0;
+                   for (; k < count && list[k] >= first && list[k] < last; ++k)
+                     bits |= uint64_t(1) << ((list[k] - first) & (kSphRowMaskBits - 1));
+                   if (i >= first && i < last)
+                     bits |= uint64_t(1) << ((i - first) & (kSphRowMaskBits - 1));
+                   sph::store_row_mask(masks, row, sph::row_fits_mask(first, last) ? bits : 0);
+                 });
+}
+
 }  // namespace
 
 SphListInputs CpuBackend::sph_list_inputs(const SphStepParams& p, const Buffer<uint32_t>& cells,
@@ -133,7 +153,8 @@ void CpuBackend::build_sph_lists(const SphListInputs& in, size_t chunks, Found&&
 }
 
 void CpuBackend::run_own(const KernelArgs<KernelId::sph_density>& a) {
-  auto& [p, items_, positions, cells, cell_start, cell_end, density, pressure, stats] = a;
+  auto& [p, items_, positions, cells, cell_start, cell_end, density, pressure, stats,
+         neighbor_rows] = a;
   const char* k = "sph_density";
   const auto c = device_params<double>(p);
   SphListInputs in = sph_list_inputs(p, cells, cell_start, cell_end, c.h2, k);
@@ -141,6 +162,7 @@ void CpuBackend::run_own(const KernelArgs<KernelId::sph_density>& a) {
   double* rho = own(density.impl(), k).as<double>();
   double* pr = own(pressure.impl(), k).as<double>();
   uint32_t* words = own(stats.impl(), k).as<uint32_t>();
+  uint32_t* rows = neighbor_rows ? own(neighbor_rows->impl(), k).as<uint32_t>() : nullptr;
   const size_t chunks = chunk_count(pool_, p.n, 256);
   std::vector<ChunkStats> st(chunks);
   // sph::density_at's sum over the neighbour list: the particle itself (r = 0, term 1) first,
@@ -155,13 +177,17 @@ void CpuBackend::run_own(const KernelArgs<KernelId::sph_density>& a) {
     s.max_neighbors = std::max(s.max_neighbors, count + 1);
     if (sph_lists_.overflow(i)) s.overflow = std::min(s.overflow, i);
     if (!std::isfinite(rho[i]) || !std::isfinite(pr[i])) s.non_finite = std::min(s.non_finite, i);
+    if (rows) write_row_masks(in, i, sph_lists_.list(chunk, i), count, rows);
   });
   merge(words, st);
 }
 
 void CpuBackend::run_own(const KernelArgs<KernelId::sph_forces>& a) {
+  // neighbor_rows is not read: the masks are sph_density's neighbour lists plus each particle
+  // itself, and the lists below are those lists (or a fresh walk that finds the same ones), so
+  // the result is the same with or without them.
   auto& [p, items_, positions, velocities, density, pressure, cells, cell_start, cell_end, accel,
-         stats] = a;
+         stats, neighbor_rows] = a;
   const char* k = "sph_forces";
   const auto c = device_params<double>(p);
   SphListInputs in = sph_list_inputs(p, cells, cell_start, cell_end, c.h2, k);

@@ -72,12 +72,23 @@ void check_sph_step(const DeviceApi& dev, const SphStepParams& p, const char* ke
   check_candidates(dev, p.max_candidates, kernel);
 }
 
+// The optional neighbour row masks: kSphRowMaskWords words per particle when given.
+void check_neighbor_rows(const Buffer<uint32_t>* rows, const SphStepParams& p, const char* kernel) {
+  const size_t need_words = size_t(kSphRowMaskWords) * p.n;
+  if (rows && rows->size() < need_words)
+    throw_invalid(kernel, "neighbor_rows size", std::to_string(rows->size()),
+                  fmt::format("at least {} elements ({} words per particle, {} particles), or no "
+                              "neighbor_rows buffer",
+                              need_words, kSphRowMaskWords, p.n));
+}
+
 }  // namespace
 
 void validate(const DeviceApi& dev, const SphStepParams& p, const Buffer<Real4>& positions,
               const Buffer<uint32_t>& cells, const Buffer<uint32_t>& cell_start,
               const Buffer<uint32_t>& cell_end, const Buffer<Real>& density,
-              const Buffer<Real>& pressure, const Buffer<uint32_t>& stats) {
+              const Buffer<Real>& pressure, const Buffer<uint32_t>& stats,
+              const Buffer<uint32_t>* neighbor_rows) {
   const char* k = "sph_density";
   check_sph_step(dev, p, k);
   need(dev, &positions, p.n, k, "positions");
@@ -85,13 +96,15 @@ void validate(const DeviceApi& dev, const SphStepParams& p, const Buffer<Real4>&
   need(dev, &density, p.n, k, "density");
   need(dev, &pressure, p.n, k, "pressure");
   need(dev, &stats, kSphStatWords, k, "stats");
+  check_neighbor_rows(neighbor_rows, p, k);
 }
 
 void validate(const DeviceApi& dev, const SphStepParams& p, const Buffer<Real4>& positions,
               const Buffer<Real4>& velocities, const Buffer<Real>& density,
               const Buffer<Real>& pressure, const Buffer<uint32_t>& cells,
               const Buffer<uint32_t>& cell_start, const Buffer<uint32_t>& cell_end,
-              const Buffer<Real4>& accel, const Buffer<uint32_t>& stats) {
+              const Buffer<Real4>& accel, const Buffer<uint32_t>& stats,
+              const Buffer<uint32_t>* neighbor_rows) {
   const char* k = "sph_forces";
   check_sph_step(dev, p, k);
   need(dev, &positions, p.n, k, "positions");
@@ -101,6 +114,7 @@ void validate(const DeviceApi& dev, const SphStepParams& p, const Buffer<Real4>&
   check_view(dev, p, cells, cell_start, cell_end, k);
   need(dev, &accel, p.n, k, "accel");
   need(dev, &stats, kSphStatWords, k, "stats");
+  check_neighbor_rows(neighbor_rows, p, k);
 }
 
 void validate(const DeviceApi& dev, const SphIntegrateParams& p, const Buffer<Real4>* x0,

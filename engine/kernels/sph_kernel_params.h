@@ -42,6 +42,15 @@ MASAV_CONSTANT(kSphStatOutside, 6)        // particles outside the box after a s
 MASAV_CONSTANT(kSphStatMaxNeighbors, 7)   // most neighbours within h (density, itself included)
 MASAV_CONSTANT(kSphStatWords, 8)
 
+// Neighbour row masks (sph_density's optional output, sph_forces' optional input): for each of
+// the 9 rows of a particle's 27-cell walk, 64 bits, bit b set when candidate first + b of the
+// row lies within h (the particle itself included); a row of more candidates has no bits and
+// sph_forces walks it candidate by candidate. Word w = 2 row + half (low half first) of sorted
+// particle i is neighbor_rows[w n + i]: structure of arrays, so neighbouring invocations read
+// neighbouring words. Formats and walks: engine/kernels/sph_kernels.h (RowMasks).
+MASAV_CONSTANT(kSphRowMaskBits, 64)
+MASAV_CONSTANT(kSphRowMaskWords, 18)
+
 // What sph_density and sph_forces read: the grid they walk and the smoothing kernels' constants
 // (definitions: device_params below; formulas: engine/kernels/sph_kernels.h).
 MASAV_REAL_LAYOUT(SphStepLayout) {
@@ -65,6 +74,9 @@ MASAV_REAL_LAYOUT(SphStepLayout) {
   real_t wall_viscosity;  // nu * 7.5 / h^2: no-slip walls (see sph::wall_accel)
   real_t hi[3];
   real_t wall_offset;  // m: the continuum starts this far behind each wall
+  // 1 when the call passes neighbor_rows: a shader cannot tell a missing optional buffer from
+  // the one Vulkan binds in its place (C++ and CUDA test the pointer instead).
+  uint neighbor_rows;
 };
 
 // What sph_integrate reads: one stage of the integrator, then the box walls.
@@ -83,17 +95,21 @@ MASAV_NAMESPACE_END
 
 #ifdef __cplusplus
 #include <cmath>
+#include <tuple>
 
 #include "engine/core/buffer.h"
 #include "engine/kernels/grid_params.h"
 
 namespace masav {
 
-MASAV_LAYOUT_CHECK(SphStepLayout<float>, 112, (dims, 0), (n, 12), (max_candidates, 16), (model, 20),
+// 128 bytes: the most push constants every Vulkan device takes (vk_kernels.cpp asserts it). In
+// two checks: one takes at most 20 fields (engine/core/pp.h).
+MASAV_LAYOUT_CHECK(SphStepLayout<float>, 128, (dims, 0), (n, 12), (max_candidates, 16), (model, 20),
                    (clamp_negative_pressure, 24), (walls, 28), (h2, 32), (inv_h, 36), (inv_h2, 40),
                    (density, 44), (pressure, 48), (viscosity, 52), (rest_density, 56),
                    (inv_rest_density, 60), (eos, 64), (gravity, 68), (lo, 80), (wall_viscosity, 92),
                    (hi, 96), (wall_offset, 108))
+MASAV_LAYOUT_CHECK(SphStepLayout<float>, 128, (neighbor_rows, 112))
 MASAV_LAYOUT_CHECK(SphIntegrateLayout<float>, 48, (op, 0), (walls, 4), (n, 8), (dt, 12), (lo, 16),
                    (restitution, 28), (hi, 32), (tangential_damping, 44))
 
@@ -139,6 +155,9 @@ struct SphDensityIO {
   Buffer<Real>* density = nullptr;   // kg/m^3
   Buffer<Real>* pressure = nullptr;  // Pa
   Buffer<uint32_t>* stats = nullptr;
+  // Optional: the neighbour row masks (kSphRowMaskWords n words) for a later sph_forces on the
+  // same positions, grid and h.
+  Buffer<uint32_t>* neighbor_rows = nullptr;
 };
 
 struct SphForcesIO {
@@ -149,6 +168,9 @@ struct SphForcesIO {
   SphGridView grid;
   Buffer<Real4>* accel = nullptr;  // xyz (m/s^2) with gravity and mass scale; w = neighbours
   Buffer<uint32_t>* stats = nullptr;
+  // Optional: the masks sph_density wrote for these positions, grid and h. The result is the
+  // same as without them (on Vulkan up to the order of summation: see sph_forces.comp).
+  const Buffer<uint32_t>* neighbor_rows = nullptr;
 };
 
 struct SphIntegrateParams {
@@ -186,11 +208,21 @@ inline double signal_speed(const SphStepParams& p) {
   return p.sound_speed;
 }
 
+// Whether a call of sph_density or sph_forces passes the neighbour row masks: their last buffer
+// (kernels.inc), null when not given.
+template <class... Buffers>
+bool passes_neighbor_rows(const Buffers&... buffers) {
+  if constexpr (sizeof...(Buffers) == 0)
+    return false;
+  else
+    return std::get<sizeof...(Buffers) - 1>(std::tie(buffers...)) != nullptr;
+}
+
 // The layouts the kernels read: every coefficient computed in double, then rounded once to the
 // backend's precision F (double on the CPU reference, float elsewhere), so that every backend
 // starts from the same values.
 template <class F, class... Buffers>
-SphStepLayout<F> device_params(const SphStepParams& p, const Buffers&...) {
+SphStepLayout<F> device_params(const SphStepParams& p, const Buffers&... buffers) {
   constexpr double pi = 3.14159265358979323846;
   const double h = p.h;
   const bool thesis = p.model == SphPressureModel::thesis;
@@ -222,6 +254,7 @@ SphStepLayout<F> device_params(const SphStepParams& p, const Buffers&...) {
   }
   c.wall_viscosity = F(p.viscosity * 7.5 / (h * h));
   c.wall_offset = F(p.wall_offset);
+  c.neighbor_rows = passes_neighbor_rows(buffers...) ? 1u : 0u;
   return c;
 }
 
@@ -248,12 +281,14 @@ class DeviceApi;
 void validate(const DeviceApi& dev, const SphStepParams& p, const Buffer<Real4>& positions,
               const Buffer<uint32_t>& cells, const Buffer<uint32_t>& cell_start,
               const Buffer<uint32_t>& cell_end, const Buffer<Real>& density,
-              const Buffer<Real>& pressure, const Buffer<uint32_t>& stats);
+              const Buffer<Real>& pressure, const Buffer<uint32_t>& stats,
+              const Buffer<uint32_t>* neighbor_rows);
 void validate(const DeviceApi& dev, const SphStepParams& p, const Buffer<Real4>& positions,
               const Buffer<Real4>& velocities, const Buffer<Real>& density,
               const Buffer<Real>& pressure, const Buffer<uint32_t>& cells,
               const Buffer<uint32_t>& cell_start, const Buffer<uint32_t>& cell_end,
-              const Buffer<Real4>& accel, const Buffer<uint32_t>& stats);
+              const Buffer<Real4>& accel, const Buffer<uint32_t>& stats,
+              const Buffer<uint32_t>* neighbor_rows);
 void validate(const DeviceApi& dev, const SphIntegrateParams& p, const Buffer<Real4>* x0,
               const Buffer<Real4>& v0, const Buffer<Real4>* vk, const Buffer<Real4>& accel,
               const Buffer<Real4>* x_out, const Buffer<Real4>& v_out, const Buffer<Real4>* sum_x,

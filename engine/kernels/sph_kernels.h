@@ -12,7 +12,11 @@
 // a viscosity or a pressure constant is computed once on the host in double (SphStepLayout,
 // device_params in engine/kernels/sph_kernel_params.h).
 #include <cmath>
+#include <cstddef>
 #include <cstdint>
+#if !defined(__CUDA_ARCH__)
+#include <bit>
+#endif
 
 #include "engine/core/hd.h"
 #include "engine/kernels/sph_kernel_params.h"
@@ -136,46 +140,79 @@ MASAV_HD inline void row_range(int x, int y, int z, const uint32_t dims[3],
   }
 }
 
-// Visits the non-empty rows of the 27 cells around `cell` (x outermost, then y; each row a
-// contiguous range [first, last) of sorted indices along z) -- the order every backend sums in.
-// Stops before the row that would pass max_candidates candidates and sets `overflow`.
-// row(first, last) is called for each row; the CPU reference vectorises over a row.
+// Visits the 9 rows of the 27 cells around `cell` in the order every backend sums in (x
+// outermost, then y), each with its index in that order, 3 (dx + 1) + (dy + 1), and its sorted
+// range [first, last) along z. A row outside the grid is empty; so is every row from the one
+// that would pass max_candidates candidates on, which sets `overflow`. Returns the candidates
+// of the rows walked.
 template <class Row>
-MASAV_HD inline uint32_t walk_neighbor_rows(uint32_t cell, const uint32_t dims[3],
-                                            const uint32_t* cell_start, const uint32_t* cell_end,
-                                            uint32_t max_candidates, bool& overflow, Row&& row) {
+MASAV_HD inline uint32_t walk_rows(uint32_t cell, const uint32_t dims[3],
+                                   const uint32_t* cell_start, const uint32_t* cell_end,
+                                   uint32_t max_candidates, bool& overflow, Row&& row) {
   int c[3];
   cell_coords(cell, dims, c);
   uint32_t candidates = 0;
   overflow = false;
   for (int dx = -1; dx <= 1; ++dx) {
-    const int x = c[0] + dx;
-    if (x < 0 || x >= int(dims[0])) continue;
     for (int dy = -1; dy <= 1; ++dy) {
-      const int y = c[1] + dy;
-      if (y < 0 || y >= int(dims[1])) continue;
-      uint32_t first, last;
-      row_range(x, y, c[2], dims, cell_start, cell_end, first, last);
-      if (last - first > max_candidates - candidates) {
-        overflow = true;
-        return candidates;
+      const int x = c[0] + dx, y = c[1] + dy;
+      uint32_t first = 0, last = 0;
+      if (!overflow && x >= 0 && x < int(dims[0]) && y >= 0 && y < int(dims[1])) {
+        row_range(x, y, c[2], dims, cell_start, cell_end, first, last);
+        if (last - first > max_candidates - candidates) {
+          overflow = true;
+          first = last = 0;
+        }
+        candidates += last - first;
       }
-      candidates += last - first;
-      if (last > first) row(first, last);
+      row(uint32_t(3 * (dx + 1) + (dy + 1)), first, last);
     }
   }
   return candidates;
 }
 
-// Visits every candidate j (sorted index) of walk_neighbor_rows, in its order.
-template <class Visit>
-MASAV_HD inline uint32_t walk_neighbors(uint32_t cell, const uint32_t dims[3],
-                                        const uint32_t* cell_start, const uint32_t* cell_end,
-                                        uint32_t max_candidates, bool& overflow, Visit&& visit) {
-  return walk_neighbor_rows(cell, dims, cell_start, cell_end, max_candidates, overflow,
-                            [&](uint32_t first, uint32_t last) {
-                              for (uint32_t j = first; j < last; ++j) visit(j);
-                            });
+// walk_rows' non-empty rows only, as row(first, last); the CPU reference vectorises over a row.
+template <class Row>
+MASAV_HD inline uint32_t walk_neighbor_rows(uint32_t cell, const uint32_t dims[3],
+                                            const uint32_t* cell_start, const uint32_t* cell_end,
+                                            uint32_t max_candidates, bool& overflow, Row&& row) {
+  return walk_rows(cell, dims, cell_start, cell_end, max_candidates, overflow,
+                   [&](uint32_t, uint32_t first, uint32_t last) {
+                     if (last > first) row(first, last);
+                   });
+}
+
+// One particle's neighbour row masks (kSphRowMaskBits, kSphRowMaskWords in
+// sph_kernel_params.h): word w at words[w * stride], i.e. &neighbor_rows[i] with stride n.
+template <class W>  // uint32_t where sph_density writes them, const uint32_t where read
+struct RowMasks {
+  W* words = nullptr;  // null: no masks
+  uint32_t stride = 0;
+};
+template <class W>
+MASAV_HD inline RowMasks<W> row_masks(W* neighbor_rows, uint32_t i, uint32_t n) {
+  return neighbor_rows ? RowMasks<W>{neighbor_rows + i, n} : RowMasks<W>{};
+}
+MASAV_HD inline bool row_fits_mask(uint32_t first, uint32_t last) {
+  return last - first <= kSphRowMaskBits;
+}
+MASAV_HD inline void store_row_mask(RowMasks<uint32_t> m, uint32_t row, uint64_t bits) {
+  m.words[size_t(2 * row) * m.stride] = uint32_t(bits);
+  m.words[size_t(2 * row + 1) * m.stride] = uint32_t(bits >> 32);
+}
+MASAV_HD inline uint64_t load_row_mask(RowMasks<const uint32_t> m, uint32_t row) {
+  return uint64_t(m.words[size_t(2 * row) * m.stride]) |
+         uint64_t(m.words[size_t(2 * row + 1) * m.stride]) << 32;
+}
+// The lowest set bit's index, cleared from `bits` (not 0).
+MASAV_HD inline uint32_t take_lowest_bit(uint64_t& bits) {
+#if defined(__CUDA_ARCH__)
+  const uint32_t b = uint32_t(__ffsll((long long)bits) - 1);
+#else
+  const uint32_t b = uint32_t(std::countr_zero(bits));
+#endif
+  bits &= bits - 1;
+  return b;
 }
 
 // (1 - q^2)^3 for r^2 < h^2, else 0, without a branch: the density sum's term.
@@ -195,22 +232,31 @@ struct DensityResult {
 };
 
 // Density of sorted particle i (thesis Eq. 4.4): sum over j within h of m W_poly6(r_ij).
-// pos_at(j) returns V3<T> of sorted particle j.
+// pos_at(j) returns V3<T> of sorted particle j. With `masks`, also records which candidates of
+// each row lie within h (zero for an empty, missing or too long row).
 template <class T, class PosAt>
 MASAV_HD inline DensityResult<T> density_at(V3<T> xi, uint32_t cell, const uint32_t dims[3],
                                             const uint32_t* cell_start, const uint32_t* cell_end,
                                             uint32_t max_candidates, const SphStepLayout<T>& c,
-                                            PosAt&& pos_at) {
+                                            PosAt&& pos_at, RowMasks<uint32_t> masks = {}) {
   T sum = T(0);
   uint32_t neighbors = 0;
   bool overflow = false;
   const uint32_t candidates =
-      walk_neighbors(cell, dims, cell_start, cell_end, max_candidates, overflow, [&](uint32_t j) {
-        const V3<T> d = xi - pos_at(j);
-        const T r2 = dot(d, d);
-        sum += density_term(r2, c);
-        neighbors += r2 < c.h2 ? 1u : 0u;
-      });
+      walk_rows(cell, dims, cell_start, cell_end, max_candidates, overflow,
+                [&](uint32_t row, uint32_t first, uint32_t last) {
+                  uint64_t bits = 0;  // wraps around in a row too long for it, which stores 0
+                  for (uint32_t j = first; j < last; ++j) {
+                    const V3<T> d = xi - pos_at(j);
+                    const T r2 = dot(d, d);
+                    sum += density_term(r2, c);
+                    const bool within = r2 < c.h2;
+                    neighbors += within ? 1u : 0u;
+                    bits |= uint64_t(within) << ((j - first) & (kSphRowMaskBits - 1));
+                  }
+                  if (masks.words)
+                    store_row_mask(masks, row, row_fits_mask(first, last) ? bits : 0);
+                });
   T rho = c.density * sum;
   if (c.walls) rho += c.rest_density * wall_density(xi, c, (V3<T>*)nullptr);
   return {rho, neighbors, candidates, overflow};
@@ -301,24 +347,38 @@ struct ForceResult {
 //   thesis: a_i = kp sum_j m (rho_j - rho_i)/(2 rho_j) 45/(pi h^3) (1-q)^3 r_hat   (Eq. 4.6)
 //               + nu sum_j m (v_j - v_i)/rho_j lap W                             (Eq. 4.5)
 // pos_at(j) returns V3<T> of sorted particle j, fetch(j) its whole Neighbor<T> (read only for
-// neighbours within h); `self` is i's sorted index.
+// neighbours within h); `self` is i's sorted index. With `masks` (density_at's, for these
+// positions), a row that fits a mask visits only its recorded neighbours, in the same ascending
+// order, so the result is the same bits; the distance test is repeated, so that a compiler
+// rounding r2 differently in the two kernels can drop a pair but never add one beyond h.
 template <class T, class PosAt, class Fetch>
 MASAV_HD inline ForceResult<T> force_at(uint32_t self, const Neighbor<T>& me, uint32_t cell,
                                         const uint32_t dims[3], const uint32_t* cell_start,
                                         const uint32_t* cell_end, uint32_t max_candidates,
-                                        const SphStepLayout<T>& c, PosAt&& pos_at, Fetch&& fetch) {
+                                        const SphStepLayout<T>& c, PosAt&& pos_at, Fetch&& fetch,
+                                        RowMasks<const uint32_t> masks = {}) {
   V3<T> acc{T(0), T(0), T(0)};
   uint32_t neighbors = 0;
   bool overflow = false;
+  auto visit = [&](uint32_t j) {
+    if (j == self) return;
+    const V3<T> d = me.x - pos_at(j);
+    const T r2 = dot(d, d);
+    if (!(r2 < c.h2)) return;
+    ++neighbors;
+    acc = acc + pair_accel(me, fetch(j), d, r2, c);
+  };
   const uint32_t candidates =
-      walk_neighbors(cell, dims, cell_start, cell_end, max_candidates, overflow, [&](uint32_t j) {
-        if (j == self) return;
-        const V3<T> d = me.x - pos_at(j);
-        const T r2 = dot(d, d);
-        if (!(r2 < c.h2)) return;
-        ++neighbors;
-        acc = acc + pair_accel(me, fetch(j), d, r2, c);
-      });
+      walk_rows(cell, dims, cell_start, cell_end, max_candidates, overflow,
+                [&](uint32_t row, uint32_t first, uint32_t last) {
+                  if (last == first) return;
+                  if (masks.words && row_fits_mask(first, last)) {
+                    for (uint64_t bits = load_row_mask(masks, row); bits != 0;)
+                      visit(first + take_lowest_bit(bits));
+                  } else {
+                    for (uint32_t j = first; j < last; ++j) visit(j);
+                  }
+                });
   if (c.walls) acc = acc + wall_accel(me, c);
   return {acc, neighbors, candidates, overflow};
 }

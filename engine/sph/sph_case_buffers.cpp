@@ -17,6 +17,7 @@ SphCaseBuffers upload_sph_case(Backend& b, const SphStepParams& p, std::span<con
   s.density = b.create<Real>(n, name("density"));
   s.pressure = b.create<Real>(n, name("pressure"));
   s.stats = b.create<uint32_t>(kSphStatWords, name("stats"));
+  s.neighbor_rows = b.create<uint32_t>(size_t(kSphRowMaskWords) * n, name("neighbour row masks"));
   b.upload(s.pos, positions);
   b.upload(s.vel, velocities);
   s.grid = make_hash_grid(b, p.grid, n);

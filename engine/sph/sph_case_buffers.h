@@ -14,7 +14,8 @@ struct SphCaseBuffers {
   HashGrid grid;
   Buffer<Real4> pos, vel, sorted_pos, sorted_vel, accel;
   Buffer<Real> density, pressure;
-  Buffer<uint32_t> stats;  // zeroed
+  Buffer<uint32_t> stats;          // zeroed
+  Buffer<uint32_t> neighbor_rows;  // room for the neighbour row masks (kSphRowMaskWords n)
   SphGridView view() const { return {&grid.sorted_cells, &grid.cell_start, &grid.cell_end}; }
 };
 

@@ -165,11 +165,14 @@ std::vector<KernelCheck> sph_checks() {
       })));
   // Accelerations to 2e-6 (rel L2) and each component to 2e-5 of the RMS acceleration; the
   // neighbour counts (accel w) exactly. Both backends get the same density and pressure
-  // (a smooth field made on the host), so this checks the force kernel alone.
+  // (a smooth field made on the host), so this checks the force kernel alone -- walking every
+  // candidate, and over the neighbour row masks sph_density records at these positions.
   c.push_back(per_output_check(
       KernelId::sph_forces, {{"accel", {2e-6, 0, 2e-5, 1.0}, true}, {"neighbours", {0, 0, 0, 1.0}}},
       for_each_model([](Backend& b, const SphCheckCase& cs, SphCaseBuffers& s, const std::string& m,
                         CheckOutputs& out) {
+        sph_density(b, cs.params,
+                    {&s.sorted_pos, s.view(), &s.density, &s.pressure, &s.stats, &s.neighbor_rows});
         // Identical density and pressure on both backends: the rest density everywhere plus
         // a smooth field, so the pressure force is not trivial.
         std::vector<double> rho(cs.params.n), pr(cs.params.n);
@@ -180,14 +183,17 @@ std::vector<KernelCheck> sph_checks() {
         }
         b.upload(s.density, rho);
         b.upload(s.pressure, pr);
-        sph_forces(
-            b, cs.params,
-            {&s.sorted_pos, &s.sorted_vel, &s.density, &s.pressure, s.view(), &s.accel, &s.stats});
-        const auto a = b.download(s.accel);
-        std::vector<double> w(a.size());
-        for (size_t i = 0; i < a.size(); ++i) w[i] = a[i].w;
-        out.push_back({"neighbours " + m, {}, w});
-        out.push_back({"accel " + m, {}, xyz_components(a)});
+        for (const bool masked : {false, true}) {
+          sph_forces(b, cs.params,
+                     {&s.sorted_pos, &s.sorted_vel, &s.density, &s.pressure, s.view(), &s.accel,
+                      &s.stats, masked ? &s.neighbor_rows : nullptr});
+          const auto a = b.download(s.accel);
+          std::vector<double> w(a.size());
+          for (size_t i = 0; i < a.size(); ++i) w[i] = a[i].w;
+          const std::string variant = masked ? m + " over row masks" : m;
+          out.push_back({"neighbours " + variant, {}, w});
+          out.push_back({"accel " + variant, {}, xyz_components(a)});
+        }
       })));
   // Every integrator stage: velocities within 5e-5 m/s, positions within 1e-6 m, the RK4
   // velocity sums within 1e-4 (dt = 2 ms, accelerations up to 30 m/s^2), walls on.

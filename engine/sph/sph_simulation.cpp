@@ -24,9 +24,26 @@ float bits_to_float(uint32_t w) {
   return std::bit_cast<float>(w);
 }
 
-// Device memory the simulation needs per particle: 10 Real4 arrays, 2 Real, 2 ids, the grid's 2.
-uint64_t bytes_per_particle(const Backend& b) {
-  return 10 * 4 * b.real_bytes() + 2 * b.real_bytes() + 4 * 4;
+// Device memory the simulation needs per particle: 10 Real4 arrays, 2 Real, 2 ids, the grid's 2,
+// and the neighbour row masks where they are kept.
+uint64_t bytes_per_particle(const Backend& b, bool neighbor_rows) {
+  return 10 * 4 * b.real_bytes() + 2 * b.real_bytes() + 4 * 4 +
+         (neighbor_rows ? uint64_t(kSphRowMaskWords) * 4 : 0);
+}
+
+// Whether sph_density records neighbour row masks for sph_forces, which then visits only the
+// neighbours instead of testing every candidate of the 27 cells again: on the fp32 backends
+// (Vulkan, CUDA), not on the CPU reference, which keeps its own neighbour lists
+// (engine/cpu/cpu_sph_lists.h) and would only fill the masks for nothing. Only where they fit
+// one buffer and the memory budget check_capacity applies; elsewhere the kernels walk every
+// candidate, as without masks.
+bool keeps_neighbor_rows(const Backend& b, uint64_t n) {
+  const Capabilities& caps = b.caps();
+  if (caps.real_is_double) return false;
+  const uint64_t mask_bytes = n * kSphRowMaskWords * 4;
+  if (caps.max_buffer_bytes && mask_bytes > caps.max_buffer_bytes) return false;
+  return !caps.device_memory_bytes ||
+         n * bytes_per_particle(b, true) <= caps.device_memory_bytes / 2;
 }
 
 // Refuses, before anything is allocated, a particle count the device cannot hold.
@@ -40,13 +57,13 @@ void check_capacity(const Backend& b, const SphScene& s) {
         fmt::format("at most {} on {} (one buffer of positions holds at most {} MiB); "
                     "use fewer particles or a device with larger buffers",
                     caps.max_buffer_bytes / real4, caps.device_name, caps.max_buffer_bytes >> 20));
-  const uint64_t need = n * bytes_per_particle(b);
-  if (caps.device_memory_bytes && need > caps.device_memory_bytes / 2)
-    throw_invalid(
-        "sph scene", "particles", std::to_string(n),
-        fmt::format("at most {} on {} ({} bytes per particle, {} MiB of memory)",
-                    caps.device_memory_bytes / 2 / bytes_per_particle(b), caps.device_name,
-                    bytes_per_particle(b), caps.device_memory_bytes >> 20));
+  // Without the row masks: a count they do not fit runs without them.
+  const uint64_t per_particle = bytes_per_particle(b, false);
+  if (caps.device_memory_bytes && n * per_particle > caps.device_memory_bytes / 2)
+    throw_invalid("sph scene", "particles", std::to_string(n),
+                  fmt::format("at most {} on {} ({} bytes per particle, {} MiB of memory)",
+                              caps.device_memory_bytes / 2 / per_particle, caps.device_name,
+                              per_particle, caps.device_memory_bytes >> 20));
 }
 
 }  // namespace
@@ -134,6 +151,9 @@ SphSimulation::SphSimulation(Backend& backend, const SphScene& scene)
   ids_ = backend_.create<uint32_t>(n_, "sph ids");
   ids_t_ = backend_.create<uint32_t>(n_, "sph sorted ids");
   stats_buf_ = backend_.create<uint32_t>(kSphStatWords, "sph stats");
+  if (keeps_neighbor_rows(backend_, n_))
+    neighbor_rows_ =
+        backend_.create<uint32_t>(size_t(kSphRowMaskWords) * n_, "sph neighbour row masks");
 
   backend_.upload(pos_, layout_.positions);
   backend_.upload(vel_, layout_.velocities);
@@ -194,12 +214,18 @@ void SphSimulation::sort_state() {
   mark(SphStage::grid);
 }
 
+Buffer<uint32_t>* SphSimulation::neighbor_rows() {
+  return neighbor_rows_.valid() ? &neighbor_rows_ : nullptr;
+}
+
 void SphSimulation::evaluate(const Buffer<Real4>& x, const Buffer<Real4>& v) {
   const SphGridView view{&grid_.sorted_cells, &grid_.cell_start, &grid_.cell_end};
-  sph_density(backend_, step_params_, SphDensityIO{&x, view, &density_, &pressure_, &stats_buf_});
+  sph_density(backend_, step_params_,
+              SphDensityIO{&x, view, &density_, &pressure_, &stats_buf_, neighbor_rows()});
   mark(SphStage::density);
-  sph_forces(backend_, step_params_,
-             SphForcesIO{&x, &v, &density_, &pressure_, view, &accel_, &stats_buf_});
+  sph_forces(
+      backend_, step_params_,
+      SphForcesIO{&x, &v, &density_, &pressure_, view, &accel_, &stats_buf_, neighbor_rows()});
   mark(SphStage::forces);
 }
 
@@ -489,9 +515,10 @@ SphState SphSimulation::download() {
     backend_.fill(stats_buf_, 0u);
     const SphGridView view{&grid_.sorted_cells, &grid_.cell_start, &grid_.cell_end};
     sph_density(backend_, step_params_,
-                SphDensityIO{&ta_, view, &density_, &pressure_, &stats_buf_});
+                SphDensityIO{&ta_, view, &density_, &pressure_, &stats_buf_, neighbor_rows()});
     sph_forces(backend_, step_params_,
-               SphForcesIO{&ta_, &tb_, &density_, &pressure_, view, &accel_, &stats_buf_});
+               SphForcesIO{&ta_, &tb_, &density_, &pressure_, view, &accel_, &stats_buf_,
+                           neighbor_rows()});
     accel_valid_ = false;
     px = &ta_;
     pv = &tb_;

@@ -106,6 +106,7 @@ class SphSimulation {
   void rebuild_grid(const Buffer<Real4>& positions);
   void sort_state();  // rebuild on pos_ and gather pos_, vel_, ids_ into cell order
   void evaluate(const Buffer<Real4>& x, const Buffer<Real4>& v);
+  Buffer<uint32_t>* neighbor_rows();  // null where the masks are not kept
   void integrate(SphStageOp op, double dt, const Buffer<Real4>& x0, const Buffer<Real4>& v0,
                  const Buffer<Real4>* vk, Buffer<Real4>* x_out, Buffer<Real4>& v_out,
                  Buffer<Real4>* sum_x, Buffer<Real4>* sum_v);
@@ -133,6 +134,9 @@ class SphSimulation {
   // Committed state in the order of the last rebuild, and scratch.
   Buffer<Real4> pos_, vel_, xs_, vs_, sum_x_, sum_v_, ta_, tb_, tc_, accel_;
   Buffer<uint32_t> ids_, ids_t_, stats_buf_;
+  // sph_density's neighbour row masks for sph_forces at the same positions (every evaluate()
+  // runs both); empty where they are not kept (see keeps_neighbor_rows).
+  Buffer<uint32_t> neighbor_rows_;
   Buffer<Real> density_, pressure_;
   bool accel_valid_ = false;     // leapfrog: accel_ holds a(pos_) in pos_'s order
   bool fields_current_ = false;  // density_, pressure_, accel_ belong to pos_ (pos_'s order)

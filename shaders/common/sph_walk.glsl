@@ -1,5 +1,6 @@
-// The 27-cell neighbour walk of the SPH kernels, by rows: the GLSL twin of sph::row_range
-// (engine/kernels/sph_kernels.h). The including kernel declares cell_start[] and cell_end[].
+// The 27-cell neighbour walk of the SPH kernels, by rows, and the neighbour row masks: the GLSL
+// twin of sph::row_range, sph::walk_rows and sph::RowMasks (engine/kernels/sph_kernels.h). The
+// including kernel declares cell_start[] and cell_end[].
 // Sorted range of the row (x, y, z-1 .. z+1): 3 consecutive cell ids, contiguous points.
 uvec2 sph_row_range(int x, int y, int z, uvec3 dims) {
   const int z0 = max(z - 1, 0);
@@ -18,4 +19,41 @@ uvec2 sph_row_range(int x, int y, int z, uvec3 dims) {
     }
   }
   return uvec2(first, last);
+}
+
+// This lane's range of row (dx, dy) around cell coordinates cc, counted against the candidate
+// cap: empty for a dead lane, outside the grid, and from the row that would pass
+// max_candidates on, which sets `overflow`.
+uvec2 sph_lane_row(bool live, ivec3 cc, int dx, int dy, uvec3 dims, uint max_candidates,
+                   inout uint candidates, inout bool overflow) {
+  const int x = cc.x + dx, y = cc.y + dy;
+  uvec2 r = uvec2(0u);
+  if (live && !overflow && x >= 0 && x < int(dims.x) && y >= 0 && y < int(dims.y)) {
+    r = sph_row_range(x, y, cc.z, dims);
+    if (r.y - r.x > max_candidates - candidates) {
+      overflow = true;
+      r = uvec2(0u);
+    }
+    candidates += r.y - r.x;
+  }
+  return r;
+}
+
+// Row (dx, dy)'s index in walk order, and where word `word` (0 low, 1 high) of its mask for
+// particle i lies in neighbor_rows (structure of arrays, kSphRowMaskWords words per particle).
+uint sph_row_index(int dx, int dy) { return uint(3 * (dx + 1) + (dy + 1)); }
+uint sph_mask_word(uint row, uint word, uint i, uint n) { return (2u * row + word) * n + i; }
+
+bool sph_row_fits_mask(uvec2 r) { return r.y - r.x <= kSphRowMaskBits; }
+// Sets bit b (of a row that fits) of a mask held as two words, if `on`.
+uvec2 sph_mask_set(uvec2 m, uint b, bool on) {
+  const uint bit = on ? 1u << (b & 31u) : 0u;
+  return b < 32u ? uvec2(m.x | bit, m.y) : uvec2(m.x, m.y | bit);
+}
+// The lowest set bit's index of a non-zero mask, cleared from it.
+uint sph_mask_take(inout uvec2 m) {
+  const bool low = m.x != 0u;
+  const uint b = low ? uint(findLSB(m.x)) : 32u + uint(findLSB(m.y));
+  m = low ? uvec2(m.x & (m.x - 1u), m.y) : uvec2(0u, m.y & (m.y - 1u));
+  return b;
 }
