@@ -3,6 +3,7 @@
 #include <map>
 #include <memory>
 #include <string>
+#include <string_view>
 
 #include "compute/device/vk_context.h"
 #include "compute/device/vk_memory.h"
@@ -76,7 +77,9 @@ class VulkanBackend final : public Backend, public VulkanInterop {
   // memory), `push` the kernel's layout.
   void dispatch_kernel(KernelId kernel, std::span<const BufferImpl* const> buffers,
                        const void* push, uint32_t push_bytes, uint64_t items);
-  void exclusive_scan(const std::shared_ptr<Allocation>& data, uint32_t count, uint32_t level);
+  // In-place exclusive prefix sum of data[0..count) for `kernel` (its scratch and its errors).
+  void exclusive_scan(const std::shared_ptr<Allocation>& data, uint32_t count,
+                      std::string_view kernel, uint32_t level = 0);
   void check_diagnostics();
   SortScatter choose_sort_scatter(SortScatter wanted) const;
 

@@ -116,10 +116,11 @@ uint32_t max_walk_candidates(const DeviceApi& dev) {
   return budget > kWalkLoopOverhead ? budget - kWalkLoopOverhead : 1;
 }
 
-void check_candidates(const DeviceApi& dev, uint32_t max_candidates, std::string_view kernel) {
+void check_candidates(const DeviceApi& dev, uint32_t max_candidates, std::string_view kernel,
+                      std::string_view field) {
   const uint32_t most = max_walk_candidates(dev);
   if (max_candidates < 1 || max_candidates > most)
-    throw_invalid(kernel, "max_candidates", std::to_string(max_candidates),
+    throw_invalid(kernel, field, std::to_string(max_candidates),
                   fmt::format("in [1, {}] (a shader invocation runs at most {} loop iterations "
                               "on {})",
                               most, dev.caps().max_loop_iterations, dev.caps().device_name));
