@@ -32,7 +32,8 @@ struct BackendOptions {
 // (run_own in vk_*.cpp); every other kernel is one dispatch of shaders/<name>.comp.
 constexpr bool runs_own(KernelId k) {
   return k == KernelId::radix_sort || k == KernelId::grid_cell_ranges || k == KernelId::gather ||
-         k == KernelId::scatter_table || k == KernelId::voxelize;
+         k == KernelId::grid_cell_offsets || k == KernelId::scatter_table ||
+         k == KernelId::voxelize;
 }
 
 class VulkanBackend final : public Backend, public VulkanInterop {
