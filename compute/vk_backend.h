@@ -3,6 +3,7 @@
 #include <map>
 #include <memory>
 #include <string>
+#include <string_view>
 
 #include "compute/device/vk_context.h"
 #include "compute/device/vk_memory.h"
@@ -31,7 +32,8 @@ struct BackendOptions {
 // (run_own in vk_*.cpp); every other kernel is one dispatch of shaders/<name>.comp.
 constexpr bool runs_own(KernelId k) {
   return k == KernelId::radix_sort || k == KernelId::grid_cell_ranges || k == KernelId::gather ||
-         k == KernelId::scatter_table || k == KernelId::voxelize;
+         k == KernelId::grid_cell_offsets || k == KernelId::scatter_table ||
+         k == KernelId::voxelize;
 }
 
 class VulkanBackend final : public Backend, public VulkanInterop {
@@ -77,7 +79,9 @@ class VulkanBackend final : public Backend, public VulkanInterop {
   // memory), `push` the kernel's layout, `written` the buffers it writes (bit i: buffers[i]).
   void dispatch_kernel(KernelId kernel, std::span<const BufferImpl* const> buffers,
                        const void* push, uint32_t push_bytes, uint64_t items, uint32_t written);
-  void exclusive_scan(const std::shared_ptr<Allocation>& data, uint32_t count, uint32_t level);
+  // In-place exclusive prefix sum of data[0..count) for `kernel` (its scratch and its errors).
+  void exclusive_scan(const std::shared_ptr<Allocation>& data, uint32_t count,
+                      std::string_view kernel, uint32_t level = 0);
   void check_diagnostics();
   SortScatter choose_sort_scatter(SortScatter wanted) const;
 

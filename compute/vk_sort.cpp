@@ -22,14 +22,14 @@ constexpr uint32_t kSubgroupRounds = 256;
 // In-place exclusive prefix sum of data[0..count): scan each tile, scan the tile totals
 // (recursively, one level per factor of the tile size), add them back.
 void VulkanBackend::exclusive_scan(const std::shared_ptr<Allocation>& data, uint32_t count,
-                                   uint32_t level) {
+                                   std::string_view kernel, uint32_t level) {
   const uint32_t tile = tile_size(), items = options_.items_per_thread;
   const uint32_t tiles = (count + tile - 1) / tile;
-  auto sums = scratch(fmt::format("radix_sort scan level {}", level), size_t(tiles) * 4);
+  auto sums = scratch(fmt::format("{} scan level {}", kernel, level), size_t(tiles) * 4);
   const ScanParams push{count, tiles};
   run({"scan_tiles", 2, sizeof push, {items}}, {data, sums}, &push, tiles);
   if (tiles > 1) {
-    exclusive_scan(sums, tiles, level + 1);
+    exclusive_scan(sums, tiles, kernel, level + 1);
     run({"scan_add", 2, sizeof push, {items}}, {data, sums}, &push, tiles);
   }
 }
@@ -59,7 +59,7 @@ void VulkanBackend::run_own(const KernelArgs<KernelId::radix_sort>& a) {
     const uint32_t bits = radix::pass_bits(p.key_bits, pass);
     const RadixPassParams push{p.n, pass * radix::kDigitBits, bits, num_tiles};
     run({"radix_histogram", 2, sizeof push, {items}, wg}, {k_src, hist}, &push, num_tiles);
-    exclusive_scan(hist, (1u << bits) * num_tiles, 0);
+    exclusive_scan(hist, (1u << bits) * num_tiles, "radix_sort");
     run({by_subgroup ? "radix_scatter_subgroup" : "radix_scatter",
          5,
          sizeof push,

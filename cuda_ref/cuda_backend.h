@@ -85,7 +85,8 @@ class CudaBackend final : public Backend {
   void* scratch(const std::string& name, size_t bytes, const char* kernel);
   void sort_portable(uint32_t n, uint32_t key_bits, uint32_t* keys, uint32_t* values);
   void sort_cub(uint32_t n, uint32_t key_bits, uint32_t* keys, uint32_t* values);
-  void exclusive_scan(uint32_t* data, uint32_t count, uint32_t level);
+  // In-place exclusive prefix sum of data[0..count) for `kernel` (its scratch and its errors).
+  void exclusive_scan(uint32_t* data, uint32_t count, const char* kernel, uint32_t level = 0);
 
   int device_;
   Capabilities caps_;

@@ -39,6 +39,12 @@ cudaError_t cub_sort(cudaStream_t s, void* temp, size_t& temp_bytes, uint32_t* k
 
 cudaError_t cell_ranges(cudaStream_t s, dim3 grid, const GridParams& g, const uint32_t* cells,
                         uint32_t* start, uint32_t* end);
+// grid_cell_offsets' passes over chunks of kCellOffsetChunk cells (scan.n cells, scan.num_tiles
+// chunks): each chunk's sum, then each chunk scanned from its offset into the runs' two ends.
+cudaError_t chunk_sums(cudaStream_t s, dim3 grid, const ScanParams& scan, const uint32_t* counts,
+                       uint32_t* sums);
+cudaError_t cell_offsets(cudaStream_t s, dim3 grid, const ScanParams& scan, const uint32_t* counts,
+                         const uint32_t* chunk_offsets, uint32_t* start, uint32_t* end);
 cudaError_t gather(cudaStream_t s, dim3 grid, const GatherLayout& p, const uint32_t* order,
                    const void* src, void* dst, uint32_t elem_bytes, uint32_t* diag);
 

@@ -11,16 +11,17 @@
 namespace masav::cuda {
 
 // In-place exclusive prefix sum: scan tiles, scan the tile totals recursively, add them back.
-void CudaBackend::exclusive_scan(uint32_t* data, uint32_t count, uint32_t level) {
+void CudaBackend::exclusive_scan(uint32_t* data, uint32_t count, const char* kernel,
+                                 uint32_t level) {
   const uint32_t tiles = (count + launch::kSortTile - 1) / launch::kSortTile;
   auto* sums = static_cast<uint32_t*>(
-      scratch(fmt::format("scan level {}", level), size_t(tiles) * 4, "radix_sort"));
-  const dim3 grid = grid_for(tiles, "radix_sort");
+      scratch(fmt::format("{} scan level {}", kernel, level), size_t(tiles) * 4, kernel));
+  const dim3 grid = grid_for(tiles, kernel);
   const ScanParams scan{count, tiles};
-  launched(launch::scan_tiles(stream_, grid, data, sums, scan), "radix_sort", "scan_tiles");
+  launched(launch::scan_tiles(stream_, grid, data, sums, scan), kernel, "scan_tiles");
   if (tiles > 1) {
-    exclusive_scan(sums, tiles, level + 1);
-    launched(launch::scan_add(stream_, grid, data, sums, scan), "radix_sort", "scan_add");
+    exclusive_scan(sums, tiles, kernel, level + 1);
+    launched(launch::scan_add(stream_, grid, data, sums, scan), kernel, "scan_add");
   }
 }
 
@@ -39,7 +40,7 @@ void CudaBackend::sort_portable(uint32_t n, uint32_t key_bits, uint32_t* keys, u
     const RadixPassParams step{n, pass * radix::kDigitBits, radix::pass_bits(key_bits, pass),
                                num_tiles};
     launched(launch::radix_histogram(stream_, grid, k_src, hist, step), "radix_sort", "histogram");
-    exclusive_scan(hist, (1u << step.bits) * num_tiles, 0);
+    exclusive_scan(hist, (1u << step.bits) * num_tiles, "radix_sort");
     launched(launch::radix_scatter(stream_, grid, k_src, v_src, k_dst, v_dst, hist, step),
              "radix_sort", "scatter");
     std::swap(k_src, k_dst);

@@ -1,16 +1,20 @@
 // Hash grid: cells, sorted (cell, index), cell ranges and reorder equal the CPU reference bit for
-// bit and a brute-force grouping; the 27-cell neighbour count equals an O(n^2) search; the cell
-// counts of a counting sort equal a host count and the grid's cell ranges.
+// bit and a brute-force grouping; the 27-cell neighbour count equals an O(n^2) search; the passes
+// of the counting sort by cell (counts, offsets, scatter, rank) equal host computations, and the
+// counting build equals the radix build bit for bit, build after build.
 #include <doctest/doctest.h>
 
+#include <algorithm>
 #include <cstring>
 #include <map>
+#include <numeric>
 #include <random>
 #include <vector>
 
 #include "engine/core/error.h"
 #include "engine/grid/hash_grid.h"
 #include "engine/kernels/grid_cell.h"
+#include "engine/kernels/kernel_checks.h"
 #include "tests/backend_fixture.h"
 #include "tests/loop_limit.h"
 
@@ -43,14 +47,18 @@ struct GridResult {
   std::vector<uint32_t> cells, index, start, end;
 };
 
+GridResult download(Backend& b, const HashGrid& g) {
+  return {b.download(g.sorted_cells), b.download(g.sorted_index), b.download(g.cell_start),
+          b.download(g.cell_end)};
+}
+
 GridResult build_on(Backend& b, const Scene& s, HashGrid* keep = nullptr,
-                    Buffer<Real4>* pos_out = nullptr) {
+                    Buffer<Real4>* pos_out = nullptr, const GridBuildOptions& build = {}) {
   auto pos = b.create<Real4>(s.points.size(), "positions");
   b.upload(pos, s.points);
   HashGrid g = make_hash_grid(b, s.params, s.points.size());
-  build_hash_grid(b, g, pos);
-  GridResult r{b.download(g.sorted_cells), b.download(g.sorted_index), b.download(g.cell_start),
-               b.download(g.cell_end)};
+  build_hash_grid(b, g, pos, build);
+  GridResult r = download(b, g);
   if (keep) *keep = std::move(g);
   if (pos_out) *pos_out = std::move(pos);
   return r;
@@ -300,4 +308,298 @@ LOOP_LIMIT_CASE("grid_count_cells does not loop", KernelId::grid_count_cells) {
   b.grid_count_cells({n, 1}, cells, counts);  // every invocation on one cell
   CHECK(test::ticks_of(b) == 0);
   CHECK(b.download(counts)[0] == n);
+}
+
+namespace {
+
+// The counting build with the device's largest cell cap.
+GridBuildOptions counting(const Backend& b) {
+  return {GridBuild::counting, max_walk_candidates(b)};
+}
+
+// Exclusive prefix sum of `counts`: each cell's run [start, end).
+void host_runs(const std::vector<uint32_t>& counts, std::vector<uint32_t>& start,
+               std::vector<uint32_t>& end) {
+  start.resize(counts.size());
+  end.resize(counts.size());
+  uint32_t at = 0;
+  for (size_t c = 0; c < counts.size(); ++c) {
+    start[c] = at;
+    at += counts[c];
+    end[c] = at;
+  }
+}
+
+// Equal non-empty cell ranges, and the same cells empty. An empty cell's range is [0, 0) after
+// the radix build (the tables are cleared) and [k, k) after the counting build (k: the points in
+// lower cells); both read as empty everywhere.
+bool same_ranges(const GridResult& a, const GridResult& b) {
+  if (a.start.size() != b.start.size() || a.end.size() != b.end.size()) return false;
+  for (size_t c = 0; c < a.start.size(); ++c) {
+    if (a.end[c] - a.start[c] != b.end[c] - b.start[c]) return false;
+    if (a.end[c] != a.start[c] && a.start[c] != b.start[c]) return false;
+  }
+  return true;
+}
+
+}  // namespace
+
+TEST_CASE("the counting build equals the radix build and the CPU reference, bit for bit") {
+  struct Case {
+    uint32_t n;
+    UVec3 dims;
+    float cell;
+  };
+  // Empty, one point, all points in one cell, mostly empty cells, a large spread.
+  const Case cases[] = {{0, {4, 4, 4}, 0.5f},           {1, {4, 4, 4}, 0.5f},
+                        {2, {1, 1, 1}, 3.0f},           {1000, {13, 7, 29}, 0.1f},
+                        {100003, {64, 32, 48}, 0.03f},  {5000, {1, 1, 1}, 1.0f},
+                        {20000, {512, 256, 64}, 0.001f}};
+  uint64_t seed = 11;
+  Backend& b = test::backend();
+  for (const auto& c : cases) {
+    CAPTURE(c.n);
+    CAPTURE(c.dims.x);
+    const Scene s = make_scene(c.n, c.dims, c.cell, seed++);
+    HashGrid g;
+    const GridResult got = build_on(b, s, &g, nullptr, counting(b));
+    const GridResult radix = build_on(b, s);
+    const GridResult ref =
+        build_on(test::reference(), s, nullptr, nullptr, counting(test::reference()));
+    CHECK(got.cells == radix.cells);
+    CHECK(got.index == radix.index);
+    CHECK(same_ranges(got, radix));
+    CHECK(got.index == ref.index);
+    CHECK(got.start == ref.start);
+    // The build leaves its count table zero: the next build needs no clear.
+    const auto counts = b.download(g.counts);
+    CHECK(std::count(counts.begin(), counts.end(), 0u) == ptrdiff_t(counts.size()));
+  }
+}
+
+TEST_CASE("counting builds are deterministic: crowded cells, build after build") {
+  Backend& b = test::backend();
+  // ~800 points per cell, so the scatter's atomics contend and leave each cell in a new order.
+  const Scene s = make_scene(50000, {4, 4, 4}, 0.25f, 21, 0.0f);
+  auto pos = b.create<Real4>(s.points.size(), "positions");
+  b.upload(pos, s.points);
+  HashGrid g = make_hash_grid(b, s.params, s.points.size());
+  build_hash_grid(b, g, pos, counting(b));
+  const GridResult first = download(b, g);
+  for (int again = 0; again < 3; ++again) {
+    build_hash_grid(b, g, pos, counting(b));
+    const GridResult next = download(b, g);
+    CHECK(next.cells == first.cells);
+    CHECK(next.index == first.index);
+    CHECK(next.start == first.start);
+    CHECK(next.end == first.end);
+  }
+  CHECK(first.index == build_on(b, s).index);  // and it is the radix build's order
+}
+
+TEST_CASE("grid_cell_offsets: cell runs from the counts, equal to a host scan") {
+  std::mt19937 rng(43);
+  Backend& b = test::backend();
+  // One cell, a partial tile, past one and two scan levels (tiles of 2048 on every backend).
+  for (const uint32_t cells : {1u, 7u, 2049u, (1u << 20) + 3, (1u << 22) + 5}) {
+    CAPTURE(cells);
+    std::vector<uint32_t> counts(cells), start, end;
+    for (auto& c : counts) c = rng() % 4 == 0 ? rng() % 9 : 0;  // mostly empty cells
+    host_runs(counts, start, end);
+    auto cb = b.create<uint32_t>(cells, "counts");
+    auto sb = b.create<uint32_t>(cells, "start");
+    auto eb = b.create<uint32_t>(cells, "end");
+    b.upload(cb, counts);
+    b.fill(sb, 7u);
+    b.fill(eb, 7u);
+    b.grid_cell_offsets({cells}, cb, sb, eb);
+    CHECK(b.download(sb) == start);
+    CHECK(b.download(eb) == end);
+    CHECK(b.download(cb) == counts);  // only read
+  }
+}
+
+TEST_CASE("grid_scatter_cells fills each cell's run with its points and leaves counts zero") {
+  std::mt19937 rng(44);
+  Backend& b = test::backend();
+  for (const uint32_t n : {1u, 1000u, 300007u}) {
+    CAPTURE(n);
+    const uint32_t cells = 4096;
+    // A third of the points in one hot cell (contended atomics), the rest spread.
+    std::vector<uint32_t> ids(n), counts(cells, 0), start, end;
+    for (auto& id : ids) id = rng() % 3 == 0 ? 17 : rng() % cells;
+    for (uint32_t id : ids) ++counts[id];
+    host_runs(counts, start, end);
+    auto cb = b.create<uint32_t>(n, "cells");
+    auto eb = b.create<uint32_t>(cells, "end");
+    auto kb = b.create<uint32_t>(cells, "counts");
+    auto ub = b.create<uint32_t>(n, "unsorted");
+    b.upload(cb, ids);
+    b.upload(eb, end);
+    b.upload(kb, counts);
+    b.grid_scatter_cells({n, cells}, cb, eb, kb, ub);
+    const auto got = b.download(ub);
+    CHECK(b.download(kb) == std::vector<uint32_t>(cells, 0));
+    size_t misplaced = 0;
+    std::vector<uint32_t> seen(n, 0);
+    for (uint32_t slot = 0; slot < n; ++slot) {
+      REQUIRE(got[slot] < n);
+      ++seen[got[slot]];
+      const uint32_t c = ids[got[slot]];
+      misplaced += slot < start[c] || slot >= end[c];
+    }
+    CHECK(misplaced == 0);
+    CHECK(std::count(seen.begin(), seen.end(), 1u) == ptrdiff_t(n));  // a permutation
+  }
+}
+
+TEST_CASE("grid_rank_in_cell orders each cell by index; a cell over max_per_cell is an error") {
+  Backend& b = test::backend();
+  // 100 points over 8 cells, cell 5 the fullest; each cell's run in reverse order.
+  const uint32_t n = 100, cells = 8;
+  std::vector<uint32_t> ids(n), counts(cells, 0), start, end;
+  for (uint32_t i = 0; i < n; ++i) ids[i] = i % 10 == 3 ? 5 : i % 7;  // cell 7 stays empty
+  for (uint32_t id : ids) ++counts[id];
+  host_runs(counts, start, end);
+  std::vector<uint32_t> runs(n), next = end;
+  for (uint32_t i = 0; i < n; ++i) runs[--next[ids[i]]] = i;
+  auto cb = b.create<uint32_t>(n, "cells");
+  auto ub = b.create<uint32_t>(n, "unsorted");
+  auto sb = b.create<uint32_t>(cells, "start");
+  auto eb = b.create<uint32_t>(cells, "end");
+  auto sorted_cells = b.create<uint32_t>(n, "sorted cells");
+  auto sorted_index = b.create<uint32_t>(n, "sorted index");
+  b.upload(cb, ids);
+  b.upload(ub, runs);
+  b.upload(sb, start);
+  b.upload(eb, end);
+  const uint32_t most = *std::max_element(counts.begin(), counts.end());
+  b.grid_rank_in_cell({n, cells, most}, cb, ub, sb, eb, sorted_cells, sorted_index);
+  std::vector<uint32_t> want_index(n);
+  std::iota(want_index.begin(), want_index.end(), 0u);
+  std::stable_sort(want_index.begin(), want_index.end(),
+                   [&](uint32_t x, uint32_t y) { return ids[x] < ids[y]; });
+  std::vector<uint32_t> want_cells(n);
+  for (uint32_t k = 0; k < n; ++k) want_cells[k] = ids[want_index[k]];
+  CHECK(b.download(sorted_index) == want_index);
+  CHECK(b.download(sorted_cells) == want_cells);
+
+  // One point fewer allowed than the fullest cell holds: the error names the cell and the cap.
+  REQUIRE(std::max_element(counts.begin(), counts.end()) - counts.begin() == 5);
+  CHECK_THROWS_WITH_AS(
+      {
+        b.grid_rank_in_cell({n, cells, most - 1}, cb, ub, sb, eb, sorted_cells, sorted_index);
+        b.finish();
+      },
+      doctest::Contains(
+          ("cell 5 holds more than max_per_cell = " + std::to_string(most - 1) + " points")
+              .c_str()),
+      Error);
+  // A slot outside its point's cell run (a scatter of other cells) is caught, not written.
+  std::swap(runs[0], runs[n - 1]);
+  b.upload(ub, runs);
+  CHECK_THROWS_WITH_AS(
+      {
+        b.grid_rank_in_cell({n, cells, most}, cb, ub, sb, eb, sorted_cells, sorted_index);
+        b.finish();
+      },
+      doctest::Contains("slot 0 lies outside the cell run"), Error);
+  // The cap is validated below the loop limit, naming the field.
+  CHECK_THROWS_WITH_AS(
+      b.grid_rank_in_cell({n, cells, 0}, cb, ub, sb, eb, sorted_cells, sorted_index),
+      doctest::Contains("max_per_cell"), Error);
+  CHECK_THROWS_WITH_AS(b.grid_rank_in_cell({n, cells, max_walk_candidates(b) + 1}, cb, ub, sb, eb,
+                                           sorted_cells, sorted_index),
+                       doctest::Contains("max_per_cell"), Error);
+  CHECK_THROWS_WITH_AS(
+      b.grid_rank_in_cell({n + 1, cells, most}, cb, ub, sb, eb, sorted_cells, sorted_index),
+      doctest::Contains("n = 101"), Error);
+  CHECK_THROWS_WITH_AS(
+      b.grid_rank_in_cell({n, cells + 1, most}, cb, ub, sb, eb, sorted_cells, sorted_index),
+      doctest::Contains("cell_count"), Error);
+}
+
+TEST_CASE("a counting build over max_per_cell fails clearly and leaves the grid reusable") {
+  Backend& b = test::backend();
+  const Scene s = make_scene(3000, {1, 1, 1}, 1.0f, 3, 0.0f);  // all in one cell
+  auto pos = b.create<Real4>(s.points.size(), "positions");
+  b.upload(pos, s.points);
+  HashGrid g = make_hash_grid(b, s.params, s.points.size());
+  CHECK_THROWS_WITH_AS(
+      {
+        build_hash_grid(b, g, pos, {GridBuild::counting, 2999});
+        b.finish();
+      },
+      doctest::Contains("cell 0 holds more than max_per_cell = 2999 points"), Error);
+  // The scatter counted the table back down, so the next build needs no clear.
+  build_hash_grid(b, g, pos, {GridBuild::counting, 3000});
+  const GridResult r = download(b, g);
+  CHECK(r.end[0] == 3000);
+  CHECK(r.index == build_on(b, s).index);
+}
+
+TEST_CASE("grid_scatter_cells reports a point with no slot and leaves the table as it was") {
+  Backend& b = test::backend();
+  auto cells = b.create<uint32_t>(4, "cells");
+  auto end = b.create<uint32_t>(8, "end");
+  auto counts = b.create<uint32_t>(8, "counts");
+  auto unsorted = b.create<uint32_t>(4, "unsorted");
+  b.upload(cells, std::vector<uint32_t>{0, 3, 3, 3});
+  b.upload(end, std::vector<uint32_t>{1, 1, 1, 3, 3, 3, 3, 3});
+  b.upload(counts, std::vector<uint32_t>{1, 0, 0, 2, 0, 0, 0, 0});  // cell 3 counted short
+  CHECK_THROWS_WITH_AS(
+      {
+        b.grid_scatter_cells({4, 8}, cells, end, counts, unsorted);
+        b.finish();
+      },
+      doctest::Contains("has no free slot"), Error);
+  CHECK(b.download(counts) == std::vector<uint32_t>(8, 0));
+  CHECK_THROWS_WITH_AS(b.grid_scatter_cells({5, 8}, cells, end, counts, unsorted),
+                       doctest::Contains("n = 5"), Error);
+  CHECK_THROWS_WITH_AS(b.grid_scatter_cells({4, 9}, cells, end, counts, unsorted),
+                       doctest::Contains("cell_count"), Error);
+  CHECK_THROWS_WITH_AS(b.grid_cell_offsets({9}, counts, end, end), doctest::Contains("cell_count"),
+                       Error);
+  CHECK_THROWS_WITH_AS(b.grid_cell_offsets({0}, counts, end, end), doctest::Contains("cell_count"),
+                       Error);
+}
+
+LOOP_LIMIT_CASE("counting-sort passes: offsets and scatter bounded, rank = its cell's points",
+                KernelId::grid_cell_offsets, KernelId::grid_scatter_cells,
+                KernelId::grid_rank_in_cell) {
+  Backend& b = test::loop_counter();
+  // The offsets' loops do not grow with the cell count (the chunk sums take two scan levels).
+  const uint32_t cells = (1u << 22) + 5;
+  auto counts = b.create<uint32_t>(cells, "counts");
+  auto start = b.create<uint32_t>(cells, "start");
+  auto end = b.create<uint32_t>(cells, "end");
+  b.fill(counts, 1u);
+  (void)test::ticks_of(b);
+  b.grid_cell_offsets({cells}, counts, start, end);
+  const uint32_t scan_ticks = test::ticks_of(b);
+  MESSAGE("grid_cell_offsets worst invocation: " << scan_ticks << " loop iterations");
+  CHECK(scan_ticks >= kCellOffsetChunk);  // each chunk pass loops over its chunk
+  // The scan of the chunk sums: four loops over a thread's 8 items and two over the subgroups of
+  // a 256-wide workgroup (at most 64, at subgroup size 4); independent of the cell count.
+  CHECK(scan_ticks <= 4 * 8 + 2 * 64);
+
+  // The rank's worst case: every point in one cell.
+  const uint32_t n = 4000;
+  const GridParams gp = make_grid_params({0, 0, 0}, 1.0f, {1, 1, 1}, n);
+  std::vector<Vec4f> pts(n, Vec4f{0.5f, 0.5f, 0.5f, 0.0f});
+  auto pos = b.create<Real4>(n, "pos");
+  b.upload(pos, pts);
+  HashGrid g = make_hash_grid(b, gp, n);
+  build_hash_grid(b, g, pos, {GridBuild::counting, n});
+  CHECK(test::ticks_of(b) == n);  // the rank's loop over the cell: the counter measures it
+  b.grid_count_cells({n, 1}, g.point_cells, g.counts);
+  (void)test::ticks_of(b);
+  b.grid_scatter_cells({n, 1}, g.point_cells, g.cell_end, g.counts, g.unsorted);
+  CHECK(test::ticks_of(b) == 0);  // every point on one cell's counter, no loop
+  // The validated maximum of max_per_cell keeps the worst invocation under the limit.
+  const uint32_t most = max_walk_candidates(b);
+  CHECK(most + 1 < b.caps().max_loop_iterations);
+  CHECK_THROWS_AS(b.grid_rank_in_cell({n, 1, most + 1}, g.point_cells, g.unsorted, g.cell_start,
+                                      g.cell_end, g.sorted_cells, g.sorted_index),
+                  Error);
 }

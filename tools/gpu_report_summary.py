@@ -264,8 +264,9 @@ def paired_times(bench, kind, backend):
         elif kind == "grid":
             for r in d.get("rows", []):
                 if r.get("backend") == backend:
+                    build = "" if r.get("build", "radix") == "radix" else f" ({r['build']})"
                     for stage, ms in r.get("median_ms", {}).items():
-                        out[f"{d['n']} points, {stage}"] = (ms, f)
+                        out[f"{d['n']} points, {stage}{build}"] = (ms, f)
         elif kind == "atom":
             for r in d.get("rows", []):
                 if r.get("backend") == backend:

@@ -4,6 +4,47 @@
 #include "engine/kernels/kernel_checks.h"
 
 namespace masav {
+namespace {
+
+void build_by_radix(Backend& backend, HashGrid& grid, const Buffer<Real4>& positions,
+                    SortImpl sort) {
+  const GridParams& g = grid.params;
+  backend.grid_assign_cells(g, positions, grid.sorted_cells, grid.sorted_index);
+  backend.radix_sort(RadixSortParams{g.n, grid_key_bits(g), sort}, grid.sorted_cells,
+                     &grid.sorted_index);
+  backend.grid_cell_ranges(g, grid.sorted_cells, grid.cell_start, grid.cell_end);
+}
+
+// The count table is zeroed once, here; every build leaves it zero again.
+void make_counting_buffers(Backend& backend, HashGrid& grid) {
+  const size_t cells = size_t(grid_cell_count(grid.params));
+  const size_t capacity = grid.sorted_cells.size();
+  if (!grid.counts || grid.counts.size() < cells) {
+    grid.counts = backend.create<uint32_t>(cells, "grid cell counts");
+    backend.fill(grid.counts, 0u);
+  }
+  if (!grid.point_cells || grid.point_cells.size() < capacity) {
+    grid.point_cells = backend.create<uint32_t>(capacity, "grid point cells");
+    grid.unsorted = backend.create<uint32_t>(capacity, "grid unsorted index");
+  }
+}
+
+void build_by_counting(Backend& backend, HashGrid& grid, const Buffer<Real4>& positions,
+                       uint32_t max_per_cell) {
+  make_counting_buffers(backend, grid);
+  const GridParams& g = grid.params;
+  const uint32_t cells = uint32_t(grid_cell_count(g));
+  // grid_assign_cells' indices (0..n-1) are not needed: `unsorted` takes them and is overwritten.
+  backend.grid_assign_cells(g, positions, grid.point_cells, grid.unsorted);
+  backend.grid_count_cells({g.n, cells}, grid.point_cells, grid.counts);
+  backend.grid_cell_offsets({cells}, grid.counts, grid.cell_start, grid.cell_end);
+  backend.grid_scatter_cells({g.n, cells}, grid.point_cells, grid.cell_end, grid.counts,
+                             grid.unsorted);
+  backend.grid_rank_in_cell({g.n, cells, max_per_cell}, grid.point_cells, grid.unsorted,
+                            grid.cell_start, grid.cell_end, grid.sorted_cells, grid.sorted_index);
+}
+
+}  // namespace
 
 HashGrid make_hash_grid(Backend& backend, const GridParams& params, size_t capacity) {
   check_grid(params, "hash_grid");
@@ -21,12 +62,11 @@ HashGrid make_hash_grid(Backend& backend, const GridParams& params, size_t capac
 }
 
 void build_hash_grid(Backend& backend, HashGrid& grid, const Buffer<Real4>& positions,
-                     SortImpl sort) {
-  const GridParams& g = grid.params;
-  backend.grid_assign_cells(g, positions, grid.sorted_cells, grid.sorted_index);
-  backend.radix_sort(RadixSortParams{g.n, grid_key_bits(g), sort}, grid.sorted_cells,
-                     &grid.sorted_index);
-  backend.grid_cell_ranges(g, grid.sorted_cells, grid.cell_start, grid.cell_end);
+                     const GridBuildOptions& options) {
+  if (options.method == GridBuild::counting)
+    build_by_counting(backend, grid, positions, options.max_per_cell);
+  else
+    build_by_radix(backend, grid, positions, options.sort);
 }
 
 void reorder(Backend& backend, const HashGrid& grid, const BufferImpl& src, BufferImpl& dst) {

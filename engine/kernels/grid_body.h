@@ -1,7 +1,8 @@
 #pragma once
-// grid_assign_cells, grid_count_neighbors and grid_count_cells: one point per invocation, on the
-// fp32 cell rule and the 27-cell walk of engine/kernels/grid_cell.h. shaders/<kernel>.comp are
-// the GLSL twins.
+// grid_assign_cells, grid_count_neighbors and the per-point passes of the counting sort by cell
+// (grid_count_cells, grid_scatter_cells, grid_rank_in_cell): one point (or slot) per invocation,
+// on the fp32 cell rule and the 27-cell walk of engine/kernels/grid_cell.h. shaders/<kernel>.comp
+// are the GLSL twins.
 #include "engine/kernels/grid_cell.h"
 #include "engine/kernels/grid_params.h"
 #include "engine/kernels/kernel_body.h"
@@ -64,6 +65,64 @@ struct KernelBody<KernelId::grid_count_cells> {
       return;
     }
     hd::atomic_add(&counts[c], 1u);
+  }
+};
+
+template <>
+struct KernelBody<KernelId::grid_scatter_cells> {
+  static constexpr uint32_t kCpuGrain = 16384;
+  // Point i takes slot cell_end[c] - counts[c] and counts the cell down by one (an atomic add of
+  // 2^32 - 1): the cell's points take its slots end - count .. end - 1 once each, in whatever
+  // order they arrive, and leave counts[c] at 0.
+  template <class F, class Diag>
+  MASAV_HD static void run(uint32_t i, const CellScatterParams& p, Diag& diag,
+                           const uint32_t* cells, const uint32_t* cell_end, uint32_t* counts,
+                           uint32_t* unsorted) {
+    const uint32_t c = cells[i];
+    if (c >= p.cell_count) {
+      diag.report(kDiagScatterNoSlot, i);
+      return;
+    }
+    const uint32_t left = hd::atomic_add(&counts[c], ~0u);
+    if (left == 0) {  // no slot left: undo, so the table stays as it was
+      hd::atomic_add(&counts[c], 1u);
+      diag.report(kDiagScatterNoSlot, i);
+      return;
+    }
+    const uint32_t end = cell_end[c];
+    if (left > end || end > p.n) {  // the slot end - left would lie outside [0, n)
+      diag.report(kDiagScatterNoSlot, i);
+      return;
+    }
+    unsorted[end - left] = i;
+  }
+};
+
+template <>
+struct KernelBody<KernelId::grid_rank_in_cell> {
+  static constexpr uint32_t kCpuGrain = 4096;
+  // The point in slot s moves to its cell's start plus the number of its cell's points with a
+  // smaller index: a cell's run comes out in increasing index whatever order the scatter left.
+  template <class F, class Diag>
+  MASAV_HD static void run(uint32_t s, const CellRankParams& p, Diag& diag, const uint32_t* cells,
+                           const uint32_t* unsorted, const uint32_t* cell_start,
+                           const uint32_t* cell_end, uint32_t* sorted_cells,
+                           uint32_t* sorted_index) {
+    const uint32_t i = unsorted[s];
+    const uint32_t c = i < p.n ? cells[i] : p.cell_count;
+    if (c >= p.cell_count || s < cell_start[c] || s >= cell_end[c] || cell_end[c] > p.n) {
+      diag.report(kDiagRankOutsideCell, s);
+      return;
+    }
+    const uint32_t first = cell_start[c], last = cell_end[c];
+    if (last - first > p.max_per_cell) {
+      diag.report(kDiagCellOverfull, c);
+      return;
+    }
+    uint32_t rank = 0;
+    for (uint32_t t = first; t < last; ++t) rank += unsorted[t] < i ? 1u : 0u;
+    sorted_cells[first + rank] = c;
+    sorted_index[first + rank] = i;
   }
 };
 

@@ -2,7 +2,9 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
+#include <initializer_list>
 
 #include "engine/core/error.h"
 
@@ -111,15 +113,62 @@ void validate(const DeviceApi& dev, const NeighborParams& p, const Buffer<Real4>
                               counts.size()));
 }
 
+namespace {
+
+// The cell count of a counting-sort pass: at least one cell, and a table in every buffer.
+void check_cell_count(std::string_view kernel, uint32_t cell_count,
+                      std::initializer_list<const Buffer<uint32_t>*> tables) {
+  size_t smallest = SIZE_MAX;
+  for (const Buffer<uint32_t>* t : tables) smallest = std::min(smallest, t->size());
+  if (cell_count < 1 || cell_count > smallest)
+    throw_invalid(kernel, "cell_count", std::to_string(cell_count),
+                  fmt::format("in [1, the smallest cell table's size {}]", smallest));
+}
+
+// n of a counting-sort pass: at most every per-point buffer's size.
+void check_point_count(std::string_view kernel, uint32_t n,
+                       std::initializer_list<const Buffer<uint32_t>*> per_point) {
+  size_t smallest = SIZE_MAX;
+  for (const Buffer<uint32_t>* b : per_point) smallest = std::min(smallest, b->size());
+  if (n > smallest)
+    throw_invalid(kernel, "n", std::to_string(n),
+                  fmt::format("at most the smallest per-point buffer's size {}", smallest));
+}
+
+}  // namespace
+
+void validate(const DeviceApi&, const CellOffsetParams& p, const Buffer<uint32_t>& counts,
+              const Buffer<uint32_t>& start, const Buffer<uint32_t>& end) {
+  check_cell_count("grid_cell_offsets", p.cell_count, {&counts, &start, &end});
+}
+
+void validate(const DeviceApi&, const CellScatterParams& p, const Buffer<uint32_t>& cells,
+              const Buffer<uint32_t>& end, const Buffer<uint32_t>& counts,
+              const Buffer<uint32_t>& unsorted) {
+  check_point_count("grid_scatter_cells", p.n, {&cells, &unsorted});
+  check_cell_count("grid_scatter_cells", p.cell_count, {&end, &counts});
+}
+
+void validate(const DeviceApi& dev, const CellRankParams& p, const Buffer<uint32_t>& cells,
+              const Buffer<uint32_t>& unsorted, const Buffer<uint32_t>& start,
+              const Buffer<uint32_t>& end, const Buffer<uint32_t>& sorted_cells,
+              const Buffer<uint32_t>& sorted_index) {
+  check_point_count("grid_rank_in_cell", p.n, {&cells, &unsorted, &sorted_cells, &sorted_index});
+  check_cell_count("grid_rank_in_cell", p.cell_count, {&start, &end});
+  // Each invocation loops over its whole cell: the same budget as a neighbour walk's candidates.
+  check_candidates(dev, p.max_per_cell, "grid_rank_in_cell", "max_per_cell");
+}
+
 uint32_t max_walk_candidates(const DeviceApi& dev) {
   const uint32_t budget = dev.caps().max_loop_iterations;
   return budget > kWalkLoopOverhead ? budget - kWalkLoopOverhead : 1;
 }
 
-void check_candidates(const DeviceApi& dev, uint32_t max_candidates, std::string_view kernel) {
+void check_candidates(const DeviceApi& dev, uint32_t max_candidates, std::string_view kernel,
+                      std::string_view field) {
   const uint32_t most = max_walk_candidates(dev);
   if (max_candidates < 1 || max_candidates > most)
-    throw_invalid(kernel, "max_candidates", std::to_string(max_candidates),
+    throw_invalid(kernel, field, std::to_string(max_candidates),
                   fmt::format("in [1, {}] (a shader invocation runs at most {} loop iterations "
                               "on {})",
                               most, dev.caps().max_loop_iterations, dev.caps().device_name));
@@ -141,6 +190,25 @@ void raise_diagnostics(const DeviceApi& dev, uint32_t flags, uint32_t detail, ui
     throw Error(dev.name(), "grid_count_cells",
                 fmt::format("cells[{}] is not below cell_count {}", detail, limit),
                 "pass cell ids below cell_count (grid_assign_cells makes them so)");
+  if (flags & kDiagScatterNoSlot)
+    throw Error(dev.name(), "grid_scatter_cells",
+                fmt::format("point {} has no free slot: its cell is past the count table or "
+                            "already full",
+                            detail),
+                "pass the counts grid_count_cells made of the same cells, and cell_end from "
+                "grid_cell_offsets of those counts");
+  if (flags & kDiagCellOverfull)
+    throw Error(dev.name(), "grid_rank_in_cell",
+                fmt::format("cell {} holds more than max_per_cell = {} points", detail, limit),
+                fmt::format("raise max_per_cell (the SPH scene's max_candidates; at most {}: a "
+                            "shader invocation runs at most {} loop iterations on {}), use "
+                            "smaller cells, or build the grid with the radix sort",
+                            max_walk_candidates(dev), dev.caps().max_loop_iterations,
+                            dev.caps().device_name));
+  if (flags & kDiagRankOutsideCell)
+    throw Error(dev.name(), "grid_rank_in_cell",
+                fmt::format("slot {} lies outside the cell run of the point it holds", detail),
+                "pass unsorted from grid_scatter_cells with the same cells and cell ranges");
 }
 
 }  // namespace masav

@@ -15,8 +15,9 @@ void check_grid(const GridParams& g, std::string_view kernel);
 inline constexpr uint32_t kWalkLoopOverhead = 535;
 // The candidates a neighbour walk may examine on `dev`: its loop budget less that overhead.
 uint32_t max_walk_candidates(const DeviceApi& dev);
-// throw_invalid for a candidate cap outside [1, max_walk_candidates(dev)].
-void check_candidates(const DeviceApi& dev, uint32_t max_candidates, std::string_view kernel);
+// throw_invalid for a candidate cap (the field `field`) outside [1, max_walk_candidates(dev)].
+void check_candidates(const DeviceApi& dev, uint32_t max_candidates, std::string_view kernel,
+                      std::string_view field = "max_candidates");
 
 // Throws the error of the kernel that raised a flag of a non-zero flags word (each kDiag* flag
 // belongs to one kernel: engine/kernels/grid_params.h); `detail` is the first offending index,

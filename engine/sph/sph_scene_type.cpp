@@ -153,10 +153,10 @@ scene::SceneType sph_scene_type() {
   t.help = "SPH fluid (thesis ch. 4): explosion, water drop, dam break, mud, obstacle presets";
   t.tables = {&sph_table()};
   t.kernels = [](const ParamSet&) {
-    return std::vector<KernelId>{KernelId::grid_assign_cells, KernelId::radix_sort,
-                                 KernelId::grid_cell_ranges,  KernelId::gather,
-                                 KernelId::sph_density,       KernelId::sph_forces,
-                                 KernelId::sph_integrate};
+    return std::vector<KernelId>{
+        KernelId::grid_assign_cells,  KernelId::grid_count_cells,  KernelId::grid_cell_offsets,
+        KernelId::grid_scatter_cells, KernelId::grid_rank_in_cell, KernelId::gather,
+        KernelId::sph_density,        KernelId::sph_forces,        KernelId::sph_integrate};
   };
   t.check_inputs = [](const ParamSet& p) {
     scene::CheckInputs c;

@@ -199,8 +199,10 @@ void SphSimulation::mark(SphStage ended) {
   if (profiling_) marks_.push_back({backend_.timestamp(), ended});
 }
 
+// The counting build: a particle's own cell is among its candidates, so a cell fuller than
+// max_candidates is an overflow of the SPH kernels anyway.
 void SphSimulation::rebuild_grid(const Buffer<Real4>& positions) {
-  build_hash_grid(backend_, grid_, positions);
+  build_hash_grid(backend_, grid_, positions, {GridBuild::counting, scene_.max_candidates});
 }
 
 void SphSimulation::sort_state() {

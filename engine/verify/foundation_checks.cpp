@@ -1,9 +1,10 @@
 // Cross-checks of the foundation's kernels: Philox, the radix sort and the hash-grid kernels
-// (cell counts included),
-// all integer results, so bit for bit. Inputs come from the scene (its point count, seed and
-// grid), generated on the host and uploaded identically to both backends.
+// (the passes of the counting sort by cell included), all integer results, so bit for bit.
+// Inputs come from the scene (its point count, seed and grid), generated on the host and
+// uploaded identically to both backends.
 #include "engine/verify/foundation_checks.h"
 
+#include <algorithm>
 #include <cstring>
 #include <numeric>
 #include <random>
@@ -30,6 +31,40 @@ HashGrid grid_on(Backend& b, const CheckInputs& in, Buffer<Real4>& pos) {
   HashGrid grid = make_hash_grid(b, g, in.points);
   build_hash_grid(b, grid, pos);
   return grid;
+}
+
+// Cell ids drawn on the host for the counting-sort passes, with each cell's count and run: every
+// third point in one hot cell (at most 1024 of them, so the rank pass's loops stay short), so
+// the atomics contend, the rest spread over the scene's cells.
+struct CellTable {
+  uint32_t cell_count = 0;
+  std::vector<uint32_t> ids, counts, start, end;
+};
+
+CellTable cell_table(const CheckInputs& in) {
+  CellTable t;
+  t.cell_count = uint32_t(grid_cell_count(grid_or_default(in)));
+  std::mt19937 rng(uint32_t(in.seed) + 1);
+  t.ids.resize(in.points);
+  for (uint32_t i = 0; i < in.points; ++i)
+    t.ids[i] = i % 3 == 0 && i < 3 * 1024 ? t.cell_count / 2 : rng() % t.cell_count;
+  t.counts.assign(t.cell_count, 0);
+  for (uint32_t id : t.ids) ++t.counts[id];
+  t.start.resize(t.cell_count);
+  t.end.resize(t.cell_count);
+  uint32_t at = 0;
+  for (uint32_t c = 0; c < t.cell_count; ++c) {
+    t.start[c] = at;
+    at += t.counts[c];
+    t.end[c] = at;
+  }
+  return t;
+}
+
+Buffer<uint32_t> uploaded(Backend& b, const std::vector<uint32_t>& words, const char* label) {
+  auto buf = b.create<uint32_t>(words.size(), label);
+  b.upload(buf, words);
+  return buf;
 }
 
 }  // namespace
@@ -112,6 +147,46 @@ std::vector<KernelCheck> foundation_checks() {
     b.upload(counts, start);
     b.grid_count_cells({in.points, cell_count}, cells, counts);
     return CheckOutputs{{"counts", b.download(counts), {}}};
+  }));
+  c.push_back(exact_check(KernelId::grid_cell_offsets, [](Backend& b, const CheckInputs& in) {
+    const CellTable t = cell_table(in);
+    auto counts = uploaded(b, t.counts, "check counts");
+    auto start = b.create<uint32_t>(t.cell_count, "check cell start");
+    auto end = b.create<uint32_t>(t.cell_count, "check cell end");
+    b.grid_cell_offsets({t.cell_count}, counts, start, end);
+    return CheckOutputs{{"cell start", b.download(start), {}}, {"cell end", b.download(end), {}}};
+  }));
+  // The scatter's order within a cell depends on timing, so each cell's run is compared sorted;
+  // the count table must come back all zero.
+  c.push_back(exact_check(KernelId::grid_scatter_cells, [](Backend& b, const CheckInputs& in) {
+    const CellTable t = cell_table(in);
+    auto cells = uploaded(b, t.ids, "check cells");
+    auto end = uploaded(b, t.end, "check cell end");
+    auto counts = uploaded(b, t.counts, "check counts");
+    auto unsorted = b.create<uint32_t>(in.points, "check unsorted");
+    b.grid_scatter_cells({in.points, t.cell_count}, cells, end, counts, unsorted);
+    std::vector<uint32_t> runs = b.download(unsorted);
+    for (uint32_t c = 0; c < t.cell_count; ++c)
+      std::sort(runs.begin() + t.start[c], runs.begin() + t.end[c]);
+    return CheckOutputs{{"each cell's points", runs, {}}, {"counts after", b.download(counts), {}}};
+  }));
+  // The rank pass from a scatter made on the host, each cell's run reversed (the order the
+  // pass must undo).
+  c.push_back(exact_check(KernelId::grid_rank_in_cell, [](Backend& b, const CheckInputs& in) {
+    const CellTable t = cell_table(in);
+    std::vector<uint32_t> runs(in.points), next = t.end;
+    for (uint32_t i = 0; i < in.points; ++i) runs[--next[t.ids[i]]] = i;
+    auto cells = uploaded(b, t.ids, "check cells");
+    auto unsorted = uploaded(b, runs, "check unsorted");
+    auto start = uploaded(b, t.start, "check cell start");
+    auto end = uploaded(b, t.end, "check cell end");
+    auto sorted_cells = b.create<uint32_t>(in.points, "check sorted cells");
+    auto sorted_index = b.create<uint32_t>(in.points, "check sorted index");
+    const uint32_t most = *std::max_element(t.counts.begin(), t.counts.end());
+    b.grid_rank_in_cell({in.points, t.cell_count, std::max(most, 1u)}, cells, unsorted, start, end,
+                        sorted_cells, sorted_index);
+    return CheckOutputs{{"sorted cells", b.download(sorted_cells), {}},
+                        {"sorted index", b.download(sorted_index), {}}};
   }));
   return c;
 }

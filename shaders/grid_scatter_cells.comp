@@ -1,0 +1,40 @@
+#version 450
+#extension GL_GOOGLE_include_directive : require
+// The third pass of the counting sort by cell: point i takes slot cell_end[c] - counts[c] and
+// counts its cell down by one, so the cell's points fill its run in arrival order and the count
+// table ends all zero. Twin of KernelBody<grid_scatter_cells> (engine/kernels/grid_body.h).
+#include "kernel_base.glsl"
+#include "engine/kernels/grid_params.h"
+
+layout(std430, binding = 1) readonly buffer Cells { uint cells[]; };
+layout(std430, binding = 2) readonly buffer End { uint cell_end[]; };
+layout(std430, binding = 3) buffer Counts { uint counts[]; };
+layout(std430, binding = 4) writeonly buffer Unsorted { uint unsorted[]; };
+MASAV_PUSH(CellScatterParams);
+
+void run() {
+  const uint i = flat_invocation_id();
+  if (i >= p.n) return;
+  const uint c = cells[i];
+  if (c >= p.cell_count) {
+    report_diagnostic(kDiagScatterNoSlot, i);
+    return;
+  }
+  const uint left = atomicAdd(counts[c], 0xFFFFFFFFu);
+  if (left == 0u) {  // no slot left: undo, so the table stays as it was
+    atomicAdd(counts[c], 1u);
+    report_diagnostic(kDiagScatterNoSlot, i);
+    return;
+  }
+  const uint end = cell_end[c];
+  if (left > end || end > p.n) {  // the slot end - left would lie outside [0, n)
+    report_diagnostic(kDiagScatterNoSlot, i);
+    return;
+  }
+  unsorted[end - left] = i;
+}
+
+void main() {
+  run();
+  report_loop_ticks();
+}
