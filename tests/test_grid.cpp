@@ -43,6 +43,18 @@ Scene make_scene(uint32_t n, UVec3 dims, float cell, uint64_t seed, float spill 
   return s;
 }
 
+// The grids both builds are checked on: empty, one point, all points in one cell, mostly empty
+// cells, a large spread.
+struct GridCase {
+  uint32_t n;
+  UVec3 dims;
+  float cell;
+};
+constexpr GridCase kGridCases[] = {{0, {4, 4, 4}, 0.5f},          {1, {4, 4, 4}, 0.5f},
+                                   {2, {1, 1, 1}, 3.0f},          {1000, {13, 7, 29}, 0.1f},
+                                   {100003, {64, 32, 48}, 0.03f}, {5000, {1, 1, 1}, 1.0f},
+                                   {20000, {512, 256, 64}, 0.001f}};
+
 struct GridResult {
   std::vector<uint32_t> cells, index, start, end;
 };
@@ -74,17 +86,8 @@ uint32_t host_cell(const GridParams& g, const Vec4f& p) {
 }  // namespace
 
 TEST_CASE("hash grid equals the CPU reference and a brute-force grouping") {
-  struct Case {
-    uint32_t n;
-    UVec3 dims;
-    float cell;
-  };
-  const Case cases[] = {{0, {4, 4, 4}, 0.5f},           {1, {4, 4, 4}, 0.5f},
-                        {2, {1, 1, 1}, 3.0f},           {1000, {13, 7, 29}, 0.1f},
-                        {100003, {64, 32, 48}, 0.03f},  {5000, {1, 1, 1}, 1.0f},
-                        {20000, {512, 256, 64}, 0.001f}};
   uint64_t seed = 11;
-  for (const auto& c : cases) {
+  for (const auto& c : kGridCases) {
     CAPTURE(c.n);
     CAPTURE(c.dims.x);
     const Scene s = make_scene(c.n, c.dims, c.cell, seed++);
@@ -345,19 +348,9 @@ bool same_ranges(const GridResult& a, const GridResult& b) {
 }  // namespace
 
 TEST_CASE("the counting build equals the radix build and the CPU reference, bit for bit") {
-  struct Case {
-    uint32_t n;
-    UVec3 dims;
-    float cell;
-  };
-  // Empty, one point, all points in one cell, mostly empty cells, a large spread.
-  const Case cases[] = {{0, {4, 4, 4}, 0.5f},           {1, {4, 4, 4}, 0.5f},
-                        {2, {1, 1, 1}, 3.0f},           {1000, {13, 7, 29}, 0.1f},
-                        {100003, {64, 32, 48}, 0.03f},  {5000, {1, 1, 1}, 1.0f},
-                        {20000, {512, 256, 64}, 0.001f}};
   uint64_t seed = 11;
   Backend& b = test::backend();
-  for (const auto& c : cases) {
+  for (const auto& c : kGridCases) {
     CAPTURE(c.n);
     CAPTURE(c.dims.x);
     const Scene s = make_scene(c.n, c.dims, c.cell, seed++);

@@ -388,6 +388,13 @@ def dambreak_table(bench):
     return rows
 
 
+def md_table(title, header, rows):
+    """A titled markdown table, then a blank line."""
+    lines = [title, "", "| " + " | ".join(header) + " |", "|" + "---|" * len(header)]
+    lines += ["| " + " | ".join(str(c) for c in row) + " |" for row in rows]
+    return lines + [""]
+
+
 def markdown(run, steps, targets, sph, verify, dambreak):
     gpu = run.get("mode") == "gpu"
     lines = [f"# masav GPU report: {run.get('machine', '?')}", ""]
@@ -439,23 +446,21 @@ def markdown(run, steps, targets, sph, verify, dambreak):
     lines.append("")
 
     if sph:
-        lines += ["## SPH throughput (`masav bench sph`, water preset)", "",
-                  "| particles | integrator | backend | ms/step | steps/s | M particle-steps/s | "
-                  "timed steps | source JSON |", "|---|---|---|---|---|---|---|---|"]
-        for r in sph:
-            lines.append(f"| {r['particles']:,} | {r['integrator']} | {r['backend']} | "
-                         f"{fmt(r['ms_per_step'])} | {fmt(r['steps_per_s'])} | "
-                         f"{fmt(r['m_particle_steps_per_s'])} | {r['timed_steps']} | {r['source']} |")
-        lines.append("")
+        lines += md_table(
+            "## SPH throughput (`masav bench sph`, water preset)",
+            ["particles", "integrator", "backend", "ms/step", "steps/s", "M particle-steps/s",
+             "timed steps", "source JSON"],
+            [[f"{r['particles']:,}", r['integrator'], r['backend'], fmt(r['ms_per_step']),
+              fmt(r['steps_per_s']), fmt(r['m_particle_steps_per_s']), r['timed_steps'],
+              r['source']] for r in sph])
     if dambreak:
-        lines += ["## Dam break against experiment (`masav bench dambreak`)", "",
-                  "| backend | particles | data | points | mean abs dZ | max abs dZ | wall s | "
-                  "source JSON |", "|---|---|---|---|---|---|---|---|"]
-        for r in dambreak:
-            lines.append(f"| {r['backend']} | {r['particles']:,} | {r['source_data']} | "
-                         f"{r['points']} | {fmt(r['mean_abs_dz'])} | {fmt(r['max_abs_dz'])} | "
-                         f"{fmt(r['wall_s'])} | {r['source']} |")
-        lines.append("")
+        lines += md_table(
+            "## Dam break against experiment (`masav bench dambreak`)",
+            ["backend", "particles", "data", "points", "mean abs dZ", "max abs dZ", "wall s",
+             "source JSON"],
+            [[r['backend'], f"{r['particles']:,}", r['source_data'], r['points'],
+              fmt(r['mean_abs_dz']), fmt(r['max_abs_dz']), fmt(r['wall_s']), r['source']]
+             for r in dambreak])
 
     lines += ["## Steps", "", "| step | status | seconds | log |", "|---|---|---|---|"]
     for s in steps:
