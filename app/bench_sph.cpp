@@ -26,6 +26,7 @@ struct SphBenchOptions : BenchOptions {
   bool skip_error = false;
   uint32_t error_particles = 4096;
   double error_time = 0.02;  // s of dam break for the run-time/error sweep
+  uint32_t block_steps = 8;  // SphSimulation::set_block_steps of the throughput runs
 };
 
 namespace {
@@ -61,8 +62,9 @@ double thread_cpu_ms() {
   return double(ts.tv_sec) * 1e3 + double(ts.tv_nsec) * 1e-6;
 }
 
-Throughput measure(Backend& b, const SphScene& scene, int steps) {
+Throughput measure(Backend& b, const SphScene& scene, int steps, uint32_t block_steps) {
   SphSimulation sim(b, scene);
+  sim.set_block_steps(block_steps);
   sim.run(2);  // warm-up: pipelines, caches, the first adaptive steps
   Throughput t;
   // Wall time, counts and host time without profiling.
@@ -176,7 +178,7 @@ int run_sph_bench(const SphBenchOptions& o, JsonWriter& j) {
         s.integrator = integ;
         const int steps = o.steps ? o.steps : std::clamp(int(2e6 / n), 2, 20);
         auto row = [&] {
-          const Throughput t = measure(*b, s, steps);
+          const Throughput t = measure(*b, s, steps, o.block_steps);
           const double sps = 1000.0 / t.wall_ms;
           fmt::print(
               "  {:<7} {:<10} {:>9} {:>8.2f} {:>8.2f} {:>8.2f} {:>9.2f} {:>9.2f} {:>9.2f} "
@@ -185,7 +187,7 @@ int run_sph_bench(const SphBenchOptions& o, JsonWriter& j) {
               t.stage_ms[3], t.step_ms, t.wall_ms, sps, sps * t.particles * 1e-6);
           const StepCounts& c = t.per_step;
           fmt::print(
-              "  {:<7} {:<10} {:>9} per step: {:.1f} launches, {:.1f} barriers, {:.1f} host "
+              "  {:<7} {:<10} {:>9} per step: {:.1f} launches, {:.1f} barriers, {:.3f} host "
               "syncs, {:.1f} fills, {:.1f} device copies, {:.0f} B to device, {:.0f} B to host, "
               "{:.3f} ms host CPU\n",
               "", "", "", c.launches, c.barriers, c.host_syncs, c.fills, c.device_copies,
@@ -193,6 +195,7 @@ int run_sph_bench(const SphBenchOptions& o, JsonWriter& j) {
           begin_row(j, *b);
           j.field("integrator", to_string(integ)).field("particles", t.particles);
           j.field("timed_steps", t.steps).field("dt_s", t.dt);
+          j.field("block_steps", o.block_steps);
           j.key("stage_ms_per_step").begin_object();
           for (size_t k = 0; k < t.stage_ms.size(); ++k)
             j.field(to_string(SphStage(k)), t.stage_ms[k]);
@@ -303,6 +306,9 @@ void add_sph_bench(CLI::App& bench) {
                     64u, 1u << 20);
   add_ranged_option(*cmd, "--error-time", o.error_time, "simulated seconds of the error sweep",
                     1e-4, 10.0);
+  add_ranged_option(*cmd, "--block-steps", o.block_steps,
+                    "steps per stats read of the throughput runs (1: after every step)", 1u,
+                    SphSimulation::kMaxBlockSteps);
   add_json_option(*cmd, o.json);
 }
 

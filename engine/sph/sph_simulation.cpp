@@ -18,17 +18,26 @@ namespace {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
 constexpr int kMaxRetries = 12;
-constexpr uint64_t kMaxSubsteps = 1u << 20;
 
 float bits_to_float(uint32_t w) {
   return std::bit_cast<float>(w);
 }
 
-// Device memory the simulation needs per particle: 10 Real4 arrays, 2 Real, 2 ids, the grid's 2,
-// and the neighbour row masks where they are kept.
-uint64_t bytes_per_particle(const Backend& b, bool neighbor_rows) {
-  return 10 * 4 * b.real_bytes() + 2 * b.real_bytes() + 4 * 4 +
-         (neighbor_rows ? uint64_t(kSphRowMaskWords) * 4 : 0);
+// Device memory the simulation needs per particle: 10 Real4 arrays, 2 Real, 2 ids, the grid's 4
+// words (cells, order, and the counting build's counts and ranks), the neighbour row masks where
+// they are kept, and run()'s checkpoint (3 Real4 and ids) where it is kept.
+uint64_t bytes_per_particle(const Backend& b, bool neighbor_rows, bool checkpoint = false) {
+  return 10 * 4 * b.real_bytes() + 2 * b.real_bytes() + 6 * 4 +
+         (neighbor_rows ? uint64_t(kSphRowMaskWords) * 4 : 0) +
+         (checkpoint ? 3 * 4 * b.real_bytes() + 4 : 0);
+}
+
+// Whether run() keeps a checkpoint for its blocks: where it fits the memory budget
+// check_capacity applies (with the row masks, when they are kept).
+bool keeps_checkpoint(const Backend& b, uint64_t n, bool neighbor_rows) {
+  const Capabilities& caps = b.caps();
+  return !caps.device_memory_bytes ||
+         n * bytes_per_particle(b, neighbor_rows, true) <= caps.device_memory_bytes / 2;
 }
 
 // Whether sph_density records neighbour row masks for sph_forces, which then visits only the
@@ -154,6 +163,12 @@ SphSimulation::SphSimulation(Backend& backend, const SphScene& scene)
   if (keeps_neighbor_rows(backend_, n_))
     neighbor_rows_ =
         backend_.create<uint32_t>(size_t(kSphRowMaskWords) * n_, "sph neighbour row masks");
+  if (keeps_checkpoint(backend_, n_, neighbor_rows_.valid())) {
+    checkpoint_.pos = real4("sph checkpoint positions");
+    checkpoint_.vel = real4("sph checkpoint velocities");
+    checkpoint_.accel = real4("sph checkpoint accelerations");
+    checkpoint_.ids = backend_.create<uint32_t>(n_, "sph checkpoint ids");
+  }
 
   backend_.upload(pos_, layout_.positions);
   backend_.upload(vel_, layout_.velocities);
@@ -313,13 +328,7 @@ void SphSimulation::collect_stage_times() {
   marks_.clear();
 }
 
-SphSimulation::Attempt SphSimulation::attempt(double dt) {
-  if (profiling_) {
-    backend_.finish();
-    backend_.reset_timestamps();
-    first_mark_ = backend_.timestamp();
-  }
-  backend_.fill(stats_buf_, 0u);
+void SphSimulation::record_step(double dt) {
   switch (scene_.integrator) {
     case SphIntegrator::euler:
       step_euler(dt, SphStageOp::euler);
@@ -334,19 +343,17 @@ SphSimulation::Attempt SphSimulation::attempt(double dt) {
       step_leapfrog(dt);
       break;
   }
-  uint32_t w[kSphStatWords];
-  const SphStepStats s = read_stats(w);  // waits for the step
-  collect_stage_times();
-  if (w[kSphStatOverflow] != 0) {
-    throw Error(backend_.name(), "sph",
-                fmt::format("step {}: a particle has more than {} neighbour candidates in its 27 "
-                            "cells (the fluid is compressed far beyond rest density)",
-                            steps_ + 1, scene_.max_candidates),
-                "raise max_candidates (at most 65000), lower dt, or stiffen the fluid "
-                "(sound_speed, kp)");
-  }
+  fields_current_ = false;
+}
+
+SphSimulation::Attempt SphSimulation::judge(const uint32_t w[kSphStatWords], const SphStepStats& s,
+                                            double dt) const {
   Attempt a;
-  if (w[kSphStatNonFinite] != 0) {
+  if (w[kSphStatOverflow] != 0) {
+    a.ok = false;
+    a.overflow = true;
+    a.reason = "neighbour candidates overflowed";
+  } else if (w[kSphStatNonFinite] != 0) {
     a.ok = false;
     a.reason = "a position or velocity became NaN/Inf";
   } else if (skin_ > 0 && s.max_drift > 0.5 * skin_) {
@@ -365,12 +372,10 @@ SphSimulation::Attempt SphSimulation::attempt(double dt) {
           courant, scene_.cfl_velocity, s.max_speed);
     }
   }
-  fields_current_ = false;
-  if (!a.ok) {
-    if (scene_.integrator == SphIntegrator::leapfrog) accel_valid_ = false;
-    return a;
-  }
-  // Commit.
+  return a;
+}
+
+void SphSimulation::commit(double dt) {
   if (scene_.integrator == SphIntegrator::leapfrog) {
     std::swap(pos_, ta_);
     std::swap(vel_, tb_);
@@ -381,10 +386,36 @@ SphSimulation::Attempt SphSimulation::attempt(double dt) {
     std::swap(pos_, xs_);
     std::swap(vel_, vs_);
   }
-  stats_ = s;
   time_ += dt;
   last_dt_ = dt;
   ++substeps_;
+}
+
+SphSimulation::Attempt SphSimulation::attempt(double dt) {
+  if (profiling_) {
+    backend_.finish();
+    backend_.reset_timestamps();
+    first_mark_ = backend_.timestamp();
+  }
+  backend_.fill(stats_buf_, 0u);
+  record_step(dt);
+  uint32_t w[kSphStatWords];
+  const SphStepStats s = read_stats(w);  // waits for the step
+  collect_stage_times();
+  const Attempt a = judge(w, s, dt);
+  if (a.overflow)
+    throw Error(backend_.name(), "sph",
+                fmt::format("step {}: a particle has more than {} neighbour candidates in its 27 "
+                            "cells (the fluid is compressed far beyond rest density)",
+                            steps_ + 1, scene_.max_candidates),
+                "raise max_candidates (at most 65000), lower dt, or stiffen the fluid "
+                "(sound_speed, kp)");
+  if (!a.ok) {
+    if (scene_.integrator == SphIntegrator::leapfrog) accel_valid_ = false;
+    return a;
+  }
+  commit(dt);
+  stats_ = s;
   return a;
 }
 
@@ -482,10 +513,6 @@ void SphSimulation::step() {
     adaptive_dt_ = last_dt_;
   }
   ++steps_;
-}
-
-void SphSimulation::run(uint64_t steps) {
-  for (uint64_t i = 0; i < steps; ++i) step();
 }
 
 void SphSimulation::set_velocities(const std::vector<Vec4d>& by_id) {

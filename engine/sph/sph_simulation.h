@@ -26,8 +26,21 @@
 // the limit, whose RK4 drift exceeded the skin, or that produced a NaN/Inf is rolled back and
 // retried with half the dt; below dt_min the run stops with advice. A NaN that persists names the
 // step and the particle. The last good state stays available (download()) after any error.
+//
+// Blocks. step() reads the stats back after every step: one host wait per step, which on a GPU
+// leaves the device idle while the host decides. run() instead records up to block_steps()
+// steps (default 8) with the stats accumulated on the device (maxima over the block) and reads
+// them once at the block's end. The block's dt is chosen from the stats before it, as step()
+// would choose it for the block's first step. A block whose stats the guard would not accept
+// (NaN/Inf, an overflow, an RK4 drift past the skin, a Courant number over twice the limit at
+// the block's largest dt) is rolled back to a device-side checkpoint taken at its start (copies
+// of positions, velocities, ids and, for leapfrog, accelerations) and replayed with step(), so
+// the guard retries or stops at the very step it would have without blocks: detection is
+// bounded by the block length, the message names the step. Where the checkpoint does not fit
+// the device's memory, run() steps one at a time.
 #include <array>
 #include <cstdint>
+#include <limits>
 #include <memory>
 #include <string>
 #include <vector>
@@ -63,7 +76,14 @@ class SphSimulation {
   // Advances the simulation by one step: dt (fixed, possibly split into sub-steps by the CFL
   // guard) or the adaptive dt. Throws masav::Error (state left at the last good step).
   void step();
-  void run(uint64_t steps);
+  // Up to `steps` steps, stopping early once time() reaches t_end; in blocks (see the header).
+  // Returns the steps taken.
+  uint64_t run(uint64_t steps, double t_end = std::numeric_limits<double>::infinity());
+  // Steps per stats read in run(): 1 to kMaxBlockSteps (1 when no checkpoint fits).
+  static constexpr uint32_t kMaxBlockSteps = 64;
+  void set_block_steps(uint32_t k);
+  uint32_t block_steps() const;
+  uint64_t block_replays() const { return block_replays_; }  // blocks rolled back and replayed
 
   double time() const { return time_; }
   uint64_t steps() const { return steps_; }
@@ -101,7 +121,14 @@ class SphSimulation {
  private:
   struct Attempt {
     bool ok = true;
+    bool overflow = false;  // neighbour candidates beyond max_candidates
     std::string reason;
+  };
+  static constexpr uint64_t kMaxSubsteps = 1u << 20;  // of one fixed-dt step (CFL guard)
+  struct HostState;
+  struct Checkpoint {
+    Buffer<Real4> pos, vel, accel;
+    Buffer<uint32_t> ids;
   };
   void rebuild_grid(const Buffer<Real4>& positions);
   void sort_state();  // rebuild on pos_ and gather pos_, vel_, ids_ into cell order
@@ -110,7 +137,17 @@ class SphSimulation {
   void integrate(SphStageOp op, double dt, const Buffer<Real4>& x0, const Buffer<Real4>& v0,
                  const Buffer<Real4>* vk, Buffer<Real4>* x_out, Buffer<Real4>& v_out,
                  Buffer<Real4>* sum_x, Buffer<Real4>* sum_v);
+  void record_step(double dt);  // the integrator's kernels for one step of dt
+  // Whether stats `w` / `s` of a step (or a block) of at most `dt` are acceptable.
+  Attempt judge(const uint32_t w[kSphStatWords], const SphStepStats& s, double dt) const;
+  void commit(double dt);      // the recorded step's results become the state
   Attempt attempt(double dt);  // one integrator step, committed if accepted
+  uint64_t run_block(uint64_t k, double t_end);
+  HostState save_host_state() const;
+  void restore_host_state(const HostState& h);
+  bool leapfrog_accel() const;  // accel_ is part of the state (leapfrog's carried force)
+  void take_checkpoint();
+  void restore_checkpoint(const HostState& h);
   // attempt() with the guard's retries at half the step; `whole` covers all of dt.
   void advance(double dt, int depth, bool whole);
   void step_euler(double dt, SphStageOp op);
@@ -138,6 +175,9 @@ class SphSimulation {
   // runs both); empty where they are not kept (see keeps_neighbor_rows).
   Buffer<uint32_t> neighbor_rows_;
   Buffer<Real> density_, pressure_;
+  Checkpoint checkpoint_;  // the state at the start of run()'s block; empty where it does not fit
+  uint32_t block_steps_ = 8;
+  uint64_t block_replays_ = 0;
   bool accel_valid_ = false;     // leapfrog: accel_ holds a(pos_) in pos_'s order
   bool fields_current_ = false;  // density_, pressure_, accel_ belong to pos_ (pos_'s order)
 
