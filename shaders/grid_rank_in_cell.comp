@@ -16,27 +16,15 @@ layout(std430, binding = 5) writeonly buffer SortedCells { uint sorted_cells[]; 
 layout(std430, binding = 6) writeonly buffer SortedIndex { uint sorted_index[]; };
 MASAV_PUSH(CellRankParams);
 
+#include "grid_rank.glsl"
+
 void run() {
   const uint s = flat_invocation_id();
   if (s >= p.n) return;
-  const uint i = unsorted[s];
-  const uint c = i < p.n ? cells[i] : p.cell_count;
-  if (c >= p.cell_count || s < cell_start[c] || s >= cell_end[c] || cell_end[c] > p.n) {
-    report_diagnostic(kDiagRankOutsideCell, s);
-    return;
-  }
-  const uint first = cell_start[c], last = cell_end[c];
-  if (last - first > p.max_per_cell) {
-    report_diagnostic(kDiagCellOverfull, c);
-    return;
-  }
-  uint rank = 0u;
-  for (uint t = first; t < last; ++t) {
-    LOOP_TICK();
-    rank += unsorted[t] < i ? 1u : 0u;
-  }
-  sorted_cells[first + rank] = c;
-  sorted_index[first + rank] = i;
+  uint i, c, d;
+  if (!rank_slot(s, kDiagRankOutsideCell, kDiagCellOverfull, i, c, d)) return;
+  sorted_cells[d] = c;
+  sorted_index[d] = i;
 }
 
 void main() {

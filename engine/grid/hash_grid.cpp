@@ -29,8 +29,8 @@ void make_counting_buffers(Backend& backend, HashGrid& grid) {
   }
 }
 
-void build_by_counting(Backend& backend, HashGrid& grid, const Buffer<Real4>& positions,
-                       uint32_t max_per_cell) {
+// The counting build's passes before the rank: cells, counts, offsets, scatter.
+void count_and_scatter(Backend& backend, HashGrid& grid, const Buffer<Real4>& positions) {
   make_counting_buffers(backend, grid);
   const GridParams& g = grid.params;
   const uint32_t cells = uint32_t(grid_cell_count(g));
@@ -40,8 +40,15 @@ void build_by_counting(Backend& backend, HashGrid& grid, const Buffer<Real4>& po
   backend.grid_cell_offsets({cells}, grid.counts, grid.cell_start, grid.cell_end);
   backend.grid_scatter_cells({g.n, cells}, grid.point_cells, grid.cell_end, grid.counts,
                              grid.unsorted);
-  backend.grid_rank_in_cell({g.n, cells, max_per_cell}, grid.point_cells, grid.unsorted,
-                            grid.cell_start, grid.cell_end, grid.sorted_cells, grid.sorted_index);
+}
+
+void build_by_counting(Backend& backend, HashGrid& grid, const Buffer<Real4>& positions,
+                       uint32_t max_per_cell) {
+  count_and_scatter(backend, grid, positions);
+  const GridParams& g = grid.params;
+  backend.grid_rank_in_cell({g.n, uint32_t(grid_cell_count(g)), max_per_cell}, grid.point_cells,
+                            grid.unsorted, grid.cell_start, grid.cell_end, grid.sorted_cells,
+                            grid.sorted_index);
 }
 
 }  // namespace
@@ -67,6 +74,21 @@ void build_hash_grid(Backend& backend, HashGrid& grid, const Buffer<Real4>& posi
     build_by_counting(backend, grid, positions, options.max_per_cell);
   else
     build_by_radix(backend, grid, positions, options.sort);
+}
+
+void build_hash_grid_moving(Backend& backend, HashGrid& grid, const Buffer<Real4>& positions,
+                            uint32_t max_per_cell, const MovedArrays& m) {
+  if (!m.positions_sorted || !m.b || !m.b_sorted || !m.ids || !m.ids_sorted)
+    throw Error(backend.name(), "hash_grid", "build_hash_grid_moving needs every moved array",
+                "pass positions_sorted, b, b_sorted, ids and ids_sorted");
+  // The rank pass's cap, before any pass runs.
+  check_candidates(backend, max_per_cell, "grid_rank_and_move", "max_per_cell");
+  count_and_scatter(backend, grid, positions);
+  const GridParams& g = grid.params;
+  backend.grid_rank_and_move({g.n, uint32_t(grid_cell_count(g)), max_per_cell}, grid.point_cells,
+                             grid.unsorted, grid.cell_start, grid.cell_end, grid.sorted_cells,
+                             grid.sorted_index, positions, *m.positions_sorted, *m.b, *m.b_sorted,
+                             *m.ids, *m.ids_sorted);
 }
 
 void reorder(Backend& backend, const HashGrid& grid, const BufferImpl& src, BufferImpl& dst) {

@@ -42,6 +42,18 @@ struct GridBuildOptions {
 HashGrid make_hash_grid(Backend& backend, const GridParams& params, size_t capacity);
 void build_hash_grid(Backend& backend, HashGrid& grid, const Buffer<Real4>& positions,
                      const GridBuildOptions& options = {});
+// The counting build of `positions` that also moves each point's data into cell order on the
+// way (grid_rank_and_move): positions -> positions_sorted, b -> b_sorted, ids -> ids_sorted,
+// what build_hash_grid followed by three reorder() calls gives, in one pass fewer three.
+struct MovedArrays {
+  Buffer<Real4>* positions_sorted = nullptr;
+  const Buffer<Real4>* b = nullptr;
+  Buffer<Real4>* b_sorted = nullptr;
+  const Buffer<uint32_t>* ids = nullptr;
+  Buffer<uint32_t>* ids_sorted = nullptr;
+};
+void build_hash_grid_moving(Backend& backend, HashGrid& grid, const Buffer<Real4>& positions,
+                            uint32_t max_per_cell, const MovedArrays& moved);
 // dst[i] = src[sorted_index[i]]: per-point arrays in cell order.
 void reorder(Backend& backend, const HashGrid& grid, const BufferImpl& src, BufferImpl& dst);
 

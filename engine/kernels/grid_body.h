@@ -98,31 +98,75 @@ struct KernelBody<KernelId::grid_scatter_cells> {
   }
 };
 
+namespace grid {
+// The rank pass's destination of the point in slot s: its cell's start plus the number of its
+// cell's points with a smaller index (a cell's run comes out in increasing index whatever order
+// the scatter left). Returns false, reporting `outside` (detail: s) or `overfull` (detail: the
+// cell), where the inputs are not one build's or the cell holds more than max_per_cell points.
+template <class Diag>
+MASAV_HD inline bool rank_slot(uint32_t s, const CellRankParams& p, Diag& diag,
+                               const uint32_t* cells, const uint32_t* unsorted,
+                               const uint32_t* cell_start, const uint32_t* cell_end,
+                               uint32_t outside, uint32_t overfull, uint32_t& point, uint32_t& cell,
+                               uint32_t& dest) {
+  const uint32_t i = unsorted[s];
+  const uint32_t c = i < p.n ? cells[i] : p.cell_count;
+  if (c >= p.cell_count || s < cell_start[c] || s >= cell_end[c] || cell_end[c] > p.n) {
+    diag.report(outside, s);
+    return false;
+  }
+  const uint32_t first = cell_start[c], last = cell_end[c];
+  if (last - first > p.max_per_cell) {
+    diag.report(overfull, c);
+    return false;
+  }
+  uint32_t rank = 0;
+  for (uint32_t t = first; t < last; ++t) rank += unsorted[t] < i ? 1u : 0u;
+  point = i;
+  cell = c;
+  dest = first + rank;
+  return true;
+}
+}  // namespace grid
+
 template <>
 struct KernelBody<KernelId::grid_rank_in_cell> {
   static constexpr uint32_t kCpuGrain = 4096;
-  // The point in slot s moves to its cell's start plus the number of its cell's points with a
-  // smaller index: a cell's run comes out in increasing index whatever order the scatter left.
+  // The point in slot s moves to grid::rank_slot's destination.
   template <class F, class Diag>
   MASAV_HD static void run(uint32_t s, const CellRankParams& p, Diag& diag, const uint32_t* cells,
                            const uint32_t* unsorted, const uint32_t* cell_start,
                            const uint32_t* cell_end, uint32_t* sorted_cells,
                            uint32_t* sorted_index) {
-    const uint32_t i = unsorted[s];
-    const uint32_t c = i < p.n ? cells[i] : p.cell_count;
-    if (c >= p.cell_count || s < cell_start[c] || s >= cell_end[c] || cell_end[c] > p.n) {
-      diag.report(kDiagRankOutsideCell, s);
+    uint32_t i, c, d;
+    if (!grid::rank_slot(s, p, diag, cells, unsorted, cell_start, cell_end, kDiagRankOutsideCell,
+                         kDiagCellOverfull, i, c, d))
       return;
-    }
-    const uint32_t first = cell_start[c], last = cell_end[c];
-    if (last - first > p.max_per_cell) {
-      diag.report(kDiagCellOverfull, c);
+    sorted_cells[d] = c;
+    sorted_index[d] = i;
+  }
+};
+
+template <>
+struct KernelBody<KernelId::grid_rank_and_move> {
+  static constexpr uint32_t kCpuGrain = 4096;
+  // grid_rank_in_cell, and point i's two 4-vectors and id move with it to their sorted slot: the
+  // three gathers of a simulation's re-sort folded into the rank pass (a scatter from slot order).
+  template <class F, class Diag>
+  MASAV_HD static void run(uint32_t s, const CellRankParams& p, Diag& diag, const uint32_t* cells,
+                           const uint32_t* unsorted, const uint32_t* cell_start,
+                           const uint32_t* cell_end, uint32_t* sorted_cells, uint32_t* sorted_index,
+                           const hd::V4<F>* a, hd::V4<F>* a_sorted, const hd::V4<F>* b,
+                           hd::V4<F>* b_sorted, const uint32_t* ids, uint32_t* ids_sorted) {
+    uint32_t i, c, d;
+    if (!grid::rank_slot(s, p, diag, cells, unsorted, cell_start, cell_end, kDiagMoveOutsideCell,
+                         kDiagMoveCellOverfull, i, c, d))
       return;
-    }
-    uint32_t rank = 0;
-    for (uint32_t t = first; t < last; ++t) rank += unsorted[t] < i ? 1u : 0u;
-    sorted_cells[first + rank] = c;
-    sorted_index[first + rank] = i;
+    sorted_cells[d] = c;
+    sorted_index[d] = i;
+    a_sorted[d] = a[i];
+    b_sorted[d] = b[i];
+    ids_sorted[d] = ids[i];
   }
 };
 

@@ -68,6 +68,7 @@ MASAV_LAYOUT(CellScatterParams) {
 // stable radix sort, bit for bit. Each invocation reads its whole cell, so a cell may hold at
 // most max_per_cell points (validated below the device's loop limit); a fuller cell is reported,
 // naming the cell, and so is a slot outside its point's cell run (inputs of another build).
+// grid_rank_and_move takes the same parameters and also moves each point's data to its slot.
 MASAV_LAYOUT(CellRankParams) {
   uint n;
   uint cell_count;
@@ -81,8 +82,10 @@ MASAV_CONSTANT(kDiagGatherIndexOutOfRange, 1)  // gather: order[i] past the sour
 MASAV_CONSTANT(kDiagNeighborOverflow, 2)       // grid_count_neighbors: over max_candidates
 MASAV_CONSTANT(kDiagCellOutOfRange, 4)         // grid_count_cells: cells[i] >= cell_count
 MASAV_CONSTANT(kDiagScatterNoSlot, 8)          // grid_scatter_cells: cell past the table or full
-MASAV_CONSTANT(kDiagCellOverfull, 16)     // grid_rank_in_cell: over max_per_cell (detail: cell)
-MASAV_CONSTANT(kDiagRankOutsideCell, 32)  // grid_rank_in_cell: slot outside its cell's run
+MASAV_CONSTANT(kDiagCellOverfull, 16)      // grid_rank_in_cell: over max_per_cell (detail: cell)
+MASAV_CONSTANT(kDiagRankOutsideCell, 32)   // grid_rank_in_cell: slot outside its cell's run
+MASAV_CONSTANT(kDiagMoveCellOverfull, 64)  // grid_rank_and_move: as kDiagCellOverfull
+MASAV_CONSTANT(kDiagMoveOutsideCell, 128)  // grid_rank_and_move: as kDiagRankOutsideCell
 
 MASAV_NAMESPACE_END
 
@@ -162,6 +165,12 @@ void validate(const DeviceApi& dev, const CellRankParams& p, const Buffer<uint32
               const Buffer<uint32_t>& unsorted, const Buffer<uint32_t>& cell_start,
               const Buffer<uint32_t>& cell_end, const Buffer<uint32_t>& sorted_cells,
               const Buffer<uint32_t>& sorted_index);
+void validate(const DeviceApi& dev, const CellRankParams& p, const Buffer<uint32_t>& cells,
+              const Buffer<uint32_t>& unsorted, const Buffer<uint32_t>& cell_start,
+              const Buffer<uint32_t>& cell_end, const Buffer<uint32_t>& sorted_cells,
+              const Buffer<uint32_t>& sorted_index, const Buffer<Real4>& a,
+              const Buffer<Real4>& a_sorted, const Buffer<Real4>& b, const Buffer<Real4>& b_sorted,
+              const Buffer<uint32_t>& ids, const Buffer<uint32_t>& ids_sorted);
 
 }  // namespace masav
 #endif

@@ -159,6 +159,28 @@ void validate(const DeviceApi& dev, const CellRankParams& p, const Buffer<uint32
   check_candidates(dev, p.max_per_cell, "grid_rank_in_cell", "max_per_cell");
 }
 
+void validate(const DeviceApi& dev, const CellRankParams& p, const Buffer<uint32_t>& cells,
+              const Buffer<uint32_t>& unsorted, const Buffer<uint32_t>& start,
+              const Buffer<uint32_t>& end, const Buffer<uint32_t>& sorted_cells,
+              const Buffer<uint32_t>& sorted_index, const Buffer<Real4>& a,
+              const Buffer<Real4>& a_sorted, const Buffer<Real4>& b, const Buffer<Real4>& b_sorted,
+              const Buffer<uint32_t>& ids, const Buffer<uint32_t>& ids_sorted) {
+  const char* k = "grid_rank_and_move";
+  check_point_count(k, p.n, {&cells, &unsorted, &sorted_cells, &sorted_index, &ids, &ids_sorted});
+  const size_t smallest = std::min({a.size(), a_sorted.size(), b.size(), b_sorted.size()});
+  if (p.n > smallest)
+    throw_invalid(k, "n", std::to_string(p.n),
+                  fmt::format("at most the smallest per-point buffer's size {}", smallest));
+  // Each point's data moves from one array to another: in place, a point would overwrite one
+  // that has not moved yet.
+  if (&a.impl() == &a_sorted.impl() || &b.impl() == &b_sorted.impl() ||
+      &ids.impl() == &ids_sorted.impl())
+    throw Error(dev.name(), k, "a source and its sorted destination are the same buffer",
+                "move into a second buffer and swap");
+  check_cell_count(k, p.cell_count, {&start, &end});
+  check_candidates(dev, p.max_per_cell, k, "max_per_cell");
+}
+
 uint32_t max_walk_candidates(const DeviceApi& dev) {
   const uint32_t budget = dev.caps().max_loop_iterations;
   return budget > kWalkLoopOverhead ? budget - kWalkLoopOverhead : 1;
@@ -205,6 +227,18 @@ void raise_diagnostics(const DeviceApi& dev, uint32_t flags, uint32_t detail, ui
                             "smaller cells, or build the grid with the radix sort",
                             max_walk_candidates(dev), dev.caps().max_loop_iterations,
                             dev.caps().device_name));
+  if (flags & kDiagMoveCellOverfull)
+    throw Error(dev.name(), "grid_rank_and_move",
+                fmt::format("cell {} holds more than max_per_cell = {} points", detail, limit),
+                fmt::format("raise max_per_cell (the SPH scene's max_candidates; at most {}: a "
+                            "shader invocation runs at most {} loop iterations on {}) or use "
+                            "smaller cells",
+                            max_walk_candidates(dev), dev.caps().max_loop_iterations,
+                            dev.caps().device_name));
+  if (flags & kDiagMoveOutsideCell)
+    throw Error(dev.name(), "grid_rank_and_move",
+                fmt::format("slot {} lies outside the cell run of the point it holds", detail),
+                "pass unsorted from grid_scatter_cells with the same cells and cell ranges");
   if (flags & kDiagRankOutsideCell)
     throw Error(dev.name(), "grid_rank_in_cell",
                 fmt::format("slot {} lies outside the cell run of the point it holds", detail),

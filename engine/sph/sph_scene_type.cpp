@@ -155,7 +155,7 @@ scene::SceneType sph_scene_type() {
   t.kernels = [](const ParamSet&) {
     return std::vector<KernelId>{
         KernelId::grid_assign_cells,  KernelId::grid_count_cells,  KernelId::grid_cell_offsets,
-        KernelId::grid_scatter_cells, KernelId::grid_rank_in_cell, KernelId::gather,
+        KernelId::grid_scatter_cells, KernelId::grid_rank_and_move, KernelId::gather,
         KernelId::sph_density,        KernelId::sph_forces,        KernelId::sph_integrate};
   };
   t.check_inputs = [](const ParamSet& p) {

@@ -214,17 +214,18 @@ void SphSimulation::mark(SphStage ended) {
   if (profiling_) marks_.push_back({backend_.timestamp(), ended});
 }
 
-// The counting build: a particle's own cell is among its candidates, so a cell fuller than
-// max_candidates is an overflow of the SPH kernels anyway.
-void SphSimulation::rebuild_grid(const Buffer<Real4>& positions) {
-  build_hash_grid(backend_, grid_, positions, {GridBuild::counting, scene_.max_candidates});
+// The rebuild on `x` (the counting build; a particle's own cell is among its candidates, so a
+// cell fuller than max_candidates is an overflow of the SPH kernels anyway), with x, v and ids
+// moved into cell order by its rank pass (x_sorted, v_sorted, ids_sorted).
+void SphSimulation::rebuild_moving(const Buffer<Real4>& x, Buffer<Real4>& x_sorted,
+                                   const Buffer<Real4>& v, Buffer<Real4>& v_sorted,
+                                   const Buffer<uint32_t>& ids, Buffer<uint32_t>& ids_sorted) {
+  build_hash_grid_moving(backend_, grid_, x, scene_.max_candidates,
+                         MovedArrays{&x_sorted, &v, &v_sorted, &ids, &ids_sorted});
 }
 
 void SphSimulation::sort_state() {
-  rebuild_grid(pos_);
-  reorder(backend_, grid_, pos_.impl(), ta_.impl());
-  reorder(backend_, grid_, vel_.impl(), tb_.impl());
-  reorder(backend_, grid_, ids_.impl(), ids_t_.impl());
+  rebuild_moving(pos_, ta_, vel_, tb_, ids_, ids_t_);
   std::swap(pos_, ta_);
   std::swap(vel_, tb_);
   std::swap(ids_, ids_t_);
@@ -290,10 +291,7 @@ void SphSimulation::step_leapfrog(double dt) {
   }
   // Kick and drift from the committed state; sum_v_ gets the predicted end velocity.
   integrate(SphStageOp::kick_drift, dt, pos_, vel_, nullptr, &xs_, vs_, nullptr, &sum_v_);
-  rebuild_grid(xs_);
-  reorder(backend_, grid_, xs_.impl(), ta_.impl());
-  reorder(backend_, grid_, vs_.impl(), tb_.impl());
-  reorder(backend_, grid_, ids_.impl(), ids_t_.impl());
+  rebuild_moving(xs_, ta_, vs_, tb_, ids_, ids_t_);
   const bool viscous = scene_.viscosity > 0;
   if (viscous) reorder(backend_, grid_, sum_v_.impl(), tc_.impl());
   mark(SphStage::grid);
@@ -537,10 +535,7 @@ SphState SphSimulation::download() {
   if (!fields_current_) {
     // Density at the current positions without touching the committed state: sort copies of
     // the positions, velocities and ids into a fresh grid (scratch buffers), evaluate there.
-    rebuild_grid(pos_);
-    reorder(backend_, grid_, pos_.impl(), ta_.impl());
-    reorder(backend_, grid_, vel_.impl(), tb_.impl());
-    reorder(backend_, grid_, ids_.impl(), ids_t_.impl());
+    rebuild_moving(pos_, ta_, vel_, tb_, ids_, ids_t_);
     backend_.fill(stats_buf_, 0u);
     const SphGridView view{&grid_.sorted_cells, &grid_.cell_start, &grid_.cell_end};
     sph_density(backend_, step_params_,

@@ -5,8 +5,8 @@
 // diagnostics and export. Independent of the command line, so the renderer can drive it.
 //
 // Grid rebuilds. Every step starts (Euler, RK4) or ends its drift (leapfrog) with a rebuild:
-// cells of the current positions, sort on the cell bits in use, cell ranges, and a gather of
-// positions, velocities and particle ids into cell order, so the neighbour loops read
+// the counting sort by cell of the current positions, whose rank pass also moves positions,
+// velocities and particle ids into cell order (grid_rank_and_move), so the neighbour loops read
 // neighbours from contiguous memory.
 //  - Euler / symplectic Euler: one force pass per step at the step-start positions.
 //  - Leapfrog (kick-drift-kick): the grid is rebuilt after the drift; the force pass there
@@ -130,8 +130,10 @@ class SphSimulation {
     Buffer<Real4> pos, vel, accel;
     Buffer<uint32_t> ids;
   };
-  void rebuild_grid(const Buffer<Real4>& positions);
-  void sort_state();  // rebuild on pos_ and gather pos_, vel_, ids_ into cell order
+  void rebuild_moving(const Buffer<Real4>& x, Buffer<Real4>& x_sorted, const Buffer<Real4>& v,
+                      Buffer<Real4>& v_sorted, const Buffer<uint32_t>& ids,
+                      Buffer<uint32_t>& ids_sorted);
+  void sort_state();  // rebuild on pos_ with pos_, vel_, ids_ moved into cell order
   void evaluate(const Buffer<Real4>& x, const Buffer<Real4>& v);
   Buffer<uint32_t>* neighbor_rows();  // null where the masks are not kept
   void integrate(SphStageOp op, double dt, const Buffer<Real4>& x0, const Buffer<Real4>& v0,

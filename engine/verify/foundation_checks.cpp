@@ -188,6 +188,48 @@ std::vector<KernelCheck> foundation_checks() {
     return CheckOutputs{{"sorted cells", b.download(sorted_cells), {}},
                         {"sorted index", b.download(sorted_index), {}}};
   }));
+  // The same rank pass moving two 4-vectors and an id per point; the vectors hold integers
+  // below 2^24, which every backend's precision stores exactly, so the moved data compare bit
+  // for bit.
+  c.push_back(exact_check(KernelId::grid_rank_and_move, [](Backend& b, const CheckInputs& in) {
+    const CellTable t = cell_table(in);
+    std::vector<uint32_t> runs(in.points), next = t.end, ids(in.points);
+    for (uint32_t i = 0; i < in.points; ++i) runs[--next[t.ids[i]]] = i;
+    std::vector<Vec4d> va(in.points), vb(in.points);
+    for (uint32_t i = 0; i < in.points; ++i) {
+      va[i] = {double(i), double(2 * i + 1), double(t.ids[i] % 4096), 0.5};
+      vb[i] = {-double(i), double(i % 977), 3.0, double(in.points - i)};
+      ids[i] = i * 2654435761u;
+    }
+    auto cells = uploaded(b, t.ids, "check cells");
+    auto unsorted = uploaded(b, runs, "check unsorted");
+    auto start = uploaded(b, t.start, "check cell start");
+    auto end = uploaded(b, t.end, "check cell end");
+    auto sorted_cells = b.create<uint32_t>(in.points, "check sorted cells");
+    auto sorted_index = b.create<uint32_t>(in.points, "check sorted index");
+    auto a = b.create<Real4>(in.points, "check a");
+    auto a_sorted = b.create<Real4>(in.points, "check a sorted");
+    auto bb = b.create<Real4>(in.points, "check b");
+    auto b_sorted = b.create<Real4>(in.points, "check b sorted");
+    auto id_in = uploaded(b, ids, "check ids");
+    auto id_sorted = b.create<uint32_t>(in.points, "check ids sorted");
+    b.upload(a, va);
+    b.upload(bb, vb);
+    const uint32_t most = *std::max_element(t.counts.begin(), t.counts.end());
+    b.grid_rank_and_move({in.points, t.cell_count, std::max(most, 1u)}, cells, unsorted, start, end,
+                         sorted_cells, sorted_index, a, a_sorted, bb, b_sorted, id_in, id_sorted);
+    auto words = [&](const Buffer<Real4>& v) {
+      std::vector<uint32_t> w;
+      for (const Vec4d& x : b.download(v))
+        for (double e : {x.x, x.y, x.z, x.w}) w.push_back(uint32_t(int64_t(e * 2.0)));
+      return w;
+    };
+    return CheckOutputs{{"sorted cells", b.download(sorted_cells), {}},
+                        {"sorted index", b.download(sorted_index), {}},
+                        {"a moved", words(a_sorted), {}},
+                        {"b moved", words(b_sorted), {}},
+                        {"ids moved", b.download(id_sorted), {}}};
+  }));
   return c;
 }
 
