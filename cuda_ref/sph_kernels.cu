@@ -32,7 +32,7 @@ __global__ void density_kernel(SphStepLayout<float> c, const V4* __restrict__ po
                                float* density, float* pressure, uint32_t* stats,
                                uint32_t* neighbor_rows) {
   const uint64_t i = sph_thread();
-  uint32_t cand = 0, within = 0, over = 0, bad = 0;
+  uint32_t cand = 0, within = 0, over = 0, bad = 0, rho_bits = 0;
   if (i < c.n) {
     const uint32_t dims[3] = {c.dims.x, c.dims.y, c.dims.z};
     auto pos_at = [pos](uint32_t j) { return sph::xyz(pos[j]); };
@@ -46,14 +46,18 @@ __global__ void density_kernel(SphStepLayout<float> c, const V4* __restrict__ po
     within = r.neighbors;
     if (r.overflow) over = ~uint32_t(i);
     if (!isfinite(r.density) || !isfinite(p)) bad = ~uint32_t(i);
+    // A non-negative float's bits order like the float.
+    if (!bad) rho_bits = __float_as_uint(fmaxf(r.density, 0.0f));
   }
   cand = warp_max(cand);
   within = warp_max(within);
   over = warp_max(over);
   bad = warp_max(bad);
+  rho_bits = warp_max(rho_bits);
   if (lane0()) {
     atomicMax(&stats[kSphStatMaxCandidates], cand);
     atomicMax(&stats[kSphStatMaxNeighbors], within);
+    atomicMax(&stats[kSphStatMaxDensity], rho_bits);
     if (over) atomicMax(&stats[kSphStatOverflow], over);
     if (bad) atomicMax(&stats[kSphStatNonFinite], bad);
   }

@@ -29,6 +29,7 @@ void main() {
   const uint i = flat_invocation_id();
   const bool live = i < p.n;
   uint candidates = 0u, within = 0u;
+  uint rho_bits = 0u;  // a non-negative float's bits order like the float
   bool overflow = false, bad = false;
   // Every lane of the subgroup runs the row loops (the cooperative rows need them all);
   // lanes past n or whose rows leave the grid have empty ranges.
@@ -95,15 +96,18 @@ void main() {
     density[i] = rho;
     pressure[i] = pr;
     bad = !sph_finite(rho) || !sph_finite(pr);
+    rho_bits = bad ? 0u : floatBitsToUint(max(rho, 0.0));
   }
   // One atomic per subgroup and statistic.
   const uint max_cand = subgroupMax(candidates);
   const uint max_within = subgroupMax(within);
   const uint over = subgroupMax(overflow ? ~i : 0u);
   const uint nonfinite = subgroupMax(bad ? ~i : 0u);
+  const uint max_rho = subgroupMax(rho_bits);
   if (subgroupElect()) {
     atomicMax(stats[kSphStatMaxCandidates], max_cand);
     atomicMax(stats[kSphStatMaxNeighbors], max_within);
+    atomicMax(stats[kSphStatMaxDensity], max_rho);
     if (over != 0u) atomicMax(stats[kSphStatOverflow], over);
     if (nonfinite != 0u) atomicMax(stats[kSphStatNonFinite], nonfinite);
   }

@@ -21,7 +21,7 @@ using V = sph::V3<double>;
 struct ChunkStats {
   uint32_t max_candidates = 0, max_neighbors = 0, outside = 0;
   uint32_t overflow = UINT32_MAX, non_finite = UINT32_MAX;  // smallest sorted index
-  double max_speed2 = 0, max_accel2 = 0, max_disp2 = 0;
+  double max_speed2 = 0, max_accel2 = 0, max_disp2 = 0, max_density = 0;
 };
 
 uint32_t float_bits(double v) {
@@ -41,6 +41,7 @@ void merge(uint32_t* words, const std::vector<ChunkStats>& chunks) {
     words[kSphStatMaxSpeed2] = std::max(words[kSphStatMaxSpeed2], float_bits(c.max_speed2));
     words[kSphStatMaxAccel2] = std::max(words[kSphStatMaxAccel2], float_bits(c.max_accel2));
     words[kSphStatMaxDisp2] = std::max(words[kSphStatMaxDisp2], float_bits(c.max_disp2));
+    words[kSphStatMaxDensity] = std::max(words[kSphStatMaxDensity], float_bits(c.max_density));
   }
 }
 
@@ -175,6 +176,7 @@ void CpuBackend::run_own(const KernelArgs<KernelId::sph_density>& a) {
     pr[i] = sph::pressure_of(rho[i], c);
     s.max_candidates = std::max(s.max_candidates, sph_lists_.candidates(i));
     s.max_neighbors = std::max(s.max_neighbors, count + 1);
+    if (rho[i] > s.max_density) s.max_density = rho[i];  // NaN is reported as non-finite
     if (sph_lists_.overflow(i)) s.overflow = std::min(s.overflow, i);
     if (!std::isfinite(rho[i]) || !std::isfinite(pr[i])) s.non_finite = std::min(s.non_finite, i);
     if (rows) write_row_masks(in, i, sph_lists_.list(chunk, i), count, rows);

@@ -40,7 +40,8 @@ MASAV_CONSTANT(kSphStatMaxAccel2, 4)      // float bits: largest |a|^2 from sph_
 MASAV_CONSTANT(kSphStatMaxDisp2, 5)       // float bits: largest |x_out - x0|^2 in sph_integrate
 MASAV_CONSTANT(kSphStatOutside, 6)        // particles outside the box after a step-ending stage
 MASAV_CONSTANT(kSphStatMaxNeighbors, 7)   // most neighbours within h (density, itself included)
-MASAV_CONSTANT(kSphStatWords, 8)
+MASAV_CONSTANT(kSphStatMaxDensity, 8)     // float bits: largest density from sph_density
+MASAV_CONSTANT(kSphStatWords, 9)
 
 // Neighbour row masks (sph_density's optional output, sph_forces' optional input): for each of
 // the 9 rows of a particle's 27-cell walk, 64 bits, bit b set when candidate first + b of the

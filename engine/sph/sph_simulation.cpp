@@ -194,6 +194,9 @@ SphSimulation::SphSimulation(Backend& backend, const SphScene& scene)
   accel_valid_ = true;
   fields_current_ = true;
   adaptive_dt_ = std::min(scene_.dt_max, dt_limit());
+  const SphState s0 = download();
+  watchdog_ = make_watchdog(s0, *this, stats_.max_density);
+  set_watchdog_baseline(s0);
 }
 
 double SphSimulation::limit_for(const SphStepStats& s) const {
@@ -311,6 +314,7 @@ SphStepStats SphSimulation::read_stats(uint32_t w[kSphStatWords]) {
   s.max_drift = std::sqrt(double(bits_to_float(w[kSphStatMaxDisp2])));
   s.max_candidates = w[kSphStatMaxCandidates];
   s.max_neighbors = w[kSphStatMaxNeighbors];
+  s.max_density = double(bits_to_float(w[kSphStatMaxDensity]));
   s.outside = w[kSphStatOutside];
   return s;
 }
@@ -370,6 +374,22 @@ SphSimulation::Attempt SphSimulation::judge(const uint32_t w[kSphStatWords], con
           courant, scene_.cfl_velocity, s.max_speed);
     }
   }
+  if (!a.ok) return a;
+  if (s.max_speed > watchdog_.max_speed) {
+    a.ok = false;
+    a.watchdog = true;
+    a.reason = fmt::format(
+        "a particle reached {:.3g} m/s, above the watchdog's speed bound {:.3g} m/s (2x the "
+        "largest of the signal speed, the free-fall speed over the box and the initial speeds)",
+        s.max_speed, watchdog_.max_speed);
+  } else if (s.max_density > watchdog_.max_density) {
+    a.ok = false;
+    a.watchdog = true;
+    a.reason = fmt::format(
+        "the density reached {:.4g} kg/m^3, above the watchdog's bound {:.4g} kg/m^3 (1.5x the "
+        "rest or initial density)",
+        s.max_density, watchdog_.max_density);
+  }
   return a;
 }
 
@@ -408,6 +428,11 @@ SphSimulation::Attempt SphSimulation::attempt(double dt) {
                             steps_ + 1, scene_.max_candidates),
                 "raise max_candidates (at most 65000), lower dt, or stiffen the fluid "
                 "(sound_speed, kp)");
+  if (a.watchdog)
+    throw Error(backend_.name(), "sph watchdog",
+                fmt::format("step {} (t = {:.6g} s, dt = {:.3g} s): {}", steps_ + 1, time_, dt,
+                            a.reason),
+                watchdog_remedy());
   if (!a.ok) {
     if (scene_.integrator == SphIntegrator::leapfrog) accel_valid_ = false;
     return a;
@@ -511,6 +536,51 @@ void SphSimulation::step() {
     adaptive_dt_ = last_dt_;
   }
   ++steps_;
+  watch_energy();
+}
+
+void SphSimulation::set_watchdog_baseline(const SphState& s) {
+  watchdog_.energy0 = available_energy(s, *this);
+  good_ = {s.positions, s.velocities, time_, last_dt_, steps_, substeps_, stats_};
+  next_energy_check_ = steps_ + SphWatchdog::kEnergyEvery;
+}
+
+void SphSimulation::watch_energy() {
+  if (steps_ < next_energy_check_) return;
+  const SphState s = download();
+  const double e = available_energy(s, *this);
+  // Half the moving mass at 5% of the signal speed: the scale below which a rise is noise.
+  const double c = signal_speed(step_params_);
+  const double floor = 0.5 * layout_.mass * double(layout_.fluid) * 0.0025 * c * c;
+  const double bound =
+      watchdog_.energy0 + SphWatchdog::kEnergyMargin * std::max(std::abs(watchdog_.energy0), floor);
+  if (e <= bound) {
+    good_ = {s.positions, s.velocities, time_, last_dt_, steps_, substeps_, stats_};
+    next_energy_check_ = steps_ + SphWatchdog::kEnergyEvery;
+    return;
+  }
+  const uint64_t bad_step = steps_;
+  const double bad_time = time_;
+  // Back to the last state that passed: positions and velocities by id, in id order.
+  std::vector<uint32_t> ids(n_);
+  for (uint32_t i = 0; i < n_; ++i) ids[i] = i;
+  backend_.upload(pos_, good_.positions);
+  backend_.upload(vel_, good_.velocities);
+  backend_.upload(ids_, ids);
+  time_ = good_.time;
+  last_dt_ = good_.last_dt;
+  steps_ = good_.steps;
+  substeps_ = good_.substeps;
+  stats_ = good_.stats;
+  accel_valid_ = false;
+  fields_current_ = false;
+  throw Error(backend_.name(), "sph watchdog",
+              fmt::format("step {} (t = {:.6g} s): the energy above the floor reached {:.4g} J, "
+                          "above the watchdog's bound {:.4g} J (the initial {:.4g} J plus {:.0f}%); "
+                          "the state is back at step {} (t = {:.6g} s), the last that passed",
+                          bad_step, bad_time, e, bound, watchdog_.energy0,
+                          100 * SphWatchdog::kEnergyMargin, steps_, time_),
+              watchdog_remedy());
 }
 
 void SphSimulation::set_velocities(const std::vector<Vec4d>& by_id) {
@@ -525,7 +595,12 @@ void SphSimulation::set_velocities(const std::vector<Vec4d>& by_id) {
   fields_current_ = false;
   double vmax = 0;
   for (const auto& v : by_id) vmax = std::max(vmax, std::hypot(v.x, v.y, v.z));
-  if (std::isfinite(vmax)) stats_.max_speed = std::max(stats_.max_speed, vmax);
+  if (std::isfinite(vmax)) {
+    stats_.max_speed = std::max(stats_.max_speed, vmax);
+    // Energy the caller adds is the new baseline; speeds up to twice the fastest given are legal.
+    watchdog_.max_speed = std::max(watchdog_.max_speed, 2 * vmax);
+    set_watchdog_baseline(download());
+  }
 }
 
 SphState SphSimulation::download() {

@@ -38,6 +38,8 @@
 // the guard retries or stops at the very step it would have without blocks: detection is
 // bounded by the block length, the message names the step. Where the checkpoint does not fit
 // the device's memory, run() steps one at a time.
+//
+// The stability watchdog (sph_watchdog.h) stops a blown-up run whatever the guard's mode.
 #include <array>
 #include <cstdint>
 #include <limits>
@@ -49,6 +51,7 @@
 #include "engine/kernels/backend.h"
 #include "engine/sph/sph_params.h"
 #include "engine/sph/sph_particles.h"
+#include "engine/sph/sph_watchdog.h"
 
 namespace masav {
 
@@ -63,6 +66,7 @@ struct SphState {
 
 struct SphStepStats {
   double max_speed = 0, max_accel = 0, max_drift = 0;  // m/s, m/s^2, m
+  double max_density = 0;  // kg/m^3
   uint32_t max_candidates = 0, max_neighbors = 0, outside = 0;
 };
 
@@ -122,6 +126,7 @@ class SphSimulation {
   struct Attempt {
     bool ok = true;
     bool overflow = false;  // neighbour candidates beyond max_candidates
+    bool watchdog = false;  // beyond a watchdog bound: stop, do not retry
     std::string reason;
   };
   static constexpr uint64_t kMaxSubsteps = 1u << 20;  // of one fixed-dt step (CFL guard)
@@ -147,6 +152,9 @@ class SphSimulation {
   uint64_t run_block(uint64_t k, double t_end);
   HostState save_host_state() const;
   void restore_host_state(const HostState& h);
+  // The watchdog's energy check, every SphWatchdog::kEnergyEvery steps (see sph_watchdog.h).
+  void watch_energy();
+  void set_watchdog_baseline(const SphState& s);
   bool leapfrog_accel() const;  // accel_ is part of the state (leapfrog's carried force)
   void take_checkpoint();
   void restore_checkpoint(const HostState& h);
@@ -179,6 +187,14 @@ class SphSimulation {
   Buffer<Real> density_, pressure_;
   Checkpoint checkpoint_;  // the state at the start of run()'s block; empty where it does not fit
   uint32_t block_steps_ = 8;
+  SphWatchdog watchdog_;
+  uint64_t next_energy_check_ = 0;
+  struct GoodState {  // the last state that passed the energy check, by particle id
+    std::vector<Vec4d> positions, velocities;
+    double time = 0, last_dt = 0;
+    uint64_t steps = 0, substeps = 0;
+    SphStepStats stats;
+  } good_;
   uint64_t block_replays_ = 0;
   bool accel_valid_ = false;     // leapfrog: accel_ holds a(pos_) in pos_'s order
   bool fields_current_ = false;  // density_, pressure_, accel_ belong to pos_ (pos_'s order)

@@ -125,6 +125,7 @@ uint64_t SphSimulation::run_block(uint64_t k, double t_end) {
       !scene_.dt || scene_.cfl_guard == SphCflGuard::off || max_dt <= limit_for(s);
   if (fixed_within_limit && judge(w, s, max_dt).ok) {
     stats_ = s;
+    watch_energy();
     return taken;
   }
   // Something went wrong within the block: replay it step by step from its start, reading the

@@ -1,0 +1,43 @@
+#pragma once
+// The stability watchdog of an SPH run, always on and independent of the CFL guard (which only
+// chooses and splits dt): a run whose state leaves what a fluid of this scene can do stops with
+// an Error naming the step, the time, the quantity, its value, the bound and a remedy.
+//  - speed above max(2 c, 2 sqrt(2 |g| D), 2 v0) (c: the signal speed, D: the box diagonal, v0:
+//    the fastest initial or set velocity): checked on the step statistics of every step (a run()
+//    block that exceeds it is replayed step by step, so the message names the very step);
+//  - density above 1.5 max(rho0, the initial largest density): the same way;
+//  - total energy above the initial energy by more than kEnergyMargin times the energy available
+//    above the floor (or of half the moving mass at 5% of c, if larger) (the kinetic, internal and potential energy over the lowest potential the
+//    box allows): checked every kEnergyEvery steps on a downloaded state; the run goes back to
+//    the last state that passed (at most kEnergyEvery steps earlier). Gravity's work is part of
+//    the potential energy; a scene has no inflow.
+//  - a NaN or Inf: the guard's own check (SphSimulation), which names the particle.
+#include <cstdint>
+#include <string>
+
+namespace masav {
+
+struct SphState;
+class SphSimulation;
+
+struct SphWatchdog {
+  // The wall continuum is not energy-conserving yet (a stiff dam break, c0 = 500 m/s, gains up to
+  // +39%), so the margin is the whole available energy: a doubled energy is a blow-up.
+  static constexpr double kEnergyMargin = 1.0;
+  static constexpr uint64_t kEnergyEvery = 128;
+  double max_speed = 0;    // m/s
+  double max_density = 0;  // kg/m^3
+  double energy0 = 0;      // J: available energy of the baseline state
+};
+
+// Energy above the floor (J): kinetic + internal + potential - the potential of every moving
+// particle at the box's lowest point under gravity.
+double available_energy(const SphState& s, const SphSimulation& sim);
+
+// The bounds for a run starting from `s` (speeds: the fastest of `s`).
+SphWatchdog make_watchdog(const SphState& s, const SphSimulation& sim, double max_density);
+
+// The remedy a watchdog message gives.
+std::string watchdog_remedy();
+
+}  // namespace masav
