@@ -429,10 +429,10 @@ SphSimulation::Attempt SphSimulation::attempt(double dt) {
                 "raise max_candidates (at most 65000), lower dt, or stiffen the fluid "
                 "(sound_speed, kp)");
   if (a.watchdog)
-    throw Error(backend_.name(), "sph watchdog",
-                fmt::format("step {} (t = {:.6g} s, dt = {:.3g} s): {}", steps_ + 1, time_, dt,
-                            a.reason),
-                watchdog_remedy());
+    throw Error(
+        backend_.name(), "sph watchdog",
+        fmt::format("step {} (t = {:.6g} s, dt = {:.3g} s): {}", steps_ + 1, time_, dt, a.reason),
+        watchdog_remedy());
   if (!a.ok) {
     if (scene_.integrator == SphIntegrator::leapfrog) accel_valid_ = false;
     return a;
@@ -574,13 +574,14 @@ void SphSimulation::watch_energy() {
   stats_ = good_.stats;
   accel_valid_ = false;
   fields_current_ = false;
-  throw Error(backend_.name(), "sph watchdog",
-              fmt::format("step {} (t = {:.6g} s): the energy above the floor reached {:.4g} J, "
-                          "above the watchdog's bound {:.4g} J (the initial {:.4g} J plus {:.0f}%); "
-                          "the state is back at step {} (t = {:.6g} s), the last that passed",
-                          bad_step, bad_time, e, bound, watchdog_.energy0,
-                          100 * SphWatchdog::kEnergyMargin, steps_, time_),
-              watchdog_remedy());
+  throw Error(
+      backend_.name(), "sph watchdog",
+      fmt::format("step {} (t = {:.6g} s): the energy above the floor reached {:.4g} J, "
+                  "above the watchdog's bound {:.4g} J (the initial {:.4g} J plus {:.0f}%); "
+                  "the state is back at step {} (t = {:.6g} s), the last that passed",
+                  bad_step, bad_time, e, bound, watchdog_.energy0, 100 * SphWatchdog::kEnergyMargin,
+                  steps_, time_),
+      watchdog_remedy());
 }
 
 void SphSimulation::set_velocities(const std::vector<Vec4d>& by_id) {

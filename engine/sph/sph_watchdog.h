@@ -7,10 +7,10 @@
 //    block that exceeds it is replayed step by step, so the message names the very step);
 //  - density above 1.5 max(rho0, the initial largest density): the same way;
 //  - total energy above the initial energy by more than kEnergyMargin times the energy available
-//    above the floor (or of half the moving mass at 5% of c, if larger) (the kinetic, internal and potential energy over the lowest potential the
-//    box allows): checked every kEnergyEvery steps on a downloaded state; the run goes back to
-//    the last state that passed (at most kEnergyEvery steps earlier). Gravity's work is part of
-//    the potential energy; a scene has no inflow.
+//    above the floor (or of half the moving mass at 5% of c, if larger) (the kinetic, internal and
+//    potential energy over the lowest potential the box allows): checked every kEnergyEvery steps
+//    on a downloaded state; the run goes back to the last state that passed (at most kEnergyEvery
+//    steps earlier). Gravity's work is part of the potential energy; a scene has no inflow.
 //  - a NaN or Inf: the guard's own check (SphSimulation), which names the particle.
 #include <cstdint>
 #include <string>
