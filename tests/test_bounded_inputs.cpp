@@ -6,7 +6,6 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
-#include <chrono>
 #include <cmath>
 #include <cstring>
 #include <filesystem>
@@ -87,7 +86,6 @@ TEST_CASE("checked sizes: overflow and wrap-around are errors naming the field")
 TEST_CASE("bounded files: endless devices, FIFOs and directories are refused without reading") {
   TempDir t;
   for (const char* dev : {"/dev/zero", "/dev/urandom"}) {
-    const auto t0 = std::chrono::steady_clock::now();
     CHECK(error_of([&] { read_bounded_file(dev, "input"); }).find("character device") !=
           std::string::npos);
     CHECK(error_of([&] {
@@ -99,8 +97,6 @@ TEST_CASE("bounded files: endless devices, FIFOs and directories are refused wit
           std::string::npos);
     CHECK(error_of([&] { load_transfer_points(dev); }).find("not a regular file") !=
           std::string::npos);
-    // Refused, not read until memory runs out: well under a second.
-    CHECK(std::chrono::steady_clock::now() - t0 < std::chrono::seconds(5));
   }
   // A FIFO with no writer: opening it for reading would block forever.
   const std::string fifo = t.file("fifo");
