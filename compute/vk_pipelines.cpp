@@ -11,7 +11,6 @@
 #include "shaders/embedded.h"
 
 namespace masav::vk {
-namespace fs = std::filesystem;
 
 namespace {
 
