@@ -6,7 +6,6 @@
 
 #include <chrono>
 #include <cmath>
-#include <fstream>
 #include <map>
 #include <sstream>
 
@@ -16,6 +15,7 @@
 #include "engine/sph/sph_diagnostics.h"
 #include "engine/sph/sph_presets.h"
 #include "engine/sph/sph_simulation.h"
+#include "engine/util/bounded_file.h"
 #include "registry/backends.h"
 
 #ifndef MASAV_SOURCE_DIR
@@ -42,8 +42,7 @@ struct Point {
 };
 
 std::map<std::string, std::vector<Point>> read_data(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) throw_invalid("bench dambreak", "--data", path, "a readable CSV of source,T,Z rows");
+  std::istringstream in(read_bounded_file(path, "bench dambreak --data"));
   std::map<std::string, std::vector<Point>> out;
   std::string line;
   bool header = true;

@@ -4,32 +4,37 @@
 
 #include <cstdlib>
 #include <filesystem>
-#include <fstream>
-#include <iterator>
-#include <unistd.h>
+#include <optional>
 
 #include "engine/core/error.h"
+#include "engine/util/cache_file.h"
 #include "shaders/embedded.h"
 
 namespace masav::vk {
-namespace fs = std::filesystem;
 
 namespace {
 
-std::vector<uint8_t> read_file(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) return {};
-  return std::vector<uint8_t>(std::istreambuf_iterator<char>(in), {});
+// Pipeline caches are a few MiB; a file declaring more is not read.
+constexpr uint64_t kMaxPipelineCacheBytes = uint64_t(256) << 20;
+
+// The driver checks its own header in the blob, but not that the rest is intact: our checked
+// envelope (engine/util/cache_file.h) does.
+CacheFileId pipeline_cache_id(const std::string& path) {
+  return {"vk-pipeline-cache", 1, std::filesystem::path(path).filename().string()};
 }
 
 }  // namespace
 
 std::string Pipelines::cache_path() const {
   std::string dir;
-  if (const char* d = std::getenv("MASAV_CACHE_DIR")) dir = d;
-  else if (const char* x = std::getenv("XDG_CACHE_HOME")) dir = std::string(x) + "/masav";
-  else if (const char* h = std::getenv("HOME")) dir = std::string(h) + "/.cache/masav";
-  else return "";
+  if (const char* d = std::getenv("MASAV_CACHE_DIR"))
+    dir = d;
+  else if (const char* x = std::getenv("XDG_CACHE_HOME"))
+    dir = std::string(x) + "/masav";
+  else if (const char* h = std::getenv("HOME"))
+    dir = std::string(h) + "/.cache/masav";
+  else
+    return "";
   std::string uuid;
   for (uint8_t b : ctx_.pipeline_cache_uuid()) uuid += fmt::format("{:02x}", b);
   return fmt::format("{}/vk_pipelines_{}.bin", dir, uuid);
@@ -38,8 +43,11 @@ std::string Pipelines::cache_path() const {
 Pipelines::Pipelines(const Context& ctx, uint32_t workgroup_size, bool count_loop_ticks)
     : ctx_(ctx), workgroup_size_(workgroup_size), count_loop_ticks_(count_loop_ticks) {
   // The driver validates the blob's header against its own UUID and ignores a stale one.
-  const std::vector<uint8_t> blob = read_file(cache_path());
-  ::vk::PipelineCacheCreateInfo info({}, blob.size(), blob.empty() ? nullptr : blob.data());
+  const std::string path = cache_path();
+  const std::optional<std::string> blob =
+      path.empty() ? std::nullopt
+                   : load_cache_file(path, pipeline_cache_id(path), kMaxPipelineCacheBytes);
+  ::vk::PipelineCacheCreateInfo info({}, blob ? blob->size() : 0, blob ? blob->data() : nullptr);
   try {
     cache_ = ::vk::raii::PipelineCache(ctx_.device(), info);
   } catch (const ::vk::SystemError&) {
@@ -53,14 +61,8 @@ Pipelines::~Pipelines() {
     const std::string path = cache_path();
     if (path.empty() || kernels_.empty()) return;
     const std::vector<uint8_t> data = cache_.getData();
-    fs::create_directories(fs::path(path).parent_path());
-    const std::string tmp = fmt::format("{}.tmp{}", path, ::getpid());
-    {
-      std::ofstream out(tmp, std::ios::binary);
-      out.write(reinterpret_cast<const char*>(data.data()), std::streamsize(data.size()));
-      if (!out) return;
-    }
-    fs::rename(tmp, path);
+    write_cache_file(path, pipeline_cache_id(path),
+                     std::string_view(reinterpret_cast<const char*>(data.data()), data.size()));
   } catch (...) {
   }
 }
@@ -84,8 +86,8 @@ const Kernel& Pipelines::get(const KernelSpec& spec) {
   for (uint32_t b = 0; b <= spec.buffers; ++b)
     bindings.emplace_back(b, ::vk::DescriptorType::eStorageBuffer, 1,
                           ::vk::ShaderStageFlagBits::eCompute);
-  k->set_layout = ::vk::raii::DescriptorSetLayout(ctx_.device(),
-                                                  ::vk::DescriptorSetLayoutCreateInfo({}, bindings));
+  k->set_layout = ::vk::raii::DescriptorSetLayout(
+      ctx_.device(), ::vk::DescriptorSetLayoutCreateInfo({}, bindings));
   ::vk::PushConstantRange range(::vk::ShaderStageFlagBits::eCompute, 0, spec.push_bytes);
   ::vk::DescriptorSetLayout set_layout = *k->set_layout;
   ::vk::PipelineLayoutCreateInfo linfo({}, set_layout);
@@ -96,14 +98,13 @@ const Kernel& Pipelines::get(const KernelSpec& spec) {
   ::vk::raii::ShaderModule module(ctx_.device(), minfo);
 
   // Constants 0..2 are common to every kernel (shaders/common/kernel_base.glsl).
-  std::vector<uint32_t> values = {wg, ctx_.caps().min_subgroup_size,
-                                  count_loop_ticks_ ? 1u : 0u};
+  std::vector<uint32_t> values = {wg, ctx_.caps().min_subgroup_size, count_loop_ticks_ ? 1u : 0u};
   values.insert(values.end(), spec.constants.begin(), spec.constants.end());
   std::vector<::vk::SpecializationMapEntry> entries;
   for (uint32_t i = 0; i < values.size(); ++i) entries.emplace_back(i, 4 * i, 4);
   ::vk::SpecializationInfo sinfo(entries, ::vk::ArrayProxyNoTemporaries<const uint32_t>(values));
-  ::vk::PipelineShaderStageCreateInfo stage({}, ::vk::ShaderStageFlagBits::eCompute, *module, "main",
-                                            &sinfo);
+  ::vk::PipelineShaderStageCreateInfo stage({}, ::vk::ShaderStageFlagBits::eCompute, *module,
+                                            "main", &sinfo);
   ::vk::ComputePipelineCreateInfo cinfo({}, stage, *k->layout);
   try {
     k->pipeline = ::vk::raii::Pipeline(ctx_.device(), cache_, cinfo);

@@ -4,10 +4,10 @@
 #include <toml++/toml.h>
 
 #include <filesystem>
-#include <fstream>
 #include <sstream>
 
 #include "engine/core/error.h"
+#include "engine/util/bounded_file.h"
 #include "registry/scene_catalog.h"
 
 namespace masav::scene {
@@ -112,12 +112,8 @@ SceneFile load_scene_file(const std::string& path) {
   if (std::filesystem::is_directory(path, ec))
     throw Error("", "scene file", fmt::format("'{}' is a directory", path),
                 "give the path of a .toml scene file");
-  std::ifstream in(path, std::ios::binary);
-  if (!in)
-    throw Error("", "scene file", fmt::format("cannot read '{}'", path), "check its permissions");
-  std::stringstream ss;
-  ss << in.rdbuf();
-  const std::string text = ss.str();
+  // Bounded: a device or FIFO (which never ends) is refused, and so is a file over 16 MiB.
+  const std::string text = read_bounded_file(path, "scene file");
   if (text.find('\0') != std::string::npos)
     throw Error("", "scene file", fmt::format("'{}' is not a text file", path),
                 "give the path of a .toml scene file");

@@ -3,19 +3,21 @@
 // phase function and against an independent quadrature, reproducible rows, the CPU reference
 // matched by a chi-square test, and bad input.
 #include <doctest/doctest.h>
-
 #include <unistd.h>
 
 #include <algorithm>
+#include <cmath>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
-#include <cmath>
+#include <iterator>
 #include <vector>
 
 #include "engine/atom/quadrature.h"
 #include "engine/atom/scatter_cache.h"
 #include "engine/atom/scatter_reference.h"
 #include "engine/core/error.h"
+#include "engine/util/cache_file.h"
 #include "tests/backend_fixture.h"
 
 using namespace masav;
@@ -129,7 +131,8 @@ TEST_CASE("scatter_table: single scattering follows the Henyey-Greenstein phase 
   }
   CHECK(scattered > 1000);
   for (uint32_t b = 0; b < p.bins; ++b)
-    expect[b] = scattered * (hg_cdf(p.g, -1 + 2.0 * (b + 1) / p.bins) - hg_cdf(p.g, -1 + 2.0 * b / p.bins));
+    expect[b] =
+        scattered * (hg_cdf(p.g, -1 + 2.0 * (b + 1) / p.bins) - hg_cdf(p.g, -1 + 2.0 * b / p.bins));
   int dof;
   const double chi = chi_square(obs, expect, dof);
   CAPTURE(dof);
@@ -224,16 +227,19 @@ TEST_CASE("scatter_table rejects bad input, naming the field") {
   ScatterTableParams p;
   p.rows = 1;
   p.bins = 1;
-  CHECK_THROWS_WITH_AS(b.scatter_table(p, table, hits), doctest::Contains("invalid bins = 1"), Error);
+  CHECK_THROWS_WITH_AS(b.scatter_table(p, table, hits), doctest::Contains("invalid bins = 1"),
+                       Error);
   p.bins = 72;
   p.direction = {1, 1, 0};
   CHECK_THROWS_WITH_AS(b.scatter_table(p, table, hits), doctest::Contains("direction"), Error);
   p.direction = {0, 0, 1};
   p.max_scatterings = 6000;
-  CHECK_THROWS_WITH_AS(b.scatter_table(p, table, hits), doctest::Contains("max_scatterings"), Error);
+  CHECK_THROWS_WITH_AS(b.scatter_table(p, table, hits), doctest::Contains("max_scatterings"),
+                       Error);
   p.max_scatterings = 10;
   p.weight_threshold = 1;
-  CHECK_THROWS_WITH_AS(b.scatter_table(p, table, hits), doctest::Contains("weight_threshold"), Error);
+  CHECK_THROWS_WITH_AS(b.scatter_table(p, table, hits), doctest::Contains("weight_threshold"),
+                       Error);
   p.weight_threshold = 0.1f;
   p.rows = 2;
   CHECK_THROWS_WITH_AS(b.scatter_table(p, table, hits), doctest::Contains("table size"), Error);
@@ -244,10 +250,10 @@ TEST_CASE("scatter_table rejects bad input, naming the field") {
 
 TEST_CASE("scatter tables are cached on disk, keyed by every parameter") {
   // Unique per process: the Vulkan variants of this binary may run at the same time.
-  const std::string dir = (std::filesystem::temp_directory_path() /
-                           ("masav_scatter_cache_" + test::backend_name() + "_" +
-                            std::to_string(::getpid())))
-                              .string();
+  const std::string dir =
+      (std::filesystem::temp_directory_path() /
+       ("masav_scatter_cache_" + test::backend_name() + "_" + std::to_string(::getpid())))
+          .string();
   ScatterTableParams p;
   p.rows = 3;
   p.photons_per_row = 256;
@@ -270,6 +276,54 @@ TEST_CASE("scatter tables are cached on disk, keyed by every parameter") {
   atom::scatter_table_cached(test::backend(), p, dir, &hit);
   CHECK_FALSE(hit);
   CHECK(atom::load_scatter_cache(p, dir).has_value());
+  {  // damage the issue found used as is: each is detected, recomputed, equal to a fresh table
+    const std::string path = atom::scatter_cache_path(p, dir);
+    const auto read = [&] {
+      std::ifstream in(path, std::ios::binary);
+      return std::string(std::istreambuf_iterator<char>(in), {});
+    };
+    const auto write = [&](const std::string& bytes) {
+      std::ofstream(path, std::ios::binary | std::ios::trunc) << bytes;
+    };
+    const std::string good = read();
+    const size_t payload_at = good.size() - first.weight.size() * 12;  // weights, then hits
+    const auto recomputed_on = [&](const std::string& bytes) {
+      write(bytes);
+      CHECK_FALSE(atom::load_scatter_cache(p, dir).has_value());
+      bool h = true;
+      const auto t = atom::scatter_table_cached(test::backend(), p, dir, &h);
+      CHECK_FALSE(h);
+      CHECK(t.weight == first.weight);
+      CHECK(t.hits == first.hits);
+      CHECK(read() == good);  // rewritten whole
+    };
+    std::string nans = good;  // the payload overwritten at the same size: NaN light before
+    const double nan = std::nan("");
+    for (size_t i = 0; i < first.weight.size(); ++i)
+      std::memcpy(&nans[payload_at + 8 * i], &nan, 8);
+    recomputed_on(nans);
+    for (size_t at : {payload_at + 3, payload_at + first.weight.size() * 8 + 1, size_t(20)}) {
+      std::string flipped = good;  // one bit in a weight, in a hit count, in the header
+      flipped[at] = char(flipped[at] ^ 0x04);
+      recomputed_on(flipped);
+    }
+    recomputed_on(good.substr(0, good.size() - 4));  // truncated
+    // Another key's file under this name (a hash collision or a copied file).
+    atom::scatter_table_cached(test::backend(), other, dir, &hit);
+    std::ifstream o(atom::scatter_cache_path(other, dir), std::ios::binary);
+    recomputed_on(std::string(std::istreambuf_iterator<char>(o), {}));
+    // A checksum that matches values no computation gives: the values are checked too.
+    std::string payload = good.substr(good.find('\n', good.find("\npayload ") + 1) + 1);
+    const double two = 2.0;  // a weight is a fraction of the photons' weight: at most 1
+    std::memcpy(&payload[payload.find('\n') + 1], &two, 8);
+    const std::string forged = dir + "/forged.bin";
+    write_cache_file(forged, {"scatter-table", 2, atom::scatter_cache_key(p)}, payload);
+    // The envelope is intact: only the values can reject it.
+    CHECK(read_cache_file(forged, {"scatter-table", 2, atom::scatter_cache_key(p)}, payload.size())
+              .payload == payload);
+    std::ifstream fin(forged, std::ios::binary);
+    recomputed_on(std::string(std::istreambuf_iterator<char>(fin), {}));
+  }
   // The phase table drops the unscattered photons from the forward bin.
   const auto phase = atom::make_phase_table(first);
   const uint32_t s = p.bins + kScatterExtras;

@@ -3,11 +3,11 @@
 #include <fmt/format.h>
 
 #include <charconv>
-#include <fstream>
 #include <map>
 #include <sstream>
 
 #include "engine/core/error.h"
+#include "engine/util/bounded_file.h"
 
 namespace masav::app {
 namespace {
@@ -40,10 +40,7 @@ const std::map<std::string, Form>& forms() {
 }  // namespace
 
 std::vector<ScriptCommand> load_script(const std::string& path) {
-  std::ifstream in(path);
-  if (!in)
-    throw Error("", "--script", fmt::format("cannot read the script '{}'", path),
-                "give the path of a demo script (see `masav demo --help`)");
+  std::istringstream in(read_bounded_file(path, "--script"));
   std::vector<ScriptCommand> out;
   std::string text;
   int line = 0;

@@ -3,25 +3,24 @@
 #include <fmt/format.h>
 
 #include <chrono>
+#include <cmath>
 #include <cstdlib>
 #include <cstring>
-#include <fstream>
-#include <iterator>
 
 #include "engine/core/error.h"
 #include "engine/io/csv_writer.h"
-#include "engine/util/json_writer.h"
+#include "engine/util/cache_file.h"
+#include "engine/util/checked_size.h"
+#include "engine/util/checksum.h"
 
 namespace masav::atom {
 namespace {
 
-constexpr const char* kMagic = "masav-scatter-table v1";
-
-uint64_t fnv1a(const std::string& s) {
-  uint64_t h = 0xcbf29ce484222325ull;
-  for (unsigned char c : s) h = (h ^ c) * 0x100000001b3ull;
-  return h;
-}
+// The payload: the backend's name and a newline, then rows x (bins + extras) weights (double),
+// then as many photon counts (uint32), in the host's byte order.
+constexpr uint32_t kPayloadVersion = 2;
+constexpr uint64_t kMaxBackendName = 64;
+constexpr uint64_t kEntryBytes = sizeof(double) + sizeof(uint32_t);
 
 std::string cache_dir(const std::string& dir) {
   if (!dir.empty()) return dir;
@@ -31,7 +30,26 @@ std::string cache_dir(const std::string& dir) {
   return ".masav-cache";
 }
 
-size_t entries(const ScatterTableParams& p) { return size_t(p.rows) * (p.bins + kScatterExtras); }
+uint64_t entries(const ScatterTableParams& p) {
+  return checked_mul(p.rows, uint64_t(p.bins) + kScatterExtras, "scatter table", "rows x bins");
+}
+
+CacheFileId cache_id(const ScatterTableParams& p) {
+  return {"scatter-table", kPayloadVersion, scatter_cache_key(p)};
+}
+
+// "" when every entry is a possible result of these parameters: a weight is a fraction of the
+// photons' weight (finite, in [0, 1]) and a count at most the photons traced per row.
+std::string implausible_entry(const ScatterTable& t) {
+  for (size_t i = 0; i < t.weight.size(); ++i)
+    if (!std::isfinite(t.weight[i]) || t.weight[i] < 0 || t.weight[i] > 1 + 1e-6)
+      return fmt::format("entry {} holds weight {}, outside [0, 1]", i, t.weight[i]);
+  for (size_t i = 0; i < t.hits.size(); ++i)
+    if (t.hits[i] > t.params.photons_per_row)
+      return fmt::format("entry {} counts {} photons, more than the {} traced per row", i,
+                         t.hits[i], t.params.photons_per_row);
+  return "";
+}
 
 }  // namespace
 
@@ -39,13 +57,13 @@ std::string scatter_cache_key(const ScatterTableParams& p) {
   return fmt::format(
       "rows={} first_row={} bins={} tau_step={:a} g={:a} albedo={:a} threshold={:a} "
       "photons_per_row={} max_scatterings={} start={} direction=({:a},{:a},{:a}) seed={}",
-      p.rows, p.first_row, p.bins, p.tau_step, p.g, p.albedo, p.weight_threshold,
-      p.photons_per_row, p.max_scatterings, p.start == ScatterStart::centre ? "centre" : "surface",
-      p.direction.x, p.direction.y, p.direction.z, p.seed);
+      p.rows, p.first_row, p.bins, p.tau_step, p.g, p.albedo, p.weight_threshold, p.photons_per_row,
+      p.max_scatterings, p.start == ScatterStart::centre ? "centre" : "surface", p.direction.x,
+      p.direction.y, p.direction.z, p.seed);
 }
 
 std::string scatter_cache_path(const ScatterTableParams& p, const std::string& dir) {
-  return fmt::format("{}/scatter/{:016x}.bin", cache_dir(dir), fnv1a(scatter_cache_key(p)));
+  return fmt::format("{}/scatter/{:016x}.bin", cache_dir(dir), fnv1a64(scatter_cache_key(p)));
 }
 
 ScatterTable compute_scatter_table(Backend& b, const ScatterTableParams& p) {
@@ -59,27 +77,36 @@ ScatterTable compute_scatter_table(Backend& b, const ScatterTableParams& p) {
   return t;
 }
 
-std::optional<ScatterTable> load_scatter_cache(const ScatterTableParams& p, const std::string& dir) {
-  std::ifstream in(scatter_cache_path(p, dir), std::ios::binary);
-  if (!in) return std::nullopt;
-  std::string magic, key, backend;
-  if (!std::getline(in, magic) || magic != kMagic) return std::nullopt;
-  if (!std::getline(in, key) || key != scatter_cache_key(p)) return std::nullopt;
-  if (!std::getline(in, backend)) return std::nullopt;
-  ScatterTable t{p, std::vector<double>(entries(p)), std::vector<uint32_t>(entries(p)), backend, 0};
-  in.read(reinterpret_cast<char*>(t.weight.data()), std::streamsize(t.weight.size() * 8));
-  in.read(reinterpret_cast<char*>(t.hits.data()), std::streamsize(t.hits.size() * 4));
-  if (!in || in.peek() != std::char_traits<char>::eof()) return std::nullopt;
+std::optional<ScatterTable> load_scatter_cache(const ScatterTableParams& p,
+                                               const std::string& dir) {
+  const std::string path = scatter_cache_path(p, dir);
+  const uint64_t n = entries(p);
+  auto payload = load_cache_file(path, cache_id(p), kMaxBackendName + 1 + n * kEntryBytes);
+  if (!payload) return std::nullopt;
+  const size_t eol = payload->find('\n');
+  if (eol == std::string::npos || eol > kMaxBackendName ||
+      payload->size() != eol + 1 + n * kEntryBytes) {
+    note_cache_rejected(path, "payload of the wrong size for these parameters");
+    return std::nullopt;
+  }
+  ScatterTable t{p, std::vector<double>(n), std::vector<uint32_t>(n), payload->substr(0, eol), 0};
+  std::memcpy(t.weight.data(), payload->data() + eol + 1, n * sizeof(double));
+  std::memcpy(t.hits.data(), payload->data() + eol + 1 + n * sizeof(double), n * sizeof(uint32_t));
+  if (const std::string bad = implausible_entry(t); !bad.empty()) {
+    note_cache_rejected(path, bad);
+    return std::nullopt;
+  }
   return t;
 }
 
 void save_scatter_cache(const ScatterTable& t, const std::string& dir) {
-  std::string body = fmt::format("{}\n{}\n{}\n", kMagic, scatter_cache_key(t.params), t.backend);
-  const size_t head = body.size();
-  body.resize(head + t.weight.size() * 8 + t.hits.size() * 4);
-  std::memcpy(body.data() + head, t.weight.data(), t.weight.size() * 8);
-  std::memcpy(body.data() + head + t.weight.size() * 8, t.hits.data(), t.hits.size() * 4);
-  write_file_atomic(scatter_cache_path(t.params, dir), body);
+  std::string payload = t.backend.substr(0, kMaxBackendName) + "\n";
+  const size_t head = payload.size();
+  payload.resize(head + t.weight.size() * sizeof(double) + t.hits.size() * sizeof(uint32_t));
+  std::memcpy(payload.data() + head, t.weight.data(), t.weight.size() * sizeof(double));
+  std::memcpy(payload.data() + head + t.weight.size() * sizeof(double), t.hits.data(),
+              t.hits.size() * sizeof(uint32_t));
+  write_cache_file(scatter_cache_path(t.params, dir), cache_id(t.params), payload);
 }
 
 ScatterTable scatter_table_cached(Backend& b, const ScatterTableParams& p, const std::string& dir,

@@ -25,7 +25,9 @@ std::string scatter_cache_key(const ScatterTableParams& p);
 std::string scatter_cache_path(const ScatterTableParams& p, const std::string& dir = "");
 
 ScatterTable compute_scatter_table(Backend& b, const ScatterTableParams& p);
-// A damaged or mismatched cache file is ignored (and rewritten), never trusted.
+// The file names its format version and full key and holds a checksum of its payload; a file
+// that does not match, or holds a value no computation could give (not finite, a weight outside
+// [0, 1], more hits than photons), is ignored with a note on stderr, never trusted.
 std::optional<ScatterTable> load_scatter_cache(const ScatterTableParams& p,
                                                const std::string& dir = "");
 void save_scatter_cache(const ScatterTable& t, const std::string& dir = "");

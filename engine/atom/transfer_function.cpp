@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "engine/core/error.h"
+#include "engine/util/bounded_file.h"
 
 namespace masav::atom {
 
@@ -18,7 +19,8 @@ std::vector<TransferPoint> default_transfer_points() {
           {1.00, 1.0, 0.0, 0.0, 0.30}};
 }
 
-std::vector<TransferPoint> parse_transfer_points(const std::string& text, const std::string& where) {
+std::vector<TransferPoint> parse_transfer_points(const std::string& text,
+                                                 const std::string& where) {
   std::vector<TransferPoint> pts;
   std::istringstream in(text);
   std::string line;
@@ -57,13 +59,7 @@ std::vector<TransferPoint> parse_transfer_points(const std::string& text, const 
 }
 
 std::vector<TransferPoint> load_transfer_points(const std::string& path) {
-  std::ifstream in(path);
-  if (!in)
-    throw Error("", "transfer function", fmt::format("cannot read '{}'", path),
-                "give a readable text file of lines \"value r g b a\"");
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return parse_transfer_points(ss.str(), path);
+  return parse_transfer_points(read_bounded_file(path, "transfer function"), path);
 }
 
 std::vector<Vec4d> resample_transfer(const std::vector<TransferPoint>& pts, uint32_t size) {

@@ -2,8 +2,10 @@
 // Scalar volumes from files for raymarch: raw (with dims and type given), NRRD (attached or
 // detached data, raw or ASCII encoding) and VTK ImageData (.vti: ASCII, inline base64 or appended
 // data, uncompressed). Samples are voxel centres; values are converted to fp32. Every
-// inconsistency (a size that does not match the dims, an unknown type, a compressed file) is an
-// error naming the field.
+// inconsistency (a size that does not match the dims, an unknown type, a compressed file, a header
+// field masav does not read) is an error naming the field. Files are read bounded: regular files
+// only, sizes parsed as whole 64-bit numbers (never wrapped), each axis in [2, 8192], and the
+// declared data checked against the file's size before anything is allocated for it.
 #include <cstdint>
 #include <string>
 #include <vector>

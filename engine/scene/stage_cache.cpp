@@ -3,34 +3,19 @@
 #include <fmt/format.h>
 
 #include <cstdlib>
-#include <cstring>
-#include <filesystem>
-#include <fstream>
-#include <iterator>
 
 #include "engine/core/error.h"
-#include "engine/util/json_writer.h"
+#include "engine/util/cache_file.h"
+#include "engine/util/checksum.h"
 
 namespace masav::scene {
 namespace {
 
-constexpr char kMagic[8] = {'M', 'A', 'S', 'A', 'V', 'S', 'C', '1'};
+// Stage outputs are small by design (see the header); a file declaring more is not read.
+constexpr uint64_t kMaxStageOutputBytes = uint64_t(1) << 30;
 
-uint64_t fnv1a(const void* data, size_t n, uint64_t h = 0xcbf29ce484222325ull) {
-  const auto* p = static_cast<const uint8_t*>(data);
-  for (size_t i = 0; i < n; ++i) h = (h ^ p[i]) * 0x100000001b3ull;
-  return h;
-}
-
-void put_u64(std::string& out, uint64_t v) {
-  out.append(reinterpret_cast<const char*>(&v), 8);
-}
-
-bool get_u64(const std::vector<uint8_t>& in, size_t& at, uint64_t& v) {
-  if (at + 8 > in.size()) return false;
-  std::memcpy(&v, in.data() + at, 8);
-  at += 8;
-  return true;
+CacheFileId cache_id(const std::string& key) {
+  return {"stage-output", 1, key};
 }
 
 std::string default_dir() {
@@ -53,28 +38,14 @@ std::string StageCache::key(std::string_view stage, uint32_t format_version, con
 }
 
 std::string StageCache::path_of(const std::string& key) const {
-  return fmt::format("{}/{:016x}.bin", dir_, fnv1a(key.data(), key.size()));
+  return fmt::format("{}/{:016x}.bin", dir_, fnv1a64(key));
 }
 
 std::optional<std::vector<uint8_t>> StageCache::load(const std::string& key) const {
   if (dir_.empty()) return std::nullopt;
-  std::ifstream in(path_of(key), std::ios::binary);
-  if (!in) return std::nullopt;
-  const std::vector<uint8_t> file(std::istreambuf_iterator<char>(in), {});
-  if (file.size() < sizeof kMagic || std::memcmp(file.data(), kMagic, sizeof kMagic) != 0)
-    return std::nullopt;
-  size_t at = sizeof kMagic;
-  uint64_t key_len = 0, payload_len = 0, hash = 0;
-  if (!get_u64(file, at, key_len) || at + key_len > file.size()) return std::nullopt;
-  if (std::string(file.begin() + long(at), file.begin() + long(at + key_len)) != key)
-    return std::nullopt;  // another key with the same file name
-  at += key_len;
-  if (!get_u64(file, at, payload_len) || at + payload_len + 8 > file.size()) return std::nullopt;
-  std::vector<uint8_t> payload(file.begin() + long(at), file.begin() + long(at + payload_len));
-  at += payload_len;
-  if (!get_u64(file, at, hash) || hash != fnv1a(payload.data(), payload.size()))
-    return std::nullopt;
-  return payload;
+  const auto payload = load_cache_file(path_of(key), cache_id(key), kMaxStageOutputBytes);
+  if (!payload) return std::nullopt;
+  return std::vector<uint8_t>(payload->begin(), payload->end());
 }
 
 bool StageCache::store(const std::string& key, std::span<const uint8_t> bytes,
@@ -83,14 +54,9 @@ bool StageCache::store(const std::string& key, std::span<const uint8_t> bytes,
     if (why) *why = "no cache directory (set MASAV_CACHE_DIR or HOME)";
     return false;
   }
-  std::string file(kMagic, sizeof kMagic);
-  put_u64(file, key.size());
-  file += key;
-  put_u64(file, bytes.size());
-  file.append(reinterpret_cast<const char*>(bytes.data()), bytes.size());
-  put_u64(file, fnv1a(bytes.data(), bytes.size()));
   try {
-    write_file_atomic(path_of(key), file);
+    write_cache_file(path_of(key), cache_id(key),
+                     std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()));
   } catch (const Error& e) {
     if (why) *why = e.what();
     return false;

@@ -2,7 +2,9 @@
 // Stage outputs kept on disk between runs, keyed by everything they depend on: for outputs that
 // take long to compute and little to store -- the atom scene's scattering table (SPEC §4: "the
 // scattering table is cached on disk by its parameters"). Files are written to a temporary name
-// and renamed; a file that is truncated, corrupt, or holds another key is a miss, never an error.
+// and renamed, with a header naming the key and a checksum of the payload
+// (engine/util/cache_file.h); a file that is truncated, corrupt, or holds another key is a miss
+// with a note, never an error.
 #include <cstdint>
 #include <functional>
 #include <optional>
