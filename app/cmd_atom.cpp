@@ -10,6 +10,7 @@
 #include "app/commands.h"
 #include "app/scene_options.h"
 #include "engine/atom/atom_export.h"
+#include "engine/atom/atom_schema.h"
 #include "engine/atom/transfer_function.h"
 #include "engine/atom/volume_io.h"
 #include "engine/core/error.h"
@@ -112,6 +113,7 @@ int run_atom(const AtomCliOptions& o) {
   so.density_dims = o.density_dims;
   so.volume_dims = o.dims;
   so.scatter.photons_per_row = o.photons;
+  atom::check_scatter_cost(so.scatter, "--photons");
   so.tau_peak = o.tau_peak;
   so.s = o.s;
   so.t = o.t;
