@@ -64,6 +64,7 @@ void write_video(const std::string& ffmpeg, const std::string& dir, const std::s
 }
 
 int run(const RunOptions& o) {
+  refuse_set_conflict(o.scene, o.frames > 0, "--frames", "run.frames");
   scene::SceneFile file = load_scene(o.scene);
   const scene::ParamSet& p0 = file.params;
   const int frames = o.frames > 0 ? o.frames : int(p0.get_int("run.frames"));

@@ -34,6 +34,16 @@ scene::SceneFile load_scene(const SceneChoice& choice) {
   return f;
 }
 
+void refuse_set_conflict(const SceneChoice& choice, bool given, const std::string& option,
+                         const std::string& path) {
+  if (!given) return;
+  for (const auto& s : choice.sets)
+    if (s.rfind(path + "=", 0) == 0)
+      throw Error("", option,
+                  fmt::format("{} conflicts with --set {}: both set {}", option, s, path),
+                  fmt::format("give one of {} and --set {}=...", option, path));
+}
+
 void ensure_writable_dir(const std::string& dir, const std::string& option) {
   namespace fs = std::filesystem;
   std::error_code ec;
