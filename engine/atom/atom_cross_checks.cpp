@@ -80,11 +80,13 @@ std::vector<double> flatten(const std::vector<Vec4d>& v, bool with_w = true) {
 
 // The lighting checks' tolerances were measured at the thesis's optical depth (tau_peak 0.5,
 // albedo 0.6). Light is attenuated by exp(-tau) with tau proportional to tau_peak / albedo, and
-// fp32's error in exp(-tau) grows with tau: deeper clouds are allowed proportionally more.
+// fp32's error in exp(-tau) grows with tau: deeper clouds are allowed more, three times as fast
+// as the depth grows (the worst state, 5, measured 22x the error at 20x the depth and 68x at 60x;
+// the others at most 17x at 60x).
 double depth_factor(const CheckInputs& in) {
   const scene::ParamSet& p = params_of(in);
   const double depth = p.get_real("nebula.tau_peak") / p.get_real("scatter.albedo");
-  return std::max(1.0, depth / (0.5 / 0.6));
+  return std::max(1.0, 3.0 * depth / (0.5 / 0.6) - 2.0);
 }
 
 // Below this, light has left fp32's range in all but a few bits (its smallest normal number is
@@ -295,13 +297,15 @@ std::vector<KernelCheck> atom_checks() {
         return CheckOutputs{{"photon hits", t.hits, {}}};
       }));
   // nebula_illuminate / nebula_view: fp32 path integrals and table interpolation against
-  // double, relative to 1e-6 of the largest light: rel L2 1e-5 as tests/test_nebula.cpp. The
-  // tests' per-value bounds (1e-4, 2e-3) hold on their 24^3 grid; on the scenes' 60^3 grid a
-  // few particles sit so close to a cell face that fp32 and fp64 start their path in
-  // neighbouring cells (measured up to 8.2e-3 over the ten states on lavapipe, while rel L2
-  // stays below 6e-6), so each value is allowed 2e-2.
+  // double, relative to 1e-6 of the largest light. The tests' per-value bounds (1e-4, 2e-3)
+  // hold on their 24^3 grid; on the scenes' 60^3 grid a few particles sit so close to a cell
+  // face that fp32 and fp64 start their path in neighbouring cells (measured up to 8.2e-3 over
+  // the ten states on lavapipe), so each value is allowed 2e-2. Those few particles also set
+  // the rel L2, which depends on which particles the count draws: over the ten states and
+  // 6000 to 50000 particles it measured up to 2.9e-5 (state 7, 15000 particles; under 6e-6 at
+  // 65536), so it is allowed 1e-4.
   c.push_back(
-      lighting_check(KernelId::nebula_illuminate, {1e-5, 0, 2e-2}, 1e-6,
+      lighting_check(KernelId::nebula_illuminate, {1e-4, 0, 2e-2}, 1e-6,
                      [](Backend& b, const CheckInputs& scene_in) {
                        const CheckInputs in = lighting_inputs(scene_in);
                        ScatterTableParams sp;
@@ -310,7 +314,7 @@ std::vector<KernelCheck> atom_checks() {
                        LitCloud lc = lit_cloud(b, in, lp);
                        return CheckOutputs{{"illumination", {}, b.download(lc.illumination)}};
                      }));
-  c.push_back(lighting_check(KernelId::nebula_view, {1e-5, 0, 2e-2}, 1e-6,
+  c.push_back(lighting_check(KernelId::nebula_view, {1e-4, 0, 2e-2}, 1e-6,
                              [](Backend& b, const CheckInputs& scene_in) {
                                const CheckInputs in = lighting_inputs(scene_in);
                                ScatterTableParams sp;
