@@ -8,11 +8,15 @@
 #include <filesystem>
 
 #include "app/commands.h"
+#include "app/scene_options.h"
 #include "engine/atom/atom_export.h"
+#include "engine/atom/atom_schema.h"
 #include "engine/atom/transfer_function.h"
 #include "engine/atom/volume_io.h"
 #include "engine/core/error.h"
+#include "engine/io/output_lock.h"
 #include "engine/io/png_writer.h"
+#include "engine/io/staged_files.h"
 #include "registry/backends.h"
 
 namespace masav::app {
@@ -109,12 +113,17 @@ int run_atom(const AtomCliOptions& o) {
   so.density_dims = o.density_dims;
   so.volume_dims = o.dims;
   so.scatter.photons_per_row = o.photons;
+  atom::check_scatter_cost(so.scatter, "--photons");
   so.tau_peak = o.tau_peak;
   so.s = o.s;
   so.t = o.t;
   so.use_cache = !o.no_cache;
   const atom::ViewPreset view = atom::parse_view(o.view);
   const std::vector<Vec4d> tf = transfer(o.tf);
+  // The output directory is proved writable and held before any work, so a bad --out fails in
+  // a moment and a second run cannot mix its files into this one's.
+  ensure_writable_dir(o.out, "--out");
+  const OutputLock lock(o.out, "--out");
   auto backend = create_backend(o.choice.backend, o.choice.device);
   // The viewer of the nebula lighting sits where the raymarch camera does.
   const float half = float(atom::box_half_width(so.state, so.box_probability));
@@ -130,20 +139,40 @@ int run_atom(const AtomCliOptions& o) {
       "{:.1f} ms, view {:.1f} ms, voxelize {:.1f} ms\n",
       t.cloud_ms, t.density_ms, t.table_ms, t.table_from_cache ? " (from the cache)" : "",
       t.illuminate_ms, t.view_ms, t.voxelize_ms);
-  std::filesystem::create_directories(o.out);
-  const std::string dir = o.out + "/";
-  atom::write_cloud_vtp(scene, dir + "cloud.vtp");
-  atom::write_volume_vti(scene, dir + "volume.vti");
-  atom::write_scatter_csv(scene.table(), dir + "scatter_table.csv");
+  // The five files appear together or not at all (an old set stays whole if this one fails).
+  StagedFiles files(o.out);
+  atom::write_cloud_vtp(scene, files.stage("cloud.vtp"));
+  atom::write_volume_vti(scene, files.stage("volume.vti"));
+  atom::write_scatter_csv(scene.table(), files.stage("scatter_table.csv"));
   RaymarchParams rp = atom::default_raymarch(scene.volume(), view, o.width, o.height);
   const auto img = atom::render_volume(*backend, scene.volume(), scene.sample, tf, rp);
-  atom::write_image_png(img, o.width, o.height, dir + "raymarch.png");
+  atom::write_image_png(img, o.width, o.height, files.stage("raymarch.png"));
   const auto splat = splat_cloud(scene, view, std::min(o.width, o.height));
-  write_png(dir + "cloud.png", std::min(o.width, o.height), std::min(o.width, o.height),
+  write_png(files.stage("cloud.png"), std::min(o.width, o.height), std::min(o.width, o.height),
             to_rgba8(splat, {0, 0, 0}, true));
-  fmt::print("  wrote {}{{cloud.vtp, volume.vti, scatter_table.csv, raymarch.png, cloud.png}}\n",
-             dir);
+  files.commit();
+  fmt::print("  wrote {}/{{cloud.vtp, volume.vti, scatter_table.csv, raymarch.png, cloud.png}}\n",
+             o.out);
   return 0;
+}
+
+// Options that only a raw file (or only a .vti) reads are refused for the other formats, whose
+// headers say the same thing: naming both beats silently ignoring one.
+void check_format_options(const VolumeCliOptions& o, const std::string& ext) {
+  const bool raw = ext != ".nrrd" && ext != ".nhdr" && ext != ".vti";
+  const std::pair<bool, const char*> raw_only[] = {{!o.dims.empty(), "--dims"},
+                                                   {!o.type.empty(), "--type"},
+                                                   {!o.spacing.empty(), "--spacing"},
+                                                   {o.big_endian, "--big-endian"}};
+  for (const auto& [given, name] : raw_only)
+    if (given && !raw)
+      throw Error("", name,
+                  fmt::format("{} conflicts with the {} file '{}', whose header describes it", name,
+                              ext, o.file),
+                  fmt::format("drop {} (it is for raw files)", name));
+  if (!o.array.empty() && ext != ".vti")
+    throw Error("", "--array", fmt::format("--array conflicts with the file '{}'", o.file),
+                "drop --array (it picks an array of a .vti file)");
 }
 
 int run_volume(const VolumeCliOptions& o) {
@@ -151,8 +180,10 @@ int run_volume(const VolumeCliOptions& o) {
   const atom::ViewPreset view = atom::parse_view(o.view);
   if (o.mode != "front-to-back" && o.mode != "lerp")
     throw_invalid("masav volume", "--mode", o.mode, "front-to-back or lerp");
-  atom::ScalarVolume vol;
   const std::string ext = std::filesystem::path(o.file).extension().string();
+  check_format_options(o, ext);
+  ensure_writable_file(o.out, "--out");
+  atom::ScalarVolume vol;
   if (ext == ".nrrd" || ext == ".nhdr") {
     vol = atom::load_nrrd(o.file);
   } else if (ext == ".vti") {
@@ -193,10 +224,13 @@ void add_atom_command(CLI::App& app) {
                           "lighting, volume, raymarch; writes .vtp/.vti/.csv/.png",
                           o, run_atom);
   add_backend_options(*cmd, o.choice, false);
-  cmd->add_option("--state", o.preset, "thesis Table 2.1 preset: state1 .. state10");
-  cmd->add_option("--n", o.n, "principal quantum number")->check(CLI::Range(1, atom::kMaxN));
-  cmd->add_option("--l", o.l, "azimuthal quantum number, 0 <= l < n");
-  cmd->add_option("--m", o.m, "magnetic quantum number, -l <= m <= l");
+  auto* state = cmd->add_option("--state", o.preset, "thesis Table 2.1 preset: state1 .. state10");
+  // A preset and quantum numbers name two states: refused rather than one silently winning.
+  for (auto* q :
+       {cmd->add_option("--n", o.n, "principal quantum number")->check(CLI::Range(1, atom::kMaxN)),
+        cmd->add_option("--l", o.l, "azimuthal quantum number, 0 <= l < n"),
+        cmd->add_option("--m", o.m, "magnetic quantum number, -l <= m <= l")})
+    state->excludes(q);
   cmd->add_flag("--real", o.real, "real orbital (cos/sin of m phi) instead of e^{i m phi}");
   cmd->add_option("--placement", o.placement, "exact (inverse CDF) or shells (thesis Alg. 2.1)")
       ->capture_default_str();

@@ -7,6 +7,8 @@
 #include "app/scene_options.h"
 #include "engine/core/error.h"
 #include "engine/io/csv_writer.h"
+#include "engine/io/output_lock.h"
+#include "engine/io/staged_files.h"
 #include "engine/io/vtk_writer.h"
 #include "engine/scene/scene.h"
 #include "engine/util/json_writer.h"
@@ -48,6 +50,7 @@ std::vector<float> scalar_values(Backend& b, const scene::PointLayer& pl,
 int run_export(const ExportOptions& o) {
   scene::SceneFile f = load_scene(o.scene);
   ensure_writable_dir(o.out, "--out");
+  const OutputLock lock(o.out, "--out");
   auto backend = create_backend(o.choice.backend, o.choice.device);
   const scene::SceneType& type = scene::find_scene_type(f.type);
   auto s = type.create(*backend, f.params);
@@ -57,8 +60,11 @@ int run_export(const ExportOptions& o) {
   s->update(clock);
   backend->finish();
   const scene::SceneView v = s->view();
-  write_file_atomic(o.out + "/scene.toml", scene::scene_to_toml(s->params(), false));
-  fmt::print("wrote {}/scene.toml\n", o.out);
+  // The files appear together or not at all: never a new scene.toml beside an old .vtp.
+  StagedFiles files(o.out);
+  std::vector<std::string> wrote;
+  write_file_atomic(files.stage("scene.toml"), scene::scene_to_toml(s->params(), false));
+  wrote.push_back(o.out + "/scene.toml");
   if (v.points && v.points->positions) {
     const scene::PointLayer& pl = *v.points;
     std::vector<Vec4f> pos = backend->download_f32(*pl.positions);
@@ -72,16 +78,18 @@ int run_export(const ExportOptions& o) {
     if (pl.from != scene::PointLayer::ScalarFrom::none)
       arrays.push_back({pl.scalar_name.empty() ? "scalar" : pl.scalar_name, 1,
                         scalar_values(*backend, pl, pos)});
-    const std::string path = fmt::format("{}/{}_frame{:05d}.vtp", o.out, f.type, o.frame);
-    write_vtp(path, xyz, arrays);
-    fmt::print("wrote {} ({} points)\n", path, pl.count);
+    const std::string name = fmt::format("{}_frame{:05d}.vtp", f.type, o.frame);
+    write_vtp(files.stage(name), xyz, arrays);
+    wrote.push_back(fmt::format("{}/{} ({} points)", o.out, name, pl.count));
   }
   CsvWriter csv({"stage", "created", "runs", "skipped", "last_ms"});
   for (const auto& c : s->graph().counters())
     csv.row_text({c.name, c.created ? "1" : "0", std::to_string(c.runs), std::to_string(c.skips),
                   fmt::format("{}", c.last_ms)});
-  csv.write(o.out + "/stages.csv");
-  fmt::print("wrote {}/stages.csv\n", o.out);
+  csv.write(files.stage("stages.csv"));
+  wrote.push_back(o.out + "/stages.csv");
+  files.commit();
+  for (const auto& w : wrote) fmt::print("wrote {}\n", w);
   return 0;
 }
 

@@ -12,6 +12,7 @@
 #include "app/progress.h"
 #include "app/scene_options.h"
 #include "engine/core/error.h"
+#include "engine/io/output_lock.h"
 #include "engine/util/json_writer.h"
 #include "render/png_queue.h"
 #include "render/scene_player.h"
@@ -63,10 +64,12 @@ void write_video(const std::string& ffmpeg, const std::string& dir, const std::s
 }
 
 int run(const RunOptions& o) {
+  refuse_set_conflict(o.scene, o.frames > 0, "--frames", "run.frames");
   scene::SceneFile file = load_scene(o.scene);
   const scene::ParamSet& p0 = file.params;
   const int frames = o.frames > 0 ? o.frames : int(p0.get_int("run.frames"));
   ensure_writable_dir(o.out, "--out");
+  const OutputLock lock(o.out, "--out");  // two runs into one directory would mix their frames
   install_interrupt_handler();
 
   render::PlayerOptions po;

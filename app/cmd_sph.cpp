@@ -10,8 +10,11 @@
 #include <optional>
 
 #include "app/commands.h"
+#include "app/interrupt.h"
+#include "app/scene_options.h"
 #include "engine/core/error.h"
-#include "engine/io/csv_writer.h"
+#include "engine/io/csv_stream.h"
+#include "engine/io/output_lock.h"
 #include "engine/sph/sph_diagnostics.h"
 #include "engine/sph/sph_export.h"
 #include "engine/sph/sph_presets.h"
@@ -40,6 +43,17 @@ SphScene scene_from(const SphOptions& o) {
   SphScene s = make_preset(o.preset, o.particles);
   if (!o.integrator.empty()) s.integrator = parse_integrator(o.integrator, "--integrator");
   if (!o.pressure.empty()) s.model = parse_pressure_model(o.pressure, "--pressure");
+  // Each pressure model reads one constant; the other one given would be silently ignored.
+  const bool wcsph = s.model == SphPressureModel::wcsph;
+  if (wcsph ? bool(o.kp) : bool(o.sound_speed))
+    throw Error("", wcsph ? "--kp" : "--sound-speed",
+                fmt::format("{} conflicts with the {} pressure model (--pressure{}), which does "
+                            "not read it",
+                            wcsph ? "--kp" : "--sound-speed", to_string(s.model),
+                            o.pressure.empty() ? fmt::format(" of the preset {}", o.preset)
+                                               : " " + o.pressure),
+                wcsph ? "drop --kp, or use --pressure thesis"
+                      : "drop --sound-speed, or use --pressure wcsph");
   if (!o.cfl_guard.empty()) s.cfl_guard = parse_cfl_guard(o.cfl_guard, "--cfl-guard");
   if (o.dt) s.dt = *o.dt;
   if (o.viscosity) s.viscosity = *o.viscosity;
@@ -56,14 +70,14 @@ std::string snapshot_path(const SphOptions& o, const std::string& tag) {
 }
 
 // Steps from step k to the next one that records diagnostics, writes a snapshot or prints
-// progress (or to the end of a step-count run).
+// progress (or to the end of a step-count run), at most one block.
 uint64_t steps_to_next_event(const SphOptions& o, uint64_t k) {
   auto to_multiple = [k](uint64_t every) { return every - k % every; };
   uint64_t n = o.time > 0 ? std::numeric_limits<uint64_t>::max() : o.steps - k;
   if (!o.csv.empty()) n = std::min(n, to_multiple(o.diag_every));
   if (o.vtp_every) n = std::min(n, to_multiple(o.vtp_every));
   if (!o.quiet) n = std::min(n, to_multiple(100));
-  return n;
+  return std::min<uint64_t>(n, o.block_steps);
 }
 
 int run_sph(const SphOptions& o) {
@@ -71,6 +85,16 @@ int run_sph(const SphOptions& o) {
     throw_invalid("sph", "--vtp-every", std::to_string(o.vtp_every),
                   "used with --out DIR (where the .vtp files go)");
   const SphScene scene = scene_from(o);
+  // Outputs are opened (and held) before any work: a bad path fails at once, and a CSV row is
+  // in the file as soon as its step ran.
+  std::optional<OutputLock> out_lock;
+  if (!o.out.empty()) {
+    ensure_writable_dir(o.out, "--out");
+    out_lock.emplace(o.out, "--out");
+  }
+  std::optional<CsvStream> csv;
+  if (!o.csv.empty()) csv.emplace(o.csv, diagnostics_columns(), "--csv");
+  install_interrupt_handler();
   auto backend = create_backend(o.choice.backend, o.choice.device);
   SphSimulation sim(*backend, scene);
   sim.set_block_steps(o.block_steps);
@@ -83,9 +107,8 @@ int run_sph(const SphOptions& o) {
       scene.dt ? fmt::format("dt {:.3g} s", *scene.dt) : std::string("adaptive dt"),
       backend->caps().device_name);
 
-  CsvWriter csv(diagnostics_columns());
   auto record = [&](const SphState& st) {
-    csv.row(diagnostics_row(sim, compute_diagnostics(st, sim)));
+    csv->row(diagnostics_row(sim, compute_diagnostics(st, sim)));
   };
   auto snapshot = [&](const SphState& st, const std::string& tag) {
     const std::string path = snapshot_path(o, tag);
@@ -103,9 +126,9 @@ int run_sph(const SphOptions& o) {
   int rc = 0;
   try {
     const double t_end = o.time > 0 ? o.time : std::numeric_limits<double>::infinity();
-    for (uint64_t k = 0; o.time > 0 ? sim.time() < o.time : k < o.steps;) {
-      // Up to the next step that prints or writes something: the simulation runs that many in
-      // blocks, reading its stats back once per block.
+    for (uint64_t k = 0; (o.time > 0 ? sim.time() < o.time : k < o.steps) && !interrupted();) {
+      // Up to the next step that prints or writes something (at most one block, so that an
+      // interrupt is seen): the simulation reads its stats back once per block.
       k += sim.run(steps_to_next_event(o, k), t_end);
       const bool diag = !o.csv.empty() && k % o.diag_every == 0;
       const bool vtp = o.vtp_every && k % o.vtp_every == 0;
@@ -126,15 +149,17 @@ int run_sph(const SphOptions& o) {
     rc = 1;
   }
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  if (!o.csv.empty()) {
-    csv.write(o.csv);
-    fmt::print("wrote {}\n", o.csv);
-  }
+  if (csv) fmt::print("wrote {} ({} rows)\n", o.csv, csv->rows());
   fmt::print(
       "{} steps ({} integrator steps, {} retried) to t = {:.5g} s in {:.2f} s: {:.1f} "
       "steps/s, {:.3g} M particle-steps/s\n",
       sim.steps(), sim.substeps(), sim.retries(), sim.time(), wall, double(sim.steps()) / wall,
       double(sim.substeps()) * sim.particle_count() / wall * 1e-6);
+  if (interrupted() && rc == 0) {
+    fmt::print(stderr, "masav: interrupted after step {}; every row and file written is complete\n",
+               sim.steps());
+    return 130;
+  }
   return rc;
 }
 
@@ -153,7 +178,8 @@ void add_sph_command(CLI::App& app) {
   add_ranged_option(*cmd, "--particles,-n", o.particles, "fluid particles", 1u, 1u << 30);
   add_ranged_option(*cmd, "--steps", o.steps, "steps to run", uint64_t(1), uint64_t(1) << 40);
   cmd->add_option("--time", o.time, "run until this simulated time (s) instead of --steps")
-      ->check(CLI::Range(0.0, 1e6));
+      ->check(CLI::Range(0.0, 1e6))
+      ->excludes("--steps");
   cmd->add_option("--integrator", o.integrator, "euler, symplectic-euler, rk4 or leapfrog");
   cmd->add_option("--pressure", o.pressure, "pressure model: wcsph or thesis");
   cmd->add_option("--dt", o.dt, "fixed time step (s); default: CFL-adaptive");

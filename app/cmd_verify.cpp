@@ -22,6 +22,7 @@ struct VerifyOptions {
 };
 
 int run_verify(const VerifyOptions& o) {
+  refuse_set_conflict(o.scene, !o.reference.empty(), "--reference", "verify.reference");
   scene::SceneFile f = load_scene(o.scene);
   if (!o.reference.empty()) f.params.set("verify.reference", o.reference);
   auto backend = create_backend(o.choice.backend, o.choice.device);

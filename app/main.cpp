@@ -6,9 +6,43 @@
 #include "app/commands.h"
 #include "engine/core/error.h"
 
+namespace {
+
+// CLI11 answers an unknown command word with "A subcommand is required"; this names the word
+// and the commands that exist, at the top level and inside `bench`. Returns false after
+// printing the error.
+bool known_command_words(CLI::App& app, int argc, char** argv) {
+  CLI::App* level = &app;
+  std::string path = "masav";
+  for (int i = 1; i < argc; ++i) {
+    const std::string word = argv[i];
+    if (word.empty() || word[0] == '-') return true;  // an option: CLI11 checks it
+    const auto subs = level->get_subcommands([](const CLI::App*) { return true; });
+    if (subs.empty()) return true;
+    CLI::App* next = nullptr;
+    std::string names;
+    for (CLI::App* sub : subs) {
+      if (sub->get_name() == word) next = sub;
+      names += (names.empty() ? "" : ", ") + sub->get_name();
+    }
+    if (!next) {
+      fmt::print(stderr,
+                 "masav: error: unknown command '{} {}'; the commands are: {} (see {} --help)\n",
+                 path, word, names, path);
+      return false;
+    }
+    path += " " + word;
+    level = next;
+  }
+  return true;
+}
+
+}  // namespace
+
 int main(int argc, char** argv) {
-  CLI::App app{"masav: GPU physics (hydrogen electron cloud, volume ray casting, SPH fluid) on "
-               "Vulkan, CUDA and a CPU reference that check each other"};
+  CLI::App app{
+      "masav: GPU physics (hydrogen electron cloud, volume ray casting, SPH fluid) on "
+      "Vulkan, CUDA and a CPU reference that check each other"};
   app.set_version_flag("--version", fmt::format("masav {} ({})", masav::app::build_info::version,
                                                 masav::app::build_info::git));
   app.require_subcommand(1);
@@ -24,6 +58,7 @@ int main(int argc, char** argv) {
   masav::app::add_demo_command(app);
 #endif
   masav::app::add_sph_command(app);
+  if (!known_command_words(app, argc, argv)) return 1;
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

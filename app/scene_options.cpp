@@ -34,9 +34,22 @@ scene::SceneFile load_scene(const SceneChoice& choice) {
   return f;
 }
 
+void refuse_set_conflict(const SceneChoice& choice, bool given, const std::string& option,
+                         const std::string& path) {
+  if (!given) return;
+  for (const auto& s : choice.sets)
+    if (s.rfind(path + "=", 0) == 0)
+      throw Error("", option,
+                  fmt::format("{} conflicts with --set {}: both set {}", option, s, path),
+                  fmt::format("give one of {} and --set {}=...", option, path));
+}
+
 void ensure_writable_dir(const std::string& dir, const std::string& option) {
   namespace fs = std::filesystem;
   std::error_code ec;
+  if (fs::exists(dir, ec) && !fs::is_directory(dir, ec))
+    throw Error("", option, fmt::format("'{}' exists and is not a directory", dir),
+                fmt::format("give {} a directory (it holds several files)", option));
   fs::create_directories(dir, ec);
   if (ec || !fs::is_directory(dir, ec))
     throw Error("", option,
@@ -51,6 +64,16 @@ void ensure_writable_dir(const std::string& dir, const std::string& option) {
                 fmt::format("choose a writable directory with {}", option));
   }
   fs::remove(probe, ec);
+}
+
+void ensure_writable_file(const std::string& path, const std::string& option) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  if (fs::is_directory(path, ec))
+    throw Error("", option, fmt::format("'{}' is a directory", path),
+                fmt::format("give {} a file name", option));
+  const fs::path parent = fs::path(path).parent_path();
+  ensure_writable_dir(parent.empty() ? std::string(".") : parent.string(), option);
 }
 
 std::string find_ffmpeg() {

@@ -28,8 +28,15 @@ CLI::App* add_scene_command(CLI::App& app, const std::string& name, const std::s
 }
 // Loads the file (or the defaults) and applies the overrides; errors name the key and range.
 scene::SceneFile load_scene(const SceneChoice& choice);
+// An option that sets the scene parameter `path` conflicts with `--set path=...`: throws naming
+// both when the option was given (`given`) and a --set names the same parameter.
+void refuse_set_conflict(const SceneChoice& choice, bool given, const std::string& option,
+                         const std::string& path);
 // Creates `dir` if needed and proves it writable (a probe file, written then removed).
 void ensure_writable_dir(const std::string& dir, const std::string& option);
+// Proves that the file `path` can be written (its directory created if needed, writable, and
+// the path not a directory), before any work that would be lost if it could not.
+void ensure_writable_file(const std::string& path, const std::string& option);
 // The ffmpeg executable on PATH, or "" when there is none.
 std::string find_ffmpeg();
 

@@ -44,9 +44,19 @@ GridParams cube_grid(const scene::ParamSet& p, uint32_t dims, uint32_t n) {
   return make_grid_params({-h, -h, -h}, 2 * h / float(dims), {dims, dims, dims}, n);
 }
 
+// The checks' grids have at most this many cells per axis: the kernels are the same at any
+// size, the lighting tolerances below were measured on 60^3 grids, and a 512^3 grid (legal in a
+// scene) would make the check allocate gigabytes (the scene itself is refused on devices whose
+// buffers cannot hold it, with the largest size that fits).
+constexpr int64_t kMaxCheckDims = 64;
+
+uint32_t check_dims(const scene::ParamSet& p, const char* key) {
+  return uint32_t(std::min(p.get_int(key), kMaxCheckDims));
+}
+
 GridParams density_grid(const CheckInputs& in) {
   const scene::ParamSet& p = params_of(in);
-  return cube_grid(p, uint32_t(p.get_int("nebula.density_dims")), in.points);
+  return cube_grid(p, check_dims(p, "nebula.density_dims"), in.points);
 }
 
 // Check points spread over the cloud's cube (uniform: every cell of the grid gets some).
@@ -68,13 +78,42 @@ std::vector<double> flatten(const std::vector<Vec4d>& v, bool with_w = true) {
   return out;
 }
 
-// A tolerance check whose relative errors are taken against `floor` times the largest
-// reference value (light spans many decades; tiny values carry fp32's absolute error).
-KernelCheck scaled_check(KernelId kernel, Tolerance tol, double floor,
-                         std::function<CheckOutputs(Backend&, const CheckInputs&)> run) {
+// The lighting checks' tolerances were measured at the thesis's optical depth (tau_peak 0.5,
+// albedo 0.6). Light is attenuated by exp(-tau) with tau proportional to tau_peak / albedo, and
+// fp32's error in exp(-tau) grows with tau: deeper clouds are allowed more, three times as fast
+// as the depth grows (the worst state, 5, measured 22x the error at 20x the depth and 68x at 60x;
+// the others at most 17x at 60x).
+double depth_factor(const CheckInputs& in) {
+  const scene::ParamSet& p = params_of(in);
+  const double depth = p.get_real("nebula.tau_peak") / p.get_real("scatter.albedo");
+  return std::max(1.0, 3.0 * depth / (0.5 / 0.6) - 2.0);
+}
+
+// Below this, light has left fp32's range in all but a few bits (its smallest normal number is
+// 1.2e-38): both sides are compared as zero there (a cloud that dark is black on every backend).
+constexpr double kDarkLight = 1e-30;
+
+void flush_dark(CheckOutputs& outs) {
+  for (auto& o : outs)
+    for (double& v : o.reals)
+      if (std::abs(v) < kDarkLight) v = 0;
+}
+
+// A lighting check: relative errors taken against `floor` times the largest reference value
+// (light spans many decades; tiny values carry fp32's absolute error), tolerances scaled by the
+// optical depth, values below kDarkLight compared as zero.
+KernelCheck lighting_check(KernelId kernel, Tolerance tol, double floor,
+                           std::function<CheckOutputs(Backend&, const CheckInputs&)> run) {
   KernelCheck k = tolerance_check(kernel, tol, std::move(run));
-  k.compare = [tol, floor](const CheckOutputs& g, const CheckOutputs& w, const CheckInputs&) {
+  k.compare = [tol, floor](const CheckOutputs& got, const CheckOutputs& want,
+                           const CheckInputs& in) {
+    CheckOutputs g = got, w = want;
+    flush_dark(g);
+    flush_dark(w);
     Tolerance t = tol;
+    const double f = depth_factor(in);
+    t.rel_l2 *= f;
+    t.max_rel *= f;
     double top = 0;
     for (const auto& o : w)
       for (double v : o.reals) top = std::max(top, std::abs(v));
@@ -82,6 +121,17 @@ KernelCheck scaled_check(KernelId kernel, Tolerance tol, double floor,
     return compare_tolerance(g, w, t);
   };
   return k;
+}
+
+// The lighting checks' clouds have at least this many particles: their relative L2 error is an
+// average, and over a handful of particles one that starts its path in the neighbouring cell
+// in fp32 (see below) dominates it (16 to 64 particles failed where 4096 pass).
+constexpr uint32_t kMinLightingPoints = 4096;
+
+CheckInputs lighting_inputs(const CheckInputs& in) {
+  CheckInputs at = in;
+  at.points = std::max(in.points, kMinLightingPoints);
+  return at;
 }
 
 // The scattering table the lighting checks read: a small, smooth one computed once on the CPU
@@ -247,37 +297,42 @@ std::vector<KernelCheck> atom_checks() {
         return CheckOutputs{{"photon hits", t.hits, {}}};
       }));
   // nebula_illuminate / nebula_view: fp32 path integrals and table interpolation against
-  // double, relative to 1e-6 of the largest light: rel L2 1e-5 as tests/test_nebula.cpp. The
-  // tests' per-value bounds (1e-4, 2e-3) hold on their 24^3 grid; on the scenes' 60^3 grid a
-  // few particles sit so close to a cell face that fp32 and fp64 start their path in
-  // neighbouring cells (measured up to 8.2e-3 over the ten states on lavapipe, while rel L2
-  // stays below 6e-6), so each value is allowed 2e-2.
-  c.push_back(scaled_check(KernelId::nebula_illuminate, {1e-5, 0, 2e-2}, 1e-6,
-                           [](Backend& b, const CheckInputs& in) {
-                             ScatterTableParams sp;
-                             check_phase_table(sp);
-                             const NebulaLightParams lp = light_params(in, sp);
-                             LitCloud lc = lit_cloud(b, in, lp);
-                             return CheckOutputs{{"illumination", {}, b.download(lc.illumination)}};
-                           }));
-  c.push_back(scaled_check(KernelId::nebula_view, {1e-5, 0, 2e-2}, 1e-6,
-                           [](Backend& b, const CheckInputs& in) {
-                             ScatterTableParams sp;
-                             const std::vector<double>& phase = check_phase_table(sp);
-                             const NebulaLightParams lp = light_params(in, sp);
-                             LitCloud lc = lit_cloud(b, in, lp);
-                             auto tab = b.create<Real>(phase.size(), "check phase table");
-                             b.upload(tab, phase);
-                             auto light = b.create<Real>(in.points, "check light");
-                             b.nebula_view(lp, lc.pos, lc.density, tab, lc.illumination, light);
-                             return CheckOutputs{{"light", {}, b.download(light)}};
-                           }));
+  // double, relative to 1e-6 of the largest light. The tests' per-value bounds (1e-4, 2e-3)
+  // hold on their 24^3 grid; on the scenes' 60^3 grid a few particles sit so close to a cell
+  // face that fp32 and fp64 start their path in neighbouring cells (measured up to 8.2e-3 over
+  // the ten states on lavapipe), so each value is allowed 2e-2. Those few particles also set
+  // the rel L2, which depends on which particles the count draws: over the ten states and
+  // 6000 to 50000 particles it measured up to 2.9e-5 (state 7, 15000 particles; under 6e-6 at
+  // 65536), so it is allowed 1e-4.
+  c.push_back(
+      lighting_check(KernelId::nebula_illuminate, {1e-4, 0, 2e-2}, 1e-6,
+                     [](Backend& b, const CheckInputs& scene_in) {
+                       const CheckInputs in = lighting_inputs(scene_in);
+                       ScatterTableParams sp;
+                       check_phase_table(sp);
+                       const NebulaLightParams lp = light_params(in, sp);
+                       LitCloud lc = lit_cloud(b, in, lp);
+                       return CheckOutputs{{"illumination", {}, b.download(lc.illumination)}};
+                     }));
+  c.push_back(lighting_check(KernelId::nebula_view, {1e-4, 0, 2e-2}, 1e-6,
+                             [](Backend& b, const CheckInputs& scene_in) {
+                               const CheckInputs in = lighting_inputs(scene_in);
+                               ScatterTableParams sp;
+                               const std::vector<double>& phase = check_phase_table(sp);
+                               const NebulaLightParams lp = light_params(in, sp);
+                               LitCloud lc = lit_cloud(b, in, lp);
+                               auto tab = b.create<Real>(phase.size(), "check phase table");
+                               b.upload(tab, phase);
+                               auto light = b.create<Real>(in.points, "check light");
+                               b.nebula_view(lp, lc.pos, lc.density, tab, lc.illumination, light);
+                               return CheckOutputs{{"light", {}, b.download(light)}};
+                             }));
   // voxelize: counts exact, means in fp32: 3e-6 absolute on values in [0, 1]
   // (tests/test_volume.cpp).
   c.push_back(
       tolerance_check(KernelId::voxelize, {1e-5, 3e-6, 0}, [](Backend& b, const CheckInputs& in) {
         const scene::ParamSet& p = params_of(in);
-        const GridParams g = cube_grid(p, uint32_t(p.get_int("volume.dims")), in.points);
+        const GridParams g = cube_grid(p, check_dims(p, "volume.dims"), in.points);
         Buffer<Real4> pos = cloud_points(b, in, g);
         std::vector<double> lit(in.points);
         for (uint32_t i = 0; i < in.points; ++i) lit[i] = 0.5 + 0.5 * std::sin(0.37 * i);

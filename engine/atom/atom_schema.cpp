@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include "engine/atom/orbital.h"
+#include "engine/atom/scatter_threshold.h"
 #include "engine/core/error.h"
 
 namespace masav::atom {
@@ -56,12 +57,13 @@ const scene::TableSchema& scatter_table_schema() {
                          "the Monte Carlo multiple-scattering table P(tau, cos theta) (§2.2.3), "
                          "cached on disk by these parameters");
     s.integer("rows", 1000, 2, 100000, "tau rows (the thesis: 1000, tau 0 .. 10)");
-    s.integer("bins", 72, 2, 4096, "cos theta bins (the thesis: 72)");
+    s.integer("bins", 72, 2, 1024, "cos theta bins (the thesis: 72)");
     s.real("tau_step", 0.01, 1e-6, 10.0, "tau between rows (the thesis: 0.01)");
     s.real("g", 0.6, -0.99, 0.99, "Henyey-Greenstein anisotropy");
     s.real("albedo", 0.6, 0.01, 1.0, "weight kept per scattering (the thesis: 0.6)");
     s.integer("photons", 2048, 16, 1 << 20, "photons per tau row");
-    s.integer("max_scatterings", 1000, 1, 100000, "scatterings before a photon is cut");
+    // 5000: a photon's events stay within a shader invocation's loop budget (lavapipe 65,535).
+    s.integer("max_scatterings", 1000, 1, 5000, "scatterings before a photon is cut");
     s.integer("seed", 1, 0, int64_t(1) << 53, "Philox key of the photons");
     return s;
   }();
@@ -112,7 +114,18 @@ ScatterTableParams scatter_params_of(const scene::ParamSet& p) {
   t.photons_per_row = uint32_t(p.get_int("scatter.photons"));
   t.max_scatterings = uint32_t(p.get_int("scatter.max_scatterings"));
   t.seed = uint64_t(p.get_int("scatter.seed"));
+  t.weight_threshold = separated_weight_threshold(t.albedo, t.weight_threshold, t.max_scatterings);
+  check_scatter_cost(t, "scatter.photons");
   return t;
+}
+
+void check_scatter_cost(const ScatterTableParams& t, std::string_view photons_field) {
+  const uint64_t paths = uint64_t(t.rows) * t.photons_per_row;
+  if (paths <= kMaxScatterPaths) return;
+  throw_invalid("scattering table", photons_field, std::to_string(t.photons_per_row),
+                fmt::format("at most {} with {} rows (rows x photons is at most 2^30 photon "
+                            "paths, {:.3g} here)",
+                            kMaxScatterPaths / std::max(1u, t.rows), t.rows, double(paths)));
 }
 
 AtomSceneOptions scene_options_of(const scene::ParamSet& p) {

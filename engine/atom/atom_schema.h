@@ -18,6 +18,11 @@ const scene::TableSchema& volume_table();
 // atom.n / atom.l / atom.m when the custom state is not a valid one.
 OrbitalState state_of(const scene::ParamSet& p);
 ScatterTableParams scatter_params_of(const scene::ParamSet& p);
+// The scattering table traces rows x photons paths of up to max_scatterings events each: the
+// product is bounded (kMaxScatterPaths) before any work, the message naming `photons_field` and
+// the most photons per row that fit with these rows.
+inline constexpr uint64_t kMaxScatterPaths = uint64_t(1) << 30;
+void check_scatter_cost(const ScatterTableParams& t, std::string_view photons_field);
 // The options of the shared atom pipeline (atom_scene.h) at the reference power: the scene
 // graph computes the light once at kReferencePowerLm and rescales it for atom.power_lm.
 AtomSceneOptions scene_options_of(const scene::ParamSet& p);

@@ -34,6 +34,14 @@ CsvWriter& CsvWriter::row_text(const std::vector<std::string>& cells) {
   return *this;
 }
 
-void CsvWriter::write(const std::string& path) const { write_file_atomic(path, out_); }
+std::string CsvWriter::take() {
+  std::string text;
+  text.swap(out_);
+  return text;
+}
+
+void CsvWriter::write(const std::string& path) const {
+  write_file_atomic(path, out_);
+}
 
 }  // namespace masav

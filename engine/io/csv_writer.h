@@ -1,5 +1,5 @@
 #pragma once
-// CSV tables (header + rows of numbers or text), written atomically.
+// CSV tables (header + rows of numbers or text), written atomically (CsvStream streams them).
 #include <string>
 #include <vector>
 
@@ -11,6 +11,8 @@ class CsvWriter {
   CsvWriter& row(const std::vector<double>& values);
   CsvWriter& row_text(const std::vector<std::string>& cells);
   const std::string& str() const { return out_; }
+  // The text made so far, which is then forgotten (for writers that stream rows out).
+  std::string take();
   void write(const std::string& path) const;
 
  private:

@@ -67,6 +67,27 @@ double wall_offset_for_lattice(double dx, double h) {
   return 0.5 * (lo + hi);
 }
 
+namespace {
+
+// Every particle inside the fluid has about 4/3 pi (h/dx)^3 neighbours, each one a candidate of
+// the neighbour walk, and the lattice sums below loop over (2 h/dx + 3)^3 points: h is bounded
+// by max_candidates before any of it runs, and the message names the largest legal value.
+void check_support(const SphScene& s, double dx, double h) {
+  const double most = std::cbrt(3.0 * s.max_candidates / (4.0 * std::numbers::pi));
+  if (h <= most * dx) return;
+  const std::string why = fmt::format(
+      "a particle would have about {:.3g} neighbours, over max_candidates = {} (the particle "
+      "spacing dx is {:.4g} m)",
+      4.0 / 3.0 * std::numbers::pi * std::pow(h / dx, 3), s.max_candidates, dx);
+  if (s.smoothing_radius)
+    throw_invalid("sph scene", "smoothing_radius", fmt::format("{}", h),
+                  fmt::format("at most {:.4g} m ({:.3g} dx): {}", most * dx, most, why));
+  throw_invalid("sph scene", "h_over_dx", fmt::format("{}", s.h_over_dx),
+                fmt::format("at most {:.3g} here: {}", most, why));
+}
+
+}  // namespace
+
 SphParticles build_particles(const SphScene& s) {
   validate(s);
   SphParticles out;
@@ -84,6 +105,7 @@ SphParticles build_particles(const SphScene& s) {
   out.placed_dx = sp;
   out.dx = sp * std::cbrt(s.block.density_ratio);
   out.h = s.smoothing_radius ? *s.smoothing_radius : s.h_over_dx * out.dx;
+  check_support(s, out.dx, out.h);
   out.mass = lattice_mass(s.rest_density, out.dx, out.h);
   out.gradient_correction = 1.0 / spiky_gradient_moment(out.dx, out.h);
   out.wall_offset = wall_offset_for_lattice(out.dx, out.h);
