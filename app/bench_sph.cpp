@@ -54,6 +54,7 @@ struct Throughput {
   int steps = 0;
   uint32_t particles = 0;
   double dt = 0;
+  double mean_compression = 0, max_compression = 0;  // compression max(rho/rho0 - 1, 0) at the end
 };
 
 double thread_cpu_ms() {
@@ -94,6 +95,9 @@ Throughput measure(Backend& b, const SphScene& scene, int steps, uint32_t block_
   t.steps = int(taken);
   t.particles = sim.particle_count();
   t.dt = sim.last_dt();
+  const SphDiagnostics d = compute_diagnostics(sim.download(), sim);
+  t.mean_compression = d.mean_compression;
+  t.max_compression = d.max_compression;
   return t;
 }
 
@@ -189,13 +193,17 @@ int run_sph_bench(const SphBenchOptions& o, JsonWriter& j) {
           fmt::print(
               "  {:<7} {:<10} {:>9} per step: {:.1f} launches, {:.1f} barriers, {:.3f} host "
               "syncs, {:.1f} fills, {:.1f} device copies, {:.0f} B to device, {:.0f} B to host, "
-              "{:.3f} ms host CPU\n",
+              "{:.3f} ms host CPU; compression (rho/rho0 - 1) mean {:.2f}%, max {:.2f}% at the "
+              "end\n",
               "", "", "", c.launches, c.barriers, c.host_syncs, c.fills, c.device_copies,
-              c.bytes_to_device, c.bytes_to_host, c.host_ms);
+              c.bytes_to_device, c.bytes_to_host, c.host_ms, 100 * t.mean_compression,
+              100 * t.max_compression);
           begin_row(j, *b);
           j.field("integrator", to_string(integ)).field("particles", t.particles);
           j.field("timed_steps", t.steps).field("dt_s", t.dt);
           j.field("block_steps", o.block_steps);
+          j.field("mean_compression", t.mean_compression)
+              .field("max_compression", t.max_compression);
           j.key("stage_ms_per_step").begin_object();
           for (size_t k = 0; k < t.stage_ms.size(); ++k)
             j.field(to_string(SphStage(k)), t.stage_ms[k]);

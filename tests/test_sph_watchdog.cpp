@@ -70,6 +70,7 @@ TEST_CASE("[sph-physics] the watchdog stops a run whose energy doubles, back at 
 }
 
 TEST_CASE("[sph-physics] the watchdog leaves a sane run alone; its density statistic is exact") {
+  // (The fluid's largest density is a fluid particle's here: the dam break has no obstacle.)
   SphScene s = make_preset("dam-break", 1000);
   s.integrator = SphIntegrator::leapfrog;  // the last force pass ran at the committed state
   SphSimulation sim(test::backend(), s);
@@ -79,4 +80,12 @@ TEST_CASE("[sph-physics] the watchdog leaves a sane run alone; its density stati
   const double rho = *std::max_element(st.density.begin(), st.density.end());
   CHECK(sim.last_stats().max_density == doctest::Approx(rho).epsilon(1e-6));
   CHECK(rho > s.rest_density);
+  // The compression the CSV and `bench sph` report: max(rho / rho0 - 1, 0) of the fluid.
+  const SphDiagnostics d = compute_diagnostics(st, sim);
+  CHECK(d.max_compression == doctest::Approx(rho / s.rest_density - 1));
+  CHECK(d.mean_compression > 0);
+  CHECK(d.mean_compression < d.max_compression);
+  const auto columns = diagnostics_columns();
+  CHECK(columns.size() == diagnostics_row(sim, d).size());
+  CHECK(columns.back() == "max_compression");
 }

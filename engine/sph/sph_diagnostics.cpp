@@ -55,6 +55,9 @@ SphDiagnostics compute_diagnostics(const SphState& s, const SphSimulation& sim) 
       d.center_of_mass.z += m * x.z;
       d.mean_density += s.density[i];
       d.max_density = std::max(d.max_density, s.density[i]);
+      const double compression = std::max(s.density[i] / sc.rest_density - 1.0, 0.0);
+      d.mean_compression += compression;
+      d.max_compression = std::max(d.max_compression, compression);
       d.surge_front = std::max(d.surge_front, x.x);
     }
   }
@@ -63,16 +66,21 @@ SphDiagnostics compute_diagnostics(const SphState& s, const SphSimulation& sim) 
     d.center_of_mass.y /= fluid_mass;
     d.center_of_mass.z /= fluid_mass;
     d.mean_density /= double(lay.fluid);
+    d.mean_compression /= double(lay.fluid);
     d.surge_front += 0.5 * lay.placed_dx;
   }
   return d;
 }
 
 std::vector<std::string> diagnostics_columns() {
-  return {"step",       "time_s",        "dt_s",          "kinetic_J",  "potential_J",
-          "internal_J", "total_J",       "momentum_x",    "momentum_y", "momentum_z",
-          "max_speed",  "mean_density",  "max_density",   "com_x",      "com_y",
-          "com_z",      "surge_front_m", "max_neighbors", "retries",    "outside"};
+  return {"step",           "time_s",        "dt_s",
+          "kinetic_J",      "potential_J",   "internal_J",
+          "total_J",        "momentum_x",    "momentum_y",
+          "momentum_z",     "max_speed",     "mean_density",
+          "max_density",    "com_x",         "com_y",
+          "com_z",          "surge_front_m", "max_neighbors",
+          "retries",        "outside",       "mean_compression",
+          "max_compression"};
 }
 
 std::vector<double> diagnostics_row(const SphSimulation& sim, const SphDiagnostics& d) {
@@ -95,7 +103,9 @@ std::vector<double> diagnostics_row(const SphSimulation& sim, const SphDiagnosti
           d.surge_front,
           double(sim.last_stats().max_neighbors),
           double(sim.retries()),
-          double(d.outside)};
+          double(d.outside),
+          d.mean_compression,
+          d.max_compression};
 }
 
 }  // namespace masav

@@ -17,7 +17,11 @@ struct SphDiagnostics {
   double momentum_scale = 0;  // kg m/s, sum M |v| (what momentum errors are relative to)
   Vec3d center_of_mass;       // m, of the fluid particles
   double mean_density = 0, max_density = 0;  // kg/m^3, fluid particles
-  double max_speed = 0;                      // m/s
+  // Compression max(rho / rho0 - 1, 0) of the fluid particles, mean and largest: how
+  // compressible the run is (weakly compressible SPH aims at ~1%). Below rest density does not
+  // count: particles near a free surface read low densities from their missing neighbours.
+  double mean_compression = 0, max_compression = 0;
+  double max_speed = 0;    // m/s
   double surge_front = 0;  // m: the fluid's largest x, plus half a spacing (the particle's extent)
   uint32_t outside = 0;    // particles outside the box (by more than 1e-6 of a coordinate)
   bool finite = true;      // every position and velocity finite
