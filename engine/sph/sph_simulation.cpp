@@ -380,14 +380,15 @@ SphSimulation::Attempt SphSimulation::judge(const uint32_t w[kSphStatWords], con
     a.watchdog = true;
     a.reason = fmt::format(
         "a particle reached {:.3g} m/s, above the watchdog's speed bound {:.3g} m/s (2x the "
-        "largest of the signal speed, the free-fall speed over the box and the initial speeds)",
+        "largest of the speed of sound c0, the free-fall speed over the box and the initial "
+        "speeds)",
         s.max_speed, watchdog_.max_speed);
   } else if (s.max_density > watchdog_.max_density) {
     a.ok = false;
     a.watchdog = true;
     a.reason = fmt::format(
         "the density reached {:.4g} kg/m^3, above the watchdog's bound {:.4g} kg/m^3 (1.5x the "
-        "rest or initial density)",
+        "rest or initial density; 3x for the thesis model)",
         s.max_density, watchdog_.max_density);
   }
   return a;
@@ -549,8 +550,8 @@ void SphSimulation::watch_energy() {
   if (steps_ < next_energy_check_) return;
   const SphState s = download();
   const double e = available_energy(s, *this);
-  // Half the moving mass at 5% of the signal speed: the scale below which a rise is noise.
-  const double c = signal_speed(step_params_);
+  // Half the fluid's mass at 5% of c0: the scale below which a rise is noise.
+  const double c = scene_.sound_speed;
   const double floor = 0.5 * layout_.mass * double(layout_.fluid) * 0.0025 * c * c;
   const double bound =
       watchdog_.energy0 + SphWatchdog::kEnergyMargin * std::max(std::abs(watchdog_.energy0), floor);

@@ -2,14 +2,16 @@
 // The stability watchdog of an SPH run, always on and independent of the CFL guard (which only
 // chooses and splits dt): a run whose state leaves what a fluid of this scene can do stops with
 // an Error naming the step, the time, the quantity, its value, the bound and a remedy.
-//  - speed above max(2 c, 2 sqrt(2 |g| D), 2 v0) (c: the signal speed, D: the box diagonal, v0:
-//    the fastest initial or set velocity): checked on the step statistics of every step (a run()
-//    block that exceeds it is replayed step by step, so the message names the very step);
-//  - density above 1.5 max(rho0, the initial largest density): the same way;
-//  - total energy above the initial energy by more than kEnergyMargin times the energy available
-//    above the floor (or of half the moving mass at 5% of c, if larger) (the kinetic, internal and
-//    potential energy over the lowest potential the box allows): checked every kEnergyEvery steps
-//    on a downloaded state; the run goes back to the last state that passed (at most kEnergyEvery
+//  - speed above max(2 c0, 2 sqrt(2 |g| D), 2 v0) (c0: the scene's speed of sound, D: the box
+//    diagonal, v0: the fastest initial or set velocity): checked on the step statistics of every
+//    step (a run() block that exceeds it is replayed step by step, so the message names the
+//    very step);
+//  - density above 1.5 max(rho0, the initial largest density) (wcsph; 3x for the thesis
+//    model's isothermal gas): the same way;
+//  - energy above the floor (kinetic + internal + potential over the lowest potential the box
+//    allows) above its initial value by more than kEnergyMargin times that value (or times the
+//    energy of the fluid's mass at 5% of c0, if larger): checked every kEnergyEvery steps on a
+//    downloaded state; the run goes back to the last state that passed (at most kEnergyEvery
 //    steps earlier). Gravity's work is part of the potential energy; a scene has no inflow.
 //  - a NaN or Inf: the guard's own check (SphSimulation), which names the particle.
 #include <cstdint>
