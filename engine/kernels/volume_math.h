@@ -56,8 +56,8 @@ MASAV_HD inline T trilinear(hd::V3<T> u, const uint32_t dims[3], At&& at) {
   for (int a = 0; a < 3; ++a) {
     const T hi = T(dims[a] - 1u);
     const T c = hd::clamp_t(hd::comp(u, a), T(0), hi);
-    const T fl = hd::floor_t(c);
-    i0[a] = uint32_t(fl);
+    i0[a] = uint32_t(c);  // c >= 0: truncation is the floor, without a libm call
+    const T fl = T(i0[a]);
     i1[a] = i0[a] + 1u < dims[a] ? i0[a] + 1u : i0[a];
     f[a] = c - fl;
   }
@@ -213,9 +213,9 @@ MASAV_HD inline V4<T> raymarch_pixel(const RaymarchLayout& c, uint32_t px, uint3
     const hd::V3<T> u = u0 + du * tm;
     if (skip && tm >= occupied_until) {
       uint32_t bi[3];
-      for (int a = 0; a < 3; ++a) {
-        const T fb = hd::floor_t(hd::comp(u, a) / brick);
-        bi[a] = fb <= T(0) ? 0u : (fb >= T(g.bricks[a] - 1u) ? g.bricks[a] - 1u : uint32_t(fb));
+      for (int a = 0; a < 3; ++a) {  // clamped to >= 0 first: truncation is the floor
+        const uint32_t b = uint32_t(hd::max_t(hd::comp(u, a) / brick, T(0)));
+        bi[a] = hd::min_t(b, g.bricks[a] - 1u);
       }
       const Occupancy<T> o = occupancy(bi[0], bi[1], bi[2]);
       if (o.block <= T(0)) {
