@@ -8,17 +8,18 @@
 #include <cmath>
 
 #include "app/bench_atom_common.h"
-#include "engine/kernels/atom_checks.h"
 #include "engine/atom/atom_scene.h"
+#include "engine/atom/ray_integral.h"
 #include "engine/atom/transfer_function.h"
 #include "engine/core/error.h"
-#include "engine/atom/ray_integral.h"
+#include "engine/kernels/atom_checks.h"
 
 namespace masav::app {
 
 struct RaymarchBenchOptions : BenchOptions {
   int reps = 5;
   bool large = false;
+  uint32_t brick = RaymarchParams{}.brick;
 };
 
 namespace {
@@ -85,6 +86,7 @@ int run_raymarch_bench(const RaymarchBenchOptions& o, JsonWriter& j) {
         RaymarchParams rp =
             atom::default_raymarch(scene.volume(), atom::ViewPreset::front, c.w, c.h);
         rp.skip_empty = skip;
+        rp.brick = o.brick;
         row("60^3", c.w, c.h, skip, time_raymarch(b, rp, scene.sample, tf, o.reps).ms);
       }
     }
@@ -95,6 +97,7 @@ int run_raymarch_bench(const RaymarchBenchOptions& o, JsonWriter& j) {
       b.upload(vol, std::span<const float>(v));
       const VolumeDesc d = make_volume_desc({n, n, n}, {-1, -1, -1}, {1, 1, 1});
       RaymarchParams rp = atom::default_raymarch(d, atom::ViewPreset::front, 1920, 1080);
+      rp.brick = o.brick;
       row("256^3", 1920, 1080, true, time_raymarch(b, rp, vol, tf, o.reps).ms);
     }
   });
@@ -134,9 +137,10 @@ int run_raymarch_bench(const RaymarchBenchOptions& o, JsonWriter& j) {
           double t0 = 0, t1 = 1e30, integral = 0;
           if (volume::slab(eye, dir, hd::V3<double>{-1, -1, -1}, hd::V3<double>{1, 1, 1}, t0, t1))
             for (int a = 0; a < 3; ++a)
-              integral += atom::clamped_linear_integral((hd::comp(eye, a) + 1) / spacing - 0.5,
-                                                  hd::comp(dir, a) / spacing, 0, n - 1, t0, t1) /
-                          (3.0 * (n - 1));
+              integral +=
+                  atom::clamped_linear_integral((hd::comp(eye, a) + 1) / spacing - 0.5,
+                                                hd::comp(dir, a) / spacing, 0, n - 1, t0, t1) /
+                  (3.0 * (n - 1));
           const double want = integral > 0 ? 1 - std::exp(-c * integral) : 0.0;
           err = std::max(err, std::abs(t.image[y * rp.width + x].w - want));
         }
@@ -157,6 +161,7 @@ void add_raymarch_bench(CLI::App& bench) {
                         run_raymarch_bench);
   add_reps_option(*cmd, o.reps);
   cmd->add_flag("--large", o.large, "also a 256^3 volume at 1920x1080");
+  add_ranged_option(*cmd, "--brick", o.brick, "voxels per brick of empty-space skipping", 2u, 16u);
   add_json_option(*cmd, o.json);
 }
 

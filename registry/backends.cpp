@@ -78,7 +78,9 @@ std::unique_ptr<Backend> create_backend(std::string_view name_in, std::string_vi
       throw_invalid(
           "cpu backend", "device", std::string(device),
           "empty or 0 (the CPU backend has one device; set MASAV_CPU_THREADS for threads)");
-    return std::make_unique<cpu::CpuBackend>();
+    // A CPU device renders like the GPUs, in fp32; the reference (CpuBackend's default) in fp64.
+    return std::make_unique<cpu::CpuBackend>(cpu::default_cpu_threads(),
+                                             cpu::CpuRenderPrecision::fp32);
   }
   if (name == "vulkan") {
 #if MASAV_HAVE_VULKAN

@@ -1,8 +1,9 @@
 #version 450
 #extension GL_GOOGLE_include_directive : require
-// raymarch: one pixel per invocation; the GLSL twin of volume::raymarch_pixel
+// raymarch: one pixel per invocation, in 8x8 tiles; the GLSL twin of volume::raymarch_pixel
 // (engine/kernels/volume_math.h: segments, midpoint samples, opacity correction, early ray
-// termination, empty-space skipping, the thesis's lerp mode).
+// termination, empty space skipped per segment by bricks and blocks of bricks, the thesis's lerp
+// mode).
 #include "kernel_base.glsl"
 #include "slab.glsl"
 #include "engine/kernels/atom_params.h"
@@ -15,15 +16,32 @@ MASAV_PUSH(RaymarchLayout);
 
 #include "volume.glsl"
 
-void brick_bounds(int a, uint b, uint nb, vec3 spacing, out float lo, out float hi) {
-  const uint brick = p.brick;
-  lo = b == 0u ? p.box_min[a] : p.box_min[a] + (float(b * brick) + 0.5) * spacing[a];
-  hi = b + 1u == nb ? p.box_max[a] : p.box_min[a] + (float((b + 1u) * brick) + 0.5) * spacing[a];
+// The GLSL twin of volume::cell_exit: where the ray u(t) = u0 + du t leaves cell ci of `count`
+// cells of `size` voxels on one axis (the outermost cells reach to infinity outward).
+float axis_exit(float u0, float du, float inv_du, uint ci, uint count, float size, float exit) {
+  float face = -1.0;
+  if (du > 0.0 && ci + 1u < count) face = float(ci + 1u) * size;
+  if (du < 0.0 && ci > 0u) face = float(ci) * size;
+  return face >= 0.0 ? min(exit, (face - u0) * inv_du) : exit;
+}
+
+float cell_exit(vec3 u0, vec3 du, vec3 inv_du, uvec3 ci, uvec3 count, float size) {
+  float exit = VOLUME_FAR;
+  exit = axis_exit(u0.x, du.x, inv_du.x, ci.x, count.x, size, exit);
+  exit = axis_exit(u0.y, du.y, inv_du.y, ci.y, count.y, size, exit);
+  return axis_exit(u0.z, du.z, inv_du.z, ci.z, count.z, size, exit);
+}
+
+uint first_segment_after(float t, float tn, float step_len, uint i, uint n) {
+  uint next = i + 1u;
+  const float first = ceil((t - tn) / step_len - 0.5);
+  if (first > float(next)) next = first >= float(n) ? n : uint(first);
+  return next;
 }
 
 vec4 march(uint px, uint py) {
   vec4 acc = vec4(0.0);
-  const uint width = p.width, height = p.height, brick = p.brick;
+  const uint width = p.width, height = p.height;
   const bool lerp_mode = p.mode == Compositing_lerp;
   const bool skip = p.skip_empty != 0u && !lerp_mode;
   const vec3 eye = p.eye;
@@ -37,7 +55,15 @@ vec4 march(uint px, uint py) {
   const uint n = uint(ceil(len / step_len));
   const uvec3 dims = p.dims;
   const vec3 spacing = (hi - lo) / vec3(dims);
-  const uvec3 nb = (dims + brick - 1u) / brick;
+  const vec3 u0 = (eye - lo) / spacing - 0.5;
+  const vec3 du = dir / spacing;
+  const vec3 inv_du = vec3(du.x != 0.0 ? 1.0 / du.x : 0.0, du.y != 0.0 ? 1.0 / du.y : 0.0,
+                           du.z != 0.0 ? 1.0 / du.z : 0.0);
+  const float brick = float(p.brick);
+  const uvec3 nb = (dims + p.brick - 1u) / p.brick;
+  const uvec3 blocks = (nb + 1u) / 2u;
+  const float exponent = step_len / p.reference_step;
+  float occupied_until = -1.0;  // the ray is in an occupied brick for t < occupied_until
   // No loop may nest in this one (see slab.glsl): lavapipe would count each sample twice.
   uint i = 0u;
   bool done = false;
@@ -48,24 +74,23 @@ vec4 march(uint px, uint py) {
     const float s0 = tn + float(seg) * step_len;
     const float s1 = min(s0 + step_len, tfar);
     const float tm = 0.5 * (s0 + s1);
-    const vec3 pos = eye + dir * tm;
-    const vec3 u = (pos - lo) / spacing - 0.5;
+    const vec3 u = u0 + du * tm;
     bool skipped = false;
-    if (skip) {
-      const uvec3 bi = uvec3(clamp(floor(u / float(brick)), vec3(0.0), vec3(nb - 1u)));
-      if (bricks[(bi.z * nb.y + bi.y) * nb.x + bi.x].z <= 0.0) {
-        vec3 blo, bhi;
-        brick_bounds(0, bi.x, nb.x, spacing, blo.x, bhi.x);
-        brick_bounds(1, bi.y, nb.y, spacing, blo.y, bhi.y);
-        brick_bounds(2, bi.z, nb.z, spacing, blo.z, bhi.z);
-        float t0 = tm, t1 = VOLUME_FAR;
-        uint next = i + 1u;
-        if (slab(eye, dir, blo, bhi, t0, t1)) {
-          const float first = ceil((t1 - tn) / step_len - 0.5);
-          if (first > float(next)) next = first >= float(n) ? n : uint(first);
-        }
-        i = next;
+    if (skip && tm >= occupied_until) {
+      const uvec3 bi = uvec3(clamp(floor(u / brick), vec3(0.0), vec3(nb - 1u)));
+      const vec4 b = bricks[(bi.z * nb.y + bi.y) * nb.x + bi.x];
+      if (b.w <= 0.0) {  // the whole 2x2x2 block of bricks is empty
+        i = first_segment_after(cell_exit(u0, du, inv_du, bi / 2u, blocks, 2.0 * brick), tn,
+                                step_len, i, n);
         skipped = true;
+      } else {
+        const float exit = cell_exit(u0, du, inv_du, bi, nb, brick);
+        if (b.z <= 0.0) {
+          i = first_segment_after(exit, tn, step_len, i, n);
+          skipped = true;
+        } else {
+          occupied_until = exit;
+        }
       }
     }
     if (!skipped) {
@@ -74,9 +99,9 @@ vec4 march(uint px, uint py) {
       if (lerp_mode) {
         acc.rgb += (col.rgb - acc.rgb) * col.a;
         acc.a += (1.0 - acc.a) * col.a;
-      } else {
-        const float h = s1 - s0;
-        const float alpha = 1.0 - pow(max(0.0, 1.0 - col.a), h / p.reference_step);
+      } else if (col.a > 0.0) {  // a transparent sample adds nothing: 1 - 1^e = 0
+        const float e = seg + 1u == n ? (s1 - s0) / p.reference_step : exponent;
+        const float alpha = 1.0 - pow(max(0.0, 1.0 - col.a), e);
         const float w = (1.0 - acc.a) * alpha;
         acc.rgb += w * col.rgb;
         acc.a += w;
@@ -88,11 +113,14 @@ vec4 march(uint px, uint py) {
   return acc;
 }
 
+// Invocation id marches the pixel of volume::tile_pixel: 8x8 tiles, row-major.
 void run() {
   const uint id = flat_invocation_id();
-  const uint width = p.width;
-  if (id >= width * p.height) return;
-  image[id] = march(id % width, id / width);
+  const uint tiles_x = (p.width + 7u) / 8u;
+  const uint tile = id / 64u, in_tile = id % 64u;
+  const uint x = tile % tiles_x * 8u + in_tile % 8u, y = tile / tiles_x * 8u + in_tile / 8u;
+  if (x >= p.width || y >= p.height) return;
+  image[y * p.width + x] = march(x, y);
 }
 
 void main() {

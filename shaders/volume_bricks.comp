@@ -1,8 +1,10 @@
 #version 450
 #extension GL_GOOGLE_include_directive : require
 // volume_bricks: per brick of BRICK^3 voxels plus the one-voxel apron that trilinear sampling
-// reads, (min, max, largest transfer alpha over [min, max], 0). A brick with alpha 0 is skipped
-// by raymarch. At most (32 + 1)^3 + 4096 loop iterations per invocation.
+// reads, (min, max, largest transfer alpha over [min, max], the same alpha over the 2x2x2 block of
+// bricks that holds it): the GLSL twin of KernelBody<volume_bricks> (engine/kernels/atom_body.h).
+// raymarch skips a brick or block with alpha 0. At most (16 + 1)^3 + (32 + 1)^3 + 2 x 4096 loop
+// iterations per invocation.
 #include "kernel_base.glsl"
 #include "engine/kernels/atom_params.h"
 
@@ -11,13 +13,7 @@ layout(std430, binding = 2) readonly buffer Tf { vec4 tf[]; };
 layout(std430, binding = 3) writeonly buffer Bricks { vec4 bricks[]; };
 MASAV_PUSH(VolumeBrickParams);
 
-void run() {
-  const uint id = flat_invocation_id();
-  const uvec3 d = p.volume.dims;
-  const uvec3 nb = (d + p.brick - 1u) / p.brick;
-  if (id >= nb.x * nb.y * nb.z) return;
-  const uvec3 b = uvec3(id % nb.x, (id / nb.x) % nb.y, id / (nb.x * nb.y));
-  const uvec3 first = b * p.brick, last = min((b + 1u) * p.brick, d - 1u);
+vec2 value_range(uvec3 first, uvec3 last, uvec3 d) {
   float lo = 3.0e38, hi = -3.0e38;
   for (uint k = first.z; k <= last.z; ++k)
     for (uint j = first.y; j <= last.y; ++j)
@@ -27,10 +23,15 @@ void run() {
         lo = min(lo, v);
         hi = max(hi, v);
       }
+  return vec2(lo, hi);
+}
+
+// Largest alpha of the entries whose linear pieces cover the range after normalisation.
+float range_alpha(vec2 range) {
   const uint size = p.tf_size;
   const float value_scale = 1.0 / (p.volume.value_max - p.volume.value_min);
-  const float nlo = clamp((lo - p.volume.value_min) * value_scale, 0.0, 1.0);
-  const float nhi = clamp((hi - p.volume.value_min) * value_scale, 0.0, 1.0);
+  const float nlo = clamp((range.x - p.volume.value_min) * value_scale, 0.0, 1.0);
+  const float nhi = clamp((range.y - p.volume.value_min) * value_scale, 0.0, 1.0);
   const uint k0 = uint(nlo * float(size - 1u));
   const uint k1 = min(uint(ceil(nhi * float(size - 1u))), size - 1u);
   float amax = 0.0;
@@ -38,7 +39,20 @@ void run() {
     LOOP_TICK();
     amax = max(amax, tf[k].a);
   }
-  bricks[id] = vec4(lo, hi, amax, 0.0);
+  return amax;
+}
+
+void run() {
+  const uint id = flat_invocation_id();
+  const uvec3 d = p.volume.dims;
+  const uvec3 nb = (d + p.brick - 1u) / p.brick;
+  if (id >= nb.x * nb.y * nb.z) return;
+  const uvec3 b = uvec3(id % nb.x, (id / nb.x) % nb.y, id / (nb.x * nb.y));
+  const vec2 range = value_range(b * p.brick, min((b + 1u) * p.brick, d - 1u), d);
+  const uvec3 block = b / 2u;
+  const vec2 block_range =
+      value_range(block * 2u * p.brick, min((block + 1u) * 2u * p.brick, d - 1u), d);
+  bricks[id] = vec4(range, range_alpha(range), range_alpha(block_range));
 }
 
 void main() {

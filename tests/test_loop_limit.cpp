@@ -216,11 +216,13 @@ LOOP_LIMIT_CASE("voxelize does not loop; volume_bricks at the largest brick stay
   auto tf = b.create<Real4>(4096, "tf");
   std::vector<Vec4d> tfv(4096, Vec4d{1, 1, 1, 0.1});
   b.upload(tf, tfv);
-  auto bricks = b.create<Real4>(8, "bricks");
-  b.volume_bricks({vol, 32, 4096}, v, tf, bricks);
+  auto bricks = b.create<Real4>(64, "bricks");
+  b.volume_bricks({vol, 16, 4096}, v, tf, bricks);
   const uint32_t ticks = test::ticks_of(b);
-  MESSAGE("volume_bricks, brick 32: " << ticks << " loop iterations");
-  CHECK(ticks == 33 * 33 * 33 + 2);  // voxels of the first brick and its apron + 2 TF entries
+  MESSAGE("volume_bricks, brick 16: " << ticks << " loop iterations");
+  // The voxels of the first brick and of its block of 2x2x2 bricks, with their aprons, and 2 TF
+  // entries for each.
+  CHECK(ticks == 17 * 17 * 17 + 33 * 33 * 33 + 4);
   CHECK(ticks < test::loop_counter().caps().max_loop_iterations);
 }
 
@@ -243,6 +245,7 @@ LOOP_LIMIT_CASE(
   rp.tf_size = 2;
   rp.termination_alpha = 1.0f;
   rp.skip_empty = false;
+  rp.brick = 8;  // 8^3 bricks of 8 voxels
   rp.step = 1.0f;
   const uint64_t fixed = max_ray_segments(rp) - 2 + 3 * 24 + 16;  // what check_raymarch adds
   rp.step = float(std::sqrt(3.0) / double(kMaxRaySteps - fixed)) * 1.001f;
@@ -259,7 +262,7 @@ LOOP_LIMIT_CASE(
   CHECK(worst > 55000);  // all the segments ran (a nested loop once made lavapipe stop at 32,768)
   CHECK(worst < test::loop_counter().caps().max_loop_iterations);
   rp.skip_empty = true;
-  const uint32_t empty = run(0.5, 0.0);  // every brick empty: one slab test per brick
+  const uint32_t empty = run(0.5, 0.0);  // every block of bricks empty: one step per block
   MESSAGE("raymarch through empty bricks: " << empty << " loop iterations");
   CHECK(empty < 200);
   rp.termination_alpha = 0.99f;

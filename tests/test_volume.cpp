@@ -9,12 +9,12 @@
 #include <random>
 #include <vector>
 
+#include "engine/atom/ray_integral.h"
 #include "engine/core/error.h"
 #include "engine/kernels/atom_checks.h"
 #include "engine/kernels/grid_cell.h"
 #include "engine/util/error_metrics.h"
 #include "tests/backend_fixture.h"
-#include "engine/atom/ray_integral.h"
 
 using namespace masav;
 
@@ -125,7 +125,9 @@ TEST_CASE("voxelize: exact counts, sum p = 1, g the mean light, sample = s g + t
   CHECK(e.max_abs < 3e-6);
 }
 
-TEST_CASE("volume_bricks: value range over each brick and its apron, largest alpha over it") {
+TEST_CASE(
+    "volume_bricks: value range over each brick and its apron, largest alpha over it and over "
+    "its block of 2x2x2 bricks") {
   const Volume vol = ramp_volume({19, 10, 7}, {0, 0, 0}, {1.9f, 1.0f, 0.7f});
   std::vector<Vec4d> tf(16);
   for (uint32_t k = 0; k < 16; ++k) tf[k] = {0, 0, 0, k < 6 ? 0.0 : k / 16.0};
@@ -151,10 +153,20 @@ TEST_CASE("volume_bricks: value range over each brick and its apron, largest alp
             (std::min(4 * x + 4, 18u) + std::min(4 * y + 4, 9u) + std::min(4 * z + 4, 6u)) / total;
         CHECK(br.x == doctest::Approx(lo).epsilon(1e-6));
         CHECK(br.y == doctest::Approx(hi).epsilon(1e-6));
-        double amax = 0;
-        for (uint32_t k = uint32_t(lo * 15); k <= std::min(15u, uint32_t(std::ceil(hi * 15))); ++k)
-          amax = std::max(amax, tf[k].w);
-        CHECK(br.z == doctest::Approx(amax).epsilon(1e-6));
+        auto largest_alpha = [&](double from, double to) {
+          double amax = 0;
+          for (uint32_t k = uint32_t(from * 15); k <= std::min(15u, uint32_t(std::ceil(to * 15)));
+               ++k)
+            amax = std::max(amax, tf[k].w);
+          return amax;
+        };
+        CHECK(br.z == doctest::Approx(largest_alpha(lo, hi)).epsilon(1e-6));
+        // The block of 2x2x2 bricks (8 voxels and the apron) that holds this brick.
+        const uint32_t bx = x / 2 * 8, by = y / 2 * 8, bz = z / 2 * 8;
+        const double block_lo = (bx + by + bz) / total;
+        const double block_hi =
+            (std::min(bx + 8, 18u) + std::min(by + 8, 9u) + std::min(bz + 8, 6u)) / total;
+        CHECK(br.w == doctest::Approx(largest_alpha(block_lo, block_hi)).epsilon(1e-6));
       }
 }
 

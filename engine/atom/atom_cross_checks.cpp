@@ -225,7 +225,8 @@ CheckVolume check_volume(const CheckInputs& in) {
   return v;
 }
 
-// The check volume and its transfer function on a backend, with its 8^3 bricks computed there.
+// The check volume and its transfer function on a backend, with its bricks (the raymarch's
+// default size) computed there.
 struct BrickedVolume {
   Buffer<Real> volume;
   Buffer<Real4> transfer, bricks;
@@ -237,9 +238,10 @@ BrickedVolume upload_bricked(Backend& b, const CheckVolume& v) {
                    {}};
   b.upload(bv.volume, v.values);
   b.upload(bv.transfer, v.tf);
-  const UVec3 nb = brick_dims(v.desc, 8);
+  const uint32_t brick = RaymarchParams{}.brick;
+  const UVec3 nb = brick_dims(v.desc, brick);
   bv.bricks = b.create<Real4>(size_t(nb.x) * nb.y * nb.z, "check bricks");
-  b.volume_bricks({v.desc, 8, uint32_t(v.tf.size())}, bv.volume, bv.transfer, bv.bricks);
+  b.volume_bricks({v.desc, brick, uint32_t(v.tf.size())}, bv.volume, bv.transfer, bv.bricks);
   return bv;
 }
 

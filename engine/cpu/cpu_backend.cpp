@@ -37,12 +37,14 @@ CpuBuffer::CpuBuffer(const DeviceApi* owner, ElemKind kind, size_t count, size_t
                      std::string label)
     : BufferImpl(owner, kind, count, bytes, std::move(label)), storage_((bytes + 7) / 8) {}
 
-CpuBackend::CpuBackend(unsigned threads) : pool_(threads) {
+CpuBackend::CpuBackend(unsigned threads, CpuRenderPrecision render)
+    : pool_(threads), render_(render) {
   caps_.backend = "cpu";
   caps_.device_name = cpuinfo_field("model name");
   caps_.vendor = cpuinfo_field("vendor_id");
   caps_.device_type = "cpu";
-  caps_.driver = "masav CPU reference (fp64)";
+  caps_.driver = render == CpuRenderPrecision::fp64 ? "masav CPU reference (fp64)"
+                                                    : "masav CPU (fp64; raymarch in fp32)";
   caps_.subgroup_size = caps_.min_subgroup_size = 1;
   caps_.max_workgroup_size = 1;
   caps_.max_workgroups_x = UINT32_MAX;

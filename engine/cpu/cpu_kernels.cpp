@@ -11,6 +11,9 @@ namespace masav::cpu {
 template <KernelId K, class Params, class... Buffers>
 void CpuBackend::run_kernel(const Params& p, uint64_t items, Buffers&... buffers) {
   ++counters_.launches;  // one kernel call runs as one launch here, whatever its passes
+  if constexpr (K == KernelId::raymarch) {
+    if (render_ == CpuRenderPrecision::fp32) return raymarch_fp32(p, buffers...);
+  }
   if constexpr (HasKernelBody<K>)
     run_shared_body<K>(*this, pool_, p, items, buffers...);
   else

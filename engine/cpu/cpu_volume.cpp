@@ -1,8 +1,10 @@
-// Voxelization, brick ranges and ray casting on the CPU reference (double precision).
+// Voxelization on the CPU reference (double precision), and the fp32 render path of the raymarch
+// (CpuRenderPrecision::fp32); the fp64 raymarch is the shared body on the thread pool.
 #include <algorithm>
 #include <vector>
 
 #include "engine/cpu/cpu_backend.h"
+#include "engine/kernels/atom_body.h"
 #include "engine/kernels/atom_checks.h"
 #include "engine/kernels/grid_cell.h"
 #include "engine/kernels/volume_math.h"
@@ -39,6 +41,48 @@ void CpuBackend::run_own(const KernelArgs<KernelId::voxelize>& a) {
     mean[o] = count[c] ? sum[c] / double(count[c]) : 0.0;
     smp[o] = double(p.s) * mean[o] + double(p.t) * double(count[c]) / double(max_count);
   }
+}
+
+void CpuBackend::raymarch_fp32(const RaymarchParams& p, const Buffer<Real>& volume,
+                               const Buffer<Real4>& tf, const Buffer<Real4>& bricks,
+                               Buffer<Real4>& image) {
+  const char* k = "raymarch";
+  const RaymarchLayout c = raymarch_layout(p);
+  const size_t voxels = size_t(c.dims.x) * c.dims.y * c.dims.z;
+  const UVec3 nb = brick_dims(p.volume, p.brick);
+  const size_t brick_count = size_t(nb.x) * nb.y * nb.z;
+  // fp32 copies of what the rays read (a fraction of a frame's work: one read per voxel).
+  std::vector<float> vol(voxels);
+  std::vector<hd::V4<float>> tf32(c.tf_size), bricks32(brick_count);
+  const double* vd = own(volume.impl(), k).as<double>();
+  pool_.parallel_for(voxels, 1 << 16, [&](size_t b, size_t e) {
+    for (size_t i = b; i < e; ++i) vol[i] = float(vd[i]);
+  });
+  auto to_float4 = [](const double* d, std::vector<hd::V4<float>>& out) {
+    for (size_t i = 0; i < out.size(); ++i)
+      out[i] = {float(d[4 * i]), float(d[4 * i + 1]), float(d[4 * i + 2]), float(d[4 * i + 3])};
+  };
+  to_float4(own(tf.impl(), k).as<double>(), tf32);
+  to_float4(own(bricks.impl(), k).as<double>(), bricks32);
+  double* out = own(image.impl(), k).as<double>();
+  // One row of 8x8 tiles per task: neighbouring rays share bricks and cache lines, and rows of
+  // uneven cost balance over the pool.
+  const uint32_t tile_px = volume::kRayTile * volume::kRayTile;
+  const uint32_t tiles_x = (c.width + volume::kRayTile - 1) / volume::kRayTile;
+  const uint32_t tile_rows = (c.height + volume::kRayTile - 1) / volume::kRayTile;
+  pool_.run_chunks(tile_rows, tile_rows, [&](size_t, size_t b, size_t e) {
+    for (size_t id = b * tiles_x * tile_px; id < e * tiles_x * tile_px; ++id) {
+      uint32_t x, y;
+      if (!volume::tile_pixel(c, uint32_t(id), x, y)) continue;
+      const volume::V4<float> o = KernelBody<KernelId::raymarch>::pixel<float>(
+          c, x, y, vol.data(), tf32.data(), bricks32.data());
+      double* px = out + 4 * (size_t(y) * c.width + x);
+      px[0] = o.r;
+      px[1] = o.g;
+      px[2] = o.b;
+      px[3] = o.a;
+    }
+  });
 }
 
 }  // namespace masav::cpu

@@ -64,23 +64,51 @@ struct KernelBody<KernelId::nebula_view> {
 template <>
 struct KernelBody<KernelId::volume_bricks> {
   static constexpr uint32_t kCpuGrain = 16;
-  // bricks[id] = (value min, value max, largest transfer alpha over that range, 0) over brick id's
-  // voxels and the one-voxel apron trilinear sampling reads.
+  // bricks[id] = (value min, value max, largest transfer alpha over that range, the same alpha
+  // over the block of 2x2x2 bricks that holds brick id) over the voxels and the one-voxel apron
+  // that trilinear sampling reads there. The block level lets raymarch cross empty space in
+  // steps of two bricks (volume::raymarch_pixel).
   template <class F, class Diag>
   MASAV_HD static void run(uint32_t id, const VolumeBrickParams& p, Diag&, const F* volume,
                            const hd::V4<F>* tf, hd::V4<F>* bricks) {
-    const uint32_t b = p.brick, dx = p.volume.dims.x, dy = p.volume.dims.y, dz = p.volume.dims.z;
-    const uint32_t nx = (dx + b - 1) / b, ny = (dy + b - 1) / b;
-    const uint32_t bx = id % nx, by = id / nx % ny, bz = id / (nx * ny);
-    F lo = F(3.0e38), hi = F(-3.0e38);
-    for (uint32_t k = bz * b; k <= hd::min_t((bz + 1) * b, dz - 1); ++k)
-      for (uint32_t j = by * b; j <= hd::min_t((by + 1) * b, dy - 1); ++j)
-        for (uint32_t i = bx * b; i <= hd::min_t((bx + 1) * b, dx - 1); ++i) {
-          const F v = volume[(size_t(k) * dy + j) * dx + i];
+    const uint32_t b = p.brick;
+    const uint32_t d[3] = {p.volume.dims.x, p.volume.dims.y, p.volume.dims.z};
+    const uint32_t nx = (d[0] + b - 1) / b, ny = (d[1] + b - 1) / b;
+    const uint32_t bi[3] = {id % nx, id / nx % ny, id / (nx * ny)};
+    uint32_t first[3], last[3];
+    for (int a = 0; a < 3; ++a) {
+      first[a] = bi[a] * b;
+      last[a] = hd::min_t((bi[a] + 1) * b, d[a] - 1);
+    }
+    F lo, hi;
+    value_range(volume, d, first, last, lo, hi);
+    const F amax = range_alpha(p, tf, lo, hi);
+    for (int a = 0; a < 3; ++a) {
+      first[a] = bi[a] / 2 * 2 * b;
+      last[a] = hd::min_t((bi[a] / 2 + 1) * 2 * b, d[a] - 1);
+    }
+    F block_lo, block_hi;
+    value_range(volume, d, first, last, block_lo, block_hi);
+    bricks[id] = hd::V4<F>{lo, hi, amax, range_alpha(p, tf, block_lo, block_hi)};
+  }
+
+ private:
+  template <class F>
+  MASAV_HD static void value_range(const F* volume, const uint32_t d[3], const uint32_t first[3],
+                                   const uint32_t last[3], F& lo, F& hi) {
+    lo = F(3.0e38);
+    hi = F(-3.0e38);
+    for (uint32_t k = first[2]; k <= last[2]; ++k)
+      for (uint32_t j = first[1]; j <= last[1]; ++j)
+        for (uint32_t i = first[0]; i <= last[0]; ++i) {
+          const F v = volume[(size_t(k) * d[1] + j) * d[0] + i];
           lo = hd::min_t(lo, v);
           hi = hd::max_t(hi, v);
         }
-    // Largest alpha of the entries whose linear pieces cover [lo, hi] after normalisation.
+  }
+  // Largest alpha of the entries whose linear pieces cover [lo, hi] after normalisation.
+  template <class F>
+  MASAV_HD static F range_alpha(const VolumeBrickParams& p, const hd::V4<F>* tf, F lo, F hi) {
     const F vmin = F(p.volume.value_min);
     const F scale = F(1) / (F(p.volume.value_max) - vmin);
     const F nlo = hd::clamp_t((lo - vmin) * scale, F(0), F(1));
@@ -90,28 +118,41 @@ struct KernelBody<KernelId::volume_bricks> {
     const uint32_t k1 = hd::min_t(uint32_t(hd::ceil_t(nhi * F(last))), last);
     F amax = F(0);
     for (uint32_t k = k0; k <= k1; ++k) amax = hd::max_t(amax, tf[k].w);
-    bricks[id] = hd::V4<F>{lo, hi, amax, F(0)};
+    return amax;
   }
 };
 
 template <>
 struct KernelBody<KernelId::raymarch> {
   static constexpr uint32_t kCpuGrain = 256;
-  // image[px] = the composited RGBA (colour premultiplied) of pixel px, row-major from the top.
+  // Invocation id marches the pixel volume::tile_pixel gives (8x8 tiles); image[y * width + x]
+  // = its composited RGBA (colour premultiplied), rows from the top.
   template <class F, class Diag>
-  MASAV_HD static void run(uint32_t px, const RaymarchLayout& c, Diag&, const F* volume,
+  MASAV_HD static void run(uint32_t id, const RaymarchLayout& c, Diag&, const F* volume,
                            const hd::V4<F>* tf, const hd::V4<F>* bricks, hd::V4<F>* image) {
+    uint32_t x, y;
+    if (!volume::tile_pixel(c, id, x, y)) return;
+    const volume::V4<F> o = pixel<F>(c, x, y, volume, tf, bricks);
+    image[size_t(y) * c.width + x] = hd::V4<F>{o.r, o.g, o.b, o.a};
+  }
+
+  // Pixel (x, y) in precision F from buffers in F (the CPU backend's fp32 render path calls this
+  // directly).
+  template <class F>
+  MASAV_HD static volume::V4<F> pixel(const RaymarchLayout& c, uint32_t x, uint32_t y,
+                                      const F* volume, const hd::V4<F>* tf,
+                                      const hd::V4<F>* bricks) {
     const uint32_t dx = c.dims.x, dy = c.dims.y;
     const uint32_t nbx = (dx + c.brick - 1) / c.brick, nby = (dy + c.brick - 1) / c.brick;
     auto vat = [volume, dx, dy](uint32_t i, uint32_t j, uint32_t k) {
       return volume[(size_t(k) * dy + j) * dx + i];
     };
     auto tat = [tf](uint32_t k) { return volume::V4<F>{tf[k].x, tf[k].y, tf[k].z, tf[k].w}; };
-    auto bat = [bricks, nbx, nby](uint32_t x, uint32_t y, uint32_t z) {
-      return bricks[(size_t(z) * nby + y) * nbx + x].z;
+    auto occ = [bricks, nbx, nby](uint32_t bx, uint32_t by, uint32_t bz) {
+      const hd::V4<F> b = bricks[(size_t(bz) * nby + by) * nbx + bx];
+      return volume::Occupancy<F>{b.z, b.w};
     };
-    const volume::V4<F> o = volume::raymarch_pixel<F>(c, px % c.width, px / c.width, vat, tat, bat);
-    image[px] = hd::V4<F>{o.r, o.g, o.b, o.a};
+    return volume::raymarch_pixel<F>(c, x, y, vat, tat, occ);
   }
 };
 

@@ -6,6 +6,7 @@
 
 #include "engine/core/error.h"
 #include "engine/kernels/kernel_checks.h"
+#include "engine/kernels/volume_math.h"
 
 namespace masav {
 namespace {
@@ -205,7 +206,7 @@ void validate(const DeviceApi&, const VolumeBrickParams& p, const Buffer<Real>& 
               const Buffer<Real4>& tf, const Buffer<Real4>& bricks) {
   const char* k = "volume_bricks";
   check_volume(p.volume, k);
-  in_range(k, "brick", p.brick, 2, 32);  // (brick + 1)^3 voxels per invocation
+  in_range(k, "brick", p.brick, 2, 16);  // (brick + 1)^3 + (2 brick + 1)^3 voxels each
   in_range(k, "tf_size", p.tf_size, 2, 4096);
   at_least(k, "transfer function", tf.size(), p.tf_size);
   const uint64_t voxels = uint64_t(p.volume.dims.x) * p.volume.dims.y * p.volume.dims.z;
@@ -253,6 +254,10 @@ RaymarchLayout raymarch_layout(const RaymarchParams& p) {
   return c;
 }
 
+uint64_t raymarch_invocations(const RaymarchParams& p) {
+  return volume::tiled_pixel_count(p.width, p.height);
+}
+
 uint64_t max_ray_segments(const RaymarchParams& p) {
   const double dx = double(p.volume.box_max.x) - p.volume.box_min.x;
   const double dy = double(p.volume.box_max.y) - p.volume.box_min.y;
@@ -280,7 +285,7 @@ void validate(const DeviceApi& dev, const RaymarchParams& p, const Buffer<Real>&
   positive(k, "step", p.step);
   positive(k, "reference_step", p.reference_step);
   in_range(k, "termination_alpha", p.termination_alpha, 0.5, 1);
-  in_range(k, "brick", p.brick, 2, 32);
+  in_range(k, "brick", p.brick, 2, 16);
   in_range(k, "tf_size", p.tf_size, 2, 4096);
   if (p.mode != Compositing::front_to_back && p.mode != Compositing::lerp)
     throw_invalid(k, "mode", std::to_string(uint32_t(p.mode)), "front_to_back or lerp");

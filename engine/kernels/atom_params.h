@@ -235,7 +235,7 @@ struct RaymarchParams {
   float reference_step = 0.01f;     // the step the transfer function's alpha is defined for
   float termination_alpha = 0.99f;  // early ray termination (front_to_back); 1 = never
   bool skip_empty = true;
-  uint32_t brick = 8;
+  uint32_t brick = 2;  // voxels per empty-space brick: fine bricks skip the most samples
   uint32_t tf_size = 256;
   Compositing mode = Compositing::front_to_back;
 };
@@ -270,6 +270,8 @@ void validate(const DeviceApi& dev, const RaymarchParams& p, const Buffer<Real>&
               const Buffer<Real4>& tf, const Buffer<Real4>& bricks, const Buffer<Real4>& image);
 // Bricks of volume_bricks' output: its invocations.
 uint64_t brick_count(const VolumeBrickParams& p);
+// The raymarch's invocations: the image padded to whole 8x8 tiles (volume::tile_pixel).
+uint64_t raymarch_invocations(const RaymarchParams& p);
 
 }  // namespace masav
 #endif
