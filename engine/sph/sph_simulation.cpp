@@ -381,7 +381,7 @@ SphSimulation::Attempt SphSimulation::judge(const uint32_t w[kSphStatWords], con
     a.reason = fmt::format(
         "a particle reached {:.3g} m/s, above the watchdog's speed bound {:.3g} m/s (2x the "
         "largest of the speed of sound c0, the free-fall speed over the box and the initial "
-        "speeds, or the thesis model's signal speed)",
+        "speeds)",
         s.max_speed, watchdog_.max_speed);
   } else if (s.max_density > watchdog_.max_density) {
     a.ok = false;

@@ -2,9 +2,8 @@
 // The stability watchdog of an SPH run, always on and independent of the CFL guard (which only
 // chooses and splits dt): a run whose state leaves what a fluid of this scene can do stops with
 // an Error naming the step, the time, the quantity, its value, the bound and a remedy.
-//  - speed above max(2 c0, 2 sqrt(2 |g| D), 2 v0, c) (c0: the scene's speed of sound, D: the box
-//    diagonal, v0: the fastest initial or set velocity, c: the signal speed, which the thesis
-//    model derives from kp): checked on the step statistics of every
+//  - speed above max(2 c0, 2 sqrt(2 |g| D), 2 v0) (c0: the scene's speed of sound, D: the box
+//    diagonal, v0: the fastest initial or set velocity): checked on the step statistics of every
 //    step (a run() block that exceeds it is replayed step by step, so the message names the
 //    very step);
 //  - density above 1.5 max(rho0, the initial largest density) (wcsph; 3x for the thesis
