@@ -387,7 +387,7 @@ SphSimulation::Attempt SphSimulation::judge(const uint32_t w[kSphStatWords], con
     a.ok = false;
     a.watchdog = true;
     a.reason = fmt::format(
-        "the density reached {:.4g} kg/m^3, above the watchdog's bound {:.4g} kg/m^3 (1.5x the "
+        "the density reached {:.4g} kg/m^3, above the watchdog's bound {:.4g} kg/m^3 (2x the "
         "rest or initial density; 3x for the thesis model)",
         s.max_density, watchdog_.max_density);
   }

@@ -6,7 +6,7 @@
 //    diagonal, v0: the fastest initial or set velocity): checked on the step statistics of every
 //    step (a run() block that exceeds it is replayed step by step, so the message names the
 //    very step);
-//  - density above 1.5 max(rho0, the initial largest density) (wcsph; 3x for the thesis
+//  - density above 2 max(rho0, the initial largest density) (wcsph; 3x for the thesis
 //    model's isothermal gas): the same way;
 //  - energy above the floor (kinetic + internal + potential over the lowest potential the box
 //    allows) above its initial value by more than kEnergyMargin times that value (or times the
