@@ -272,7 +272,9 @@ class Demo {
     if (!screenshot_.empty()) {
       render::write_png(screenshot_, player_->renderer().width(), player_->renderer().height(),
                         player_->renderer().pixels());
-      fmt::print("demo: wrote {}\n", screenshot_);
+      // What the overlay showed on it: the title and the clock line (the tests read them).
+      const std::vector<std::string> shown = render::overlay_lines(player_->overlay());
+      fmt::print("demo: wrote {}: {} | {}\n", screenshot_, shown[0], shown[1]);
       screenshot_.clear();
     }
     return true;
