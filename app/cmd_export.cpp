@@ -3,7 +3,11 @@
 // CSV. Runs the kernels only (no renderer, no Vulkan needed with --backend cpu).
 #include <fmt/format.h>
 
+#include <cmath>
+#include <optional>
+
 #include "app/commands.h"
+#include "app/progress.h"
 #include "app/scene_options.h"
 #include "engine/core/error.h"
 #include "engine/io/csv_writer.h"
@@ -25,21 +29,37 @@ struct ExportOptions {
   std::string out = "out/export";
 };
 
+// `count` reals (f32 or f64 as the backend stores them), as floats.
+std::vector<float> download_reals(Backend& b, const BufferImpl& buf, size_t count) {
+  std::vector<float> v(count);
+  if (buf.kind() == ElemKind::f32 || b.real_bytes() == 4) {
+    b.download_bytes(buf, v.data(), count * 4, 0);
+  } else {
+    std::vector<double> d(count);
+    b.download_bytes(buf, d.data(), count * 8, 0);
+    for (size_t i = 0; i < count; ++i) v[i] = float(d[i]);
+  }
+  return v;
+}
+
+// The per-point scalar the renderer colours by, computed the way its shader does.
 std::vector<float> scalar_values(Backend& b, const scene::PointLayer& pl,
                                  const std::vector<Vec4f>& pos) {
   std::vector<float> v(pl.count, 0.0f);
   using From = scene::PointLayer::ScalarFrom;
   if (pl.from == From::buffer && pl.scalar) {
     if (pl.scalar->kind() == ElemKind::u32) {
-      std::vector<uint32_t> w(pl.scalar->count());
+      std::vector<uint32_t> w(pl.count);
       b.download_bytes(*pl.scalar, w.data(), w.size() * 4, 0);
       for (size_t i = 0; i < v.size(); ++i) v[i] = float(w[i]);
-    } else if (pl.scalar->kind() == ElemKind::f32 || b.real_bytes() == 4) {
-      b.download_bytes(*pl.scalar, v.data(), v.size() * 4, 0);
     } else {
-      std::vector<double> d(v.size());
-      b.download_bytes(*pl.scalar, d.data(), d.size() * 8, 0);
-      for (size_t i = 0; i < v.size(); ++i) v[i] = float(d[i]);
+      v = download_reals(b, *pl.scalar, pl.count);
+    }
+  } else if (pl.from == From::vector_length && pl.scalar) {
+    const std::vector<float> xyzw = download_reals(b, *pl.scalar, 4 * size_t(pl.count));
+    for (size_t i = 0; i < v.size(); ++i) {
+      const float* q = &xyzw[4 * i];
+      v[i] = std::sqrt(q[0] * q[0] + q[1] * q[1] + q[2] * q[2]);
     }
   } else if (pl.from == From::position_w || pl.from == From::position_z) {
     for (size_t i = 0; i < v.size(); ++i) v[i] = pl.from == From::position_w ? pos[i].w : pos[i].z;
@@ -54,11 +74,22 @@ int run_export(const ExportOptions& o) {
   auto backend = create_backend(o.choice.backend, o.choice.device);
   const scene::SceneType& type = scene::find_scene_type(f.type);
   auto s = type.create(*backend, f.params);
+  // Every frame up to the one asked for, on the clock `masav run` uses: a stepped scene (SPH)
+  // advances once per frame, so frame N is the state after N frames of steps.
+  const double start = f.params.get_real("run.start_time_s"), fps = f.params.get_real("run.fps");
+  Progress progress("frames", uint64_t(o.frame) + 1);
   scene::FrameClock clock;
-  clock.frame = uint64_t(o.frame);
-  clock.time_s = f.params.get_real("run.start_time_s") + o.frame / f.params.get_real("run.fps");
-  s->update(clock);
+  for (int i = 0; i <= o.frame; ++i) {
+    clock.frame = uint64_t(i);
+    clock.time_s = start + double(i) / fps;
+    s->update(clock);
+    if (o.frame > 0) progress.update(uint64_t(i) + 1);
+  }
+  progress.finish();
   backend->finish();
+  if (const std::optional<double> t = s->simulated_time_s())
+    fmt::print("frame {} (frame clock {:.4g} s): simulated time {:.6g} s\n", o.frame, clock.time_s,
+               *t);
   const scene::SceneView v = s->view();
   // The files appear together or not at all: never a new scene.toml beside an old .vtp.
   StagedFiles files(o.out);
@@ -73,14 +104,13 @@ int run_export(const ExportOptions& o) {
     xyz.reserve(3 * pos.size());
     for (const auto& q : pos) xyz.insert(xyz.end(), {q.x, q.y, q.z});
     std::vector<VtkArray> arrays;
-    arrays.push_back({"w", 1, {}});
-    for (const auto& q : pos) arrays.back().values.push_back(q.w);
     if (pl.from != scene::PointLayer::ScalarFrom::none)
-      arrays.push_back({pl.scalar_name.empty() ? "scalar" : pl.scalar_name, 1,
-                        scalar_values(*backend, pl, pos)});
+      arrays.push_back(
+          {pl.scalar_key.empty() ? "scalar" : pl.scalar_key, 1, scalar_values(*backend, pl, pos)});
     const std::string name = fmt::format("{}_frame{:05d}.vtp", f.type, o.frame);
     write_vtp(files.stage(name), xyz, arrays);
-    wrote.push_back(fmt::format("{}/{} ({} points)", o.out, name, pl.count));
+    wrote.push_back(fmt::format("{}/{} ({} points{})", o.out, name, pl.count,
+                                arrays.empty() ? "" : ", point array '" + arrays[0].name + "'"));
   }
   CsvWriter csv({"stage", "created", "runs", "skipped", "last_ms"});
   for (const auto& c : s->graph().counters())

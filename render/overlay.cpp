@@ -5,12 +5,19 @@
 
 namespace masav::render {
 
-void draw_overlay(const OverlayInfo& info) {
+std::string clock_line(uint64_t frame, double clock_s, std::optional<double> simulated_s) {
+  if (simulated_s)
+    return fmt::format("frame {}  t = {:.4f} s simulated (frame clock {:.2f} s)", frame,
+                       *simulated_s, clock_s);
+  return fmt::format("frame {}  t = {:.2f} s", frame, clock_s);
+}
+
+std::vector<std::string> overlay_lines(const OverlayInfo& info) {
   std::vector<std::string> lines;
   lines.push_back(info.title.empty() ? "masav" : info.title);
-  lines.push_back(fmt::format(
-      "frame {}  t = {:.2f} s{}", info.frame, info.time_s,
-      info.fps > 0 ? fmt::format("  {:.1f} fps ({:.1f} ms)", info.fps, info.frame_ms) : ""));
+  lines.push_back(
+      clock_line(info.frame, info.time_s, info.simulated_time_s) +
+      (info.fps > 0 ? fmt::format("  {:.1f} fps ({:.1f} ms)", info.fps, info.frame_ms) : ""));
   lines.push_back(fmt::format("compute: {} ({})", info.backend, info.device));
   lines.push_back(info.render_device.empty()
                       ? "render: same device, no copies"
@@ -20,7 +27,11 @@ void draw_overlay(const OverlayInfo& info) {
   for (const auto& s : info.stages)
     if (s.created)
       lines.push_back(fmt::format("  {:<20} {:>8.3f} ms  ran {}x", s.name, s.last_ms, s.runs));
+  return lines;
+}
 
+void draw_overlay(const OverlayInfo& info) {
+  const std::vector<std::string> lines = overlay_lines(info);
   ImDrawList* dl = ImGui::GetForegroundDrawList();
   const float scale = ImGui::GetIO().FontGlobalScale;
   const float line_h = ImGui::GetFontSize() + 2.0f * scale;

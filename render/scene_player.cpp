@@ -74,13 +74,14 @@ scene::UpdateReport ScenePlayer::update() {
 OverlayInfo ScenePlayer::overlay(double fps, double frame_ms) const {
   OverlayInfo o;
   const scene::ParamSet& p = scene_->params();
-  o.title = p.get_text("scene.title").empty() ? fmt::format("masav: {} scene", file_.type)
-                                              : p.get_text("scene.title");
+  o.title = scene_->title();
+  if (o.title.empty()) o.title = fmt::format("masav: {} scene", file_.type);
   o.backend = backend_->name();
   o.device = backend_->caps().device_name;
   if (!render_device_->shared()) o.render_device = render_device_->ctx().caps().device_name;
   o.frame = clock_.frame;
   o.time_s = clock_.time_s;
+  o.simulated_time_s = scene_->simulated_time_s();
   o.fps = fps;
   o.frame_ms = frame_ms;
   o.verify = verify_status_;

@@ -53,10 +53,11 @@ class ScenePlayer {
   // then the frame. `extra` carries readback and the window's blit and semaphores.
   void draw(FrameRequest extra, const std::function<void()>& build_ui = {}, double fps = 0,
             double frame_ms = 0);
+  // What the overlay shows now (fps and frame_ms as the window measured them).
+  OverlayInfo overlay(double fps = 0, double frame_ms = 0) const;
 
  private:
   void make_scene(scene::SceneFile file);
-  OverlayInfo overlay(double fps, double frame_ms) const;
 
   PlayerOptions options_;
   scene::SceneFile file_;

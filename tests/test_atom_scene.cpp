@@ -196,3 +196,19 @@ TEST_CASE("every atom scene file parses, and atom parameters are checked") {
   CHECK(e.find("m = -2") != std::string::npos);
   CHECK(s->params().get_int("atom.m") == 0);
 }
+
+TEST_CASE("atom scene title: the file's while its state is shown, the state's after a switch") {
+  cpu::CpuBackend cpu(1);
+  SceneFile f = load_scene_file(std::string(MASAV_SOURCE_DIR) + "/scenes/atom_state3.toml");
+  auto s = find_scene_type("atom").create(cpu, f.params);
+  CHECK(s->title() == "hydrogen state 3: n=2 l=1 m=0");
+  CHECK(s->set("atom.state", std::string("state8")));
+  CHECK(s->title() == "hydrogen state8: n=3 l=2 m=0 (complex)");
+  CHECK(s->set("atom.state", std::string("state3")));  // back to the file's state: its title
+  CHECK(s->title() == "hydrogen state 3: n=2 l=1 m=0");
+  CHECK(s->set("atom.state", std::string("custom")));
+  CHECK(s->set("atom.n", int64_t(4)));
+  CHECK(s->set("atom.l", int64_t(3)));
+  CHECK(s->title() == "hydrogen custom: n=4 l=3 m=0 (complex)");
+  CHECK_FALSE(s->simulated_time_s().has_value());  // the atom follows the frame clock
+}

@@ -4,6 +4,7 @@
 // initial cube sat above the box's middle. With MASAV_DEMO_SPH_SHOTS set, "demo sph screenshots"
 // inspects what `masav demo --script` wrote for the SPH scene under xvfb-run.
 #include <doctest/doctest.h>
+#include <fmt/format.h>
 
 #include <algorithm>
 #include <cstdlib>
@@ -144,4 +145,32 @@ TEST_CASE("demo sph screenshots" * doctest::skip(std::getenv("MASAV_DEMO_SPH_SHO
     }
   MESSAGE(differ << " pixels recoloured");
   CHECK(differ > 300);
+}
+
+TEST_CASE("the SPH overlay shows the simulated time, the frame clock labelled apart") {
+  scene::SceneFile file = scene::load_scene_file(MASAV_SOURCE_DIR "/scenes/sph_dambreak.toml");
+  file.params.set("sph.count", int64_t(600));
+  file.params.set("render.width", int64_t(160));
+  file.params.set("render.height", int64_t(120));
+  render::PlayerOptions po;
+  po.backend = "cpu";
+  po.graphics = render::graphics_options();
+  render::ScenePlayer player(file, po);
+  for (uint64_t i = 0; i <= 11; ++i) {
+    player.clock().frame = i;
+    player.clock().time_s = double(i) / file.params.get_real("run.fps");
+    player.update();
+  }
+  const SphSimulation* sim = sph::simulation_of(player.scene());
+  REQUIRE(sim != nullptr);
+  const std::vector<std::string> lines = render::overlay_lines(player.overlay());
+  REQUIRE(lines.size() > 1);
+  CHECK(lines[0] == "masav: SPH dam break");
+  const std::string want = fmt::format("frame 11  t = {:.4f} s simulated (frame clock {:.2f} s)",
+                                       sim->time(), player.clock().time_s);
+  CHECK(lines[1] == want);
+  CHECK(sim->time() < player.clock().time_s);
+  // The title follows a preset change.
+  player.scene().set("sph.preset", std::string("water"));
+  CHECK(render::overlay_lines(player.overlay())[0] == "masav: SPH water");
 }

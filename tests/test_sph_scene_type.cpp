@@ -115,6 +115,34 @@ TEST_CASE("the sph scene steps with the frame clock and reruns nothing for colou
   CHECK(sph::simulation_of(*s)->steps() == 3);
 }
 
+TEST_CASE("the sph scene reports its simulated time, not the frame clock, and titles its preset") {
+  cpu::CpuBackend cpu(2);
+  ParamSet p = small_sph(800);
+  p.set("scene.title", std::string("masav: SPH dam break"));
+  p.set("sph.preset", std::string("dambreak"));
+  auto s = find_scene_type("sph").create(cpu, p);
+  FrameClock clock;
+  CHECK(*s->simulated_time_s() == 0.0);
+  for (uint64_t f = 0; f <= 5; ++f) {
+    clock.frame = f;
+    clock.time_s = double(f) / 30.0;
+    s->update(clock);
+  }
+  const SphSimulation* sim = sph::simulation_of(*s);
+  REQUIRE(sim != nullptr);
+  CHECK(sim->steps() == 10);
+  REQUIRE(s->simulated_time_s().has_value());
+  CHECK(*s->simulated_time_s() == sim->time());
+  CHECK(*s->simulated_time_s() > 0);
+  // Two adaptive steps a frame cover far less than the frame clock's 1/30 s.
+  CHECK(*s->simulated_time_s() < clock.time_s);
+  CHECK(s->title() == "masav: SPH dam break");
+  s->set("sph.preset", std::string("water"));
+  CHECK(s->title() == "masav: SPH water");
+  s->set("sph.preset", std::string("dambreak"));
+  CHECK(s->title() == "masav: SPH dam break");
+}
+
 TEST_CASE("the sph scene maps its table onto the preset and rejects bad values by key") {
   cpu::CpuBackend cpu(1);
   ParamSet p = small_sph(500);

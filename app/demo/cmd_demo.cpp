@@ -71,6 +71,12 @@ class Demo {
       apply_requests();
       if (!frame()) continue;
       const auto now = std::chrono::steady_clock::now();
+      if (restart_timing_) {  // a new scene or backend: its frame rate starts from its own frames
+        restart_timing_ = false;
+        state_.fps = state_.frame_ms = 0;
+        last = now;
+        continue;
+      }
       state_.frame_ms = std::chrono::duration<double, std::milli>(now - last).count();
       state_.fps =
           state_.fps == 0 ? 1e3 / state_.frame_ms : 0.9 * state_.fps + 0.1 * 1e3 / state_.frame_ms;
@@ -127,6 +133,10 @@ class Demo {
 
   void apply_requests() {
     DemoRequests& r = state_.requests;
+    if (r.scene_file || r.backend || r.reset) {
+      restart_timing_ = true;
+      state_.fps = state_.frame_ms = 0;
+    }
     try {
       if (r.scene_file) {
         player_->load_scene(scene::load_scene_file(*r.scene_file));
@@ -262,7 +272,9 @@ class Demo {
     if (!screenshot_.empty()) {
       render::write_png(screenshot_, player_->renderer().width(), player_->renderer().height(),
                         player_->renderer().pixels());
-      fmt::print("demo: wrote {}\n", screenshot_);
+      // What the overlay showed on it: the title and the clock line (the tests read them).
+      const std::vector<std::string> shown = render::overlay_lines(player_->overlay());
+      fmt::print("demo: wrote {}: {} | {}\n", screenshot_, shown[0], shown[1]);
       screenshot_.clear();
     }
     return true;
@@ -279,6 +291,7 @@ class Demo {
   int window_w_ = 0, window_h_ = 0;  // the size render.width/height last asked for
   bool scripted_ = false;
   bool failed_ = false;
+  bool restart_timing_ = false;  // the next frame's time includes loading a scene: not counted
   std::string screenshot_;
 };
 

@@ -6,10 +6,12 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <optional>
 
 #include "app/demo/atom_controls.h"
 #include "app/demo/param_widgets.h"
 #include "app/demo/sph_panel.h"
+#include "engine/atom/orbital.h"
 #include "engine/core/error.h"
 #include "registry/scene_catalog.h"
 
@@ -29,12 +31,27 @@ void scene_shortcuts(render::ScenePlayer& player, DemoState& st) {
   if (player.file().type == "sph") sph_controls(player, st);
 }
 
+// A preset hydrogen state fixes n, l and m: the panel shows the preset's numbers, greyed, rather
+// than the custom state's, which the scene does not use then.
+std::optional<int64_t> preset_quantum_number(const scene::ParamSet& p, const std::string& path) {
+  if (!p.has_table("atom") || p.get_text("atom.state") == "custom") return std::nullopt;
+  const atom::OrbitalState s = atom::preset_state(p.get_text("atom.state"));
+  if (path == "atom.n") return s.n;
+  if (path == "atom.l") return s.l;
+  if (path == "atom.m") return s.m;
+  return std::nullopt;
+}
+
 void table_controls(render::ScenePlayer& player, DemoState& st, const scene::TableSchema& t) {
   for (const scene::ParamSpec& spec : t.params()) {
     const std::string path = t.name() + "." + spec.key;
+    const std::optional<int64_t> fixed = preset_quantum_number(player.scene().params(), path);
+    const scene::ParamValue shown =
+        fixed ? scene::ParamValue(*fixed) : player.scene().params().get(path);
     scene::ParamValue next;
-    if (param_widget(spec, path, player.scene().params().get(path), next))
-      set_param(player, st, path, next);
+    ImGui::BeginDisabled(fixed.has_value());
+    if (param_widget(spec, path, shown, next) && !fixed) set_param(player, st, path, next);
+    ImGui::EndDisabled();
   }
 }
 
@@ -120,8 +137,9 @@ void draw_panel(render::ScenePlayer& player, DemoState& st) {
   if (ImGui::Button("Step")) st.step = true, st.paused = true;
   ImGui::SameLine();
   if (ImGui::Button("Reset")) st.requests.reset = true;
-  ImGui::SameLine();
-  ImGui::Text("t = %.2f s", player.clock().time_s);
+  ImGui::TextUnformatted(render::clock_line(player.clock().frame, player.clock().time_s,
+                                            player.scene().simulated_time_s())
+                             .c_str());
   {
     const scene::ParamSpec& fps = p.spec("run.fps");
     scene::ParamValue next;

@@ -7,6 +7,7 @@
 
 #include "engine/atom/atom_scene.h"
 #include "engine/atom/atom_schema.h"
+#include "engine/atom/orbital.h"
 #include "engine/atom/transfer_function.h"
 #include "engine/core/error.h"
 #include "engine/kernels/atom_checks.h"
@@ -34,6 +35,7 @@ class AtomCloudScene final : public scene::SceneInstance {
   AtomCloudScene(Backend& b, const ParamSet& p, bool volume)
       : SceneInstance(b, p), volume_(volume), core_(b, (validate(p), scene_options_of(p))) {
     synced_ = domain_version();
+    file_subject_ = subject();
     add_parameter_inputs();
     auto stage = [](auto fn) { return std::make_unique<scene::LambdaStage>(fn); };
     auto add = [&](const char* name, std::vector<std::string> in, std::function<void()> fn) {
@@ -89,6 +91,13 @@ class AtomCloudScene final : public scene::SceneInstance {
     return t;
   }
 
+  std::string title() const override {
+    const std::string& file_title = params_.get_text("scene.title");
+    if (!file_title.empty() && subject() == file_subject_) return file_title;
+    return fmt::format("hydrogen {}{}: {}", params_.get_text("atom.state"),
+                       volume_ ? " as a volume" : "", atom::describe(state_of(params_)));
+  }
+
   scene::SceneView view() const override {
     scene::SceneView v;
     v.box = box();
@@ -104,6 +113,7 @@ class AtomCloudScene final : public scene::SceneInstance {
       pl.scalar_hi = float(1.0 / std::max(double(light_to_unit_), 1e-30));
       pl.scalar_name =
           fmt::format("light at {:.0f}K lm", params_.get_real("nebula.power_lm") / 1e3);
+      pl.scalar_key = "light";
       pl.version = graph_.version("viewer");
       v.points = pl;
     }
@@ -150,6 +160,11 @@ class AtomCloudScene final : public scene::SceneInstance {
     if (synced_ == v) return;
     core_.reconfigure(scene_options_of(params_));
     synced_ = v;
+  }
+
+  // The state shown, as the overlay's title names it.
+  std::string subject() const {
+    return params_.get_text("atom.state") + " " + atom::describe(state_of(params_));
   }
 
   uint64_t domain_version() const {
@@ -227,6 +242,7 @@ class AtomCloudScene final : public scene::SceneInstance {
   bool volume_;
   AtomScene core_;
   uint64_t synced_ = 0;
+  std::string file_subject_;  // subject() as the scene was created
   double time_s_ = 0;
   float light_to_unit_ = 1;
   Buffer<Real4> tf_, bricks_, image_;

@@ -84,6 +84,7 @@ class ParticlesScene final : public scene::SceneInstance {
       const double mean = double(n()) * 4.18879 * r * r * r / vol;
       pl.scalar_hi = float(std::max(2.0, 2.0 * mean));
       pl.scalar_name = "neighbours within r";
+      pl.scalar_key = "neighbours";
       pl.version = graph_.version("neighbor_counts");
     } else {
       pl.positions = &positions_;
@@ -92,10 +93,12 @@ class ParticlesScene final : public scene::SceneInstance {
         pl.from = scene::PointLayer::ScalarFrom::position_w;
         pl.scalar_hi = float(params_.get_real("particles.drift_speed") * size * std::sqrt(3.0));
         pl.scalar_name = "speed";
+        pl.scalar_key = "speed";
       } else if (by == "height") {
         pl.from = scene::PointLayer::ScalarFrom::position_z;
         pl.scalar_hi = size;
         pl.scalar_name = "height z";
+        pl.scalar_key = "height";
       }
     }
     if (!pl.positions->valid()) pl.positions = nullptr;

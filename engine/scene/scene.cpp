@@ -9,6 +9,10 @@ namespace masav::scene {
 SceneInstance::SceneInstance(Backend& backend, ParamSet params)
     : backend_(backend), params_(std::move(params)) {}
 
+std::string SceneInstance::title() const {
+  return params_.get_text("scene.title");
+}
+
 void SceneInstance::add_parameter_inputs() {
   for (const TableSchema* t : params_.tables())
     for (const ParamSpec& p : t->params()) graph_.add_input(t->name() + "." + p.key);

@@ -46,6 +46,12 @@ class SceneInstance {
   virtual SceneView view() const = 0;
   // Stage names update() brings up to date with the current parameters.
   virtual std::vector<std::string> targets() const = 0;
+  // The time inside a stepped simulation (SPH), which is not the frame clock: a frame advances
+  // it by the steps it ran, each of an adaptive dt. None for scenes that follow the frame clock.
+  virtual std::optional<double> simulated_time_s() const { return std::nullopt; }
+  // The overlay's title: scene.title while the scene shows what its file set up; a title made
+  // from the parameters once one that names the subject (a state, a preset) has changed.
+  virtual std::string title() const;
 
  protected:
   // Called before update(): advance stepped state, touch "time" inputs, ...

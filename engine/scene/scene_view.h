@@ -27,6 +27,7 @@ struct PointLayer {
   const BufferImpl* scalar = nullptr;
   float scalar_lo = 0, scalar_hi = 1;  // colour-map range
   std::string scalar_name;             // for the legend, e.g. "neighbours within r"
+  std::string scalar_key;              // the quantity alone, for exported arrays: "speed"
   // Points whose position w is below this are drawn in grey whatever their scalar (the SPH
   // scene's obstacle particles, whose w is their inverse mass scale).
   std::optional<float> marker_below_w;

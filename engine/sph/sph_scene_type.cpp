@@ -23,6 +23,7 @@ class SphSceneInstance final : public scene::SceneInstance {
  public:
   SphSceneInstance(Backend& b, const ParamSet& p) : SceneInstance(b, p) {
     validate(params_);
+    file_preset_ = params_.get_text("sph.preset");
     graph_.add_input("frame");
     add_parameter_inputs();
     std::vector<std::string> restart_inputs;
@@ -36,6 +37,17 @@ class SphSceneInstance final : public scene::SceneInstance {
   }
 
   std::vector<std::string> targets() const override { return {"step"}; }
+
+  std::optional<double> simulated_time_s() const override {
+    if (!sim_) return 0.0;
+    return sim_->time();
+  }
+
+  std::string title() const override {
+    const std::string& file_title = params_.get_text("scene.title");
+    if (!file_title.empty() && params_.get_text("sph.preset") == file_preset_) return file_title;
+    return fmt::format("masav: SPH {}", params_.get_text("sph.preset"));
+  }
 
   scene::SceneView view() const override {
     scene::SceneView v;
@@ -58,17 +70,20 @@ class SphSceneInstance final : public scene::SceneInstance {
       pl.scalar = &sim_->velocities().impl();
       pl.scalar_hi = float(g > 0 ? std::sqrt(2.0 * g * height) : 1.0);
       pl.scalar_name = "speed (m/s)";
+      pl.scalar_key = "speed";
     } else if (by == "density") {
       pl.from = scene::PointLayer::ScalarFrom::buffer;
       pl.scalar = &sim_->density().impl();
       pl.scalar_lo = float(0.8 * s.rest_density);
       pl.scalar_hi = float(1.1 * s.rest_density);
       pl.scalar_name = "density (kg/m^3)";
+      pl.scalar_key = "density";
     } else if (by == "pressure") {
       pl.from = scene::PointLayer::ScalarFrom::buffer;
       pl.scalar = &sim_->pressure().impl();
       pl.scalar_hi = float(s.rest_density * std::max(g, 1.0) * height);
       pl.scalar_name = "pressure (Pa)";
+      pl.scalar_key = "pressure";
     }
     v.points = pl;
     return v;
@@ -115,6 +130,7 @@ class SphSceneInstance final : public scene::SceneInstance {
   }
 
   std::unique_ptr<SphSimulation> sim_;
+  std::string file_preset_;  // the preset the scene was created with (see title())
   bool step_due_ = false, seen_frame_ = false;
   uint64_t last_frame_ = 0;
 };
