@@ -59,6 +59,24 @@ Moved sort_points(Backend& b, uint32_t n, UVec3 dims, float cell, bool moving, u
           b.download(vs)};
 }
 
+// n points at one spot of a one-cell grid, with every array grid_rank_and_move moves.
+struct OneCell {
+  HashGrid g;
+  Buffer<Real4> x, xs, v, vs;
+  Buffer<uint32_t> id, ids_s;
+  OneCell(Backend& b, uint32_t n)
+      : g(make_hash_grid(b, make_grid_params({0, 0, 0}, 1.0f, {1, 1, 1}, n), n)),
+        x(b.create<Real4>(n, "x")),
+        xs(b.create<Real4>(n, "x sorted")),
+        v(b.create<Real4>(n, "v")),
+        vs(b.create<Real4>(n, "v sorted")),
+        id(b.create<uint32_t>(n, "ids")),
+        ids_s(b.create<uint32_t>(n, "ids sorted")) {
+    b.upload(x, std::vector<Vec4f>(n, Vec4f{0.5f, 0.5f, 0.5f, 1.0f}));
+  }
+  MovedArrays moved() { return {&xs, &v, &vs, &id, &ids_s}; }
+};
+
 bool same(const std::vector<Vec4d>& a, const std::vector<Vec4d>& b) {
   if (a.size() != b.size()) return false;
   for (size_t i = 0; i < a.size(); ++i)
@@ -100,16 +118,12 @@ TEST_CASE("grid_rank_and_move equals the rank pass and three gathers, bit for bi
 TEST_CASE("grid_rank_and_move's bad inputs fail with messages that name it") {
   Backend& b = test::backend();
   const uint32_t n = 64;
-  const GridParams gp = make_grid_params({0, 0, 0}, 1.0f, {1, 1, 1}, n);
-  HashGrid g = make_hash_grid(b, gp, n);
-  auto x = b.create<Real4>(n, "x"), xs = b.create<Real4>(n, "x sorted");
-  auto v = b.create<Real4>(n, "v"), vs = b.create<Real4>(n, "v sorted");
-  auto id = b.create<uint32_t>(n, "ids"), ids_s = b.create<uint32_t>(n, "ids sorted");
-  b.upload(x, std::vector<Vec4f>(n, Vec4f{0.5f, 0.5f, 0.5f, 1.0f}));
+  OneCell o(b, n);
+  auto& [g, x, xs, v, vs, id, ids_s] = o;
   // Every point in one cell, one more than the cap allows.
   CHECK_THROWS_WITH_AS(
       {
-        build_hash_grid_moving(b, g, x, n - 1, MovedArrays{&xs, &v, &vs, &id, &ids_s});
+        build_hash_grid_moving(b, g, x, n - 1, o.moved());
         b.finish();
       },
       doctest::Contains("grid_rank_and_move: cell 0 holds more than max_per_cell = 63"), Error);
@@ -123,7 +137,7 @@ TEST_CASE("grid_rank_and_move's bad inputs fail with messages that name it") {
       build_hash_grid_moving(b, g, x, n, MovedArrays{&xs, &short_v, &vs, &id, &ids_s}),
       doctest::Contains("n = 64"), Error);
   // After the errors the grid still builds.
-  build_hash_grid_moving(b, g, x, n, MovedArrays{&xs, &v, &vs, &id, &ids_s});
+  build_hash_grid_moving(b, g, x, n, o.moved());
   CHECK(b.download(g.cell_end)[0] == n);
 }
 
@@ -131,18 +145,12 @@ LOOP_LIMIT_CASE("grid_rank_and_move loops over its point's cell", KernelId::grid
   Backend& b = test::loop_counter();
   // The worst case: every point in one cell.
   const uint32_t n = 4000;
-  const GridParams gp = make_grid_params({0, 0, 0}, 1.0f, {1, 1, 1}, n);
-  HashGrid g = make_hash_grid(b, gp, n);
-  auto x = b.create<Real4>(n, "x"), xs = b.create<Real4>(n, "x sorted");
-  auto v = b.create<Real4>(n, "v"), vs = b.create<Real4>(n, "v sorted");
-  auto id = b.create<uint32_t>(n, "ids"), ids_s = b.create<uint32_t>(n, "ids sorted");
-  b.upload(x, std::vector<Vec4f>(n, Vec4f{0.5f, 0.5f, 0.5f, 0.0f}));
-  build_hash_grid_moving(b, g, x, n, MovedArrays{&xs, &v, &vs, &id, &ids_s});
+  OneCell o(b, n);
+  auto& [g, x, xs, v, vs, id, ids_s] = o;
+  build_hash_grid_moving(b, g, x, n, o.moved());
   CHECK(test::ticks_of(b) == n);
   // The validated maximum of max_per_cell keeps the worst invocation under the limit.
   CHECK(max_walk_candidates(b) + 1 < b.caps().max_loop_iterations);
-  CHECK_THROWS_AS(build_hash_grid_moving(b, g, x, max_walk_candidates(b) + 1,
-                                         MovedArrays{&xs, &v, &vs, &id, &ids_s}),
-                  Error);
+  CHECK_THROWS_AS(build_hash_grid_moving(b, g, x, max_walk_candidates(b) + 1, o.moved()), Error);
   CHECK(test::ticks_of(b) == 0);  // refused before any pass ran
 }

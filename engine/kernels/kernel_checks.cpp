@@ -219,30 +219,25 @@ void raise_diagnostics(const DeviceApi& dev, uint32_t flags, uint32_t detail, ui
                             detail),
                 "pass the counts grid_count_cells made of the same cells, and cell_end from "
                 "grid_cell_offsets of those counts");
-  if (flags & kDiagCellOverfull)
-    throw Error(dev.name(), "grid_rank_in_cell",
-                fmt::format("cell {} holds more than max_per_cell = {} points", detail, limit),
-                fmt::format("raise max_per_cell (the SPH scene's max_candidates; at most {}: a "
-                            "shader invocation runs at most {} loop iterations on {}), use "
-                            "smaller cells, or build the grid with the radix sort",
-                            max_walk_candidates(dev), dev.caps().max_loop_iterations,
-                            dev.caps().device_name));
+  // The rank pass's two failures, in either of its kernels.
+  auto rank_failure = [&](const char* kernel, bool overfull, const char* or_else) {
+    if (overfull)
+      throw Error(dev.name(), kernel,
+                  fmt::format("cell {} holds more than max_per_cell = {} points", detail, limit),
+                  fmt::format("raise max_per_cell (the SPH scene's max_candidates; at most {}: a "
+                              "shader invocation runs at most {} loop iterations on {}){}",
+                              max_walk_candidates(dev), dev.caps().max_loop_iterations,
+                              dev.caps().device_name, or_else));
+    throw Error(dev.name(), kernel,
+                fmt::format("slot {} lies outside the cell run of the point it holds", detail),
+                "pass unsorted from grid_scatter_cells with the same cells and cell ranges");
+  };
+  const char* radix = ", use smaller cells, or build the grid with the radix sort";
+  if (flags & kDiagCellOverfull) rank_failure("grid_rank_in_cell", true, radix);
+  if (flags & kDiagRankOutsideCell) rank_failure("grid_rank_in_cell", false, "");
   if (flags & kDiagMoveCellOverfull)
-    throw Error(dev.name(), "grid_rank_and_move",
-                fmt::format("cell {} holds more than max_per_cell = {} points", detail, limit),
-                fmt::format("raise max_per_cell (the SPH scene's max_candidates; at most {}: a "
-                            "shader invocation runs at most {} loop iterations on {}) or use "
-                            "smaller cells",
-                            max_walk_candidates(dev), dev.caps().max_loop_iterations,
-                            dev.caps().device_name));
-  if (flags & kDiagMoveOutsideCell)
-    throw Error(dev.name(), "grid_rank_and_move",
-                fmt::format("slot {} lies outside the cell run of the point it holds", detail),
-                "pass unsorted from grid_scatter_cells with the same cells and cell ranges");
-  if (flags & kDiagRankOutsideCell)
-    throw Error(dev.name(), "grid_rank_in_cell",
-                fmt::format("slot {} lies outside the cell run of the point it holds", detail),
-                "pass unsorted from grid_scatter_cells with the same cells and cell ranges");
+    rank_failure("grid_rank_and_move", true, " or use smaller cells");
+  if (flags & kDiagMoveOutsideCell) rank_failure("grid_rank_and_move", false, "");
 }
 
 }  // namespace masav

@@ -67,6 +67,26 @@ Buffer<uint32_t> uploaded(Backend& b, const std::vector<uint32_t>& words, const 
   return buf;
 }
 
+// The rank passes' inputs: a host scatter of cell_table(in), each cell's run reversed (the order
+// the pass must undo), uploaded, with outputs to fill.
+struct RankInputs {
+  CellTable table;
+  CellRankParams params;
+  Buffer<uint32_t> cells, unsorted, start, end, sorted_cells, sorted_index;
+  RankInputs(Backend& b, const CheckInputs& in) : table(cell_table(in)) {
+    std::vector<uint32_t> runs(in.points), next = table.end;
+    for (uint32_t i = 0; i < in.points; ++i) runs[--next[table.ids[i]]] = i;
+    const uint32_t most = *std::max_element(table.counts.begin(), table.counts.end());
+    params = {in.points, table.cell_count, std::max(most, 1u)};
+    cells = uploaded(b, table.ids, "check cells");
+    unsorted = uploaded(b, runs, "check unsorted");
+    start = uploaded(b, table.start, "check cell start");
+    end = uploaded(b, table.end, "check cell end");
+    sorted_cells = b.create<uint32_t>(in.points, "check sorted cells");
+    sorted_index = b.create<uint32_t>(in.points, "check sorted index");
+  }
+};
+
 }  // namespace
 
 std::vector<KernelCheck> foundation_checks() {
@@ -173,40 +193,24 @@ std::vector<KernelCheck> foundation_checks() {
   // The rank pass from a scatter made on the host, each cell's run reversed (the order the
   // pass must undo).
   c.push_back(exact_check(KernelId::grid_rank_in_cell, [](Backend& b, const CheckInputs& in) {
-    const CellTable t = cell_table(in);
-    std::vector<uint32_t> runs(in.points), next = t.end;
-    for (uint32_t i = 0; i < in.points; ++i) runs[--next[t.ids[i]]] = i;
-    auto cells = uploaded(b, t.ids, "check cells");
-    auto unsorted = uploaded(b, runs, "check unsorted");
-    auto start = uploaded(b, t.start, "check cell start");
-    auto end = uploaded(b, t.end, "check cell end");
-    auto sorted_cells = b.create<uint32_t>(in.points, "check sorted cells");
-    auto sorted_index = b.create<uint32_t>(in.points, "check sorted index");
-    const uint32_t most = *std::max_element(t.counts.begin(), t.counts.end());
-    b.grid_rank_in_cell({in.points, t.cell_count, std::max(most, 1u)}, cells, unsorted, start, end,
-                        sorted_cells, sorted_index);
-    return CheckOutputs{{"sorted cells", b.download(sorted_cells), {}},
-                        {"sorted index", b.download(sorted_index), {}}};
+    RankInputs r(b, in);
+    b.grid_rank_in_cell(r.params, r.cells, r.unsorted, r.start, r.end, r.sorted_cells,
+                        r.sorted_index);
+    return CheckOutputs{{"sorted cells", b.download(r.sorted_cells), {}},
+                        {"sorted index", b.download(r.sorted_index), {}}};
   }));
   // The same rank pass moving two 4-vectors and an id per point; the vectors hold integers
   // below 2^24, which every backend's precision stores exactly, so the moved data compare bit
   // for bit.
   c.push_back(exact_check(KernelId::grid_rank_and_move, [](Backend& b, const CheckInputs& in) {
-    const CellTable t = cell_table(in);
-    std::vector<uint32_t> runs(in.points), next = t.end, ids(in.points);
-    for (uint32_t i = 0; i < in.points; ++i) runs[--next[t.ids[i]]] = i;
+    RankInputs r(b, in);
+    std::vector<uint32_t> ids(in.points);
     std::vector<Vec4d> va(in.points), vb(in.points);
     for (uint32_t i = 0; i < in.points; ++i) {
-      va[i] = {double(i), double(2 * i + 1), double(t.ids[i] % 4096), 0.5};
+      va[i] = {double(i), double(2 * i + 1), double(r.table.ids[i] % 4096), 0.5};
       vb[i] = {-double(i), double(i % 977), 3.0, double(in.points - i)};
       ids[i] = i * 2654435761u;
     }
-    auto cells = uploaded(b, t.ids, "check cells");
-    auto unsorted = uploaded(b, runs, "check unsorted");
-    auto start = uploaded(b, t.start, "check cell start");
-    auto end = uploaded(b, t.end, "check cell end");
-    auto sorted_cells = b.create<uint32_t>(in.points, "check sorted cells");
-    auto sorted_index = b.create<uint32_t>(in.points, "check sorted index");
     auto a = b.create<Real4>(in.points, "check a");
     auto a_sorted = b.create<Real4>(in.points, "check a sorted");
     auto bb = b.create<Real4>(in.points, "check b");
@@ -215,17 +219,16 @@ std::vector<KernelCheck> foundation_checks() {
     auto id_sorted = b.create<uint32_t>(in.points, "check ids sorted");
     b.upload(a, va);
     b.upload(bb, vb);
-    const uint32_t most = *std::max_element(t.counts.begin(), t.counts.end());
-    b.grid_rank_and_move({in.points, t.cell_count, std::max(most, 1u)}, cells, unsorted, start, end,
-                         sorted_cells, sorted_index, a, a_sorted, bb, b_sorted, id_in, id_sorted);
+    b.grid_rank_and_move(r.params, r.cells, r.unsorted, r.start, r.end, r.sorted_cells,
+                         r.sorted_index, a, a_sorted, bb, b_sorted, id_in, id_sorted);
     auto words = [&](const Buffer<Real4>& v) {
       std::vector<uint32_t> w;
       for (const Vec4d& x : b.download(v))
         for (double e : {x.x, x.y, x.z, x.w}) w.push_back(uint32_t(int64_t(e * 2.0)));
       return w;
     };
-    return CheckOutputs{{"sorted cells", b.download(sorted_cells), {}},
-                        {"sorted index", b.download(sorted_index), {}},
+    return CheckOutputs{{"sorted cells", b.download(r.sorted_cells), {}},
+                        {"sorted index", b.download(r.sorted_index), {}},
                         {"a moved", words(a_sorted), {}},
                         {"b moved", words(b_sorted), {}},
                         {"ids moved", b.download(id_sorted), {}}};
