@@ -15,22 +15,12 @@
 #include "engine/atom/transfer_function.h"
 #include "engine/atom/volume_io.h"
 #include "engine/core/error.h"
+#include "tests/temp_dir.h"
 
 using namespace masav;
 using namespace masav::atom;
 
 namespace {
-
-struct TempDir {
-  std::filesystem::path path;
-  TempDir()
-      : path(std::filesystem::temp_directory_path() /
-             ("masav_atom_io_" + std::to_string(::getpid()))) {
-    std::filesystem::create_directories(path);
-  }
-  ~TempDir() { std::filesystem::remove_all(path); }
-  std::string file(const std::string& name) const { return (path / name).string(); }
-};
 
 void write_bytes(const std::string& path, const void* data, size_t n,
                  const std::string& head = "") {
@@ -50,7 +40,7 @@ std::vector<uint16_t> ramp16(UVec3 d) {
 }  // namespace
 
 TEST_CASE("raw volumes: dims and type given; a size that does not match the dims is an error") {
-  TempDir t;
+  test::TempDir t("masav_atom_io");
   const UVec3 d{4, 3, 2};
   const auto v = ramp16(d);
   write_bytes(t.file("a.raw"), v.data(), v.size() * 2);
@@ -78,7 +68,7 @@ TEST_CASE("raw volumes: dims and type given; a size that does not match the dims
 }
 
 TEST_CASE("NRRD volumes: attached and detached data, raw and ASCII; bad headers named") {
-  TempDir t;
+  test::TempDir t("masav_atom_io");
   const UVec3 d{4, 3, 2};
   const auto v = ramp16(d);
   const std::string head =
@@ -107,7 +97,7 @@ TEST_CASE("NRRD volumes: attached and detached data, raw and ASCII; bad headers 
 }
 
 TEST_CASE("VTI volumes: the .vti export reads back; a short array is an error") {
-  TempDir t;
+  test::TempDir t("masav_atom_io");
   const VolumeDesc d = make_volume_desc({5, 4, 3}, {-1, -2, -3}, {1, 2, 3});
   std::vector<double> values(60);
   for (size_t i = 0; i < values.size(); ++i) values[i] = 0.25 * double(i);

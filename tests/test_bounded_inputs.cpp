@@ -20,22 +20,12 @@
 #include "engine/util/cache_file.h"
 #include "engine/util/checked_size.h"
 #include "registry/scene_file.h"
+#include "tests/temp_dir.h"
 
 using namespace masav;
 using namespace masav::atom;
 
 namespace {
-
-struct TempDir {
-  std::filesystem::path path;
-  TempDir()
-      : path(std::filesystem::temp_directory_path() /
-             ("masav_bounded_" + std::to_string(::getpid()))) {
-    std::filesystem::create_directories(path);
-  }
-  ~TempDir() { std::filesystem::remove_all(path); }
-  std::string file(const std::string& name) const { return (path / name).string(); }
-};
 
 void write_text(const std::string& path, const std::string& text) {
   std::ofstream(path, std::ios::binary | std::ios::trunc) << text;
@@ -84,7 +74,7 @@ TEST_CASE("checked sizes: overflow and wrap-around are errors naming the field")
 }
 
 TEST_CASE("bounded files: endless devices, FIFOs and directories are refused without reading") {
-  TempDir t;
+  test::TempDir t("masav_bounded");
   for (const char* dev : {"/dev/zero", "/dev/urandom"}) {
     CHECK(error_of([&] { read_bounded_file(dev, "input"); }).find("character device") !=
           std::string::npos);
@@ -122,7 +112,7 @@ TEST_CASE("bounded files: endless devices, FIFOs and directories are refused wit
 }
 
 TEST_CASE("text inputs over 16 MiB are refused before they are read (a 1 GB scene file)") {
-  TempDir t;
+  test::TempDir t("masav_bounded");
   const std::string big = t.file("big.toml");
   write_text(big, "[particles]\ncount = 1000\n");
   std::filesystem::resize_file(big, uint64_t(1) << 30);  // sparse: costs no disk
@@ -134,7 +124,7 @@ TEST_CASE("text inputs over 16 MiB are refused before they are read (a 1 GB scen
 }
 
 TEST_CASE("NRRD: sizes that wrap, a missing sizes field, and unknown fields are named") {
-  TempDir t;
+  test::TempDir t("masav_bounded");
   write_text(t.file("d.raw"), ramp_bytes());
   write_text(t.file("ok.nhdr"), nhdr("d.raw"));
   CHECK(load_nrrd(t.file("ok.nhdr")).values[23] == 23.0f);
@@ -173,7 +163,7 @@ TEST_CASE("NRRD: sizes that wrap, a missing sizes field, and unknown fields are 
 }
 
 TEST_CASE("NRRD: line skip and byte skip are honoured") {
-  TempDir t;
+  test::TempDir t("masav_bounded");
   const std::string data = ramp_bytes();
   write_text(t.file("lines.raw"), "first line\nsecond\n" + data);
   write_text(t.file("lines.nhdr"), nhdr("lines.raw", "line skip: 2\n"));
@@ -205,7 +195,7 @@ TEST_CASE("NRRD: line skip and byte skip are honoured") {
 
 TEST_CASE(
     "NRRD: detached data on an endless device or a FIFO fail fast; huge sizes do not allocate") {
-  TempDir t;
+  test::TempDir t("masav_bounded");
   write_text(t.file("zero.nhdr"), nhdr("/dev/zero"));
   CHECK(error_of([&] {
           load_nrrd(t.file("zero.nhdr"));
@@ -228,7 +218,7 @@ TEST_CASE(
 }
 
 TEST_CASE("VTI: extents that wrap and malformed documents are errors, never a crash") {
-  TempDir t;
+  test::TempDir t("masav_bounded");
   const auto vti = [](const std::string& extent, const std::string& extra = "") {
     return "<?xml version=\"1.0\"?>\n<VTKFile type=\"ImageData\" version=\"1.0\">\n"
            "<ImageData WholeExtent=\"" +
@@ -260,7 +250,7 @@ TEST_CASE("VTI: extents that wrap and malformed documents are errors, never a cr
 }
 
 TEST_CASE("cache files: version, key and checksum checked; damage is detected, never used") {
-  TempDir t;
+  test::TempDir t("masav_bounded");
   const std::string path = t.file("c.bin");
   const CacheFileId id{"test-table", 3, "rows=4 g=0x1p-1"};
   std::string payload(1000, '\0');

@@ -16,6 +16,7 @@
 #include "engine/io/output_lock.h"
 #include "engine/io/staged_files.h"
 #include "engine/util/json_writer.h"
+#include "tests/temp_dir.h"
 
 using namespace masav;
 namespace fs = std::filesystem;
@@ -30,18 +31,6 @@ std::string slurp(const fs::path& p) {
 }
 
 // A fresh directory of this process, removed at the end of the test.
-struct TempDir {
-  fs::path path;
-  explicit TempDir(const std::string& name)
-      : path(fs::temp_directory_path() / (name + "_" + std::to_string(::getpid()))) {
-    fs::remove_all(path);
-    fs::create_directories(path);
-  }
-  ~TempDir() {
-    std::error_code ec;
-    fs::remove_all(path, ec);
-  }
-};
 
 size_t entries(const fs::path& dir) {
   size_t n = 0;
@@ -52,7 +41,7 @@ size_t entries(const fs::path& dir) {
 }  // namespace
 
 TEST_CASE("CSV stream: every row is in the file as soon as it is written") {
-  TempDir dir("masav_test_csv_stream");
+  test::TempDir dir("masav_test_csv_stream");
   const fs::path file = dir.path / "d.csv";
   CsvStream csv(file.string(), {"step", "energy"}, "--csv");
   CHECK(slurp(file) == "step,energy\n");  // the header before any row
@@ -73,7 +62,7 @@ TEST_CASE("CSV stream: a full disk fails at the header, naming the file and the 
 }
 
 TEST_CASE("CSV stream: a second writer of the same file is refused and leaves it intact") {
-  TempDir dir("masav_test_csv_twice");
+  test::TempDir dir("masav_test_csv_twice");
   const fs::path file = dir.path / "d.csv";
   CsvStream first(file.string(), {"a"}, "--csv");
   first.row({1});
@@ -83,7 +72,7 @@ TEST_CASE("CSV stream: a second writer of the same file is refused and leaves it
 }
 
 TEST_CASE("output lock: one holder at a time, released on exit, a dead holder's file taken over") {
-  TempDir dir("masav_test_lock");
+  test::TempDir dir("masav_test_lock");
   const fs::path lock_file = dir.path / OutputLock::kFileName;
   {
     OutputLock held(dir.path.string(), "--out");
@@ -126,7 +115,7 @@ TEST_CASE("output lock: one holder at a time, released on exit, a dead holder's 
 }
 
 TEST_CASE("staged files appear together on commit, and not at all on a failure") {
-  TempDir dir("masav_test_staged");
+  test::TempDir dir("masav_test_staged");
   write_file_atomic((dir.path / "a.txt").string(), "old a\n");
   write_file_atomic((dir.path / "b.txt").string(), "old b\n");
   {
