@@ -88,6 +88,12 @@ uint64_t SphSimulation::run_block(uint64_t k, double t_end) {
     }
     parts = uint64_t(want);
   }
+  // The adaptive dt only grows within a block (the limit is the block's start's), so only its
+  // first step can fall below dt_min.
+  if (!scene_.dt && std::min({limit, adaptive_dt_ * 1.25, scene_.dt_max}) < scene_.dt_min) {
+    step();  // stops with step()'s message
+    return 1;
+  }
   const HostState start = save_host_state();
   take_checkpoint();
   backend_.fill(stats_buf_, 0u);
@@ -103,18 +109,12 @@ uint64_t SphSimulation::run_block(uint64_t k, double t_end) {
       max_dt = dt;
     } else {
       const double dt = std::min({limit, adaptive_dt_ * 1.25, scene_.dt_max});
-      if (dt < scene_.dt_min) break;  // step() below says why
       record_step(dt);
       commit(dt);
       adaptive_dt_ = dt;
       max_dt = std::max(max_dt, dt);
     }
     ++steps_;
-  }
-  if (taken == 0) {
-    restore_host_state(start);
-    step();
-    return 1;
   }
   uint32_t w[kSphStatWords];
   const SphStepStats s = read_stats(w);  // the block's one wait
