@@ -3,7 +3,8 @@
 #extension GL_KHR_shader_subgroup_arithmetic : require
 #extension GL_KHR_shader_subgroup_shuffle : require
 // Density (poly6, thesis Eq. 4.4) and pressure of each sorted particle over the neighbours
-// within h in the 27 cells around cells[i], walked as 9 rows of 3 consecutive cells. The
+// within h in the 27 cells around cells[i], walked as 9 rows of 3 consecutive cells, and of
+// their wall images (sph_wall_mirrors) when the particle is within h of a wall. The
 // candidates per invocation are capped (max_candidates) and an overflow is reported, never
 // silently truncated. With neighbor_rows bound (p.neighbor_rows != 0), also records which
 // candidates of each row lie within h, for sph_forces (kSphRowMaskBits in
@@ -39,6 +40,8 @@ void main() {
     xi = positions[i].xyz;
     cc = sph_cell_coords(cells[i], p.dims);
   }
+  SphMirrors mirrors = sph_wall_mirrors(xi, p);
+  if (!live) mirrors.axes = 0u;
   const uvec3 dims = p.dims;
   uint spent = 0u;
   float sum = 0.0;
@@ -63,6 +66,8 @@ void main() {
             const bool in_row = j >= r.x && j < r.y;
             const bool near = in_row && r2 < p.h2;
             sum += in_row ? sph_density_term(r2, p) : 0.0;
+            if (near && mirrors.axes != 0u && j != i)
+              sum += sph_wall_image_density(xi, xj, mirrors, p);
             within += near ? 1u : 0u;
             bits = sph_mask_set(bits, j - r.x, near);
           }
@@ -70,10 +75,13 @@ void main() {
       } else {
         for (uint j = r.x; j < r.y; ++j) {
           LOOP_TICK();
-          const vec3 d = xi - positions[j].xyz;
+          const vec3 xj = positions[j].xyz;
+          const vec3 d = xi - xj;
           const float r2 = dot(d, d);
           const bool near = r2 < p.h2;
           sum += sph_density_term(r2, p);
+          if (near && mirrors.axes != 0u && j != i)
+            sum += sph_wall_image_density(xi, xj, mirrors, p);
           within += near ? 1u : 0u;
           bits = sph_mask_set(bits, j - r.x, near);
         }
@@ -87,11 +95,8 @@ void main() {
     }
   }
   if (live) {
-    float rho = p.density * sum;
-    if (p.walls != 0u) {
-      vec3 unused;
-      rho += p.rest_density * sph_wall_density(xi, p, unused);
-    }
+    const float rho =
+        p.density * sum + (mirrors.axes != 0u ? sph_own_image_density(xi, mirrors, p) : 0.0);
     const float pr = sph_pressure_of(rho, p);
     density[i] = rho;
     pressure[i] = pr;

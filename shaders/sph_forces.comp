@@ -4,7 +4,8 @@
 #extension GL_KHR_shader_subgroup_shuffle : require
 // Acceleration of each sorted particle: pressure (spiky gradient) and viscosity (its laplacian)
 // per the pressure model, times the inverse mass (positions' w), plus gravity. One invocation
-// per particle, no atomics in the neighbour loop. Neighbours are walked cooperatively
+// per particle, no atomics in the neighbour loop; box walls through the neighbours' mirror
+// images (sph_wall_mirrors). Neighbours are walked cooperatively
 // (sph_coop.glsl) with p / rho^2 computed once per loaded candidate or, with neighbor_rows
 // bound (p.neighbor_rows != 0), per lane over only the candidates sph_density found within h.
 // The masked walk sums in ascending order within a row, the cooperative one in an order rotated
@@ -35,6 +36,7 @@ struct Me {
   uint i;
   vec3 x, v;
   float rho, p_rho2;
+  SphMirrors mirrors;  // no axes: no wall within h
 };
 
 // What the walk sums.
@@ -44,16 +46,21 @@ struct Sum {
   bool overflow;
 };
 
-// Candidate j's pair term, if it is another particle within h (the per-lane test).
+// Candidate j's pair term, if it is another particle within h (the per-lane test), and the
+// terms of its wall images (also of the particle's own).
 void add_candidate(Me me, uint j, inout Sum s) {
-  if (j == me.i) return;
-  const vec3 d = me.x - positions[j].xyz;
+  const vec3 xj = positions[j].xyz;
+  const vec3 d = me.x - xj;
   const float r2 = dot(d, d);
   if (!(r2 < p.h2)) return;
-  ++s.neighbors;
   const float rho_j = density[j];
-  s.acc += sph_pair_accel(me.v, me.rho, me.p_rho2, velocities[j].xyz, rho_j,
-                          pressure[j] / (rho_j * rho_j), d, r2, p);
+  const float q_j = pressure[j] / (rho_j * rho_j);
+  const vec3 vj = velocities[j].xyz;
+  if (me.mirrors.axes != 0u)
+    s.acc += sph_wall_image_accel(me.x, me.v, me.rho, me.p_rho2, xj, vj, rho_j, q_j, me.mirrors, p);
+  if (j == me.i) return;
+  ++s.neighbors;
+  s.acc += sph_pair_accel(me.v, me.rho, me.p_rho2, vj, rho_j, q_j, d, r2, p);
 }
 
 // Every lane runs the row loops (the cooperative rows need the whole subgroup); dead lanes have
@@ -90,7 +97,11 @@ void walk_cooperative(bool live, ivec3 cc, Me me, inout Sum s) {
             const uint j = base + ((sph_coop_lane() + k) & (kSphCoop - 1u));
             const vec3 d = me.x - xj;
             const float r2 = dot(d, d);
-            if (j >= r.x && j < r.y && j != me.i && r2 < p.h2) {
+            const bool near = j >= r.x && j < r.y && r2 < p.h2;
+            if (near && me.mirrors.axes != 0u)
+              s.acc += sph_wall_image_accel(me.x, me.v, me.rho, me.p_rho2, xj, vj, rho_j, q_j,
+                                            me.mirrors, p);
+            if (near && j != me.i) {
               ++s.neighbors;
               s.acc += sph_pair_accel(me.v, me.rho, me.p_rho2, vj, rho_j, q_j, d, r2, p);
             }
@@ -147,7 +158,7 @@ void main() {
   float accel2 = 0.0;
   bool bad = false;
   vec4 pw = vec4(0.0);
-  Me me = Me(i, vec3(0.0), vec3(0.0), 1.0, 0.0);
+  Me me = Me(i, vec3(0.0), vec3(0.0), 1.0, 0.0, SphMirrors(vec3(0.0), 0u));
   ivec3 cc = ivec3(-4);
   if (live) {
     pw = positions[i];
@@ -156,6 +167,7 @@ void main() {
     me.rho = density[i];
     me.p_rho2 = pressure[i] / (me.rho * me.rho);
     cc = sph_cell_coords(cells[i], p.dims);
+    me.mirrors = sph_wall_mirrors(me.x, p);
   }
   Sum s = Sum(vec3(0.0), 0u, 0u, false);
   if (p.neighbor_rows != 0u) {
@@ -164,15 +176,7 @@ void main() {
     walk_cooperative(live, cc, me, s);
   }
   if (live) {
-    vec3 acc = s.acc;
-    if (p.walls != 0u) {
-      vec3 n;
-      sph_wall_density(me.x, p, n);
-      const float damp = p.wall_viscosity * (2.0 * p.rest_density / (me.rho + p.rest_density)) *
-                         sph_wall_viscous_weight(me.x, p);
-      acc += (2.0 * me.p_rho2 * p.rest_density * p.inv_h) * n - damp * me.v;
-    }
-    const vec3 a = sph_total_accel(acc, pw.w, p);
+    const vec3 a = sph_total_accel(s.acc, pw.w, p);
     accel[i] = vec4(a, float(s.neighbors));
     bad = !sph_finite(a);
     if (!bad && pw.w > 0.0) accel2 = dot(a, a);

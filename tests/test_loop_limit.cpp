@@ -302,7 +302,7 @@ LOOP_LIMIT_CASE("sph kernels: loop ticks = rows + cells + candidates, capped bel
   p.h = h;
   p.mass = lattice_mass(1000.0, 0.025, h);
   p.max_candidates = n;
-  p.walls = true;  // the wall loops tick too: 6 walls, then 6 x (1 + 6) for their gradient
+  p.walls = true;  // wall images on every particle (the box is one support radius wide)
   p.box_min = {0, 0, 0};
   p.box_max = {h, h, h};
   auto pos = b.create<Real4>(n, "pos");
@@ -322,28 +322,27 @@ LOOP_LIMIT_CASE("sph kernels: loop ticks = rows + cells + candidates, capped bel
   sph_density(b, p, {&pos, view, &rho, &pr, &stats});
   // x loop 3 + y loop 9 + the cooperative walk's row unions (3 butterflies of log2(C) steps for
   // each of the 9 rows, C the smallest subgroup) + 1 cell in the row + n candidates (walked per
-  // lane: walking n together would cost n / C more than the extra budget allows) + 48 walls.
-  const uint32_t walls = 6 + 6 * 7;
+  // lane: walking n together would cost n / C more than the extra budget allows). The wall
+  // images are spelled out per neighbour, not looped over: they add no tick.
   const uint32_t unions = 9 * 3 * uint32_t(std::countr_zero(b.caps().min_subgroup_size));
-  CHECK(test::ticks_of(b) == 3 + 9 + unions + 1 + n + walls);
+  CHECK(test::ticks_of(b) == 3 + 9 + unions + 1 + n);
   sph_forces(b, p, {&pos, &vel, &rho, &pr, view, &acc, &stats});
-  CHECK(test::ticks_of(b) == 3 + 9 + unions + 1 + n + walls + 6);  // + the no-slip weight
+  CHECK(test::ticks_of(b) == 3 + 9 + unions + 1 + n);
   // The worst any SPH kernel can do: 3 + 9 row loops, 27 cells, the unions at subgroups of 64,
   // the cooperative walk's extra budget (260, shaders/common/sph_coop.glsl), the validated
-  // maximum of candidates (65000) and the walls' 48 stay under lavapipe's limit; one more
-  // candidate is refused.
-  CHECK(3 + 9 + 27 + 9 * 3 * 6 + 260 + 65000 + walls + 6 <
+  // maximum of candidates (65000) stay under lavapipe's limit; one more candidate is refused.
+  CHECK(3 + 9 + 27 + 9 * 3 * 6 + 260 + 65000 <
         test::loop_counter().caps().max_loop_iterations);
 
   // Over neighbour row masks: recording them adds no loop to sph_density; sph_forces walks per
   // lane (no row unions) a row too long for its mask whole, so the crowded row costs what it
   // did, and a row that fits one pass per neighbour (at most its candidates). Its worst case,
-  // 3 + 9 + 27 + 65000 + walls + 6, is then below the cooperative walk's bound above.
+  // 3 + 9 + 27 + 65000, is then below the cooperative walk's bound above.
   auto rows = b.create<uint32_t>(size_t(kSphRowMaskWords) * n, "rows");
   sph_density(b, p, {&pos, view, &rho, &pr, &stats, &rows});
-  CHECK(test::ticks_of(b) == 3 + 9 + unions + 1 + n + walls);
+  CHECK(test::ticks_of(b) == 3 + 9 + unions + 1 + n);
   sph_forces(b, p, {&pos, &vel, &rho, &pr, view, &acc, &stats, &rows});
-  CHECK(test::ticks_of(b) == 3 + 9 + 1 + n + walls + 6);
+  CHECK(test::ticks_of(b) == 3 + 9 + 1 + n);
   const uint32_t few = 50;  // one row that fits a mask
   SphStepParams q = p;
   q.grid.n = q.n = q.max_candidates = few;
@@ -364,7 +363,7 @@ LOOP_LIMIT_CASE("sph kernels: loop ticks = rows + cells + candidates, capped bel
   }
   CHECK(most > 1);
   CHECK(most <= few);
-  CHECK(test::ticks_of(b) == 3 + 9 + 1 + most + walls + 6);
+  CHECK(test::ticks_of(b) == 3 + 9 + 1 + most);
 
   p.max_candidates = 65001;
   CHECK_THROWS_AS(sph_density(b, p, {&pos, view, &rho, &pr, &stats}), Error);

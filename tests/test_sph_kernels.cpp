@@ -40,24 +40,44 @@ TEST_CASE("sph_density equals the CPU reference and a brute-force poly6 sum") {
     INFO("pressure: " << describe(e_p));
     CHECK(e_p.rel_l2 < 1e-4);
 
-    // Brute force over all pairs in double, at the fp32 positions both backends hold.
+    // Brute force over all pairs in double, at the fp32 positions both backends hold, with the
+    // walls as images: every particle reflected across each combination of the walls within h
+    // of particle i (the nearer wall of each axis); i's own images use the spiky kernel.
     const auto sp = r.download_f32(sr.sorted_pos);
-    const double h2 = c.params.h * c.params.h;
+    const double h = c.params.h, h2 = h * h;
     const auto coef = device_params<double>(c.params);
+    const Vec3d lo = c.params.box_min, hi = c.params.box_max;
     double worst = 0;
     for (size_t i = 0; i < sp.size(); i += 7) {
-      double sum = 0;
-      for (size_t j = 0; j < sp.size(); ++j) {
-        const double dx = double(sp[i].x) - sp[j].x, dy = double(sp[i].y) - sp[j].y,
-                     dz = double(sp[i].z) - sp[j].z;
-        const double r2 = dx * dx + dy * dy + dz * dz;
-        if (r2 < h2) sum += std::pow(1.0 - r2 / h2, 3);
+      const double xi[3] = {sp[i].x, sp[i].y, sp[i].z};
+      const double lo3[3] = {lo.x, lo.y, lo.z}, hi3[3] = {hi.x, hi.y, hi.z};
+      double plane[3];
+      bool near[3];
+      for (int a = 0; a < 3; ++a) {
+        const bool low = xi[a] - lo3[a] <= hi3[a] - xi[a];
+        plane[a] = low ? lo3[a] : hi3[a];
+        near[a] = coef.walls && std::abs(xi[a] - plane[a]) < h;
       }
-      const Vec4f& x = sp[i];
-      const double wall = coef.walls ? 1000.0 * sph::wall_density(sph::V3<double>{x.x, x.y, x.z},
-                                                                  coef, (sph::V3<double>*)nullptr)
-                                     : 0.0;
-      worst = std::max(worst, std::abs(coef.density * sum + wall - rho_ref[i]) / rho_ref[i]);
+      double sum = 0, own = 0;  // poly6 terms; the own images' spiky / kappa terms (kg/m^3)
+      for (size_t j = 0; j < sp.size(); ++j) {
+        const double xj[3] = {sp[j].x, sp[j].y, sp[j].z};
+        for (int mirror = 0; mirror < 8; ++mirror) {
+          double r2 = 0;
+          bool usable = true;
+          for (int a = 0; a < 3; ++a) {
+            const bool flip = mirror >> a & 1;
+            usable = usable && (!flip || near[a]);
+            const double d = xi[a] - (flip ? 2.0 * plane[a] - xj[a] : xj[a]);
+            r2 += d * d;
+          }
+          if (!usable || !(r2 < h2)) continue;
+          if (j == i && mirror != 0)
+            own += coef.pressure * h / 3.0 * std::pow(1.0 - std::sqrt(r2) / h, 3);
+          else
+            sum += std::pow(1.0 - r2 / h2, 3);
+        }
+      }
+      worst = std::max(worst, std::abs(coef.density * sum + own - rho_ref[i]) / rho_ref[i]);
     }
     CHECK(worst < 1e-12);
     // A particle deep inside the jittered lattice sits near rest density.

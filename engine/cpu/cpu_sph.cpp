@@ -59,6 +59,20 @@ void store3(double* a, size_t i, V v, double w) {
   a[4 * i + 2] = v.z;
   a[4 * i + 3] = w;
 }
+
+// The density the wall images (sph::WallMirrors) of particle i and of its `count` neighbours
+// `list` add at i.
+double wall_images_density(const SphStepLayout<double>& c, const double* pos, uint32_t i,
+                           const uint32_t* list, uint32_t count) {
+  if (!c.walls) return 0.0;
+  const V xi = load3(pos, i);
+  const auto mirrors = sph::wall_mirrors(xi, c);
+  if (!mirrors.axes) return 0.0;
+  double sum = 0.0;
+  for (uint32_t n = 0; n < count; ++n)
+    sum += sph::wall_image_density(xi, load3(pos, list[n]), mirrors, c);
+  return c.density * sum + sph::own_image_density(xi, mirrors, c);
+}
 bool finite3(V v) {
   return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
 }
@@ -170,9 +184,8 @@ void CpuBackend::run_own(const KernelArgs<KernelId::sph_density>& a) {
   // then its neighbours; candidates beyond h add exactly nothing there.
   build_sph_lists(in, chunks, [&](size_t chunk, uint32_t i, uint32_t count, const double* r2) {
     ChunkStats& s = st[chunk];
-    rho[i] = c.density * (1.0 + density_sum(r2, count, c.inv_h2));
-    if (c.walls)
-      rho[i] += c.rest_density * sph::wall_density(load3(in.positions, i), c, (V*)nullptr);
+    rho[i] = c.density * (1.0 + density_sum(r2, count, c.inv_h2)) +
+             wall_images_density(c, in.positions, i, sph_lists_.list(chunk, i), count);
     pr[i] = sph::pressure_of(rho[i], c);
     s.max_candidates = std::max(s.max_candidates, sph_lists_.candidates(i));
     s.max_neighbors = std::max(s.max_neighbors, count + 1);
@@ -228,7 +241,13 @@ void CpuBackend::run_own(const KernelArgs<KernelId::sph_forces>& a) {
         const V d = me.x - load3(pos, j);
         acc = acc + sph::pair_accel(me, fetch(j), d, sph::dot(d, d), c);
       }
-      if (c.walls) acc = acc + sph::wall_accel(me, c);
+      // The wall images of the particle itself and of its neighbours (sph::WallMirrors).
+      const auto mirrors = c.walls ? sph::wall_mirrors(me.x, c) : sph::WallMirrors<double>{};
+      if (mirrors.axes) {
+        acc = acc + sph::wall_image_accel(me, me, mirrors, c);
+        for (uint32_t n = 0; n < count; ++n)
+          acc = acc + sph::wall_image_accel(me, fetch(list[n]), mirrors, c);
+      }
       const double inv_mass = pos[4 * i + 3];
       const V a = sph::total_accel(acc, inv_mass, c);
       store3(acc_out, i, a, double(count));

@@ -51,7 +51,6 @@ void check_sph_step(const DeviceApi& dev, const SphStepParams& p, const char* ke
   finite_positive(kernel, "mass", p.mass, false);
   finite_positive(kernel, "rest_density", p.rest_density, false);
   finite_positive(kernel, "gradient_correction", p.gradient_correction, false);
-  finite_positive(kernel, "wall_offset", p.wall_offset, true);
   finite_positive(kernel, "viscosity", p.viscosity, true);
   if (p.model == SphPressureModel::wcsph)
     finite_positive(kernel, "sound_speed", p.sound_speed, false);

@@ -60,7 +60,7 @@ MASAV_REAL_LAYOUT(SphStepLayout) {
   uint max_candidates;  // examined per particle; beyond it the kernel reports an overflow
   MASAV_ENUM(SphPressureModel) model;
   uint clamp_negative_pressure;
-  uint walls;  // semi-analytic box walls (wcsph only)
+  uint walls;  // box walls as mirror images (wcsph only; sph::WallMirrors)
   real_t h2;
   real_t inv_h;
   real_t inv_h2;
@@ -72,9 +72,7 @@ MASAV_REAL_LAYOUT(SphStepLayout) {
   real_t eos;  // wcsph: Tait B = rho0 c0^2 / 7 (Pa); thesis: c^2 of the reported pressure
   real_t gravity[3];
   real_t lo[3];
-  real_t wall_viscosity;  // nu * 7.5 / h^2: no-slip walls (see sph::wall_accel)
   real_t hi[3];
-  real_t wall_offset;  // m: the continuum starts this far behind each wall
   // 1 when the call passes neighbor_rows: a shader cannot tell a missing optional buffer from
   // the one Vulkan binds in its place (C++ and CUDA test the pointer instead).
   uint neighbor_rows;
@@ -103,14 +101,13 @@ MASAV_NAMESPACE_END
 
 namespace masav {
 
-// 128 bytes: the most push constants every Vulkan device takes (vk_kernels.cpp asserts it). In
-// two checks: one takes at most 20 fields (engine/core/pp.h).
-MASAV_LAYOUT_CHECK(SphStepLayout<float>, 128, (dims, 0), (n, 12), (max_candidates, 16), (model, 20),
+// At most 128 bytes: the most push constants every Vulkan device takes (vk_kernels.cpp asserts
+// it). One check takes at most 20 fields (engine/core/pp.h).
+MASAV_LAYOUT_CHECK(SphStepLayout<float>, 112, (dims, 0), (n, 12), (max_candidates, 16), (model, 20),
                    (clamp_negative_pressure, 24), (walls, 28), (h2, 32), (inv_h, 36), (inv_h2, 40),
                    (density, 44), (pressure, 48), (viscosity, 52), (rest_density, 56),
-                   (inv_rest_density, 60), (eos, 64), (gravity, 68), (lo, 80), (wall_viscosity, 92),
-                   (hi, 96), (wall_offset, 108))
-MASAV_LAYOUT_CHECK(SphStepLayout<float>, 128, (neighbor_rows, 112))
+                   (inv_rest_density, 60), (eos, 64), (gravity, 68), (lo, 80), (hi, 92),
+                   (neighbor_rows, 104))
 MASAV_LAYOUT_CHECK(SphIntegrateLayout<float>, 48, (op, 0), (walls, 4), (n, 8), (dt, 12), (lo, 16),
                    (restitution, 28), (hi, 32), (tangential_damping, 44))
 
@@ -134,13 +131,10 @@ struct SphStepParams {
   double kp = 0.0;                 // thesis pressure constant (m^4 kg^-1 s^-2)
   double viscosity = 0.0;          // nu (m^2/s)
   Vec3d gravity{0.0, -9.81, 0.0};  // m/s^2
-  // Box walls as a continuum of fluid beyond them (wcsph only): adds their density and pressure
-  // force to particles within h of a wall (see engine/kernels/sph_kernels.h, wall_density).
+  // Box walls as mirror images of the fluid near them (wcsph only): their density, pressure and
+  // no-slip viscous terms (see engine/kernels/sph_kernels.h, WallMirrors).
   bool walls = false;
   Vec3d box_min, box_max{1, 1, 1};
-  // m: the wall continuum starts this far behind each wall, so that the first lattice layer
-  // (dx/2 from the wall) has exactly rest density; see wall_offset_for_lattice.
-  double wall_offset = 0.0;
 };
 
 // The sorted hash grid the SPH kernels walk.
@@ -253,8 +247,6 @@ SphStepLayout<F> device_params(const SphStepParams& p, const Buffers&... buffers
     c.lo[a] = F(lo[a]);
     c.hi[a] = F(hi[a]);
   }
-  c.wall_viscosity = F(p.viscosity * 7.5 / (h * h));
-  c.wall_offset = F(p.wall_offset);
   c.neighbor_rows = passes_neighbor_rows(buffers...) ? 1u : 0u;
   return c;
 }

@@ -56,57 +56,54 @@ MASAV_HD inline T pressure_of(T rho, const SphStepLayout<T>& c) {
   return p;
 }
 
-// Semi-analytic box walls (wcsph): the fluid beyond each wall is a continuum at rest density, so
-// a particle at distance d = q h < h from a wall gets the density that continuum adds,
-// rho0 int_{z > d} W_poly6 = rho0 (1/2 - 315/256 F(q)), F(q) = int_0^q (1 - u^2)^4 du, and the
-// symmetric pressure force of that continuum (mirror particles at i's own pressure),
-// -2 p_i / rho_i^2 grad rho_wall = 2 p_i / rho_i^2 rho0 315/256 (1 - q^2)^4 / h along the
-// inward normal. Without them, particles near a wall miss up to half their neighbours, sink
-// into it and pile up (Kulasegaram et al. 2004; Ferrand et al. 2013). The factor 2 (i's pressure
-// on both sides of the pair) is what holds a fluid at rest against the wall; the energy-
-// conserving factor would be 1, so motion to and from walls is not exactly energy-neutral.
+// Box walls as mirror images (wcsph): the fluid near a wall continues beyond it as its own
+// reflection. Particle i sees, besides its neighbours j, the images of every j (itself
+// included) across each wall within h of it, and across their combinations at edges and
+// corners: up to 7 images, one reflection per axis (the nearer wall of an axis; a box at least
+// 2h wide never has both within h). An image carries its particle's density and p / rho^2 and
+// the opposite velocity (no-slip: the wall is at rest halfway between). The image terms are the
+// pair terms themselves, so particle i and j's image contribute exactly what j and i's image
+// would: the walls add density and pressure forces that derive from the same internal energy
+// as the fluid's (no energy enters through a wall), hold a lattice at rest against a wall and in
+// a corner as the interior holds it, and the no-slip viscosity only dissipates
+// (sum over a pair: -|v_i + v_j|^2). A lattice dx/2 from a wall continues into its images with
+// the same spacing, so its first layer has the interior's density.
 template <class T>
-MASAV_HD inline T wall_density_fraction(T q) {
-  const T q2 = q * q;
-  const T f = q * (T(1) + q2 * (T(-4.0 / 3.0) +
-                                q2 * (T(6.0 / 5.0) + q2 * (T(-4.0 / 7.0) + q2 * T(1.0 / 9.0)))));
-  return T(0.5) - T(315.0 / 256.0) * f;
-}
+struct WallMirrors {
+  T plane[3];     // axis a reflects x_a to 2 plane[a] - x_a
+  uint32_t axes;  // bit a set: a wall within h on axis a
+};
+
 template <class T>
-MASAV_HD inline T wall_density_slope(T q) {  // -d(fraction)/dq
-  const T u = T(1) - q * q;
-  return T(315.0 / 256.0) * (u * u) * (u * u);
+MASAV_HD inline WallMirrors<T> wall_mirrors(V3<T> x, const SphStepLayout<T>& c) {
+  const T xs[3] = {x.x, x.y, x.z};
+  WallMirrors<T> m{{T(0), T(0), T(0)}, 0u};
+  for (int a = 0; a < 3; ++a) {
+    const T to_lo = xs[a] - c.lo[a], to_hi = c.hi[a] - xs[a];
+    const bool lo = to_lo <= to_hi;
+    const T d = lo ? to_lo : to_hi;
+    m.plane[a] = lo ? c.lo[a] : c.hi[a];
+    if (d * d < c.h2 || d < T(0)) m.axes |= 1u << a;
+  }
+  return m;
 }
 
-// The walls' density fraction at x and its gradient along the inward normals (the direction the
-// walls push). Several walls near an edge or a corner overlap: the fluid beyond at least one of
-// them is 1 - prod_k (1 - f_k) (exact for a separable kernel; 7/8 in a corner, where a plain
-// sum would count 3/2 and blow the corner apart).
-template <class T>
-MASAV_HD inline T wall_density(V3<T> x, const SphStepLayout<T>& c, V3<T>* push) {
-  const T xs[3] = {x.x, x.y, x.z};
-  T f[6], slope[6];
-  T keep = T(1);  // prod_k (1 - f_k)
-  for (int k = 0; k < 6; ++k) {
-    const int a = k >> 1;
-    const T d = (k & 1) ? c.hi[a] - xs[a] : xs[a] - c.lo[a];
-    const T q = ((d > T(0) ? d : T(0)) + c.wall_offset) * c.inv_h;
-    f[k] = q < T(1) ? wall_density_fraction(q) : T(0);
-    slope[k] = q < T(1) ? wall_density_slope(q) : T(0);
-    keep *= T(1) - f[k];
+// Calls f(d, r2) for each image of x_j within h of x_i, d = x_i - image.
+template <class T, class F>
+MASAV_HD inline void for_each_wall_image(V3<T> xi, V3<T> xj, const WallMirrors<T>& m, T h2,
+                                         F&& f) {
+  const T direct[3] = {xi.x - xj.x, xi.y - xj.y, xi.z - xj.z};
+  // Each distance to the plane first: near a wall both are small and exact in fp32.
+  const T mirrored[3] = {(xi.x - m.plane[0]) + (xj.x - m.plane[0]),
+                         (xi.y - m.plane[1]) + (xj.y - m.plane[1]),
+                         (xi.z - m.plane[2]) + (xj.z - m.plane[2])};
+  for (uint32_t s = 1; s < 8u; ++s) {
+    if (s & ~m.axes) continue;
+    const V3<T> d{(s & 1u) ? mirrored[0] : direct[0], (s & 2u) ? mirrored[1] : direct[1],
+                  (s & 4u) ? mirrored[2] : direct[2]};
+    const T r2 = dot(d, d);
+    if (r2 < h2) f(d, r2);
   }
-  if (push) {
-    T g[3] = {T(0), T(0), T(0)};
-    for (int k = 0; k < 6; ++k) {
-      // d(1 - keep)/dq_k = slope_k prod_{j != k} (1 - f_j); lo walls push +, hi walls push -.
-      T others = T(1);
-      for (int m = 0; m < 6; ++m)
-        if (m != k) others *= T(1) - f[m];
-      g[k >> 1] += ((k & 1) ? -slope[k] : slope[k]) * others;
-    }
-    *push = V3<T>{g[0], g[1], g[2]};
-  }
-  return T(1) - keep;
 }
 
 // Cell coordinates of a cell id (thesis Eq. 4.2 inverted).
@@ -223,6 +220,32 @@ MASAV_HD inline T density_term(T r2, const SphStepLayout<T>& c) {
   return u * u * u;
 }
 
+// The density term sum of j's wall images (see WallMirrors) at x_i.
+template <class T>
+MASAV_HD inline T wall_image_density(V3<T> xi, V3<T> xj, const WallMirrors<T>& m,
+                                     const SphStepLayout<T>& c) {
+  T sum = T(0);
+  for_each_wall_image(xi, xj, m, c.h2, [&](V3<T>, T r2) { sum += density_term(r2, c); });
+  return sum;
+}
+
+// The density the particle's own images add. Their term is the spiky kernel's, scaled like the
+// pressure force (c.pressure / 3 per unit h: 15 / (pi h^3) (1 - q)^3 m / kappa), not poly6:
+// the own image's pressure force in force_at is the spiky pair term, and this is the density
+// whose gradient gives exactly that force, so the energy a particle stores against its own
+// image is the energy it gets back. (A poly6 term would store less than the spiky force
+// returns: a particle thrown at a wall would come back faster.) On a rest lattice this term is
+// within 5% of poly6's, and a lattice layer settles where its density balances.
+template <class T>
+MASAV_HD inline T own_image_density(V3<T> xi, const WallMirrors<T>& m, const SphStepLayout<T>& c) {
+  T sum = T(0);
+  for_each_wall_image(xi, xi, m, c.h2, [&](V3<T>, T r2) {
+    const T u = T(1) - sqrt(r2) * c.inv_h;
+    sum += u * u * u;
+  });
+  return c.pressure / (T(3) * c.inv_h) * sum;
+}
+
 template <class T>
 struct DensityResult {
   T density;
@@ -235,13 +258,15 @@ struct DensityResult {
 // pos_at(j) returns V3<T> of sorted particle j. With `masks`, also records which candidates of
 // each row lie within h (zero for an empty, missing or too long row).
 template <class T, class PosAt>
-MASAV_HD inline DensityResult<T> density_at(V3<T> xi, uint32_t cell, const uint32_t dims[3],
+MASAV_HD inline DensityResult<T> density_at(uint32_t self, V3<T> xi, uint32_t cell,
+                                            const uint32_t dims[3],
                                             const uint32_t* cell_start, const uint32_t* cell_end,
                                             uint32_t max_candidates, const SphStepLayout<T>& c,
                                             PosAt&& pos_at, RowMasks<uint32_t> masks = {}) {
   T sum = T(0);
   uint32_t neighbors = 0;
   bool overflow = false;
+  const WallMirrors<T> mirrors = c.walls ? wall_mirrors(xi, c) : WallMirrors<T>{};
   const uint32_t candidates =
       walk_rows(cell, dims, cell_start, cell_end, max_candidates, overflow,
                 [&](uint32_t row, uint32_t first, uint32_t last) {
@@ -251,15 +276,16 @@ MASAV_HD inline DensityResult<T> density_at(V3<T> xi, uint32_t cell, const uint3
                     const T r2 = dot(d, d);
                     sum += density_term(r2, c);
                     const bool within = r2 < c.h2;
+                    if (within && mirrors.axes && j != self)
+                      sum += wall_image_density(xi, pos_at(j), mirrors, c);
                     neighbors += within ? 1u : 0u;
                     bits |= uint64_t(within) << ((j - first) & (kSphRowMaskBits - 1));
                   }
                   if (masks.words)
                     store_row_mask(masks, row, row_fits_mask(first, last) ? bits : 0);
                 });
-  T rho = c.density * sum;
-  if (c.walls) rho += c.rest_density * wall_density(xi, c, (V3<T>*)nullptr);
-  return {rho, neighbors, candidates, overflow};
+  const T own = mirrors.axes ? own_image_density(xi, mirrors, c) : T(0);
+  return {c.density * sum + own, neighbors, candidates, overflow};
 }
 
 // What the force walk reads of a neighbour: position, velocity, density and p / rho^2 (the
@@ -301,33 +327,15 @@ MASAV_HD inline V3<T> pair_accel(const Neighbor<T>& me, const Neighbor<T>& o, V3
   return a + w * (o.v - me.v);
 }
 
-// The walls' pressure force on a particle (wcsph with walls; see wall_density).
-// The walls also hold their continuum at rest, so the viscosity term sees it as fluid with zero
-// velocity (no-slip walls): -nu v_i 2 rho0/(rho_i + rho0) int_beyond lap W, and for the
-// viscosity kernel int_{z > d} lap W = 7.5/h^2 (1 - q)^3 (1 + q) per wall.
+// The pair terms of o's wall images (see WallMirrors) on `me`.
 template <class T>
-MASAV_HD inline T wall_viscous_weight(V3<T> x, const SphStepLayout<T>& c) {
-  const T xs[3] = {x.x, x.y, x.z};
-  T w = T(0);
-  for (int k = 0; k < 6; ++k) {
-    const int a = k >> 1;
-    const T d = (k & 1) ? c.hi[a] - xs[a] : xs[a] - c.lo[a];
-    const T q = ((d > T(0) ? d : T(0)) + c.wall_offset) * c.inv_h;
-    if (q < T(1)) {
-      const T u = T(1) - q;
-      w += u * u * u * (T(1) + q);
-    }
-  }
-  return w;
-}
-
-template <class T>
-MASAV_HD inline V3<T> wall_accel(const Neighbor<T>& me, const SphStepLayout<T>& c) {
-  V3<T> n{T(0), T(0), T(0)};
-  wall_density(me.x, c, &n);
-  const T damp = c.wall_viscosity * (T(2) * c.rest_density / (me.rho + c.rest_density)) *
-                 wall_viscous_weight(me.x, c);
-  return (T(2) * me.p_rho2 * c.rest_density * c.inv_h) * n - damp * me.v;
+MASAV_HD inline V3<T> wall_image_accel(const Neighbor<T>& me, const Neighbor<T>& o,
+                                       const WallMirrors<T>& m, const SphStepLayout<T>& c) {
+  const Neighbor<T> image{o.x, T(-1) * o.v, o.rho, o.p_rho2};
+  V3<T> a{T(0), T(0), T(0)};
+  for_each_wall_image(me.x, o.x, m, c.h2,
+                      [&](V3<T> d, T r2) { a = a + pair_accel(me, image, d, r2, c); });
+  return a;
 }
 
 template <class T>
@@ -360,11 +368,13 @@ MASAV_HD inline ForceResult<T> force_at(uint32_t self, const Neighbor<T>& me, ui
   V3<T> acc{T(0), T(0), T(0)};
   uint32_t neighbors = 0;
   bool overflow = false;
+  const WallMirrors<T> mirrors = c.walls ? wall_mirrors(me.x, c) : WallMirrors<T>{};
   auto visit = [&](uint32_t j) {
-    if (j == self) return;
     const V3<T> d = me.x - pos_at(j);
     const T r2 = dot(d, d);
     if (!(r2 < c.h2)) return;
+    if (mirrors.axes) acc = acc + wall_image_accel(me, fetch(j), mirrors, c);  // also j == self
+    if (j == self) return;
     ++neighbors;
     acc = acc + pair_accel(me, fetch(j), d, r2, c);
   };
@@ -379,7 +389,6 @@ MASAV_HD inline ForceResult<T> force_at(uint32_t self, const Neighbor<T>& me, ui
                     for (uint32_t j = first; j < last; ++j) visit(j);
                   }
                 });
-  if (c.walls) acc = acc + wall_accel(me, c);
   return {acc, neighbors, candidates, overflow};
 }
 

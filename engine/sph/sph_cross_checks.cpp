@@ -3,8 +3,8 @@
 // box walls on), made on the host from Philox and uploaded identically to both backends, sorted
 // into the hash grid there. The tolerances are those of tests/test_sph_kernels.cpp, measured on
 // lavapipe with about 10x margin: fp32 backends hold positions to ~6e-8 relative, densities
-// agree to 1e-7 (rel L2), accelerations -- sums of ~30 terms that largely cancel -- to 2e-7 of
-// their RMS.
+// agree to 1e-7 (rel L2), accelerations -- sums of ~30 terms that largely cancel, except beside
+// a wall -- to ~1.5e-6 of their RMS.
 #include "engine/sph/sph_cross_checks.h"
 
 #include <fmt/format.h>
@@ -31,8 +31,9 @@ struct SphCheckCase {
 };
 
 // side^3 particles at spacing dx = 1 cm (h = 2 dx), jittered by 0.3 dx, velocities up to
-// 0.3 m/s; every 37th particle pinned, some 1000x heavier; the box's walls cut the lattice's
-// outer layers so the wall terms act. side follows the scene's check point count, capped so the
+// 0.3 m/s; every 37th particle pinned, some 1000x heavier; the box's walls lie just outside the
+// lattice (0.1-0.3 dx beyond its outermost jitter, as a run keeps every particle inside), so
+// the outer layers see their wall images. side follows the scene's check point count, capped so the
 // check stays quick on any backend.
 SphCheckCase make_case(const CheckInputs& in, SphPressureModel model) {
   const uint32_t side =
@@ -69,8 +70,8 @@ SphCheckCase make_case(const CheckInputs& in, SphPressureModel model) {
   p.viscosity = 2e-3;
   p.gravity = {0.0, -9.81, 0.0};
   p.walls = true;
-  p.box_min = {0.05 + 1.0 * dx, 0.05 + 0.5 * dx, 0.05 + 1.5 * dx};
-  p.box_max = {0.05 + (side - 2.0) * dx, 0.05 + (side - 1.5) * dx, 0.05 + (side - 1.0) * dx};
+  p.box_min = {0.05 - 0.4 * dx, 0.05 - 0.5 * dx, 0.05 - 0.6 * dx};
+  p.box_max = {0.05 + (side - 0.4) * dx, 0.05 + (side - 0.6) * dx, 0.05 + (side - 0.5) * dx};
   return c;
 }
 
@@ -163,12 +164,14 @@ std::vector<KernelCheck> sph_checks() {
         out.push_back({"density " + m, {}, b.download(s.density)});
         out.push_back({"pressure " + m, {}, b.download(s.pressure)});
       })));
-  // Accelerations to 2e-6 (rel L2) and each component to 2e-5 of the RMS acceleration; the
-  // neighbour counts (accel w) exactly. Both backends get the same density and pressure
+  // Accelerations to 1e-5 (rel L2) and each component to 2e-4 of the RMS acceleration (lavapipe
+  // measured 1.5e-6 and 2.5e-5: the particles beside a wall carry the largest accelerations, the
+  // uncancelled push of their images, and their fp32 rounding sets both); the neighbour counts
+  // (accel w) exactly. Both backends get the same density and pressure
   // (a smooth field made on the host), so this checks the force kernel alone -- walking every
   // candidate, and over the neighbour row masks sph_density records at these positions.
   c.push_back(per_output_check(
-      KernelId::sph_forces, {{"accel", {2e-6, 0, 2e-5, 1.0}, true}, {"neighbours", {0, 0, 0, 1.0}}},
+      KernelId::sph_forces, {{"accel", {1e-5, 0, 2e-4, 1.0}, true}, {"neighbours", {0, 0, 0, 1.0}}},
       for_each_model([](Backend& b, const SphCheckCase& cs, SphCaseBuffers& s, const std::string& m,
                         CheckOutputs& out) {
         sph_density(b, cs.params,

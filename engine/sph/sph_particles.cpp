@@ -41,32 +41,6 @@ double spiky_gradient_moment(double dx, double h) {
   return moment / poly6;  // m / rho0 = 1 / poly6 for the lattice-normalised mass
 }
 
-double wall_offset_for_lattice(double dx, double h) {
-  // Fraction of the full-lattice poly6 sum that a particle dx/2 from the wall still has.
-  const int reach = int(std::ceil(h / dx)) + 1;
-  double full = 0, present = 0;
-  for (int i = -reach; i <= reach; ++i)
-    for (int j = -reach; j <= reach; ++j)
-      for (int k = -reach; k <= reach; ++k) {
-        const double r2 = (double(i) * i + double(j) * j + double(k) * k) * dx * dx;
-        if (r2 >= h * h) continue;
-        const double u = 1.0 - r2 / (h * h), w = u * u * u;
-        full += w;
-        if (j >= 0) present += w;  // neighbours at y = (j + 1/2) dx >= dx/2 from the wall
-      }
-  const double missing = 1.0 - present / full;
-  // Solve wall_density_fraction((dx/2 + offset) / h) = missing for the offset (decreasing in q).
-  double lo = 0.0, hi = h;
-  for (int it = 0; it < 100; ++it) {
-    const double mid = 0.5 * (lo + hi);
-    if (sph::wall_density_fraction((0.5 * dx + mid) / h) > missing)
-      lo = mid;
-    else
-      hi = mid;
-  }
-  return 0.5 * (lo + hi);
-}
-
 namespace {
 
 // Every particle inside the fluid has about 4/3 pi (h/dx)^3 neighbours, each one a candidate of
@@ -108,7 +82,6 @@ SphParticles build_particles(const SphScene& s) {
   check_support(s, out.dx, out.h);
   out.mass = lattice_mass(s.rest_density, out.dx, out.h);
   out.gradient_correction = 1.0 / spiky_gradient_moment(out.dx, out.h);
-  out.wall_offset = wall_offset_for_lattice(out.dx, out.h);
 
   // Layer heights: uniform, or (hydrostatic) each layer's spacing shrunk by the Tait density
   // under the weight of the layers above it (spacing ~ 1 / density in a box whose walls hold the

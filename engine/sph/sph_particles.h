@@ -18,7 +18,6 @@ struct SphParticles {
   double h = 0;                    // support radius (m)
   double mass = 0;                 // SPH mass of every particle (kg)
   double gradient_correction = 1;  // 1 / spiky_gradient_moment(dx, h)
-  double wall_offset = 0;          // wall_offset_for_lattice(dx, h)
   UVec3 lattice;                   // fluid lattice (x, y layers, z)
   uint32_t total() const { return fluid + obstacle; }
 };
@@ -31,10 +30,5 @@ double lattice_mass(double rho0, double dx, double h);
 // kappa = -1/3 sum_j (m/rho0) r_j W_spiky'(r_j) over the lattice of spacing dx (see
 // SphStepParams::gradient_correction); 1 for a continuum.
 double spiky_gradient_moment(double dx, double h);
-// The offset (m) behind a wall at which the semi-analytic wall continuum must start so that a
-// particle of a cubic lattice of spacing dx, dx/2 from the wall, has exactly rest density: the
-// continuum's missing-neighbour integral then equals the lattice's missing sum (at h = 2 dx it
-// is 2.6% short without the offset, a pressure kick of 6x the hydrostatic one at c0 = 25 m/s).
-double wall_offset_for_lattice(double dx, double h);
 
 }  // namespace masav

@@ -132,7 +132,6 @@ SphSimulation::SphSimulation(Backend& backend, const SphScene& scene)
   step_params_.h = h;
   step_params_.mass = layout_.mass;
   step_params_.gradient_correction = layout_.gradient_correction;
-  step_params_.wall_offset = layout_.wall_offset;
   step_params_.rest_density = scene_.rest_density;
   step_params_.sound_speed = scene_.sound_speed;
   step_params_.clamp_negative_pressure = scene_.clamp_negative_pressure;
@@ -259,8 +258,19 @@ void SphSimulation::integrate(SphStageOp op, double dt, const Buffer<Real4>& x0,
   p.op = op;
   p.dt = dt;
   p.walls = scene_.walls;
-  p.box_min = scene_.box_min;
-  p.box_max = scene_.box_max;
+  // With mirror-image walls (wcsph) the box the integrator holds particles in is a quarter of a
+  // particle spacing inside the walls. A particle's own image is its strongest repulsion near a
+  // wall, but it has no slope on the wall itself (the image coincides with the particle), where
+  // the density it adds is largest: a particle put back exactly on the wall would sit on top of
+  // that energy hill and gain what the image term then gives back. A quarter spacing in, the
+  // clamp only ever moves a particle down that hill (dissipates), and the first lattice layer
+  // (half a spacing in) is untouched.
+  const double margin = scene_.walls && scene_.model == SphPressureModel::wcsph
+                            ? 0.25 * layout_.dx
+                            : 0.0;
+  const Vec3d &lo = scene_.box_min, &hi = scene_.box_max;
+  p.box_min = {lo.x + margin, lo.y + margin, lo.z + margin};
+  p.box_max = {hi.x - margin, hi.y - margin, hi.z - margin};
   p.restitution = scene_.restitution;
   p.tangential_damping = scene_.tangential_damping;
   sph_integrate(backend_, p,

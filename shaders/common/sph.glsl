@@ -18,58 +18,6 @@ ivec3 sph_cell_coords(uint id, uvec3 dims) {
   return ivec3(int(id / yz), int((id % yz) / dims.z), int(id % dims.z));
 }
 
-// Semi-analytic box walls (sph::wall_density in engine/kernels/sph_kernels.h).
-float sph_wall_density_fraction(float q) {
-  const float q2 = q * q;
-  const float f =
-      q * (1.0 + q2 * (-4.0 / 3.0 + q2 * (6.0 / 5.0 + q2 * (-4.0 / 7.0 + q2 * (1.0 / 9.0)))));
-  return 0.5 - (315.0 / 256.0) * f;
-}
-float sph_wall_density_slope(float q) {
-  const float u = 1.0 - q * q;
-  return (315.0 / 256.0) * (u * u) * (u * u);
-}
-float sph_wall_density(vec3 x, SphStepLayout c, out vec3 push) {
-  float f[6], slope[6];
-  float keep = 1.0;
-  for (int k = 0; k < 6; ++k) {
-    LOOP_TICK();
-    const int a = k >> 1;
-    const float d = (k & 1) != 0 ? c.hi[a] - x[a] : x[a] - c.lo[a];
-    const float q = (max(d, 0.0) + c.wall_offset) * c.inv_h;
-    f[k] = q < 1.0 ? sph_wall_density_fraction(q) : 0.0;
-    slope[k] = q < 1.0 ? sph_wall_density_slope(q) : 0.0;
-    keep *= 1.0 - f[k];
-  }
-  push = vec3(0.0);
-  for (int k = 0; k < 6; ++k) {
-    LOOP_TICK();
-    float others = 1.0;
-    for (int m = 0; m < 6; ++m) {
-      LOOP_TICK();
-      if (m != k) others *= 1.0 - f[m];
-    }
-    push[k >> 1] += ((k & 1) != 0 ? -slope[k] : slope[k]) * others;
-  }
-  return 1.0 - keep;
-}
-
-// No-slip walls (sph::wall_viscous_weight).
-float sph_wall_viscous_weight(vec3 x, SphStepLayout c) {
-  float w = 0.0;
-  for (int k = 0; k < 6; ++k) {
-    LOOP_TICK();
-    const int a = k >> 1;
-    const float d = (k & 1) != 0 ? c.hi[a] - x[a] : x[a] - c.lo[a];
-    const float q = (max(d, 0.0) + c.wall_offset) * c.inv_h;
-    if (q < 1.0) {
-      const float u = 1.0 - q;
-      w += u * u * u * (1.0 + q);
-    }
-  }
-  return w;
-}
-
 float sph_density_term(float r2, SphStepLayout c) {
   const float u = max(1.0 - r2 * c.inv_h2, 0.0);
   return u * u * u;
@@ -90,6 +38,77 @@ vec3 sph_pair_accel(vec3 vi, float rho_i, float pi_over_rho2, vec3 vo, float rho
   }
   const float w = thesis ? c.viscosity * u / rho_o : c.viscosity * u * (2.0 / (rho_i + rho_o));
   return a + w * (vo - vi);
+}
+
+// Box walls as mirror images (sph::WallMirrors): per axis the plane of the nearer wall, and in
+// `axes` bit a when that wall is within h.
+struct SphMirrors {
+  vec3 plane;
+  uint axes;
+};
+SphMirrors sph_wall_mirrors(vec3 x, SphStepLayout c) {
+  const vec3 lo = vec3(c.lo[0], c.lo[1], c.lo[2]), hi = vec3(c.hi[0], c.hi[1], c.hi[2]);
+  const vec3 to_lo = x - lo, to_hi = hi - x;
+  const bvec3 low = lessThanEqual(to_lo, to_hi);
+  const vec3 d = mix(to_hi, to_lo, low);
+  const bvec3 near = bvec3(d.x * d.x < c.h2 || d.x < 0.0, d.y * d.y < c.h2 || d.y < 0.0,
+                           d.z * d.z < c.h2 || d.z < 0.0);
+  const uint axes = (near.x ? 1u : 0u) | (near.y ? 2u : 0u) | (near.z ? 4u : 0u);
+  return SphMirrors(mix(hi, lo, low), c.walls != 0u ? axes : 0u);
+}
+// x_i minus the image of x_j across the walls in mirror set s (bits of axes).
+vec3 sph_image_offset(vec3 xi, vec3 xj, SphMirrors m, uint s) {
+  const vec3 direct = xi - xj, mirrored = (xi - m.plane) + (xj - m.plane);
+  return mix(direct, mirrored, bvec3((s & 1u) != 0u, (s & 2u) != 0u, (s & 4u) != 0u));
+}
+// The 7 mirror sets are spelled out, not looped over: lavapipe counts every loop pass toward its
+// iteration cap, and these run once per neighbour.
+float sph_image_density_term(vec3 xi, vec3 xj, SphMirrors m, uint s, SphStepLayout c) {
+  if ((s & ~m.axes) != 0u) return 0.0;
+  const vec3 d = sph_image_offset(xi, xj, m, s);
+  return sph_density_term(dot(d, d), c);
+}
+float sph_wall_image_density(vec3 xi, vec3 xj, SphMirrors m, SphStepLayout c) {
+  return sph_image_density_term(xi, xj, m, 1u, c) + sph_image_density_term(xi, xj, m, 2u, c) +
+         sph_image_density_term(xi, xj, m, 3u, c) + sph_image_density_term(xi, xj, m, 4u, c) +
+         sph_image_density_term(xi, xj, m, 5u, c) + sph_image_density_term(xi, xj, m, 6u, c) +
+         sph_image_density_term(xi, xj, m, 7u, c);
+}
+// The density the particle's own images add (sph::own_image_density: the spiky kernel scaled
+// like the pressure force, whose gradient is exactly the own image's pair force).
+float sph_own_image_term(vec3 xi, SphMirrors m, uint s, SphStepLayout c) {
+  if ((s & ~m.axes) != 0u) return 0.0;
+  const vec3 d = sph_image_offset(xi, xi, m, s);
+  const float u = max(1.0 - sqrt(dot(d, d)) * c.inv_h, 0.0);
+  return u * u * u;
+}
+float sph_own_image_density(vec3 xi, SphMirrors m, SphStepLayout c) {
+  const float sum = sph_own_image_term(xi, m, 1u, c) + sph_own_image_term(xi, m, 2u, c) +
+                    sph_own_image_term(xi, m, 3u, c) + sph_own_image_term(xi, m, 4u, c) +
+                    sph_own_image_term(xi, m, 5u, c) + sph_own_image_term(xi, m, 6u, c) +
+                    sph_own_image_term(xi, m, 7u, c);
+  return c.pressure / (3.0 * c.inv_h) * sum;
+}
+// Image of (xj, vj, rho_j, q_j = p_j / rho_j^2) in set s on (xi, vi, rho_i, q_i): the pair term
+// with the opposite velocity (no-slip).
+vec3 sph_image_accel_term(vec3 xi, vec3 vi, float rho_i, float q_i, vec3 xj, vec3 vj, float rho_j,
+                          float q_j, SphMirrors m, uint s, SphStepLayout c) {
+  if ((s & ~m.axes) != 0u) return vec3(0.0);
+  const vec3 d = sph_image_offset(xi, xj, m, s);
+  const float r2 = dot(d, d);
+  if (!(r2 < c.h2)) return vec3(0.0);
+  return sph_pair_accel(vi, rho_i, q_i, -vj, rho_j, q_j, d, r2, c);
+}
+vec3 sph_wall_image_accel(vec3 xi, vec3 vi, float rho_i, float q_i, vec3 xj, vec3 vj,
+                          float rho_j, float q_j, SphMirrors m, SphStepLayout c) {
+  vec3 a = sph_image_accel_term(xi, vi, rho_i, q_i, xj, vj, rho_j, q_j, m, 1u, c);
+  a += sph_image_accel_term(xi, vi, rho_i, q_i, xj, vj, rho_j, q_j, m, 2u, c);
+  a += sph_image_accel_term(xi, vi, rho_i, q_i, xj, vj, rho_j, q_j, m, 3u, c);
+  a += sph_image_accel_term(xi, vi, rho_i, q_i, xj, vj, rho_j, q_j, m, 4u, c);
+  a += sph_image_accel_term(xi, vi, rho_i, q_i, xj, vj, rho_j, q_j, m, 5u, c);
+  a += sph_image_accel_term(xi, vi, rho_i, q_i, xj, vj, rho_j, q_j, m, 6u, c);
+  a += sph_image_accel_term(xi, vi, rho_i, q_i, xj, vj, rho_j, q_j, m, 7u, c);
+  return a;
 }
 
 vec3 sph_total_accel(vec3 pair, float inv_mass, SphStepLayout c) {
