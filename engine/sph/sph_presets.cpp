@@ -9,6 +9,18 @@
 namespace masav {
 namespace {
 
+// The speed of sound of a preset whose speeds come from gravity: 10 x the fastest speed its
+// fluid can reach, falling from the block's top to the floor with its initial speed,
+// sqrt(v0^2 + 2 g H). At Mach 0.1 a weakly compressible fluid's density varies by about 1%
+// (as M^2) in the flow; the impacts reach a few percent.
+double sound_speed_for_fall(const SphScene& s) {
+  const double g = std::sqrt(s.gravity.x * s.gravity.x + s.gravity.y * s.gravity.y +
+                             s.gravity.z * s.gravity.z);
+  const Vec3d v = s.block.velocity;
+  const double fall = s.block.max.y - s.box_min.y;
+  return 10.0 * std::sqrt(v.x * v.x + v.y * v.y + v.z * v.z + 2.0 * g * fall);
+}
+
 void apply_thesis(SphScene& s, ThesisConstants t) {
   s.viscosity = t.nu * kThesisViscosityScale;
   s.kp = t.kp * kThesisKpScale;
@@ -22,7 +34,7 @@ SphScene cube_drop(const char* name, uint32_t n, ThesisConstants t) {
   s.particles = n;
   s.block.min = {0.3, 0.45, 0.3};
   s.block.max = {0.7, 0.85, 0.7};
-  s.sound_speed = 30.0;  // ~8 x the impact speed sqrt(2 g 0.85 m) = 4.1 m/s
+  s.sound_speed = sound_speed_for_fall(s);  // 40.8 m/s: impact at sqrt(2 g 0.85 m) = 4.1 m/s
   s.restitution = 0.3;
   s.tangential_damping = 0.01;
   apply_thesis(s, t);
@@ -55,6 +67,8 @@ SphScene make_preset(std::string_view name, uint32_t n) {
     s.block.min = {0.35, 0.35, 0.35};
     s.block.max = {0.65, 0.65, 0.65};
     s.block.density_ratio = 1.5;
+    // The burst's own speeds scale with c0 (the compressed gas's internal energy is 0.2 c0^2
+    // per unit mass, ~0.6 c0 once released), so no c0 keeps it at Mach 0.1: it is a gas.
     s.sound_speed = 20.0;
     s.restitution = 0.5;
     s.tangential_damping = 0.01;
@@ -72,7 +86,7 @@ SphScene make_preset(std::string_view name, uint32_t n) {
     s.obstacle.min = {0.3, 0.0, 0.35};
     s.obstacle.max = {0.4, 0.25, 0.65};
     s.obstacle.pinned = true;
-    s.sound_speed = 30.0;
+    s.sound_speed = sound_speed_for_fall(s);  // 28.4 m/s: 1.5 m/s thrown, 0.3 m fall
     s.restitution = 0.3;
     s.tangential_damping = 0.01;
     apply_thesis(s, kThesisWater);
@@ -91,7 +105,7 @@ SphScene make_preset(std::string_view name, uint32_t n) {
     s.block.hydrostatic = true;  // the gate opens on a column at rest under its own weight
     s.box_min = {0.0, 0.0, 0.0};
     s.box_max = {5 * a, 3 * a, 4 * a};
-    s.sound_speed = 25.0;  // 10 x sqrt(2 g 2a)
+    s.sound_speed = sound_speed_for_fall(s);  // 23.9 m/s = 10 x sqrt(2 g 2a)
     s.viscosity = 1e-3;
     s.kp = kThesisWater.kp * kThesisKpScale;
     s.restitution = 0.0;

@@ -198,11 +198,20 @@ SphSimulation::SphSimulation(Backend& backend, const SphScene& scene)
   set_watchdog_baseline(s0);
 }
 
+// Forward Euler multiplies the energy of every undamped oscillation by 1 + (omega dt)^2 per
+// step, and a fluid's sound waves are such oscillations: at the others' Courant number a dam
+// break doubles its energy within 400 steps (512 particles), at half of it still gains 27%, at
+// a quarter it loses energy as the viscosity and walls take it. So Euler steps are 4x shorter.
+double SphSimulation::courant_scale() const {
+  return scene_.integrator == SphIntegrator::euler ? 0.25 : 1.0;
+}
+
 double SphSimulation::limit_for(const SphStepStats& s) const {
   const double h = layout_.h;
   const double c = signal_speed(step_params_);
-  double dt = scene_.cfl_velocity * h / (c + s.max_speed);
-  if (s.max_accel > 0) dt = std::min(dt, scene_.cfl_force * std::sqrt(h / s.max_accel));
+  const double k = courant_scale();
+  double dt = k * scene_.cfl_velocity * h / (c + s.max_speed);
+  if (s.max_accel > 0) dt = std::min(dt, k * scene_.cfl_force * std::sqrt(h / s.max_accel));
   if (scene_.viscosity > 0) dt = std::min(dt, scene_.cfl_viscous * h * h / scene_.viscosity);
   if (skin_ > 0 && s.max_speed > 0) dt = std::min(dt, 0.5 * 0.5 * skin_ / s.max_speed);
   return dt;
@@ -376,12 +385,12 @@ SphSimulation::Attempt SphSimulation::judge(const uint32_t w[kSphStatWords], con
         s.max_drift, 0.5 * skin_);
   } else if (scene_.cfl_guard != SphCflGuard::off) {
     const double courant = dt * (signal_speed(step_params_) + s.max_speed) / layout_.h;
-    if (courant > 2.0 * scene_.cfl_velocity) {
+    if (courant > 2.0 * courant_scale() * scene_.cfl_velocity) {
       a.ok = false;
       a.reason = fmt::format(
           "the Courant number reached {:.3g} (limit {:.3g}: max speed {:.3g} "
           "m/s)",
-          courant, scene_.cfl_velocity, s.max_speed);
+          courant, courant_scale() * scene_.cfl_velocity, s.max_speed);
     }
   }
   if (!a.ok) return a;

@@ -168,6 +168,7 @@ class SphSimulation {
   void mark(SphStage ended);
   void collect_stage_times();
   double limit_for(const SphStepStats& s) const;
+  double courant_scale() const;  // the integrator's share of the Courant number
 
   Backend& backend_;
   SphScene scene_;
