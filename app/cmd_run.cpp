@@ -12,6 +12,7 @@
 #include "app/progress.h"
 #include "app/scene_options.h"
 #include "app/video.h"
+#include "app/vocabulary.h"
 #include "engine/core/error.h"
 #include "engine/io/output_lock.h"
 #include "engine/util/json_writer.h"
@@ -143,8 +144,9 @@ void add_run_command(CLI::App& app) {
                                 "render a scene headless to PNG frames (and an MP4), "
                                 "after the cross-check",
                                 o, run);
-  cmd->add_option("--frames,-n", o.frames, "frames to render (default: the scene's run.frames)")
+  cmd->add_option("--frames", o.frames, "frames to render (default: the scene's run.frames)")
       ->check(CLI::Range(1, 1000000));
+  add_old_option(*cmd, "-n", "--frames", o.frames)->check(CLI::Range(1, 1000000));
   cmd->add_option("--out,-o", o.out, "output directory")->capture_default_str();
   cmd->add_flag("--stats", o.stats, "print which stages ran and which were skipped");
   cmd->add_flag("--no-verify", o.no_verify, "render without the cross-check");
