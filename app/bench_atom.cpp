@@ -31,7 +31,7 @@ int run_atom_bench(const AtomBenchOptions& o, JsonWriter& j) {
   fmt::print("bench atom: cloud creation for thesis Table 2.3 (counts x {}), median of {} runs\n",
              o.scale, o.reps);
   j.field("scale", o.scale).key("rows").begin_array();
-  auto backends = open_backends(o.choice);
+  auto backends = open_backends(o.choice, "--scale 0.1");
   fmt::print("  {:<8} {:<8} {:>9} {:>11} {:>12} {:>11}\n", "backend", "state", "particles",
              "median ms", "Mparticles/s", "thesis s");
   int rc =

@@ -9,6 +9,7 @@
 #include <string>
 
 #include "app/bench_common.h"
+#include "app/progress.h"
 #include "engine/atom/atom_scene.h"
 #include "engine/atom/orbital.h"
 
@@ -55,12 +56,15 @@ inline int for_each_thesis_row(
     const std::vector<std::unique_ptr<Backend>>& backends, double scale,
     const std::function<void(Backend&, const ThesisRow&, uint32_t particles)>& row) {
   int rc = 0;
+  Progress progress("rows of Table 2.3", backends.size() * kThesisTable23.size());
   for (const auto& b : backends)
     for (const ThesisRow& r : kThesisTable23) {
       const uint32_t particles = std::max(1u, uint32_t(std::lround(r.particles * scale)));
-      if (!run_row(fmt::format("{:<8} {:<8}", b->name(), r.state), [&] { row(*b, r, particles); }))
-        rc = 1;
+      const std::string label = fmt::format("{:<8} {:<8}", b->name(), r.state);
+      if (!run_row(label, [&] { row(*b, r, particles); })) rc = 1;
+      progress.advance(fmt::format("{} {} particles", label, particles));
     }
+  progress.finish();
   return rc;
 }
 

@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <cstdio>
 #include <ctime>
 #include <thread>
 
@@ -45,10 +46,31 @@ TimingStats time_work(Backend& b, int reps, const std::function<void()>& work) {
   return summarize(time_on_device(b, 1, reps, no_setup, work));
 }
 
-std::vector<std::unique_ptr<Backend>> open_backends(const BackendChoice& choice) {
+namespace {
+
+void note_cpu_devices(const std::vector<std::unique_ptr<Backend>>& backends,
+                      const std::string& hint) {
+  std::string names;
+  for (const auto& b : backends)
+    if (b->caps().device_type == "cpu")
+      names +=
+          fmt::format("{}{} ({})", names.empty() ? "" : ", ", b->name(), b->caps().device_name);
+  if (names.empty() || hint.empty()) return;
+  std::fflush(stdout);
+  fmt::print(stderr,
+             "note: {} run on the CPU; the default sizes are set for GPUs and can take minutes "
+             "here ({} for a short run)\n",
+             names, hint);
+}
+
+}  // namespace
+
+std::vector<std::unique_ptr<Backend>> open_backends(const BackendChoice& choice,
+                                                    const std::string& cpu_hint) {
   std::vector<std::unique_ptr<Backend>> out;
   if (choice.backend != "all") {
     out.push_back(create_backend(choice.backend, choice.device));
+    note_cpu_devices(out, cpu_hint);
     return out;
   }
   for (const BackendStatus& s : list_backends()) {
@@ -58,6 +80,7 @@ std::vector<std::unique_ptr<Backend>> open_backends(const BackendChoice& choice)
     }
     out.push_back(create_backend(s.name, s.name == "cpu" ? "" : choice.device));
   }
+  note_cpu_devices(out, cpu_hint);
   return out;
 }
 

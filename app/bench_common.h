@@ -35,8 +35,11 @@ std::vector<double> time_on_device(Backend& b, int warmup, int reps,
 TimingStats time_work(Backend& b, int reps, const std::function<void()>& work);
 
 // Backends named by --backend (all = every available one), opened; unavailable ones are
-// reported on stdout and left out.
-std::vector<std::unique_ptr<Backend>> open_backends(const BackendChoice& choice);
+// reported on stdout and left out. With `cpu_hint` (the options that make the benchmark short),
+// a backend on a CPU device (the CPU reference, lavapipe) is named up front on stderr: the
+// default sizes are set for GPUs and take minutes there.
+std::vector<std::unique_ptr<Backend>> open_backends(const BackendChoice& choice,
+                                                    const std::string& cpu_hint = "");
 
 // Runs one row of a benchmark table. An Error there (a feature the device lacks, a size over its
 // buffers) is printed in the table as "  <label> <outcome>: <message>" and the benchmark goes

@@ -7,6 +7,7 @@
 #include <random>
 
 #include "app/bench_common.h"
+#include "app/vocabulary.h"
 #include "engine/core/error.h"
 #include "engine/grid/hash_grid.h"
 #include "engine/kernels/kernel_checks.h"
@@ -126,7 +127,8 @@ void add_grid_bench(CLI::App& bench) {
   static GridBenchOptions o;
   auto* cmd =
       add_bench(bench, "grid", "hash-grid build, reorder and neighbour query", o, run_grid_bench);
-  add_ranged_option(*cmd, "--n", o.n, "points", 1u, 1u << 26);
+  add_ranged_option(*cmd, "--particles", o.n, "points (particles) in the grid", 1u, 1u << 26);
+  add_old_option(*cmd, "--n", "--particles", o.n)->check(CLI::Range(1u, 1u << 26));
   add_ranged_option(*cmd, "--per-cell", o.per_cell, "mean points per cell", 0.5, 1000.0);
   cmd->add_option("--build", o.build,
                   "grid build timed: radix (sort, then ranges), counting (ranges = count + "

@@ -6,6 +6,7 @@
 #include <cmath>
 
 #include "app/bench_atom_common.h"
+#include "app/progress.h"
 #include "engine/atom/atom_scene.h"
 #include "engine/core/error.h"
 
@@ -23,7 +24,7 @@ int run_light_bench(const LightBenchOptions& o, JsonWriter& j) {
       "grid, exact path, median of {} runs\n",
       o.scale, o.reps);
   j.field("scale", o.scale).field("density_dims", 60).key("rows").begin_array();
-  auto backends = open_backends(o.choice);
+  auto backends = open_backends(o.choice, "--scale 0.1 --reps 1");
   fmt::print("  {:<8} {:<8} {:>9} {:>10} {:>10} {:>10} {:>11} {:>11}\n", "backend", "state",
              "particles", "illum ms", "view ms", "total ms", "thesis GPU", "thesis CPU");
   int rc = for_each_thesis_row(
@@ -58,6 +59,7 @@ int run_light_bench(const LightBenchOptions& o, JsonWriter& j) {
       "  optical-depth path: midpoint step vs error against the exact traversal (state3):\n");
   fmt::print("  {:<8} {:>12} {:>10} {:>14}\n", "backend", "step (cells)", "ms", "rel L2 light");
   j.key("sweep").begin_array();
+  Progress progress("optical-depth paths", backends.size() * 6);
   rc |= for_each_backend(backends, [&](Backend& b) {
     atom::AtomScene scene(b, bench_scene_options("state3", 100000, o.photons));
     scene.run_all();
@@ -73,6 +75,7 @@ int run_light_bench(const LightBenchOptions& o, JsonWriter& j) {
     j.begin_object().field("backend", b.name()).field("path", "exact");
     j.field("ms", se.median_ms).field("rel_l2", 0.0).end_object();
     fmt::print("  {:<8} {:>12} {:>10.2f} {:>14}\n", b.name(), "exact", se.median_ms, "0");
+    progress.advance(b.name() + " exact");
     lp.path = OpticalPath::midpoint;
     for (double cells : {2.0, 1.0, 0.5, 0.25, 0.125}) {
       lp.step_a0 = float(cells * lp.grid.cell_size);
@@ -87,8 +90,10 @@ int run_light_bench(const LightBenchOptions& o, JsonWriter& j) {
       fmt::print("  {:<8} {:>12.3f} {:>10.2f} {:>14.3e}\n", b.name(), cells, s.median_ms, err);
       j.begin_object().field("backend", b.name()).field("path", "midpoint");
       j.field("step_cells", cells).field("ms", s.median_ms).field("rel_l2", err).end_object();
+      progress.advance(fmt::format("{} midpoint {} cells", b.name(), cells));
     }
   });
+  progress.finish();
   j.end_array();
   return rc;
 }

@@ -8,6 +8,7 @@
 #include <cmath>
 
 #include "app/bench_atom_common.h"
+#include "app/progress.h"
 #include "engine/atom/atom_scene.h"
 #include "engine/atom/ray_integral.h"
 #include "engine/atom/transfer_function.h"
@@ -61,7 +62,8 @@ int run_raymarch_bench(const RaymarchBenchOptions& o, JsonWriter& j) {
       o.reps);
   j.field("thesis_ms_min", kThesisRaymarchMs[0]).field("thesis_ms_max", kThesisRaymarchMs[1]);
   j.key("rows").begin_array();
-  auto backends = open_backends(o.choice);
+  auto backends = open_backends(o.choice, "--reps 1");
+  Progress progress("raymarch rows", backends.size() * ((o.large ? 4 : 3) + 5));
   const auto tf = atom::resample_transfer(atom::default_transfer_points());
   fmt::print("  {:<8} {:>10} {:>12} {:>10} {:>8} {:>12}\n", "backend", "volume", "image",
              "ms/frame", "fps", "Mrays/s");
@@ -73,6 +75,7 @@ int run_raymarch_bench(const RaymarchBenchOptions& o, JsonWriter& j) {
       begin_row(j, b);
       j.field("volume", volume).field("width", w).field("height", h);
       j.field("skip_empty", skip).field("median_ms", ms).field("rays_per_s", rays).end_object();
+      progress.advance(fmt::format("{} {} {}x{}", b.name(), volume, w, h));
     };
     // The thesis's count for state 1.
     atom::AtomScene scene(b, bench_scene_options("state1", 630720, 256));
@@ -147,8 +150,10 @@ int run_raymarch_bench(const RaymarchBenchOptions& o, JsonWriter& j) {
       fmt::print("  {:<8} {:>12.3f} {:>10.3f} {:>14.3e}\n", b.name(), sv, t.ms, err);
       j.begin_object().field("backend", b.name()).field("step_voxels", sv);
       j.field("ms", t.ms).field("max_abs_error", err).end_object();
+      progress.advance(fmt::format("{} step {} voxels", b.name(), sv));
     }
   });
+  progress.finish();
   j.end_array();
   return rc;
 }

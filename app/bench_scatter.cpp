@@ -8,9 +8,9 @@
 
 #include "app/bench_atom_common.h"
 #include "engine/atom/scatter_cache.h"
-#include "engine/kernels/scatter_math.h"
 #include "engine/atom/scatter_reference.h"
 #include "engine/core/error.h"
+#include "engine/kernels/scatter_math.h"
 
 namespace masav::app {
 
@@ -53,7 +53,7 @@ int run_scatter_bench(const ScatterBenchOptions& o, JsonWriter& j) {
       p.rows, p.bins, p.photons_per_row, events, o.reps);
   j.field("rows", p.rows).field("bins", p.bins).field("photons_per_row", p.photons_per_row);
   j.field("mean_scatterings_per_photon", events).key("rows_by_backend").begin_array();
-  auto backends = open_backends(o.choice);
+  auto backends = open_backends(o.choice, "--photons 128 --reference-photons 2048");
   fmt::print("  {:<8} {:>11} {:>12} {:>14}\n", "backend", "median ms", "Mphotons/s", "Gevents/s");
   const uint64_t n = uint64_t(p.rows) * p.photons_per_row;
   int rc = for_each_backend(backends, [&](Backend& b) {

@@ -6,6 +6,7 @@
 #include <random>
 
 #include "app/bench_common.h"
+#include "app/vocabulary.h"
 #include "engine/core/error.h"
 
 namespace masav::app {
@@ -69,7 +70,8 @@ int run_sort_bench(const SortBenchOptions& o, JsonWriter& j) {
 void add_sort_bench(CLI::App& bench) {
   static SortBenchOptions o;
   auto* cmd = add_bench(bench, "sort", "radix sort of key-value pairs", o, run_sort_bench);
-  add_ranged_option(*cmd, "--n", o.n, "pairs to sort", 1u, 1u << 28);
+  add_ranged_option(*cmd, "--pairs", o.n, "key-value pairs to sort", 1u, 1u << 28);
+  add_old_option(*cmd, "--n", "--pairs", o.n)->check(CLI::Range(1u, 1u << 28));
   add_ranged_option(*cmd, "--key-bits", o.key_bits, "key bits in use (keys are masked to them)", 1u,
                     32u);
   add_reps_option(*cmd, o.reps);

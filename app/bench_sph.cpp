@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include "app/bench_common.h"
+#include "app/vocabulary.h"
 #include "engine/core/error.h"
 #include "engine/cpu/cpu_backend.h"
 #include "engine/sph/sph_coefficients.h"
@@ -174,11 +175,11 @@ int run_sph_bench(const SphBenchOptions& o, JsonWriter& j) {
   fmt::print("  {:<7} {:<10} {:>9} {:>8} {:>8} {:>8} {:>9} {:>9} {:>9} {:>9} {:>12}\n", "backend",
              "integrator", "particles", "grid", "density", "forces", "integrate", "step", "wall",
              "steps/s", "Mpart-step/s");
-  auto backends = open_backends(o.choice);
+  auto backends = open_backends(o.choice, "--particles 32768 --skip-error");
   for (auto& b : backends) {
     for (uint32_t n : counts) {
       for (SphIntegrator integ : integrators) {
-        SphScene s = make_preset(o.preset, n);
+        SphScene s = make_preset(engine_sph_preset(o.preset), n);
         s.integrator = integ;
         const int steps = o.steps ? o.steps : std::clamp(int(2e6 / n), 2, 20);
         auto row = [&] {
@@ -297,15 +298,15 @@ void add_sph_bench(CLI::App& bench) {
   auto* cmd = add_bench(
       bench, "sph", "SPH particle-steps/s by backend, integrator and count; run time against error",
       o, run_sph_bench);
-  cmd->add_option("--n", o.counts, "comma-separated particle counts")->capture_default_str();
+  cmd->add_option("--particles", o.counts, "comma-separated particle counts")
+      ->capture_default_str();
+  add_old_option(*cmd, "--n", "--particles", o.counts);
   cmd->add_option("--integrators", o.integrators,
                   "comma-separated: euler, symplectic-euler, "
                   "rk4, leapfrog")
       ->capture_default_str();
-  std::vector<std::string> presets;
-  for (const auto& p : sph_presets()) presets.push_back(p.name);
-  cmd->add_option("--preset", o.preset, "scene timed")
-      ->check(CLI::IsMember(presets))
+  accept_old_values(cmd->add_option("--preset", o.preset, "scene timed"))
+      ->check(CLI::IsMember(sph_preset_names()))
       ->capture_default_str();
   cmd->add_option("--steps", o.steps, "timed steps per run (0: ~2M particle-steps, 2..20)")
       ->check(CLI::Range(0, 100000));

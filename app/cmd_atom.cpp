@@ -6,9 +6,13 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <limits>
+#include <type_traits>
 
 #include "app/commands.h"
+#include "app/progress.h"
 #include "app/scene_options.h"
+#include "app/vocabulary.h"
 #include "engine/atom/atom_export.h"
 #include "engine/atom/atom_schema.h"
 #include "engine/atom/transfer_function.h"
@@ -18,6 +22,7 @@
 #include "engine/io/png_writer.h"
 #include "engine/io/staged_files.h"
 #include "registry/backends.h"
+#include "registry/scene_catalog.h"
 
 namespace masav::app {
 namespace {
@@ -30,7 +35,7 @@ struct AtomCliOptions {
   std::string placement = "exact";
   uint32_t particles = 500000;
   uint64_t seed = 1;
-  std::string out;
+  std::string out = "out/atom";
   float power = 250000.0f;
   std::string view = "front";
   uint32_t width = 512, height = 512;
@@ -44,7 +49,7 @@ struct AtomCliOptions {
 
 struct VolumeCliOptions {
   BackendChoice choice;
-  std::string file, out, type, array, tf, view = "front", mode = "front-to-back";
+  std::string file, out = "out/volume", type, array, tf, view = "front", mode = "front_to_back";
   std::vector<uint32_t> dims;
   std::vector<float> spacing;
   bool big_endian = false;
@@ -132,7 +137,22 @@ int run_atom(const AtomCliOptions& o) {
   fmt::print("atom: {} ({} particles, {} placement) on {} ({})\n", describe(so.state), so.particles,
              o.placement, backend->name(), backend->caps().device_name);
   atom::AtomScene scene(*backend, so);
-  scene.run_all();
+  // The same steps as AtomScene::run_all, counted: half a million particles take minutes on a
+  // CPU device.
+  Progress progress("atom steps", 7);
+  progress.update(0, "cloud");
+  scene.build_cloud();
+  progress.advance("density");
+  scene.build_density();
+  progress.advance("scattering table");
+  scene.build_table();
+  progress.advance("illumination");
+  scene.illuminate();
+  progress.advance("view");
+  scene.view();
+  progress.advance("voxelize");
+  scene.voxelize();
+  progress.advance("raymarch and files");
   const auto& t = scene.times();
   fmt::print(
       "  cloud {:.1f} ms, density {:.1f} ms, scattering table {:.1f} ms{}, illumination "
@@ -151,6 +171,8 @@ int run_atom(const AtomCliOptions& o) {
   write_png(files.stage("cloud.png"), std::min(o.width, o.height), std::min(o.width, o.height),
             to_rgba8(splat, {0, 0, 0}, true));
   files.commit();
+  progress.advance();
+  progress.finish();
   fmt::print("  wrote {}/{{cloud.vtp, volume.vti, scatter_table.csv, raymarch.png, cloud.png}}\n",
              o.out);
   return 0;
@@ -178,11 +200,22 @@ void check_format_options(const VolumeCliOptions& o, const std::string& ext) {
 int run_volume(const VolumeCliOptions& o) {
   const std::vector<Vec4d> tf = transfer(o.tf);  // every input is checked before any work
   const atom::ViewPreset view = atom::parse_view(o.view);
-  if (o.mode != "front-to-back" && o.mode != "lerp")
-    throw_invalid("masav volume", "--mode", o.mode, "front-to-back or lerp");
+  if (o.mode != "front_to_back" && o.mode != "lerp")
+    throw_invalid("masav volume", "--mode", o.mode, "front_to_back or lerp");
   const std::string ext = std::filesystem::path(o.file).extension().string();
   check_format_options(o, ext);
-  ensure_writable_file(o.out, "--out");
+  // --out names a directory, as for every command; a .png name is the file it used to name.
+  std::string png = o.out + "/volume.png";
+  if (std::filesystem::path(o.out).extension() == ".png") {
+    note_old_spelling("--out FILE.png", "--out DIR (which receives volume.png)");
+    png = o.out;
+    ensure_writable_file(png, "--out");
+  } else {
+    ensure_writable_dir(o.out, "--out");
+  }
+  // Reading, uploading and raymarching a large volume take seconds each on a CPU device.
+  Progress progress("volume steps", 4);
+  progress.update(0, "reading " + o.file);
   atom::ScalarVolume vol;
   if (ext == ".nrrd" || ext == ".nhdr") {
     vol = atom::load_nrrd(o.file);
@@ -202,20 +235,41 @@ int run_volume(const VolumeCliOptions& o) {
                          o.big_endian, sp);
   }
   const VolumeDesc desc = atom::volume_desc(vol);
+  progress.advance(fmt::format("uploading {}x{}x{} values", desc.dims.x, desc.dims.y, desc.dims.z));
   auto backend = create_backend(o.choice.backend, o.choice.device);
   auto buf = backend->create<Real>(vol.values.size(), "volume");
   backend->upload(buf, std::span<const float>(vol.values));
+  progress.advance(fmt::format("raymarching {}x{} on {}", o.width, o.height, backend->name()));
   RaymarchParams rp = atom::default_raymarch(desc, view, o.width, o.height);
   rp.step *= 2.0f * o.step_voxels;
   rp.mode = o.mode == "lerp" ? Compositing::lerp : Compositing::front_to_back;
   const auto img = atom::render_volume(*backend, desc, buf, tf, rp);
-  atom::write_image_png(img, o.width, o.height, o.out);
+  progress.advance("writing " + png);
+  atom::write_image_png(img, o.width, o.height, png);
+  progress.advance();
+  progress.finish();
   fmt::print("volume: {}x{}x{} values in [{}, {}] raymarched on {} to {}\n", desc.dims.x,
-             desc.dims.y, desc.dims.z, vol.min, vol.max, backend->name(), o.out);
+             desc.dims.y, desc.dims.z, vol.min, vol.max, backend->name(), png);
   return 0;
 }
 
 }  // namespace
+
+// An option that sets what a scene key of the atom-volume scene sets, over the key's range: the
+// command line accepts what scene files accept.
+template <class T>
+void add_scene_ranged(CLI::App& cmd, const std::string& name, T& value, const std::string& help,
+                      const std::string& key) {
+  static const scene::ParamSet params =
+      scene::default_params(scene::find_scene_type("atom-volume"));
+  const scene::ParamSpec& s = params.spec(key);
+  const std::string text = fmt::format("{} (scene key {})", help, key);
+  if constexpr (std::is_integral_v<T>)
+    add_ranged_option(cmd, name, value, text, T(s.int_min),
+                      T(std::min<int64_t>(s.int_max, int64_t(std::numeric_limits<T>::max()))));
+  else
+    add_ranged_option(cmd, name, value, text, T(s.real_min), T(s.real_max));
+}
 
 void add_atom_command(CLI::App& app) {
   static AtomCliOptions o;
@@ -234,22 +288,22 @@ void add_atom_command(CLI::App& app) {
   cmd->add_flag("--real", o.real, "real orbital (cos/sin of m phi) instead of e^{i m phi}");
   cmd->add_option("--placement", o.placement, "exact (inverse CDF) or shells (thesis Alg. 2.1)")
       ->capture_default_str();
-  add_ranged_option(*cmd, "--particles", o.particles, "cloud size", 1u, 1u << 28);
+  add_scene_ranged(*cmd, "--particles", o.particles, "cloud size", "atom.count");
   cmd->add_option("--seed", o.seed, "random seed (Philox key)")->capture_default_str();
-  cmd->add_option("--out", o.out, "output directory")->required();
-  add_ranged_option(*cmd, "--power", o.power, "source power Phi in lumens", 0.0f, 1e9f);
+  cmd->add_option("--out,-o", o.out, "output directory")->capture_default_str();
+  add_scene_ranged(*cmd, "--power", o.power, "source power Phi in lumens", "nebula.power_lm");
   cmd->add_option("--view", o.view, "top, left or front")->capture_default_str();
   add_ranged_option(*cmd, "--width", o.width, "image width", 16u, 8192u);
   add_ranged_option(*cmd, "--height", o.height, "image height", 16u, 8192u);
-  add_ranged_option(*cmd, "--dims", o.dims, "voxel grid N (N^3 volume)", 2u, 512u);
-  add_ranged_option(*cmd, "--density-dims", o.density_dims,
-                    "density grid N (cells of the lighting)", 2u, 512u);
-  add_ranged_option(*cmd, "--photons", o.photons, "photons per tau row of the scattering table", 1u,
-                    1u << 24);
-  add_ranged_option(*cmd, "--tau-peak", o.tau_peak,
-                    "scattering depth of one cell at the peak density", 0.0f, 1000.0f);
-  cmd->add_option("--s", o.s, "volume mix: weight of the light g")->check(CLI::Range(0.0f, 1.0f));
-  cmd->add_option("--t", o.t, "volume mix: weight of the density p")->check(CLI::Range(0.0f, 1.0f));
+  add_scene_ranged(*cmd, "--dims", o.dims, "voxel grid N (N^3 volume)", "volume.dims");
+  add_scene_ranged(*cmd, "--density-dims", o.density_dims, "density grid N (cells of the lighting)",
+                   "nebula.density_dims");
+  add_scene_ranged(*cmd, "--photons", o.photons, "photons per tau row of the scattering table",
+                   "scatter.photons");
+  add_scene_ranged(*cmd, "--tau-peak", o.tau_peak,
+                   "scattering depth of one cell at the peak density", "nebula.tau_peak");
+  add_scene_ranged(*cmd, "--s", o.s, "volume mix: weight of the light g", "volume.s");
+  add_scene_ranged(*cmd, "--t", o.t, "volume mix: weight of the density p", "volume.t");
   cmd->add_option("--tf", o.tf, "transfer function file (lines: value r g b a)");
   cmd->add_flag("--no-cache", o.no_cache, "recompute the scattering table");
 
@@ -258,7 +312,7 @@ void add_atom_command(CLI::App& app) {
                          v, run_volume);
   add_backend_options(*vc, v.choice, false);
   vc->add_option("file", v.file, "the volume file")->required();
-  vc->add_option("--out", v.out, "output PNG")->required();
+  vc->add_option("--out,-o", v.out, "output directory: volume.png")->capture_default_str();
   vc->add_option("--dims", v.dims, "raw: sizes X Y Z")->delimiter(',')->expected(3);
   vc->add_option("--type", v.type,
                  "raw: uint8, int8, uint16, int16, uint32, int32, float32, float64");
@@ -267,7 +321,8 @@ void add_atom_command(CLI::App& app) {
   vc->add_option("--array", v.array, "vti: the array to read (default: the first)");
   vc->add_option("--tf", v.tf, "transfer function file (lines: value r g b a)");
   vc->add_option("--view", v.view, "top, left or front")->capture_default_str();
-  vc->add_option("--mode", v.mode, "front-to-back or lerp (the thesis)")->capture_default_str();
+  accept_old_values(vc->add_option("--mode", v.mode, "front_to_back or lerp (the thesis)"))
+      ->capture_default_str();
   vc->add_option("--width", v.width, "image width")->check(CLI::Range(16u, 8192u));
   vc->add_option("--height", v.height, "image height")->check(CLI::Range(16u, 8192u));
   vc->add_option("--step", v.step_voxels, "ray step in voxels")->check(CLI::Range(0.05f, 4.0f));

@@ -11,6 +11,8 @@
 #include "app/interrupt.h"
 #include "app/progress.h"
 #include "app/scene_options.h"
+#include "app/video.h"
+#include "app/vocabulary.h"
 #include "engine/core/error.h"
 #include "engine/io/output_lock.h"
 #include "engine/util/json_writer.h"
@@ -32,35 +34,6 @@ struct RunOptions {
 
 std::string frame_name(int i) {
   return fmt::format("frame_{:05d}.png", i);
-}
-
-// Encodes the frames with ffmpeg into a temporary file, renamed when complete.
-void write_video(const std::string& ffmpeg, const std::string& dir, const std::string& name,
-                 double fps) {
-  const std::string tmp = fmt::format("{}/.{}.tmp.mp4", dir, name);
-  const std::string out = fmt::format("{}/{}.mp4", dir, name);
-  // Even sizes for yuv420p; quiet unless it fails.
-  const std::string cmd = fmt::format(
-      "'{}' -y -loglevel error -framerate {} -i '{}/frame_%05d.png' -vf "
-      "'pad=ceil(iw/2)*2:ceil(ih/2)*2' -c:v libx264 -pix_fmt yuv420p '{}' </dev/null",
-      ffmpeg, fps, dir, tmp);
-  const int rc = std::system(cmd.c_str());
-  std::error_code ec;
-  if (rc != 0) {
-    std::filesystem::remove(tmp, ec);
-    fmt::print(stderr,
-               "masav: warning: ffmpeg could not encode the video (exit {}); the PNG "
-               "frames are complete\n",
-               rc);
-    return;
-  }
-  std::filesystem::rename(tmp, out, ec);
-  if (ec) {
-    std::filesystem::remove(tmp, ec);
-    throw Error("", "--out", fmt::format("cannot rename the video onto '{}'", out),
-                "choose a writable output directory");
-  }
-  fmt::print("wrote {}\n", out);
 }
 
 int run(const RunOptions& o) {
@@ -171,8 +144,9 @@ void add_run_command(CLI::App& app) {
                                 "render a scene headless to PNG frames (and an MP4), "
                                 "after the cross-check",
                                 o, run);
-  cmd->add_option("--frames,-n", o.frames, "frames to render (default: the scene's run.frames)")
+  cmd->add_option("--frames", o.frames, "frames to render (default: the scene's run.frames)")
       ->check(CLI::Range(1, 1000000));
+  add_old_option(*cmd, "-n", "--frames", o.frames)->check(CLI::Range(1, 1000000));
   cmd->add_option("--out,-o", o.out, "output directory")->capture_default_str();
   cmd->add_flag("--stats", o.stats, "print which stages ran and which were skipped");
   cmd->add_flag("--no-verify", o.no_verify, "render without the cross-check");

@@ -12,6 +12,7 @@
 #include "app/commands.h"
 #include "app/interrupt.h"
 #include "app/scene_options.h"
+#include "app/vocabulary.h"
 #include "engine/core/error.h"
 #include "engine/io/csv_stream.h"
 #include "engine/io/output_lock.h"
@@ -39,8 +40,13 @@ struct SphOptions {
   bool quiet = false;
 };
 
+// --out, where the .vtp files go: out/sph unless given.
+std::string out_dir(const SphOptions& o) {
+  return o.out.empty() ? "out/sph" : o.out;
+}
+
 SphScene scene_from(const SphOptions& o) {
-  SphScene s = make_preset(o.preset, o.particles);
+  SphScene s = make_preset(engine_sph_preset(o.preset), o.particles);
   if (!o.integrator.empty()) s.integrator = parse_integrator(o.integrator, "--integrator");
   if (!o.pressure.empty()) s.model = parse_pressure_model(o.pressure, "--pressure");
   // Each pressure model reads one constant; the other one given would be silently ignored.
@@ -66,7 +72,7 @@ SphScene scene_from(const SphOptions& o) {
 }
 
 std::string snapshot_path(const SphOptions& o, const std::string& tag) {
-  return (std::filesystem::path(o.out) / fmt::format("{}_{}.vtp", o.preset, tag)).string();
+  return (std::filesystem::path(out_dir(o)) / fmt::format("{}_{}.vtp", o.preset, tag)).string();
 }
 
 // Steps from step k to the next one that records diagnostics, writes a snapshot or prints
@@ -81,16 +87,13 @@ uint64_t steps_to_next_event(const SphOptions& o, uint64_t k) {
 }
 
 int run_sph(const SphOptions& o) {
-  if (o.vtp_every && o.out.empty())
-    throw_invalid("sph", "--vtp-every", std::to_string(o.vtp_every),
-                  "used with --out DIR (where the .vtp files go)");
   const SphScene scene = scene_from(o);
   // Outputs are opened (and held) before any work: a bad path fails at once, and a CSV row is
-  // in the file as soon as its step ran.
+  // in the file as soon as its step ran. The directory is only made when something goes there.
   std::optional<OutputLock> out_lock;
-  if (!o.out.empty()) {
-    ensure_writable_dir(o.out, "--out");
-    out_lock.emplace(o.out, "--out");
+  if (!o.out.empty() || o.vtp_every) {
+    ensure_writable_dir(out_dir(o), "--out");
+    out_lock.emplace(out_dir(o), "--out");
   }
   std::optional<CsvStream> csv;
   if (!o.csv.empty()) csv.emplace(o.csv, diagnostics_columns(), "--csv");
@@ -102,7 +105,7 @@ int run_sph(const SphOptions& o) {
   fmt::print(
       "sph {}: {} particles ({} fluid, {} obstacle), dx {:.4g} m, h {:.4g} m, {} / {}, "
       "{} on {}\n",
-      scene.preset, sim.particle_count(), lay.fluid, lay.obstacle, lay.dx, lay.h,
+      o.preset, sim.particle_count(), lay.fluid, lay.obstacle, lay.dx, lay.h,
       to_string(scene.model), to_string(scene.integrator),
       scene.dt ? fmt::format("dt {:.3g} s", *scene.dt) : std::string("adaptive dt"),
       backend->caps().device_name);
@@ -143,7 +146,7 @@ int run_sph(const SphOptions& o) {
     }
   } catch (const Error& e) {
     fmt::print(stderr, "masav: error: {}\n", e.what());
-    if (!o.out.empty())
+    if (out_lock)
       fmt::print(stderr, "masav: the last good state (step {}) is in {}\n", sim.steps(),
                  snapshot(sim.download(), "last_good"));
     rc = 1;
@@ -170,12 +173,11 @@ void add_sph_command(CLI::App& app) {
   auto* cmd =
       add_command(app, "sph", "run an SPH fluid preset headless; export .vtp and CSV", o, run_sph);
   add_backend_options(*cmd, o.choice, false);
-  std::vector<std::string> presets;
-  for (const auto& p : sph_presets()) presets.push_back(p.name);
-  cmd->add_option("--preset,-p", o.preset, "scene")
-      ->check(CLI::IsMember(presets))
+  accept_old_values(cmd->add_option("--preset,-p", o.preset, "scene"))
+      ->check(CLI::IsMember(sph_preset_names()))
       ->capture_default_str();
-  add_ranged_option(*cmd, "--particles,-n", o.particles, "fluid particles", 1u, 1u << 30);
+  add_ranged_option(*cmd, "--particles", o.particles, "fluid particles", 1u, 1u << 30);
+  add_old_option(*cmd, "-n", "--particles", o.particles)->check(CLI::Range(1u, 1u << 30));
   add_ranged_option(*cmd, "--steps", o.steps, "steps to run", uint64_t(1), uint64_t(1) << 40);
   cmd->add_option("--time", o.time, "run until this simulated time (s) instead of --steps")
       ->check(CLI::Range(0.0, 1e6))
@@ -195,7 +197,9 @@ void add_sph_command(CLI::App& app) {
   add_ranged_option(*cmd, "--diag-every", o.diag_every, "CSV diagnostics every k steps",
                     uint64_t(1), uint64_t(1) << 40);
   cmd->add_option("--csv", o.csv, "write per-step diagnostics to this CSV file");
-  cmd->add_option("--out", o.out, "directory for .vtp snapshots");
+  cmd->add_option("--out,-o", o.out,
+                  "output directory: .vtp snapshots, the last good state of a failed run "
+                  "(default out/sph with --vtp-every)");
   add_ranged_option(*cmd, "--block-steps", o.block_steps,
                     "steps between reads of the step statistics (1: after every step; an "
                     "unstable block is replayed step by step)",

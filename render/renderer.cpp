@@ -130,7 +130,7 @@ void Renderer::draw_background(const ::vk::raii::CommandBuffer& cmd, const scene
   const ImagePush push{
       {img.width, img.height, img.format == scene::ImageLayer::Format::rgba8 ? 0u : 1u,
        img.mono ? 1u : 0u},
-      {img.gain, img.gamma, float(width()), float(height())}};
+      {img.gain, img.gamma, float(scene_w_), float(scene_h_)}};
   cmd.bindPipeline(::vk::PipelineBindPoint::eGraphics, *image_->pipeline);
   cmd.bindDescriptorSets(::vk::PipelineBindPoint::eGraphics, *image_->layout, 0, set, {});
   cmd.pushConstants<ImagePush>(
@@ -290,7 +290,11 @@ void Renderer::render(const FrameRequest& f) {
   dev_.compute().finish();
   pool_.reset();
   frame_buffers_.clear();
-  const float aspect = float(width()) / float(height());
+  const uint32_t scene_w = f.scene_width ? std::min(f.scene_width, width()) : width();
+  const uint32_t scene_h = f.scene_height ? std::min(f.scene_height, height()) : height();
+  scene_w_ = scene_w;
+  scene_h_ = scene_h;
+  const float aspect = float(scene_w) / float(scene_h);
   if (f.view && f.params) camera_ = make_camera(*f.params, f.view->box, aspect, f.time_s);
 
   const auto& cmd = dev_.begin();
@@ -310,14 +314,16 @@ void Renderer::render(const FrameRequest& f) {
   cmd.beginRenderPass(::vk::RenderPassBeginInfo(*pass_, target_->framebuffer(),
                                                 {{0, 0}, {width(), height()}}, clears),
                       ::vk::SubpassContents::eInline);
-  cmd.setViewport(0, ::vk::Viewport(0, 0, float(width()), float(height()), 0, 1));
-  cmd.setScissor(0, ::vk::Rect2D({0, 0}, {width(), height()}));
+  cmd.setViewport(0, ::vk::Viewport(0, 0, float(scene_w), float(scene_h), 0, 1));
+  cmd.setScissor(0, ::vk::Rect2D({0, 0}, {scene_w, scene_h}));
   if (f.view && f.params) {
     if (f.view->background) draw_background(cmd, *f.view->background);
     draw_lines(cmd, f.view->box, *f.params, false);
     if (f.view->points) draw_points(cmd, *f.view->points, *f.params);
     draw_lines(cmd, f.view->box, *f.params, true);
   }
+  cmd.setViewport(0, ::vk::Viewport(0, 0, float(width()), float(height()), 0, 1));
+  cmd.setScissor(0, ::vk::Rect2D({0, 0}, {width(), height()}));
   draw_ui(cmd, f.ui);
   cmd.endRenderPass();
   if (f.readback) target_->record_readback(cmd);

@@ -28,6 +28,10 @@ struct FrameRequest {
   double time_s = 0;
   ImDrawData* ui = nullptr;  // ImGui draw data (after ImGui::Render()), or null
   bool readback = false;     // keep the pixels for pixels()
+  // The scene's viewport, at the frame's top left (0: the whole frame). The demo draws the scene
+  // beside its panel: the camera's aspect and the scene's layers follow this area, the UI the
+  // whole frame.
+  uint32_t scene_width = 0, scene_height = 0;
   // Commands recorded after the frame is drawn (the demo's blit to the swapchain) and the
   // semaphores of that submission.
   std::function<void(const ::vk::raii::CommandBuffer&, ::vk::Image color)> after;
@@ -77,6 +81,7 @@ class Renderer {
   std::string colormap_name_;
   std::vector<std::shared_ptr<vk::Allocation>> frame_buffers_;  // alive until the frame ends
   Camera camera_;
+  uint32_t scene_w_ = 0, scene_h_ = 0;  // the scene's viewport in the frame being drawn
 };
 
 }  // namespace masav::render

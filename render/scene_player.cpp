@@ -107,7 +107,15 @@ void ScenePlayer::draw(FrameRequest extra, const std::function<void()>& build_ui
   if (!platform_frame_) io.DeltaTime = float(frame_ms > 0 ? frame_ms * 1e-3 : clock_.dt_s);
   if (!(io.DeltaTime > 0)) io.DeltaTime = 1.0f / 60.0f;
   ImGui::NewFrame();
-  if (scene_->params().get_flag("render.overlay")) draw_overlay(overlay(fps, frame_ms));
+  if (scene_->params().get_flag("render.overlay")) {
+    // The overlay belongs to the scene: clipped to its viewport when the frame has a panel.
+    ImDrawList* fg = ImGui::GetForegroundDrawList();
+    fg->PushClipRect(ImVec2(0, 0), extra.scene_width
+                                       ? ImVec2(float(extra.scene_width), float(extra.scene_height))
+                                       : io.DisplaySize);
+    draw_overlay(overlay(fps, frame_ms));
+    fg->PopClipRect();
+  }
   if (build_ui) build_ui();
   ImGui::Render();
   extra.view = &view;

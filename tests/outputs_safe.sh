@@ -20,7 +20,7 @@ lines() { wc -l <"$1" | tr -d ' '; }
 complete_rows() { awk -F, 'NR == 1 { n = NF } NF != n { bad = 1 } END { exit bad }' "$1"; }
 
 # --- sph --csv on a full disk: fails at the header, before any step.
-out=$("$m" sph --backend cpu -n 500 --steps 20 --csv /dev/full -q 2>&1)
+out=$("$m" sph --backend cpu --particles 500 --steps 20 --csv /dev/full -q 2>&1)
 rc=$?
 [[ $rc -ne 0 && $rc -lt 128 ]] || fail "sph --csv /dev/full: exit $rc" "$out"
 grep -q "writing '/dev/full' failed after 0 rows: No space left on device" <<<"$out" ||
@@ -28,7 +28,7 @@ grep -q "writing '/dev/full' failed after 0 rows: No space left on device" <<<"$
 grep -q "steps/s" <<<"$out" && fail "sph --csv /dev/full: stepped before failing" "$out"
 
 # --- sph --csv when the file cannot grow past 4 KiB: fails at that row; the rows before stay.
-out=$(trap '' XFSZ; ulimit -f 4; "$m" sph --backend cpu -n 500 --steps 200 --csv "$work/limit.csv" -q 2>&1)
+out=$(trap '' XFSZ; ulimit -f 4; "$m" sph --backend cpu --particles 500 --steps 200 --csv "$work/limit.csv" -q 2>&1)
 rc=$?
 [[ $rc -ne 0 && $rc -lt 128 ]] || fail "sph --csv past the size limit: exit $rc" "$out"
 grep -Eq "writing '.*limit.csv' failed after [0-9]+ rows: File too large" <<<"$out" ||
@@ -36,7 +36,7 @@ grep -Eq "writing '.*limit.csv' failed after [0-9]+ rows: File too large" <<<"$o
 [[ -f "$work/limit.csv" && $(lines "$work/limit.csv") -gt 2 ]] || fail "sph --csv: rows lost" "$out"
 
 # --- sph --csv interrupted: every completed row is in the file, and the exit says so.
-"$m" sph --backend cpu -n 500 --steps 1000000 --csv "$work/int.csv" -q >"$work/int.log" 2>&1 &
+"$m" sph --backend cpu --particles 500 --steps 1000000 --csv "$work/int.csv" -q >"$work/int.log" 2>&1 &
 pid=$!
 for _ in $(seq 200); do
   [[ -f "$work/int.csv" && $(lines "$work/int.csv") -ge 5 ]] && break
@@ -97,7 +97,7 @@ rc=$?
 [[ $rc -ne 0 && $rc -lt 128 ]] || fail "atom --out FILE: exit $rc" "$out"
 grep -q "'$work/afile' exists and is not a directory" <<<"$out" || fail "atom --out FILE: message" "$out"
 grep -q "^atom:" <<<"$out" && fail "atom --out FILE: computed before failing" "$out"
-atom_small=(--state state3 --particles 3000 --backend cpu --photons 8 --dims 16 --density-dims 16
+atom_small=(--state state3 --particles 3000 --backend cpu --photons 16 --dims 16 --density-dims 16
   --width 32 --height 32 --no-cache)
 out=$(trap '' XFSZ; ulimit -f 8; "$m" atom "${atom_small[@]}" --out "$work/atom" 2>&1)
 rc=$?

@@ -7,9 +7,12 @@
 #include <doctest/doctest.h>
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
+#include <fstream>
+#include <map>
 
 #include "compute/device/vk_context.h"
 #include "engine/core/error.h"
@@ -343,6 +346,73 @@ TEST_CASE("demo screenshots" * doctest::skip(std::getenv("MASAV_DEMO_SHOTS") == 
       panel_text += c.r > 180 && c.g > 180 && c.b > 180;
     }
   CHECK(panel_text > 50);
+}
+
+TEST_CASE("demo layout" * doctest::skip(std::getenv("MASAV_DEMO_SHOTS") == nullptr)) {
+  // a.png: the panel expanded; f.png: collapsed (tests/data/demo_script.txt). Each screenshot has
+  // its layout beside it: lines "NAME x y width height".
+  const std::string dir = std::getenv("MASAV_DEMO_SHOTS");
+  struct Rect {
+    uint32_t x = 0, y = 0, w = 0, h = 0;
+  };
+  struct Layout {
+    Rect window, scene, panel;
+    int expanded = -1;
+  };
+  auto load_layout = [&](const char* name) {
+    std::ifstream f(dir + "/" + name);
+    Layout l;
+    std::string key;
+    while (f >> key) {
+      if (key == "expanded") {
+        f >> l.expanded;
+        continue;
+      }
+      Rect r;
+      f >> r.x >> r.y >> r.w >> r.h;
+      (key == "window" ? l.window : key == "scene" ? l.scene : l.panel) = r;
+    }
+    return l;
+  };
+  auto load = [&](const char* name) {
+    const render::Rgba8Image img = render::read_png(dir + "/" + name);
+    return Frame{img.width, img.height, img.pixels};
+  };
+  const Layout la = load_layout("a.png.layout"), lf = load_layout("f.png.layout");
+  const Frame a = load("a.png"), f = load("f.png");
+  REQUIRE(la.expanded == 1);
+  REQUIRE(lf.expanded == 0);
+  for (const Layout* l : {&la, &lf}) {
+    CHECK(l->window.w == a.w);
+    CHECK(l->window.h == a.h);
+    // Side by side: the scene's viewport ends where the panel begins, both full height.
+    CHECK(l->scene.x + l->scene.w == l->panel.x);
+    CHECK(l->panel.x + l->panel.w == l->window.w);
+    CHECK(l->scene.h == l->window.h);
+    CHECK(l->panel.h == l->window.h);
+  }
+  CHECK(la.panel.w >= 300);              // room for the labels
+  CHECK(lf.panel.w <= 48);               // collapsed: a strip
+  CHECK(lf.scene.w > la.scene.w + 250);  // the scene takes the panel's place
+  // The most common colour of a rectangle: the panel's background, or the scene's clear colour.
+  auto mode = [](const Frame& fr, uint32_t x0, uint32_t x1) {
+    std::map<uint32_t, size_t> n;
+    for (uint32_t y = 0; y < fr.h; y += 2)
+      for (uint32_t x = x0; x < x1; x += 2) {
+        const Rgb c = fr.at(int(x), int(y));
+        ++n[uint32_t(c.r) << 16 | uint32_t(c.g) << 8 | uint32_t(c.b)];
+      }
+    return std::max_element(n.begin(), n.end(),
+                            [](auto& p, auto& q) { return p.second < q.second; })
+        ->first;
+  };
+  const uint32_t scene_bg = mode(a, 0, la.scene.w), panel_bg = mode(a, la.panel.x, a.w);
+  MESSAGE(fmt::format("scene background {:06x}, panel background {:06x}", scene_bg, panel_bg));
+  CHECK(scene_bg != panel_bg);
+  // Collapsed, the scene's background (f shows another scene) fills where the panel was.
+  const uint32_t f_scene_bg = mode(f, 0, la.scene.w);
+  CHECK(f_scene_bg != panel_bg);
+  CHECK(mode(f, la.panel.x, lf.panel.x) == f_scene_bg);
 }
 
 int main(int argc, char** argv) {

@@ -1,23 +1,31 @@
-// `masav demo [scene.toml]`: the desktop demo -- a GLFW window showing the scene drawn with
-// Vulkan, with an ImGui panel holding SPEC §3's controls. `--script FILE` drives it without a
-// user (the tests run it under xvfb-run and inspect its screenshots).
+// `masav demo [scene.toml]`: the desktop demo -- a GLFW window sized to the screen, the scene
+// drawn with Vulkan in its own viewport beside an ImGui panel holding SPEC §3's controls, with
+// keyboard shortcuts, screenshots, recordings and saved scenes. `--script FILE` drives it without
+// a user (the tests run it under xvfb-run and inspect its screenshots).
 #define GLFW_INCLUDE_NONE
 #include <GLFW/glfw3.h>
 #include <backends/imgui_impl_glfw.h>
 #include <fmt/format.h>
 #include <imgui.h>
 
+#include <cfloat>
 #include <chrono>
 #include <filesystem>
+#include <fstream>
 #include <set>
 
 #include "app/commands.h"
+#include "app/demo/demo_capture.h"
 #include "app/demo/demo_panel.h"
 #include "app/demo/demo_script.h"
 #include "app/demo/demo_window.h"
+#include "app/demo/sim_rate.h"
 #include "app/interrupt.h"
 #include "app/scene_options.h"
+#include "engine/atom/orbital.h"
 #include "engine/core/error.h"
+#include "engine/sph/sph_scene_type.h"
+#include "engine/sph/sph_simulation.h"
 #include "registry/backends.h"
 #include "render/png.h"
 #include "render/swapchain.h"
@@ -29,8 +37,26 @@ struct DemoOptions {
   SceneChoice scene;
   BackendChoice choice;
   std::string script;
+  std::string window;  // WxH, or "" to fit the screen
+  std::string out = "out/demo";
   bool no_verify = false;
 };
+
+// --window WxH: both in [480, 16384] x [320, 16384] (the window's own minimum).
+void parse_window(const std::string& text, uint32_t& w, uint32_t& h) {
+  w = h = 0;
+  if (text.empty()) return;
+  unsigned a = 0, b = 0;
+  char x = 0, extra = 0;
+  if (std::sscanf(text.c_str(), "%u%c%u%c", &a, &x, &b, &extra) != 3 || x != 'x' || a < 480 ||
+      b < 320 || a > 16384 || b > 16384)
+    throw_invalid("masav demo", "--window", text, "WIDTHxHEIGHT, at least 480x320");
+  w = a, h = b;
+}
+
+// Steps of a stepped scene's frame are capped at this much device time, so the window stays
+// responsive when the rate asked for is more than the device can do.
+constexpr double kStepBudgetMs = 60.0;
 
 // Scene files offered in the panel: those next to the current one and in ./scenes.
 std::vector<std::string> find_scene_files(const std::string& current) {
@@ -49,14 +75,20 @@ std::vector<std::string> find_scene_files(const std::string& current) {
 
 class Demo {
  public:
-  Demo(const DemoOptions& o, scene::SceneFile file)
-      : options_(o),
-        window_(uint32_t(file.params.get_int("render.width")),
-                uint32_t(file.params.get_int("render.height")), "masav demo") {
+  Demo(const DemoOptions& o, scene::SceneFile file, uint32_t window_w, uint32_t window_h)
+      : options_(o), window_(window_w, window_h, "masav demo"), capture_(o.out) {
     state_.scene_files = find_scene_files(file.source);
     for (const auto& s : list_backends())
       if (s.available) state_.backends.push_back(s.name);
     if (!o.script.empty()) script_ = load_script(o.script);
+    uint32_t w = 0, h = 0;
+    window_.framebuffer_size(w, h);
+    fmt::print("demo: window {}x{} (screen work area {}x{})\n", w, h, window_.work_width(),
+               window_.work_height());
+    // The scene starts at its viewport's size and the UI scale that size gives.
+    const float scale = std::max(1.0f, std::floor(2.0f * float(std::max(h, 1u)) / 720.0f) / 2.0f);
+    state_.layout = make_layout(w, h, state_.show_panel, scale);
+    fit_to_viewport(file.params);
     start(std::move(file), o.choice.backend);
   }
 
@@ -68,20 +100,31 @@ class Demo {
       glfwPollEvents();
       if (!script_.empty() || scripted_) run_script();
       if (state_.requests.quit) break;
+      apply_actions();
       apply_requests();
       if (!frame()) continue;
       const auto now = std::chrono::steady_clock::now();
+      const std::optional<double> sim_t = player_->scene().simulated_time_s();
       if (restart_timing_) {  // a new scene or backend: its frame rate starts from its own frames
         restart_timing_ = false;
         state_.fps = state_.frame_ms = 0;
+        rate_.reset();
         last = now;
+        last_sim_t_ = sim_t;
         continue;
       }
       state_.frame_ms = std::chrono::duration<double, std::milli>(now - last).count();
       state_.fps =
           state_.fps == 0 ? 1e3 / state_.frame_ms : 0.9 * state_.fps + 0.1 * 1e3 / state_.frame_ms;
+      if (sim_t && last_sim_t_ && *sim_t >= *last_sim_t_)
+        rate_.add(*sim_t - *last_sim_t_, state_.frame_ms * 1e-3);
+      else
+        rate_.reset();  // a restart (preset, integrator) went back in time
+      state_.sim_rate_achieved = rate_.rate();
+      last_sim_t_ = sim_t;
       last = now;
     }
+    if (capture_.recording()) stop_recording();
     return failed_ ? 1 : 0;
   }
 
@@ -102,17 +145,136 @@ class Demo {
     player_->renderer().resize(swapchain_->width(), swapchain_->height());
     player_->ui().make_current();
     ImGui_ImplGlfw_InitForVulkan(window_.handle(), true);
-    player_->set_platform_frame([] { ImGui_ImplGlfw_NewFrame(); });
+    // A scripted run ignores the pointer, wherever the X server left it: no hover, no tooltip.
+    const bool scripted = !options_.script.empty();
+    player_->set_platform_frame([scripted] {
+      ImGui_ImplGlfw_NewFrame();
+      if (scripted) ImGui::GetIO().MousePos = ImVec2(-FLT_MAX, -FLT_MAX);
+    });
     window_.set_title(fmt::format("masav demo: {} on {} ({})", player_->file().type,
                                   player_->backend().name(),
                                   player_->backend().caps().device_name));
     fmt::print("demo: '{}' on {} ({}), drawn on {}\n", player_->file().source,
                player_->backend().name(), player_->backend().caps().device_name,
                player_->render_device().ctx().caps().device_name);
+    const SimRateDefaults d = sim_rate_defaults(player_->backend().caps().device_type);
+    state_.sim_rate = d.seconds_per_second;
+    state_.device_class = d.device_class;
+    device_defaults();
     if (!options_.no_verify && player_->scene().params().get_flag("verify.enabled"))
       verify(true);
     else
       player_->set_verify_status("cross-check skipped (--no-verify)");
+  }
+
+  // render.width/height of a scene shown here: its viewport.
+  void fit_to_viewport(scene::ParamSet& p) const {
+    p.set("render.width", int64_t(state_.layout.scene_w));
+    p.set("render.height", int64_t(state_.layout.scene_h));
+  }
+
+  // An SPH scene on a CPU device starts with fewer particles, so that it moves at once.
+  void device_defaults() {
+    if (player_->file().type != "sph") return;
+    const SimRateDefaults d = sim_rate_defaults(player_->backend().caps().device_type);
+    const int64_t count = player_->scene().params().get_int("sph.count");
+    fmt::print("demo: {} s simulated per second by default on a {}\n", d.seconds_per_second,
+               d.device_class);
+    if (d.max_particles == 0 || count <= int64_t(d.max_particles)) return;
+    set_param(*player_, state_, "sph.count", int64_t(d.max_particles));
+    fmt::print("demo: sph.count {} -> {} on a {} (set sph.count for more)\n", count,
+               d.max_particles, d.device_class);
+  }
+
+  // One shortcut, button or script `key`/`button`.
+  void apply_action(const ActionRequest& a) {
+    const scene::ParamSet& p = player_->scene().params();
+    switch (a.action) {
+      case Action::pause:
+        state_.paused = !state_.paused;
+        break;
+      case Action::step:
+        state_.step = true;
+        state_.paused = true;
+        break;
+      case Action::reset:
+        state_.requests.reset = true;
+        break;
+      case Action::preset:
+        if (p.has_table("atom") && size_t(a.index) < atom::preset_names().size())
+          set_param(*player_, state_, "atom.state", atom::preset_names()[size_t(a.index)]);
+        else if (p.has_table("sph") && size_t(a.index) < p.spec("sph.preset").choices.size())
+          set_param(*player_, state_, "sph.preset", p.spec("sph.preset").choices[size_t(a.index)]);
+        else
+          state_.message = fmt::format("no state or preset {} in this scene", a.index + 1);
+        break;
+      case Action::screenshot:
+        screenshot_ = capture_.next_screenshot();
+        break;
+      case Action::record:
+        if (capture_.recording()) {
+          stop_recording();
+        } else {
+          capture_.start_recording();
+          state_.recording = "recording to " + capture_.recording_dir();
+          fmt::print("demo: {}\n", state_.recording);
+        }
+        break;
+      case Action::save_scene: {
+        const std::string path = capture_.save_scene(player_->scene().params());
+        state_.saved = "saved " + path;
+        fmt::print("demo: saved the scene to {}\n", path);
+        break;
+      }
+      case Action::panel:
+        state_.show_panel = !state_.show_panel;
+        break;
+    }
+  }
+
+  void apply_actions() {
+    const std::vector<ActionRequest> actions = std::move(state_.actions);
+    state_.actions.clear();
+    for (const ActionRequest& a : actions) {
+      try {
+        apply_action(a);
+      } catch (const Error& e) {
+        state_.message = e.what();
+        fmt::print(stderr, "masav demo: {}\n", e.what());
+      }
+    }
+  }
+
+  void stop_recording() {
+    state_.saved =
+        "recorded " + capture_.stop_recording(player_->scene().params().get_real("run.fps"));
+    state_.recording.clear();
+    fmt::print("demo: {}\n", state_.saved);
+  }
+
+  // The keyboard shortcuts, unless a text field has the keyboard.
+  void poll_keys() {
+    const ImGuiIO& io = ImGui::GetIO();
+    if (io.WantTextInput) return;
+    for (const Shortcut& k : shortcuts())
+      if (ImGui::IsKeyPressed(k.key, false)) state_.actions.push_back(k.request);
+  }
+
+  // Steps per frame of a stepped scene for the simulated time per second asked for.
+  void pace_simulation() {
+    const SphSimulation* sim = sph::simulation_of(player_->scene());
+    if (!sim || state_.paused || state_.sim_rate <= 0) return;  // 0: the scene's own substeps
+    const scene::ParamSet& p = player_->scene().params();
+    const int64_t steps_now = p.get_int("sph.substeps");
+    double step_ms = 0;
+    for (const auto& c : player_->scene().graph().counters())
+      if (c.name == "step" && c.runs > 0)
+        step_ms = c.last_ms / double(std::max<int64_t>(1, steps_now));
+    const double dt = sim->last_dt() > 0 ? sim->last_dt() : sim->dt_limit();
+    const double frame_s = state_.frame_ms > 0 ? state_.frame_ms * 1e-3 : 1.0 / 30;
+    const uint32_t steps = steps_for_rate(state_.sim_rate, frame_s, dt, step_ms, kStepBudgetMs,
+                                          uint32_t(p.spec("sph.substeps").int_max));
+    if (int64_t(steps) != steps_now) player_->scene().set("sph.substeps", int64_t(steps));
   }
 
   void stop() {
@@ -139,9 +301,12 @@ class Demo {
     }
     try {
       if (r.scene_file) {
-        player_->load_scene(scene::load_scene_file(*r.scene_file));
+        scene::SceneFile next = scene::load_scene_file(*r.scene_file);
+        fit_to_viewport(next.params);
+        player_->load_scene(std::move(next));
         state_.scene_files = find_scene_files(player_->file().source);
         player_->renderer().resize(swapchain_->width(), swapchain_->height());
+        device_defaults();
         if (!options_.no_verify) verify(false);
       }
       if (r.backend) {
@@ -152,7 +317,11 @@ class Demo {
         start(std::move(current), *r.backend);
         player_->clock().time_s = t;
       }
-      if (r.reset) player_->reset();
+      if (r.reset) {
+        player_->reset();
+        player_->renderer().resize(swapchain_->width(), swapchain_->height());
+        device_defaults();
+      }
       if (r.verify) verify(false);
       state_.message.clear();
     } catch (const Error& e) {
@@ -211,7 +380,14 @@ class Demo {
         state_.requests.verify = true;
       } else if (c.verb == "panel") {
         state_.show_panel = a0 == "on";
+      } else if (c.verb == "key") {
+        state_.actions.push_back(*shortcut_by_name(a0));
+      } else if (c.verb == "button") {
+        state_.actions.push_back(*button_by_name(a0));
+      } else if (c.verb == "rate") {
+        state_.sim_rate = a0 == "off" ? 0.0 : std::stod(a0);
       }
+      apply_actions();
       apply_requests();
       if (failed_) {
         state_.requests.quit = true;
@@ -229,18 +405,19 @@ class Demo {
       glfwWaitEventsTimeout(0.1);
       return false;
     }
-    if (w != swapchain_->width() || h != swapchain_->height()) {
-      swapchain_->recreate(w, h);
+    if (w != swapchain_->width() || h != swapchain_->height()) swapchain_->recreate(w, h);
+    if (player_->renderer().width() != swapchain_->width() ||
+        player_->renderer().height() != swapchain_->height())
       player_->renderer().resize(swapchain_->width(), swapchain_->height());
-    }
-    // render.width/height (panel, script or a new scene) size the window.
+    // The scene's viewport: the frame less the panel; the scene renders at that size.
+    state_.layout = make_layout(swapchain_->width(), swapchain_->height(), state_.show_panel,
+                                ImGui::GetIO().FontGlobalScale);
     const scene::ParamSet& p = player_->scene().params();
-    const int want_w = int(p.get_int("render.width")), want_h = int(p.get_int("render.height"));
-    if (want_w != window_w_ || want_h != window_h_) {
-      if (window_w_ != 0) glfwSetWindowSize(window_.handle(), want_w, want_h);
-      window_w_ = want_w;
-      window_h_ = want_h;
-    }
+    if (p.get_int("render.width") != int64_t(state_.layout.scene_w))
+      player_->scene().set("render.width", int64_t(state_.layout.scene_w));
+    if (p.get_int("render.height") != int64_t(state_.layout.scene_h))
+      player_->scene().set("render.height", int64_t(state_.layout.scene_h));
+    pace_simulation();
     scene::FrameClock& clock = player_->clock();
     if (!state_.paused || state_.step) {
       clock.time_s += 1.0 / player_->scene().params().get_real("run.fps");
@@ -258,7 +435,9 @@ class Demo {
       return false;
     }
     render::FrameRequest req;
-    req.readback = !screenshot_.empty();
+    req.readback = !screenshot_.empty() || capture_.recording();
+    req.scene_width = state_.layout.scene_w;
+    req.scene_height = state_.layout.scene_h;
     req.wait = swapchain_->image_available();
     req.wait_stage = ::vk::PipelineStageFlagBits::eTransfer;
     req.signal = swapchain_->render_finished();
@@ -267,7 +446,12 @@ class Demo {
                               player_->renderer().height());
     };
     player_->draw(
-        req, [this] { draw_panel(*player_, state_); }, state_.fps, state_.frame_ms);
+        req,
+        [this] {
+          poll_keys();
+          draw_panel(*player_, state_);
+        },
+        state_.fps, state_.frame_ms);
     if (!swapchain_->present()) swapchain_->recreate(w, h);
     if (!screenshot_.empty()) {
       render::write_png(screenshot_, player_->renderer().width(), player_->renderer().height(),
@@ -275,20 +459,42 @@ class Demo {
       // What the overlay showed on it: the title and the clock line (the tests read them).
       const std::vector<std::string> shown = render::overlay_lines(player_->overlay());
       fmt::print("demo: wrote {}: {} | {}\n", screenshot_, shown[0], shown[1]);
+      write_layout(screenshot_ + ".layout");
+      if (sph::simulation_of(player_->scene()))
+        fmt::print("demo: rate at {}: asked {} s/s, achieved {:.3g} s/s, {} steps per frame\n",
+                   screenshot_, state_.sim_rate > 0 ? fmt::format("{}", state_.sim_rate) : "off",
+                   state_.sim_rate_achieved, player_->scene().params().get_int("sph.substeps"));
       screenshot_.clear();
     }
+    if (capture_.recording())
+      render::write_png(capture_.next_frame(), player_->renderer().width(),
+                        player_->renderer().height(), player_->renderer().pixels());
     return true;
+  }
+
+  // The rectangles of the frame just written (x y width height), for the tests.
+  void write_layout(const std::string& path) const {
+    const DemoLayout& l = state_.layout;
+    std::ofstream f(path);
+    f << "window 0 0 " << l.window_w << ' ' << l.window_h << '\n'
+      << "scene 0 0 " << l.scene_w << ' ' << l.scene_h << '\n'
+      << "panel " << l.panel_x << " 0 " << l.panel_w << ' ' << l.window_h << '\n'
+      << "expanded " << (l.expanded ? 1 : 0) << '\n';
+    if (!f)
+      throw Error("demo", path, "cannot write the screenshot's layout", "check the directory");
   }
 
   DemoOptions options_;
   DemoWindow window_;
   std::unique_ptr<render::ScenePlayer> player_;
   std::unique_ptr<render::Swapchain> swapchain_;
+  DemoCapture capture_;
   DemoState state_;
+  RateMeter rate_;
+  std::optional<double> last_sim_t_;
   std::vector<ScriptCommand> script_;
   size_t next_ = 0;
   int wait_frames_ = 0;
-  int window_w_ = 0, window_h_ = 0;  // the size render.width/height last asked for
   bool scripted_ = false;
   bool failed_ = false;
   bool restart_timing_ = false;  // the next frame's time includes loading a scene: not counted
@@ -298,8 +504,10 @@ class Demo {
 int run_demo(const DemoOptions& o) {
   scene::SceneFile file = load_scene(o.scene);
   if (!o.script.empty()) (void)load_script(o.script);  // report script errors before the window
+  uint32_t w = 0, h = 0;
+  parse_window(o.window, w, h);
   install_interrupt_handler();
-  Demo demo(o, std::move(file));
+  Demo demo(o, std::move(file), w, h);
   return demo.loop();
 }
 
@@ -313,7 +521,11 @@ void add_demo_command(CLI::App& app) {
                                 o, run_demo);
   cmd->add_option("--script", o.script,
                   "drive the demo from a script (wait N, set K V, view V, scene F, backend B, "
-                  "pause, step, reset, verify, panel on|off, screenshot F, quit)");
+                  "pause, step, reset, verify, panel on|off, key K, button B, rate R, "
+                  "screenshot F, quit)");
+  cmd->add_option("--window", o.window, "window size WIDTHxHEIGHT (default: 90% of the screen)");
+  cmd->add_option("--out,-o", o.out, "output directory of screenshots, recordings, saved scenes")
+      ->capture_default_str();
   cmd->add_flag("--no-verify", o.no_verify, "start without the cross-check");
 }
 

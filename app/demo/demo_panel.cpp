@@ -45,6 +45,18 @@ std::optional<int64_t> preset_quantum_number(const scene::ParamSet& p, const std
 void table_controls(render::ScenePlayer& player, DemoState& st, const scene::TableSchema& t) {
   for (const scene::ParamSpec& spec : t.params()) {
     const std::string path = t.name() + "." + spec.key;
+    // The scene's frame size is its viewport here, which follows the window and the panel.
+    if (path == "render.height") continue;
+    if (path == "sph.substeps" && st.sim_rate > 0) {  // the rate sets it, frame by frame
+      ImGui::TextDisabled("substeps: %lld this frame (from the rate)",
+                          (long long)player.scene().params().get_int(path));
+      continue;
+    }
+    if (path == "render.width") {
+      ImGui::TextDisabled("width x height: %u x %u px (the scene's viewport)", st.layout.scene_w,
+                          st.layout.scene_h);
+      continue;
+    }
     const std::optional<int64_t> fixed = preset_quantum_number(player.scene().params(), path);
     const scene::ParamValue shown =
         fixed ? scene::ParamValue(*fixed) : player.scene().params().get(path);
@@ -78,7 +90,7 @@ void stage_table(render::ScenePlayer& player) {
 
 void mouse_camera(render::ScenePlayer& player, DemoState& st) {
   const ImGuiIO& io = ImGui::GetIO();
-  if (io.WantCaptureMouse) return;
+  if (io.WantCaptureMouse || io.MousePos.x >= float(st.layout.scene_w)) return;
   const scene::ParamSet& p = player.scene().params();
   if (ImGui::IsMouseDragging(ImGuiMouseButton_Left) &&
       (io.MouseDelta.x != 0 || io.MouseDelta.y != 0)) {
@@ -97,6 +109,46 @@ void mouse_camera(render::ScenePlayer& player, DemoState& st) {
   }
 }
 
+// The panel's own window: the layout's rectangle, never moved or resized by hand.
+bool begin_panel(const char* name, const DemoState& st) {
+  ImGui::SetNextWindowPos(ImVec2(float(st.layout.panel_x), 0), ImGuiCond_Always);
+  ImGui::SetNextWindowSize(ImVec2(float(st.layout.panel_w), float(st.layout.window_h)),
+                           ImGuiCond_Always);
+  const ImGuiWindowFlags flags = ImGuiWindowFlags_NoTitleBar | ImGuiWindowFlags_NoMove |
+                                 ImGuiWindowFlags_NoResize | ImGuiWindowFlags_NoCollapse |
+                                 ImGuiWindowFlags_NoSavedSettings;
+  return ImGui::Begin(name, nullptr, flags);
+}
+
+void capture_controls(DemoState& st) {
+  if (ImGui::Button("Screenshot")) st.actions.push_back({Action::screenshot});
+  ImGui::SameLine();
+  if (ImGui::Button(st.recording.empty() ? "Record" : "Stop recording"))
+    st.actions.push_back({Action::record});
+  ImGui::SameLine();
+  if (ImGui::Button("Save scene")) st.actions.push_back({Action::save_scene});
+  if (!st.recording.empty())
+    ImGui::TextColored(ImVec4(1, 0.5f, 0.4f, 1), "%s", st.recording.c_str());
+  if (!st.saved.empty()) ImGui::TextWrapped("%s", st.saved.c_str());
+}
+
+void shortcut_table() {
+  if (!ImGui::BeginTable("keys", 2, ImGuiTableFlags_SizingFixedFit)) return;
+  bool digits_shown = false;
+  for (const Shortcut& k : shortcuts()) {
+    if (k.request.action == Action::preset) {
+      if (digits_shown) continue;
+      digits_shown = true;
+    }
+    ImGui::TableNextRow();
+    ImGui::TableNextColumn();
+    ImGui::TextUnformatted(k.request.action == Action::preset ? "1-9, 0" : k.label);
+    ImGui::TableNextColumn();
+    ImGui::TextUnformatted(k.what);
+  }
+  ImGui::EndTable();
+}
+
 }  // namespace
 
 void set_param(render::ScenePlayer& player, DemoState& st, const std::string& path,
@@ -111,16 +163,20 @@ void set_param(render::ScenePlayer& player, DemoState& st, const std::string& pa
 
 void draw_panel(render::ScenePlayer& player, DemoState& st) {
   mouse_camera(player, st);
-  if (!st.show_panel) return;
-  const float scale = ImGui::GetIO().FontGlobalScale;
-  ImGui::SetNextWindowPos(ImVec2(ImGui::GetIO().DisplaySize.x - 390 * scale, 10 * scale),
-                          ImGuiCond_FirstUseEver);
-  ImGui::SetNextWindowSize(ImVec2(380 * scale, ImGui::GetIO().DisplaySize.y - 20 * scale),
-                           ImGuiCond_FirstUseEver);
-  if (!ImGui::Begin("masav")) {
+  if (!st.show_panel) {
+    begin_panel("##strip", st);
+    if (ImGui::Button("<", ImVec2(-1, 0))) st.actions.push_back({Action::panel});
+    if (ImGui::IsItemHovered()) ImGui::SetTooltip("expand the panel (Tab)");
     ImGui::End();
     return;
   }
+  if (!begin_panel("masav", st)) {
+    ImGui::End();
+    return;
+  }
+  // Labels get the right part of the panel, so long ones ("smoothing_radius (m)") fit.
+  ImGui::PushItemWidth(ImGui::GetWindowWidth() * 0.45f);
+  if (ImGui::Button("> collapse (Tab)")) st.actions.push_back({Action::panel});
   const scene::ParamSet& p = player.scene().params();
   // Scene.
   const std::string current = player.file().source;
@@ -132,11 +188,12 @@ void draw_panel(render::ScenePlayer& player, DemoState& st) {
   ImGui::Text("%s, %.1f fps (%.1f ms)", player.file().type.c_str(), st.fps, st.frame_ms);
 
   // Transport.
-  if (ImGui::Button(st.paused ? "Resume" : "Pause")) st.paused = !st.paused;
+  if (ImGui::Button(st.paused ? "Resume" : "Pause")) st.actions.push_back({Action::pause});
   ImGui::SameLine();
-  if (ImGui::Button("Step")) st.step = true, st.paused = true;
+  if (ImGui::Button("Step")) st.actions.push_back({Action::step});
   ImGui::SameLine();
-  if (ImGui::Button("Reset")) st.requests.reset = true;
+  if (ImGui::Button("Reset")) st.actions.push_back({Action::reset});
+  capture_controls(st);
   ImGui::TextUnformatted(render::clock_line(player.clock().frame, player.clock().time_s,
                                             player.scene().simulated_time_s())
                              .c_str());
@@ -184,6 +241,9 @@ void draw_panel(render::ScenePlayer& player, DemoState& st) {
       for (const scene::TableSchema* t : p.tables())
         if (t->name() == name) table_controls(player, st, *t);
   if (ImGui::CollapsingHeader("timings", ImGuiTreeNodeFlags_DefaultOpen)) stage_table(player);
+  if (ImGui::CollapsingHeader("keyboard shortcuts", ImGuiTreeNodeFlags_DefaultOpen))
+    shortcut_table();
+  ImGui::PopItemWidth();
   ImGui::End();
 }
 

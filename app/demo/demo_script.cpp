@@ -3,9 +3,11 @@
 #include <fmt/format.h>
 
 #include <charconv>
+#include <cstdlib>
 #include <map>
 #include <sstream>
 
+#include "app/demo/demo_actions.h"
 #include "engine/core/error.h"
 #include "engine/util/bounded_file.h"
 
@@ -32,6 +34,9 @@ const std::map<std::string, Form>& forms() {
       {"verify", {0, "verify"}},
       {"panel", {1, "panel on|off"}},
       {"screenshot", {1, "screenshot PATH"}},
+      {"key", {1, "key space|n|r|p|v|s|tab|1..9|0"}},
+      {"button", {1, "button pause|step|reset|screenshot|record|save|panel"}},
+      {"rate", {1, "rate SIMULATED_SECONDS_PER_SECOND|off"}},
       {"quit", {0, "quit"}},
   };
   return f;
@@ -74,6 +79,16 @@ std::vector<ScriptCommand> load_script(const std::string& path) {
       throw_invalid(at, "view", c.args[0], "front, top, left or orbit");
     if (c.verb == "panel" && c.args[0] != "on" && c.args[0] != "off")
       throw_invalid(at, "panel", c.args[0], "on or off");
+    if (c.verb == "key" && !shortcut_by_name(c.args[0]))
+      throw_invalid(at, "key", c.args[0], "one of " + shortcut_names());
+    if (c.verb == "button" && !button_by_name(c.args[0]))
+      throw_invalid(at, "button", c.args[0], "one of " + button_names());
+    if (c.verb == "rate" && c.args[0] != "off") {
+      char* end = nullptr;
+      const double r = std::strtod(c.args[0].c_str(), &end);
+      if (end != c.args[0].c_str() + c.args[0].size() || !(r >= 0.001 && r <= 10))
+        throw_invalid(at, "rate", c.args[0], "simulated seconds per second in [0.001, 10], or off");
+    }
     out.push_back(std::move(c));
   }
   return out;

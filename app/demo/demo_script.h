@@ -8,8 +8,13 @@
 //   scene PATH             switch to another scene file
 //   backend NAME           switch the compute backend (vulkan, cuda, cpu)
 //   pause | resume | step | reset | verify
-//   panel on|off           show or hide the control panel
-//   screenshot PATH        write the next frame (panel and overlay included) as PNG
+//   panel on|off           expand or collapse the control panel
+//   screenshot PATH        write the next frame (panel and overlay included) as PNG, and the
+//                          layout beside it (PATH.layout: window, scene and panel rectangles)
+//   key NAME               a keyboard shortcut (space, n, r, p, v, s, tab, 1..9, 0)
+//   button NAME            a panel button (pause, step, reset, screenshot, record, save, panel)
+//   rate R|off             simulated seconds per second of a stepped scene (SPH); off: the
+//                          scene's own sph.substeps per frame
 //   quit                   close the demo (also at the end of the script)
 #include <string>
 #include <vector>

@@ -4,8 +4,10 @@
 #include <GLFW/glfw3.h>
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cstdlib>
 
+#include "app/demo/demo_layout.h"
 #include "engine/core/error.h"
 #include "render/render_device.h"
 
@@ -39,12 +41,20 @@ DemoWindow::DemoWindow(uint32_t width, uint32_t height, const std::string& title
                 "install libvulkan1 and mesa-vulkan-drivers, or render headless with masav run");
   }
   glfwWindowHint(GLFW_CLIENT_API, GLFW_NO_API);
+  int wx = 0, wy = 0, ww = 0, wh = 0;
+  if (GLFWmonitor* monitor = glfwGetPrimaryMonitor())
+    glfwGetMonitorWorkarea(monitor, &wx, &wy, &ww, &wh);
+  work_w_ = uint32_t(std::max(ww, 0));
+  work_h_ = uint32_t(std::max(wh, 0));
+  if (width == 0 || height == 0) fit_window(work_w_, work_h_, width, height);
   window_ = glfwCreateWindow(int(width), int(height), title.c_str(), nullptr, nullptr);
   if (!window_) {
     const std::string why = glfw_error();
     glfwTerminate();
     throw Error("demo", "", fmt::format("the window could not be created ({})", why), kHeadless);
   }
+  // Room for the panel and a scene viewport beside it.
+  glfwSetWindowSizeLimits(window_, 480, 320, GLFW_DONT_CARE, GLFW_DONT_CARE);
 }
 
 DemoWindow::~DemoWindow() {

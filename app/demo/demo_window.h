@@ -12,6 +12,7 @@ namespace masav::app {
 class DemoWindow {
  public:
   // Throws masav::Error when there is no display (naming `masav run` as the headless way).
+  // A size of 0x0 fits the window to the primary monitor's work area (see fit_window).
   DemoWindow(uint32_t width, uint32_t height, const std::string& title);
   ~DemoWindow();
   DemoWindow(const DemoWindow&) = delete;
@@ -25,9 +26,13 @@ class DemoWindow {
   bool should_close() const;
   void set_title(const std::string& title);
   void framebuffer_size(uint32_t& width, uint32_t& height) const;
+  // The primary monitor's work area (the screen less task bars) when the window was opened.
+  uint32_t work_width() const { return work_w_; }
+  uint32_t work_height() const { return work_h_; }
 
  private:
   GLFWwindow* window_ = nullptr;
+  uint32_t work_w_ = 0, work_h_ = 0;
 };
 
 }  // namespace masav::app

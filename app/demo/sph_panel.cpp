@@ -28,13 +28,26 @@ void sph_controls(render::ScenePlayer& player, DemoState& st) {
     ImGui::SameLine();
   }
   ImGui::NewLine();
+  // Simulated time per wall-clock second: the demo picks the steps per frame to match it.
+  bool paced = st.sim_rate > 0;
+  if (ImGui::Checkbox("pace", &paced)) st.sim_rate = paced ? 0.1 : 0.0;
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("off: sph.substeps steps per frame");
+  ImGui::SameLine();
+  float rate = float(st.sim_rate);
+  ImGui::BeginDisabled(!paced);
+  if (ImGui::SliderFloat("simulated s per s", &rate, 0.001f, 10.0f, "%.3g",
+                         ImGuiSliderFlags_Logarithmic))
+    st.sim_rate = rate;
+  ImGui::EndDisabled();
+  ImGui::Text("achieved %.3g s/s (defaults for a %s)", st.sim_rate_achieved,
+              st.device_class.c_str());
   if (const SphSimulation* sim = sph::simulation_of(player.scene())) {
     ImGui::Text("%u particles (%u obstacle), h = %.3g m", sim->particle_count(),
                 sim->layout().obstacle, sim->layout().h);
     ImGui::Text("t = %.4f s simulated, %llu steps (%llu retried)", sim->time(),
                 (unsigned long long)sim->steps(), (unsigned long long)sim->retries());
-    ImGui::Text("dt %.3g s, CFL limit %.3g s, max speed %.3g m/s", sim->last_dt(),
-                sim->dt_limit(), sim->last_stats().max_speed);
+    ImGui::Text("dt %.3g s, CFL limit %.3g s, max speed %.3g m/s", sim->last_dt(), sim->dt_limit(),
+                sim->last_stats().max_speed);
   }
   ImGui::TextDisabled("every [sph] key but color_by and substeps restarts");
 }

@@ -1,0 +1,41 @@
+#include "app/video.h"
+
+#include <fmt/format.h>
+
+#include <cstdlib>
+#include <filesystem>
+
+#include "engine/core/error.h"
+
+namespace masav::app {
+
+bool write_video(const std::string& ffmpeg, const std::string& dir, const std::string& name,
+                 double fps) {
+  const std::string tmp = fmt::format("{}/.{}.tmp.mp4", dir, name);
+  const std::string out = fmt::format("{}/{}.mp4", dir, name);
+  // Even sizes for yuv420p; quiet unless it fails.
+  const std::string cmd = fmt::format(
+      "'{}' -y -loglevel error -framerate {} -i '{}/frame_%05d.png' -vf "
+      "'pad=ceil(iw/2)*2:ceil(ih/2)*2' -c:v libx264 -pix_fmt yuv420p '{}' </dev/null",
+      ffmpeg, fps, dir, tmp);
+  const int rc = std::system(cmd.c_str());
+  std::error_code ec;
+  if (rc != 0) {
+    std::filesystem::remove(tmp, ec);
+    fmt::print(stderr,
+               "masav: warning: ffmpeg could not encode the video (exit {}); the PNG "
+               "frames are complete\n",
+               rc);
+    return false;
+  }
+  std::filesystem::rename(tmp, out, ec);
+  if (ec) {
+    std::filesystem::remove(tmp, ec);
+    throw Error("", "--out", fmt::format("cannot rename the video onto '{}'", out),
+                "choose a writable output directory");
+  }
+  fmt::print("wrote {}\n", out);
+  return true;
+}
+
+}  // namespace masav::app
