@@ -299,7 +299,9 @@ TEST_CASE("[sph-physics] backends agree with the CPU reference after one step an
                      << describe(er));
     CHECK(ev.rel_l2 < 1e-5);
     CHECK(ev.max_rel < 1e-4);  // relative to max(|v|, 0.1 m/s)
-    CHECK(ex.rel_l2 < 1e-4);   // fp32 positions resolve ~4e-8 m of a ~3e-4 m step
+    // fp32 positions resolve ~4e-8 m of a ~3e-4 m step; Euler, at a quarter of the Courant
+    // number, takes this dt as 4 sub-steps and rounds the positions at each.
+    CHECK(ex.rel_l2 < (integ == SphIntegrator::euler ? 3e-4 : 1e-4));
     CHECK(ex.max_abs < 2e-7);
     CHECK(er.rel_l2 < 1e-6);
     CHECK(er.max_rel < 1e-5);

@@ -427,7 +427,10 @@ class Demo {
     try {
       player_->update();
     } catch (const Error& e) {
+      // A simulation that stops (the SPH watchdog, a NaN) keeps its last good state on screen:
+      // the demo pauses there and shows why, in the panel and on stderr.
       state_.message = e.what();
+      if (!state_.paused) fmt::print(stderr, "masav demo: paused: {}\n", e.what());
       state_.paused = true;
     }
     if (!swapchain_->acquire()) {
