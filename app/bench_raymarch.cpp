@@ -31,14 +31,9 @@ struct Timed {
 
 Timed time_raymarch(Backend& b, const RaymarchParams& rp, const Buffer<Real>& vol,
                     const std::vector<Vec4d>& tf, int reps) {
-  auto t = b.create<Real4>(tf.size(), "tf");
-  b.upload(t, tf);
-  const UVec3 nb = brick_dims(rp.volume, rp.brick);
-  auto bricks = b.create<Real4>(size_t(nb.x) * nb.y * nb.z, "bricks");
-  b.volume_bricks({rp.volume, rp.brick, rp.tf_size}, vol, t, bricks);
-  auto img = b.create<Real4>(size_t(rp.width) * rp.height, "image");
-  const TimingStats s = time_work(b, reps, [&] { b.raymarch(rp, vol, t, bricks, img); });
-  return {s.median_ms, b.download(img)};
+  atom::RaymarchBuffers r = atom::prepare_raymarch(b, vol, tf, rp);
+  const TimingStats s = time_work(b, reps, [&] { atom::raymarch_frame(b, rp, vol, r); });
+  return {s.median_ms, b.download(r.image)};
 }
 
 // The --large volume: a smooth blob on n^3 voxels with fine detail along x y.
@@ -66,13 +61,20 @@ int run_raymarch_bench(const RaymarchBenchOptions& o, JsonWriter& j) {
   fmt::print("  {:<8} {:>10} {:>12} {:>10} {:>8} {:>12}\n", "backend", "volume", "image",
              "ms/frame", "fps", "Mrays/s");
   int rc = for_each_backend(backends, [&](Backend& b) {
-    auto row = [&](const char* volume, uint32_t w, uint32_t h, bool skip, double ms) {
+    auto row = [&](const char* volume, const RaymarchParams& rp, double step_voxels, double ms) {
+      const uint32_t w = rp.width, h = rp.height;
       const double rays = double(w) * h / (ms * 1e-3);
+      std::string note;
+      if (!rp.skip_empty) note += "  (no skipping)";
+      if (step_voxels != 0.5) note += fmt::format("  (step {} voxel)", step_voxels);
+      if (rp.preintegrate) note += "  (pre-integrated)";
       fmt::print("  {:<8} {:>10} {:>7}x{:<4} {:>10.2f} {:>8.1f} {:>12.1f}{}\n", b.name(), volume, w,
-                 h, ms, 1e3 / ms, rays * 1e-6, skip ? "" : "  (no skipping)");
+                 h, ms, 1e3 / ms, rays * 1e-6, note);
       begin_row(j, b);
       j.field("volume", volume).field("width", w).field("height", h);
-      j.field("skip_empty", skip).field("median_ms", ms).field("rays_per_s", rays).end_object();
+      j.field("skip_empty", rp.skip_empty).field("preintegrate", rp.preintegrate);
+      j.field("step_voxels", step_voxels);
+      j.field("median_ms", ms).field("rays_per_s", rays).end_object();
     };
     // The thesis's count for state 1.
     atom::AtomScene scene(b, bench_scene_options("state1", 630720, 256));
@@ -80,14 +82,23 @@ int run_raymarch_bench(const RaymarchBenchOptions& o, JsonWriter& j) {
     struct Case {
       uint32_t w, h;
     };
+    struct Variant {
+      bool skip, preintegrate;
+      double step_voxels;
+    };
     for (Case c : {Case{512, 512}, Case{1024, 1024}}) {
-      for (bool skip : {true, false}) {
-        if (!skip && c.w > 512) continue;  // the effect of skipping shows at 512^2
+      // The effects of skipping and of pre-integration (the same step, then twice it) show at
+      // 512^2; the rows alternate so that a machine's load changes both sides alike.
+      for (Variant v : {Variant{true, false, 0.5}, Variant{false, false, 0.5},
+                        Variant{true, true, 0.5}, Variant{true, true, 1.0}}) {
+        if (c.w > 512 && (!v.skip || v.preintegrate)) continue;
         RaymarchParams rp =
             atom::default_raymarch(scene.volume(), atom::ViewPreset::front, c.w, c.h);
-        rp.skip_empty = skip;
+        rp.skip_empty = v.skip;
+        rp.preintegrate = v.preintegrate;
+        rp.step = float(rp.step * 2 * v.step_voxels);
         rp.brick = o.brick;
-        row("60^3", c.w, c.h, skip, time_raymarch(b, rp, scene.sample, tf, o.reps).ms);
+        row("60^3", rp, v.step_voxels, time_raymarch(b, rp, scene.sample, tf, o.reps).ms);
       }
     }
     if (o.large) {
@@ -98,7 +109,7 @@ int run_raymarch_bench(const RaymarchBenchOptions& o, JsonWriter& j) {
       const VolumeDesc d = make_volume_desc({n, n, n}, {-1, -1, -1}, {1, 1, 1});
       RaymarchParams rp = atom::default_raymarch(d, atom::ViewPreset::front, 1920, 1080);
       rp.brick = o.brick;
-      row("256^3", 1920, 1080, true, time_raymarch(b, rp, vol, tf, o.reps).ms);
+      row("256^3", rp, 0.5, time_raymarch(b, rp, vol, tf, o.reps).ms);
     }
   });
   j.end_array();
@@ -120,34 +131,38 @@ int run_raymarch_bench(const RaymarchBenchOptions& o, JsonWriter& j) {
   rp.tf_size = 4096;
   const double spacing = 2.0 / n;
   fmt::print("  step vs error against the analytic line integral (linear 60^3 volume, 128^2):\n");
-  fmt::print("  {:<8} {:>12} {:>10} {:>14}\n", "backend", "step (voxels)", "ms", "max |alpha err|");
+  fmt::print("  {:<8} {:>12} {:>14} {:>10} {:>14}\n", "backend", "step (voxels)", "pre-integrated",
+             "ms", "max |alpha err|");
   j.key("sweep").begin_array();
   rc |= for_each_backend(backends, [&](Backend& b) {
     auto vol = b.create<Real>(ramp.size(), "ramp");
     b.upload(vol, ramp);
-    for (double sv : {2.0, 1.0, 0.5, 0.25, 0.125}) {
-      rp.step = float(sv * spacing);
-      const Timed t = time_raymarch(b, rp, vol, atf, o.reps);
-      const RaymarchLayout cam = raymarch_layout(rp);
-      double err = 0;
-      for (uint32_t y = 0; y < rp.height; ++y)
-        for (uint32_t x = 0; x < rp.width; ++x) {
-          const hd::V3<double> eye = volume::v3<double>(cam.eye);
-          const hd::V3<double> dir = volume::pixel_direction<double>(cam, x, y);
-          double t0 = 0, t1 = 1e30, integral = 0;
-          if (volume::slab(eye, dir, hd::V3<double>{-1, -1, -1}, hd::V3<double>{1, 1, 1}, t0, t1))
-            for (int a = 0; a < 3; ++a)
-              integral +=
-                  atom::clamped_linear_integral((hd::comp(eye, a) + 1) / spacing - 0.5,
-                                                hd::comp(dir, a) / spacing, 0, n - 1, t0, t1) /
-                  (3.0 * (n - 1));
-          const double want = integral > 0 ? 1 - std::exp(-c * integral) : 0.0;
-          err = std::max(err, std::abs(t.image[y * rp.width + x].w - want));
-        }
-      fmt::print("  {:<8} {:>12.3f} {:>10.3f} {:>14.3e}\n", b.name(), sv, t.ms, err);
-      j.begin_object().field("backend", b.name()).field("step_voxels", sv);
-      j.field("ms", t.ms).field("max_abs_error", err).end_object();
-    }
+    for (double sv : {2.0, 1.0, 0.5, 0.25, 0.125})
+      for (bool pre : {false, true}) {
+        rp.step = float(sv * spacing);
+        rp.preintegrate = pre;
+        const Timed t = time_raymarch(b, rp, vol, atf, o.reps);
+        const RaymarchLayout cam = raymarch_layout(rp);
+        double err = 0;
+        for (uint32_t y = 0; y < rp.height; ++y)
+          for (uint32_t x = 0; x < rp.width; ++x) {
+            const hd::V3<double> eye = volume::v3<double>(cam.eye);
+            const hd::V3<double> dir = volume::pixel_direction<double>(cam, x, y);
+            double t0 = 0, t1 = 1e30, integral = 0;
+            if (volume::slab(eye, dir, hd::V3<double>{-1, -1, -1}, hd::V3<double>{1, 1, 1}, t0, t1))
+              for (int a = 0; a < 3; ++a)
+                integral +=
+                    atom::clamped_linear_integral((hd::comp(eye, a) + 1) / spacing - 0.5,
+                                                  hd::comp(dir, a) / spacing, 0, n - 1, t0, t1) /
+                    (3.0 * (n - 1));
+            const double want = integral > 0 ? 1 - std::exp(-c * integral) : 0.0;
+            err = std::max(err, std::abs(t.image[y * rp.width + x].w - want));
+          }
+        fmt::print("  {:<8} {:>12.3f} {:>14} {:>10.3f} {:>14.3e}\n", b.name(), sv,
+                   pre ? "yes" : "no", t.ms, err);
+        j.begin_object().field("backend", b.name()).field("step_voxels", sv);
+        j.field("preintegrate", pre).field("ms", t.ms).field("max_abs_error", err).end_object();
+      }
   });
   j.end_array();
   return rc;
