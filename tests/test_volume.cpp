@@ -298,29 +298,27 @@ TEST_CASE(
   sweep(extinction_tf(4096, peak, ref), analytic_alpha(rp, 24, peak), true);
 }
 
-TEST_CASE("preintegrate_transfer: piece means, their sums split into float and remainder") {
-  // Colour 0.5 -> 1 with alpha 0 -> 1 - e^-2 -> 1 (transmittance capped at kMinTransmittance).
+TEST_CASE(
+    "preintegrate_transfer: depth and emission per entry, their integrals as float and remainder") {
+  // Colour 0.5 -> 1 -> 1 with alpha 0 -> 1 - e^-2 -> 1 (transmittance capped at kMinTransmittance).
   const std::vector<Vec4d> tf = {{0.5, 0, 0, 0}, {1, 0, 0, 1 - std::exp(-2.0)}, {1, 0, 0, 1}};
   const auto t = atom::preintegrate_transfer(tf);
   REQUIRE(t.size() == kPreintegratedPerEntry * 3);
-  // Piece 0: depth -ln(1 - a) for a linear in alpha: mean of -ln(1 - w (1 - e^-2)) over w.
-  const double u1 = std::exp(-2.0);
-  const double depth0 = -(u1 * std::log(u1) - u1 + 1) / (u1 - 1);
-  CHECK(t[0].w == doctest::Approx(depth0).epsilon(1e-4));
-  CHECK(t[0].x > 0.5 * depth0);  // the colour rises where the depth does
-  CHECK(t[0].x < 1.0 * depth0);
-  CHECK(t[0].y == 0);
-  // Piece 1 reaches alpha 1: finite, below the cap.
-  CHECK(t[3].w > 2);
-  CHECK(t[3].w < -std::log(atom::kMinTransmittance));
-  // The sums: 0 at entry 0, then piece 0, then pieces 0 and 1; float part plus remainder.
+  const double cap = -std::log(atom::kMinTransmittance);
+  CHECK(t[0].w == 0);
+  CHECK(t[3].w == doctest::Approx(2.0).epsilon(1e-12));
+  CHECK(t[3].x == doctest::Approx(2.0).epsilon(1e-12));  // emission = colour * depth
+  CHECK(t[3].y == 0);
+  CHECK(t[6].w == doctest::Approx(cap).epsilon(1e-12));
+  // The integrals: 0 at entry 0, then the trapezoids; float part plus remainder.
   CHECK(t[1].w == 0);
   const double sum1 = t[4].w + t[5].w, sum2 = t[7].w + t[8].w;
-  CAPTURE(sum1 - t[0].w);
-  CAPTURE(sum2 - (t[0].w + t[3].w));
-  CHECK(std::abs(sum1 - t[0].w) <= 1e-15);
-  CHECK(std::abs(sum2 - (t[0].w + t[3].w)) <= 1e-15);
+  CAPTURE(sum1);
+  CAPTURE(sum2);
+  CHECK(std::abs(sum1 - 1.0) <= 1e-15);
+  CHECK(std::abs(sum2 - (1.0 + 0.5 * (2.0 + cap))) <= 1e-14);
   CHECK(double(float(t[7].w)) == t[7].w);
+  CHECK(t[8].w != 0);  // 1 + (2 + 13.8) / 2 is not a float
   CHECK(std::abs(t[8].w) <= 1e-7 * t[7].w);
   CHECK_THROWS_WITH_AS(atom::preintegrate_transfer({{1, 1, 1, 1}}),
                        doctest::Contains("at least 2 entries"), Error);

@@ -89,14 +89,15 @@ MASAV_HD inline V4<T> transfer(T v, uint32_t size, Tf&& tf) {
 // point, so a step of a voxel or more keeps the accuracy of a finer one.
 //
 // Entry k of the transfer function sits at x = k (x = normalised value * (size - 1)); piece k runs
-// from entry k to k + 1. The table (engine/atom/preintegration.cpp builds it in double) holds
-// kPreintegratedPerEntry Real4 per entry k:
-//   [3k]     piece k's mean (emission r, g, b, optical depth): depth tau = -ln(1 - alpha) per
-//            reference step, emission = colour * tau (colour is what a unit of depth emits)
-//   [3k + 1] the sums of those means over pieces 0 .. k-1, rounded to float
-//   [3k + 2] what the rounding left (sum - the float), so that an fp32 backend differences two
-//            sums to about double precision
-// The mean over [x_f, x_b] is then exact for depth and emission piecewise constant per piece.
+// from entry k to k + 1. Per entry the table holds the optical depth tau = -ln(1 - alpha) per
+// reference step and the emission colour * tau, both taken as linear across each piece (the
+// midpoint rule interpolates alpha instead: the two agree to second order in the entry spacing).
+// The table (engine/atom/preintegration.cpp builds it in double) holds kPreintegratedPerEntry
+// Real4 per entry k:
+//   [3k]     (emission r, g, b, depth) at entry k
+//   [3k + 1] their integral over x from entry 0 to entry k, rounded to float
+//   [3k + 2] what the rounding left (integral - the float), so that an fp32 backend differences
+//            two integrals to about double precision
 template <class T>
 struct TfPos {
   uint32_t k;  // the piece, <= size - 2
@@ -111,9 +112,16 @@ MASAV_HD inline TfPos<T> tf_pos(T v, uint32_t size) {
   return TfPos<T>{k, x - T(k)};
 }
 
+template <class T>
+MASAV_HD inline V4<T> lerp4(V4<T> a, V4<T> b, T w) {
+  return V4<T>{a.r + (b.r - a.r) * w, a.g + (b.g - a.g) * w, a.b + (b.b - a.b) * w,
+               a.a + (b.a - a.a) * w};
+}
+
 // The mean (emission, depth) over the values between a and b, in either order. pt(i): table entry
-// i. Same piece: that piece's mean, no differencing; neighbouring pieces: the two parts weighted
-// by length; farther apart (length > 1 entry): the sums' difference.
+// i. Less than 1/16 of an entry apart: the value midway, exact for a linear piece and free of the
+// cancellation that differencing two close integrals has; farther apart: the difference of the
+// integrals over the length.
 template <class T, class Pt>
 MASAV_HD inline V4<T> segment_mean(TfPos<T> a, TfPos<T> b, Pt&& pt) {
   TfPos<T> f = a, e = b;
@@ -121,22 +129,26 @@ MASAV_HD inline V4<T> segment_mean(TfPos<T> a, TfPos<T> b, Pt&& pt) {
     f = b;
     e = a;
   }
-  const V4<T> sf = pt(3u * f.k);
-  if (f.k == e.k) return sf;
-  const V4<T> se = pt(3u * e.k);
-  if (e.k == f.k + 1u) {
-    const T wf = T(1) - f.w, len = wf + e.w;  // len > 0: f.w < 1 below the last piece
-    const T inv = T(1) / len;
-    return V4<T>{(sf.r * wf + se.r * e.w) * inv, (sf.g * wf + se.g * e.w) * inv,
-                 (sf.b * wf + se.b * e.w) * inv, (sf.a * wf + se.a * e.w) * inv};
+  const T len = T(e.k - f.k) + (e.w - f.w);
+  if (len < T(0.0625)) {
+    uint32_t k = f.k;
+    T w = f.w + T(0.5) * len;
+    if (w > T(1)) {  // the midpoint is in e's piece (only then can w pass 1)
+      k = e.k;
+      w -= T(1);
+    }
+    return lerp4(pt(3u * k), pt(3u * k + 3u), w);
   }
+  // The integral from entry k to k + w: w times the value at k + w/2.
+  const V4<T> pf = lerp4(pt(3u * f.k), pt(3u * f.k + 3u), T(0.5) * f.w);
+  const V4<T> pe = lerp4(pt(3u * e.k), pt(3u * e.k + 3u), T(0.5) * e.w);
   const V4<T> hf = pt(3u * f.k + 1u), lf = pt(3u * f.k + 2u);
   const V4<T> he = pt(3u * e.k + 1u), le = pt(3u * e.k + 2u);
-  const T inv = T(1) / (T(e.k - f.k) + e.w - f.w);
-  return V4<T>{((he.r - hf.r) + (le.r - lf.r) + se.r * e.w - sf.r * f.w) * inv,
-               ((he.g - hf.g) + (le.g - lf.g) + se.g * e.w - sf.g * f.w) * inv,
-               ((he.b - hf.b) + (le.b - lf.b) + se.b * e.w - sf.b * f.w) * inv,
-               ((he.a - hf.a) + (le.a - lf.a) + se.a * e.w - sf.a * f.w) * inv};
+  const T inv = T(1) / len;
+  return V4<T>{((he.r - hf.r) + (le.r - lf.r) + pe.r * e.w - pf.r * f.w) * inv,
+               ((he.g - hf.g) + (le.g - lf.g) + pe.g * e.w - pf.g * f.w) * inv,
+               ((he.b - hf.b) + (le.b - lf.b) + pe.b * e.w - pf.b * f.w) * inv,
+               ((he.a - hf.a) + (le.a - lf.a) + pe.a * e.w - pf.a * f.w) * inv};
 }
 
 // What every pixel derives from the layout, in float as the host would: voxel spacing and the

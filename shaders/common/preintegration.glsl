@@ -20,14 +20,20 @@ vec4 segment_mean(TfPos a, TfPos b) {
     f = b;
     e = a;
   }
-  const vec4 sf = tf_integral[3u * f.k];
-  if (f.k == e.k) return sf;
-  const vec4 se = tf_integral[3u * e.k];
-  if (e.k == f.k + 1u) {
-    const float wf = 1.0 - f.w;
-    return (sf * wf + se * e.w) * (1.0 / (wf + e.w));
+  const float len = float(e.k - f.k) + (e.w - f.w);
+  if (len < 0.0625) {
+    uint k = f.k;
+    float w = f.w + 0.5 * len;
+    if (w > 1.0) {  // the midpoint is in e's piece (only then can w pass 1)
+      k = e.k;
+      w -= 1.0;
+    }
+    return mix(tf_integral[3u * k], tf_integral[3u * k + 3u], w);
   }
+  // The integral from entry k to k + w: w times the value at k + w/2.
+  const vec4 pf = mix(tf_integral[3u * f.k], tf_integral[3u * f.k + 3u], 0.5 * f.w);
+  const vec4 pe = mix(tf_integral[3u * e.k], tf_integral[3u * e.k + 3u], 0.5 * e.w);
   const vec4 sums = (tf_integral[3u * e.k + 1u] - tf_integral[3u * f.k + 1u]) +
                     (tf_integral[3u * e.k + 2u] - tf_integral[3u * f.k + 2u]);
-  return (sums + se * e.w - sf * f.w) * (1.0 / (float(e.k - f.k) + e.w - f.w));
+  return (sums + pe * e.w - pf * f.w) * (1.0 / len);
 }
