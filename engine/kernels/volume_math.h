@@ -119,9 +119,10 @@ MASAV_HD inline V4<T> lerp4(V4<T> a, V4<T> b, T w) {
 }
 
 // The mean (emission, depth) over the values between a and b, in either order. pt(i): table entry
-// i. Less than 1/16 of an entry apart: the value midway, exact for a linear piece and free of the
-// cancellation that differencing two close integrals has; farther apart: the difference of the
-// integrals over the length.
+// i. Within one piece, or less than 1/16 of an entry apart: the value midway (exact for a linear
+// piece, and free of the cancellation that differencing two close integrals has); in
+// neighbouring pieces: the two parts, each its length times its midway value; farther apart: the
+// difference of the integrals over the length.
 template <class T, class Pt>
 MASAV_HD inline V4<T> segment_mean(TfPos<T> a, TfPos<T> b, Pt&& pt) {
   TfPos<T> f = a, e = b;
@@ -130,7 +131,7 @@ MASAV_HD inline V4<T> segment_mean(TfPos<T> a, TfPos<T> b, Pt&& pt) {
     e = a;
   }
   const T len = T(e.k - f.k) + (e.w - f.w);
-  if (len < T(0.0625)) {
+  if (e.k == f.k || len < T(0.0625)) {
     uint32_t k = f.k;
     T w = f.w + T(0.5) * len;
     if (w > T(1)) {  // the midpoint is in e's piece (only then can w pass 1)
@@ -139,12 +140,20 @@ MASAV_HD inline V4<T> segment_mean(TfPos<T> a, TfPos<T> b, Pt&& pt) {
     }
     return lerp4(pt(3u * k), pt(3u * k + 3u), w);
   }
+  const V4<T> p0 = pt(3u * f.k), p1 = pt(3u * f.k + 3u);
+  const T inv = T(1) / len;
+  if (e.k == f.k + 1u) {
+    const V4<T> p2 = pt(3u * e.k + 3u);
+    const T lf = T(1) - f.w;
+    const V4<T> mf = lerp4(p0, p1, T(0.5) * (T(1) + f.w)), me = lerp4(p1, p2, T(0.5) * e.w);
+    return V4<T>{(mf.r * lf + me.r * e.w) * inv, (mf.g * lf + me.g * e.w) * inv,
+                 (mf.b * lf + me.b * e.w) * inv, (mf.a * lf + me.a * e.w) * inv};
+  }
   // The integral from entry k to k + w: w times the value at k + w/2.
-  const V4<T> pf = lerp4(pt(3u * f.k), pt(3u * f.k + 3u), T(0.5) * f.w);
+  const V4<T> pf = lerp4(p0, p1, T(0.5) * f.w);
   const V4<T> pe = lerp4(pt(3u * e.k), pt(3u * e.k + 3u), T(0.5) * e.w);
   const V4<T> hf = pt(3u * f.k + 1u), lf = pt(3u * f.k + 2u);
   const V4<T> he = pt(3u * e.k + 1u), le = pt(3u * e.k + 2u);
-  const T inv = T(1) / len;
   return V4<T>{((he.r - hf.r) + (le.r - lf.r) + pe.r * e.w - pf.r * f.w) * inv,
                ((he.g - hf.g) + (le.g - lf.g) + pe.g * e.w - pf.g * f.w) * inv,
                ((he.b - hf.b) + (le.b - lf.b) + pe.b * e.w - pf.b * f.w) * inv,
