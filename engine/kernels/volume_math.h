@@ -245,6 +245,18 @@ MASAV_HD inline uint32_t first_segment_after(T t, T tn, T step, uint32_t i, uint
   return next;
 }
 
+// x^e for the opacity correction. The step is usually a power-of-two fraction or multiple of the
+// reference step (1/2 voxel against 1: e = 0.5 exactly), and those exponents take a square root
+// or a product instead of pow, the costliest call of a sample (a fifth of the CPU's time).
+template <class T>
+MASAV_HD inline T pow_step(T x, T e) {
+  if (e == T(1)) return x;
+  if (e == T(0.5)) return hd::sqrt_t(x);
+  if (e == T(0.25)) return hd::sqrt_t(hd::sqrt_t(x));
+  if (e == T(2)) return x * x;
+  return hd::pow_t(x, e);
+}
+
 // The last segment boundary at or before t (segments of `step` from tn, n of them), as a segment
 // index in [0, n].
 template <class T>
@@ -414,7 +426,7 @@ MASAV_HD inline V4<T> raymarch_pixel(const RaymarchLayout& c, uint32_t px, uint3
       acc.a += (T(1) - acc.a) * col.a;
     } else if (col.a > T(0)) {  // a transparent sample adds nothing: 1 - 1^e = 0
       const T e = seg + 1u == n ? (s1 - s0) / T(c.reference_step) : exponent;
-      const T alpha = T(1) - hd::pow_t(hd::max_t(T(0), T(1) - col.a), e);
+      const T alpha = T(1) - pow_step(hd::max_t(T(0), T(1) - col.a), e);
       const T wgt = (T(1) - acc.a) * alpha;
       acc.r += wgt * col.r;
       acc.g += wgt * col.g;
