@@ -9,6 +9,7 @@
 #include <limits>
 #include <type_traits>
 
+#include "app/bench_common.h"
 #include "app/commands.h"
 #include "app/progress.h"
 #include "app/scene_options.h"
@@ -50,6 +51,8 @@ struct AtomCliOptions {
 struct VolumeCliOptions {
   BackendChoice choice;
   std::string file, out = "out/volume", type, array, tf, view = "front", mode = "front_to_back";
+  std::string preintegrate = "off";
+  int reps = 0;
   std::vector<uint32_t> dims;
   std::vector<float> spacing;
   bool big_endian = false;
@@ -202,6 +205,11 @@ int run_volume(const VolumeCliOptions& o) {
   const atom::ViewPreset view = atom::parse_view(o.view);
   if (o.mode != "front_to_back" && o.mode != "lerp")
     throw_invalid("masav volume", "--mode", o.mode, "front_to_back or lerp");
+  if (o.preintegrate != "on" && o.preintegrate != "off")
+    throw_invalid("masav volume", "--preintegrate", o.preintegrate, "on or off");
+  if (o.preintegrate == "on" && o.mode != "front_to_back")
+    throw_invalid("masav volume", "--preintegrate", "on with --mode " + o.mode,
+                  "off, or on with --mode front_to_back (lerp has no step to integrate over)");
   const std::string ext = std::filesystem::path(o.file).extension().string();
   check_format_options(o, ext);
   // --out names a directory, as for every command; a .png name is the file it used to name.
@@ -243,13 +251,25 @@ int run_volume(const VolumeCliOptions& o) {
   RaymarchParams rp = atom::default_raymarch(desc, view, o.width, o.height);
   rp.step *= 2.0f * o.step_voxels;
   rp.mode = o.mode == "lerp" ? Compositing::lerp : Compositing::front_to_back;
-  const auto img = atom::render_volume(*backend, desc, buf, tf, rp);
+  rp.preintegrate = o.preintegrate == "on";
+  rp.volume = desc;
+  rp.tf_size = uint32_t(tf.size());
+  atom::RaymarchBuffers r = atom::prepare_raymarch(*backend, buf, tf, rp);
+  atom::raymarch_frame(*backend, rp, buf, r);
   progress.advance("writing " + png);
-  atom::write_image_png(img, o.width, o.height, png);
+  atom::write_image_png(backend->download(r.image), o.width, o.height, png);
   progress.advance();
   progress.finish();
   fmt::print("volume: {}x{}x{} values in [{}, {}] raymarched on {} to {}\n", desc.dims.x,
              desc.dims.y, desc.dims.z, vol.min, vol.max, backend->name(), png);
+  if (o.reps > 0) {
+    const TimingStats s =
+        time_work(*backend, o.reps, [&] { atom::raymarch_frame(*backend, rp, buf, r); });
+    fmt::print(
+        "raymarch: {:.2f} ms/frame on {} ({}x{}, step {} voxels, pre-integration {}; "
+        "median of {})\n",
+        s.median_ms, backend->name(), o.width, o.height, o.step_voxels, o.preintegrate, o.reps);
+  }
   return 0;
 }
 
@@ -326,6 +346,11 @@ void add_atom_command(CLI::App& app) {
   vc->add_option("--width", v.width, "image width")->check(CLI::Range(16u, 8192u));
   vc->add_option("--height", v.height, "image height")->check(CLI::Range(16u, 8192u));
   vc->add_option("--step", v.step_voxels, "ray step in voxels")->check(CLI::Range(0.05f, 4.0f));
+  vc->add_option("--preintegrate", v.preintegrate,
+                 "on: integrate the transfer function over each step (front-to-back only)")
+      ->capture_default_str();
+  vc->add_option("--reps", v.reps, "also time this many more frames and print ms/frame")
+      ->check(CLI::Range(0, 1000));
 }
 
 }  // namespace masav::app

@@ -12,9 +12,11 @@ layout(std430, binding = 1) readonly buffer Volume { float volume_data[]; };
 layout(std430, binding = 2) readonly buffer Tf { vec4 tf[]; };
 layout(std430, binding = 3) readonly buffer Bricks { vec4 bricks[]; };
 layout(std430, binding = 4) writeonly buffer Image { vec4 image[]; };
+layout(std430, binding = 5) readonly buffer TfIntegral { vec4 tf_integral[]; };
 MASAV_PUSH(RaymarchLayout);
 
 #include "volume.glsl"
+#include "preintegration.glsl"
 
 // The GLSL twin of volume::cell_exit: where the ray u(t) = u0 + du t leaves cell ci of `count`
 // cells of `size` voxels on one axis (the outermost cells reach to infinity outward).
@@ -32,6 +34,15 @@ float cell_exit(vec3 u0, vec3 du, vec3 inv_du, uvec3 ci, uvec3 count, float size
   return axis_exit(u0.z, du.z, inv_du.z, ci.z, count.z, size, exit);
 }
 
+// The twin of volume::pow_step: x^e, with a square root or product for e = 1/4, 1/2, 1, 2.
+float pow_step(float x, float e) {
+  if (e == 1.0) return x;
+  if (e == 0.5) return sqrt(x);
+  if (e == 0.25) return sqrt(sqrt(x));
+  if (e == 2.0) return x * x;
+  return pow(x, e);
+}
+
 uint first_segment_after(float t, float tn, float step_len, uint i, uint n) {
   uint next = i + 1u;
   const float first = ceil((t - tn) / step_len - 0.5);
@@ -43,7 +54,7 @@ vec4 march(uint px, uint py) {
   vec4 acc = vec4(0.0);
   const uint width = p.width, height = p.height;
   const bool lerp_mode = p.mode == Compositing_lerp;
-  const bool skip = p.skip_empty != 0u && !lerp_mode;
+  const bool skip = (p.flags & kRaySkipEmpty) != 0u && !lerp_mode;
   const vec3 eye = p.eye;
   const float nx = (float(px) + 0.5) / float(width) * 2.0 - 1.0;
   const float ny = 1.0 - (float(py) + 0.5) / float(height) * 2.0;
@@ -101,9 +112,96 @@ vec4 march(uint px, uint py) {
         acc.a += (1.0 - acc.a) * col.a;
       } else if (col.a > 0.0) {  // a transparent sample adds nothing: 1 - 1^e = 0
         const float e = seg + 1u == n ? (s1 - s0) / p.reference_step : exponent;
-        const float alpha = 1.0 - pow(max(0.0, 1.0 - col.a), e);
+        const float alpha = 1.0 - pow_step(max(0.0, 1.0 - col.a), e);
         const float w = (1.0 - acc.a) * alpha;
         acc.rgb += w * col.rgb;
+        acc.a += w;
+        done = acc.a >= p.termination_alpha;
+      }
+      ++i;
+    }
+  }
+  return acc;
+}
+
+uint last_boundary_before(float t, float tn, float step_len, uint n) {
+  const float q = (t - tn) / step_len;
+  return q >= float(n) ? n : (q > 0.0 ? uint(q) : 0u);
+}
+
+TfPos value_at(vec3 u0, vec3 du, float t, uvec3 dims) {
+  return tf_pos((trilinear(u0 + du * t, dims) - p.value_min) * p.value_scale, p.tf_size);
+}
+
+// The twin of volume::raymarch_pixel_preintegrated: the scalar at segment boundaries, each
+// segment's colour and opacity from the pre-integrated table, runs of segments inside one empty
+// block or brick skipped.
+vec4 march_preintegrated(uint px, uint py) {
+  vec4 acc = vec4(0.0);
+  const bool skip = (p.flags & kRaySkipEmpty) != 0u;
+  const vec3 eye = p.eye;
+  const float nx = (float(px) + 0.5) / float(p.width) * 2.0 - 1.0;
+  const float ny = 1.0 - (float(py) + 0.5) / float(p.height) * 2.0;
+  const vec3 dir = normalize(p.forward + p.right * nx + p.up * ny);
+  const vec3 lo = p.box_min, hi = p.box_max;
+  float tn = 0.0, tfar = VOLUME_FAR;
+  if (!slab(eye, dir, lo, hi, tn, tfar)) return acc;
+  const float step_len = p.step, len = tfar - tn;
+  const uint n = uint(ceil(len / step_len));
+  const uvec3 dims = p.dims;
+  const vec3 spacing = (hi - lo) / vec3(dims);
+  const vec3 u0 = (eye - lo) / spacing - 0.5;
+  const vec3 du = dir / spacing;
+  const vec3 inv_du = vec3(du.x != 0.0 ? 1.0 / du.x : 0.0, du.y != 0.0 ? 1.0 / du.y : 0.0,
+                           du.z != 0.0 ? 1.0 / du.z : 0.0);
+  const float brick = float(p.brick);
+  const uvec3 nb = (dims + p.brick - 1u) / p.brick;
+  const uvec3 blocks = (nb + 1u) / 2u;
+  const float inv_ref = 1.0 / p.reference_step;
+  float occupied_until = -1.0;  // the ray is in an occupied brick for t < occupied_until
+  TfPos front = TfPos(0u, 0.0);
+  bool have_front = false;  // front holds the value at boundary i
+  // No loop may nest in this one (see slab.glsl).
+  uint i = 0u;
+  bool done = false;
+  for (uint it = 0u; it < n; ++it) {
+    if (i >= n || done) break;
+    LOOP_TICK();
+    const float s0 = tn + float(i) * step_len;
+    const float s1 = min(s0 + step_len, tfar);
+    bool skipped = false;
+    if (skip && s0 >= occupied_until) {
+      const vec3 u = u0 + du * s0;
+      const uvec3 bi = uvec3(clamp(floor(u / brick), vec3(0.0), vec3(nb - 1u)));
+      const vec4 b = bricks[(bi.z * nb.y + bi.y) * nb.x + bi.x];
+      float empty_until = -1.0;
+      if (b.w <= 0.0) {  // the whole 2x2x2 block of bricks is empty
+        empty_until = cell_exit(u0, du, inv_du, bi / 2u, blocks, 2.0 * brick);
+      } else {
+        const float exit = cell_exit(u0, du, inv_du, bi, nb, brick);
+        if (b.z <= 0.0) {
+          empty_until = exit;
+        } else {
+          occupied_until = exit;
+        }
+      }
+      const uint j = empty_until >= 0.0 ? last_boundary_before(empty_until, tn, step_len, n) : 0u;
+      if (j > i) {  // segments i .. j-1 end inside the empty cell
+        i = j;
+        have_front = false;
+        skipped = true;
+      }
+    }
+    if (!skipped) {
+      if (!have_front) front = value_at(u0, du, s0, dims);
+      const TfPos back = value_at(u0, du, s1, dims);
+      const vec4 m = segment_mean(front, back);
+      front = back;
+      have_front = true;
+      if (m.w > 0.0) {  // alpha = 1 - exp(-depth); colour = emission / depth per unit alpha
+        const float alpha = 1.0 - exp(-m.w * (s1 - s0) * inv_ref);
+        const float w = (1.0 - acc.a) * alpha;
+        acc.rgb += (w / m.w) * m.rgb;
         acc.a += w;
         done = acc.a >= p.termination_alpha;
       }
@@ -120,7 +218,8 @@ void run() {
   const uint tile = id / 64u, in_tile = id % 64u;
   const uint x = tile % tiles_x * 8u + in_tile % 8u, y = tile / tiles_x * 8u + in_tile / 8u;
   if (x >= p.width || y >= p.height) return;
-  image[y * p.width + x] = march(x, y);
+  const bool preintegrated = (p.flags & kRayPreintegrate) != 0u;
+  image[y * p.width + x] = preintegrated ? march_preintegrated(x, y) : march(x, y);
 }
 
 void main() {

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "engine/atom/orbital_tables.h"
+#include "engine/atom/preintegration.h"
 #include "engine/core/error.h"
 #include "engine/grid/hash_grid.h"
 #include "engine/kernels/atom_checks.h"
@@ -235,6 +236,7 @@ LOOP_LIMIT_CASE(
   auto tf = b.create<Real4>(2, "tf");
   auto bricks = b.create<Real4>(512, "bricks");
   auto img = b.create<Real4>(64, "image");
+  auto table = b.create<Real4>(kPreintegratedPerEntry * 2, "pre-integrated table");
   RaymarchParams rp;
   rp.volume = vol;
   rp.width = rp.height = 8;
@@ -253,14 +255,21 @@ LOOP_LIMIT_CASE(
     b.upload(v, std::vector<double>(64 * 64 * 64, value));
     b.upload(tf, std::vector<Vec4d>{{1, 1, 1, alpha}, {1, 1, 1, alpha}});
     b.volume_bricks({vol, rp.brick, 2}, v, tf, bricks);
+    b.upload(table, atom::preintegrate_transfer({{1, 1, 1, alpha}, {1, 1, 1, alpha}}));
     (void)test::ticks_of(b);
-    b.raymarch(rp, v, tf, bricks, img);
+    b.raymarch(rp, v, tf, bricks, img, &table);
     return test::ticks_of(b);
   };
   const uint32_t worst = run(0.5, 1e-6);
   MESSAGE("raymarch at the smallest step: " << worst << " loop iterations");
   CHECK(worst > 55000);  // all the segments ran (a nested loop once made lavapipe stop at 32,768)
   CHECK(worst < test::loop_counter().caps().max_loop_iterations);
+  rp.preintegrate = true;
+  const uint32_t worst_pre = run(0.5, 1e-6);
+  MESSAGE("pre-integrated at the smallest step: " << worst_pre << " loop iterations");
+  CHECK(worst_pre > 55000);
+  CHECK(worst_pre < test::loop_counter().caps().max_loop_iterations);
+  rp.preintegrate = false;
   rp.skip_empty = true;
   const uint32_t empty = run(0.5, 0.0);  // every block of bricks empty: one step per block
   MESSAGE("raymarch through empty bricks: " << empty << " loop iterations");
@@ -270,7 +279,7 @@ LOOP_LIMIT_CASE(
   const uint32_t dense = run(0.5, 0.5);  // opaque after seven samples
   CHECK(dense < 100);
   rp.step *= 0.9f;
-  CHECK_THROWS_AS(b.raymarch(rp, v, tf, bricks, img), Error);
+  CHECK_THROWS_AS(b.raymarch(rp, v, tf, bricks, img, &table), Error);
 }
 
 LOOP_LIMIT_CASE("drift_points loops three times (one per axis), independent of n",

@@ -12,6 +12,7 @@
 #include "engine/atom/atom_schema.h"
 #include "engine/atom/orbital.h"
 #include "engine/atom/orbital_tables.h"
+#include "engine/atom/preintegration.h"
 #include "engine/atom/scatter_cache.h"
 #include "engine/atom/transfer_function.h"
 #include "engine/cpu/cpu_backend.h"
@@ -229,7 +230,7 @@ CheckVolume check_volume(const CheckInputs& in) {
 // default size) computed there.
 struct BrickedVolume {
   Buffer<Real> volume;
-  Buffer<Real4> transfer, bricks;
+  Buffer<Real4> transfer, bricks, preintegrated;
 };
 
 BrickedVolume upload_bricked(Backend& b, const CheckVolume& v) {
@@ -242,6 +243,7 @@ BrickedVolume upload_bricked(Backend& b, const CheckVolume& v) {
   const UVec3 nb = brick_dims(v.desc, brick);
   bv.bricks = b.create<Real4>(size_t(nb.x) * nb.y * nb.z, "check bricks");
   b.volume_bricks({v.desc, brick, uint32_t(v.tf.size())}, bv.volume, bv.transfer, bv.bricks);
+  bv.preintegrated = atom::upload_preintegrated(b, v.tf);
   return bv;
 }
 
@@ -378,8 +380,14 @@ std::vector<KernelCheck> atom_checks() {
         rp.reference_step = 2 * rp.step;
         rp.tf_size = uint32_t(v.tf.size());
         auto img = b.create<Real4>(size_t(rp.width) * rp.height, "check image");
-        b.raymarch(rp, bv.volume, bv.transfer, bv.bricks, img);
-        return CheckOutputs{{"image", {}, flatten(b.download(img))}};
+        b.raymarch(rp, bv.volume, bv.transfer, bv.bricks, img, nullptr);
+        const std::vector<double> plain = flatten(b.download(img));
+        // Pre-integrated, at the step of a voxel it is meant for.
+        rp.preintegrate = true;
+        rp.step = 2 * rp.step;
+        b.raymarch(rp, bv.volume, bv.transfer, bv.bricks, img, &bv.preintegrated);
+        return CheckOutputs{{"image", {}, plain},
+                            {"image preintegrated", {}, flatten(b.download(img))}};
       }));
   return c;
 }

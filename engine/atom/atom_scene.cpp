@@ -6,6 +6,7 @@
 #include <chrono>
 #include <cmath>
 
+#include "engine/atom/preintegration.h"
 #include "engine/core/error.h"
 #include "engine/grid/hash_grid.h"
 #include "engine/kernels/atom_checks.h"
@@ -206,18 +207,31 @@ RaymarchParams default_raymarch(const VolumeDesc& d, ViewPreset view, uint32_t w
   return rp;
 }
 
+RaymarchBuffers prepare_raymarch(Backend& b, const Buffer<Real>& volume,
+                                 const std::vector<Vec4d>& tf, const RaymarchParams& rp) {
+  RaymarchBuffers r;
+  r.tf = b.create<Real4>(tf.size(), "transfer function");
+  b.upload(r.tf, tf);
+  const UVec3 nb = brick_dims(rp.volume, rp.brick);
+  r.bricks = b.create<Real4>(size_t(nb.x) * nb.y * nb.z, "bricks");
+  b.volume_bricks({rp.volume, rp.brick, rp.tf_size}, volume, r.tf, r.bricks);
+  if (rp.preintegrate) r.tf_integral = upload_preintegrated(b, tf);
+  r.image = b.create<Real4>(size_t(rp.width) * rp.height, "image");
+  return r;
+}
+
+void raymarch_frame(Backend& b, const RaymarchParams& rp, const Buffer<Real>& volume,
+                    RaymarchBuffers& r) {
+  b.raymarch(rp, volume, r.tf, r.bricks, r.image, r.tf_integral.valid() ? &r.tf_integral : nullptr);
+}
+
 std::vector<Vec4d> render_volume(Backend& b, const VolumeDesc& desc, const Buffer<Real>& volume,
                                  const std::vector<Vec4d>& tf, RaymarchParams rp) {
   rp.volume = desc;
   rp.tf_size = uint32_t(tf.size());
-  auto t = b.create<Real4>(tf.size(), "transfer function");
-  b.upload(t, tf);
-  const UVec3 nb = brick_dims(desc, rp.brick);
-  auto bricks = b.create<Real4>(size_t(nb.x) * nb.y * nb.z, "bricks");
-  b.volume_bricks({desc, rp.brick, rp.tf_size}, volume, t, bricks);
-  auto img = b.create<Real4>(size_t(rp.width) * rp.height, "image");
-  b.raymarch(rp, volume, t, bricks, img);
-  return b.download(img);
+  RaymarchBuffers r = prepare_raymarch(b, volume, tf, rp);
+  raymarch_frame(b, rp, volume, r);
+  return b.download(r.image);
 }
 
 }  // namespace masav::atom

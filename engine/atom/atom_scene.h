@@ -103,6 +103,17 @@ class AtomScene {
   StageTimes times_;
 };
 
+// What raymarch reads besides the volume, on one backend: the transfer function (RGBA entries),
+// its bricks, its pre-integrated table (when rp.preintegrate), and the image it writes.
+struct RaymarchBuffers {
+  Buffer<Real4> tf, bricks, tf_integral, image;
+};
+RaymarchBuffers prepare_raymarch(Backend& b, const Buffer<Real>& volume,
+                                 const std::vector<Vec4d>& tf, const RaymarchParams& rp);
+// One frame into r.image.
+void raymarch_frame(Backend& b, const RaymarchParams& rp, const Buffer<Real>& volume,
+                    RaymarchBuffers& r);
+
 // Raymarches `volume` (on the scene's backend) with the transfer function `tf` (RGBA entries),
 // returns the float RGBA image (premultiplied, top row first).
 std::vector<Vec4d> render_volume(Backend& b, const VolumeDesc& desc, const Buffer<Real>& volume,

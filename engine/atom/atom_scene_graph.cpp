@@ -8,6 +8,7 @@
 #include "engine/atom/atom_scene.h"
 #include "engine/atom/atom_schema.h"
 #include "engine/atom/orbital.h"
+#include "engine/atom/preintegration.h"
 #include "engine/atom/transfer_function.h"
 #include "engine/core/error.h"
 #include "engine/kernels/atom_checks.h"
@@ -80,7 +81,7 @@ class AtomCloudScene final : public scene::SceneInstance {
     add("bricks", {"voxelize", "transfer"}, [this] { bricks(); });
     add("raymarch",
         {"bricks", "view", "render.width", "render.height", "volume.step_voxels",
-         "volume.compositing"},
+         "volume.compositing", "volume.preintegrate"},
         [this] { raymarch(); });
   }
 
@@ -148,6 +149,11 @@ class AtomCloudScene final : public scene::SceneInstance {
         throw Error("", "atom-volume",
                     fmt::format("volume.s = {} and volume.t = {} leave the volume empty", s, t),
                     "give s or t a positive weight (the thesis: s = 0.6, t = 0.4)");
+      if (p.get_flag("volume.preintegrate") && p.get_text("volume.compositing") != "front_to_back")
+        throw Error("", "atom-volume",
+                    fmt::format("volume.preintegrate = true with volume.compositing = {}",
+                                p.get_text("volume.compositing")),
+                    "pre-integration needs compositing = \"front_to_back\" (lerp has no step)");
     }
   }
 
@@ -198,6 +204,7 @@ class AtomCloudScene final : public scene::SceneInstance {
         resample_transfer(file.empty() ? default_transfer_points() : load_transfer_points(file));
     if (tf_.size() != tf.size()) tf_ = backend_.create<Real4>(tf.size(), "transfer function");
     backend_.upload(tf_, tf);
+    tf_integral_ = upload_preintegrated(backend_, tf);
   }
 
   RaymarchParams raymarch_params() const {
@@ -232,9 +239,10 @@ class AtomCloudScene final : public scene::SceneInstance {
     rp.reference_step = voxel;
     rp.mode = params_.get_text("volume.compositing") == "lerp" ? Compositing::lerp
                                                                : Compositing::front_to_back;
+    rp.preintegrate = params_.get_flag("volume.preintegrate");
     const size_t pixels = size_t(rp.width) * rp.height;
     if (image_.size() != pixels) image_ = backend_.create<Real4>(pixels, "raymarched image");
-    backend_.raymarch(rp, core_.sample, tf_, bricks_, image_);
+    backend_.raymarch(rp, core_.sample, tf_, bricks_, image_, &tf_integral_);
     image_w_ = rp.width;
     image_h_ = rp.height;
   }
@@ -245,7 +253,7 @@ class AtomCloudScene final : public scene::SceneInstance {
   std::string file_subject_;  // subject() as the scene was created
   double time_s_ = 0;
   float light_to_unit_ = 1;
-  Buffer<Real4> tf_, bricks_, image_;
+  Buffer<Real4> tf_, tf_integral_, bricks_, image_;
   uint32_t image_w_ = 0, image_h_ = 0;
 };
 

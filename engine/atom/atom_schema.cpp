@@ -84,6 +84,9 @@ const scene::TableSchema& volume_table() {
     s.real("step_voxels", 0.5, 0.05, 4.0, "raymarch step", "voxels");
     s.choice("compositing", "front_to_back", {"front_to_back", "lerp"},
              "emission-absorption front to back, or the thesis's lerp");
+    s.flag("preintegrate", false,
+           "integrate the transfer function over each step (front_to_back only): a step of a "
+           "voxel keeps the accuracy of a finer one");
     s.real("gain", 1.0, 0.0, 16.0, "multiplies the raymarched image");
     s.flag("show_particles", false, "draw the lit particles over the volume as well");
     return s;

@@ -69,7 +69,8 @@ class CpuBackend final : public Backend {
   void build_sph_lists(const SphListInputs& in, size_t chunks, Found&& found);
   // raymarch in fp32 from fp32 copies of its inputs, a row of 8x8 tiles per task (cpu_volume.cpp).
   void raymarch_fp32(const RaymarchParams& p, const Buffer<Real>& volume, const Buffer<Real4>& tf,
-                     const Buffer<Real4>& bricks, Buffer<Real4>& image);
+                     const Buffer<Real4>& bricks, Buffer<Real4>& image,
+                     const Buffer<Real4>* tf_integral);
 
   Capabilities caps_;
   ThreadPool pool_;

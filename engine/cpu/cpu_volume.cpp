@@ -45,7 +45,7 @@ void CpuBackend::run_own(const KernelArgs<KernelId::voxelize>& a) {
 
 void CpuBackend::raymarch_fp32(const RaymarchParams& p, const Buffer<Real>& volume,
                                const Buffer<Real4>& tf, const Buffer<Real4>& bricks,
-                               Buffer<Real4>& image) {
+                               Buffer<Real4>& image, const Buffer<Real4>* tf_integral) {
   const char* k = "raymarch";
   const RaymarchLayout c = raymarch_layout(p);
   const size_t voxels = size_t(c.dims.x) * c.dims.y * c.dims.z;
@@ -53,7 +53,7 @@ void CpuBackend::raymarch_fp32(const RaymarchParams& p, const Buffer<Real>& volu
   const size_t brick_count = size_t(nb.x) * nb.y * nb.z;
   // fp32 copies of what the rays read (a fraction of a frame's work: one read per voxel).
   std::vector<float> vol(voxels);
-  std::vector<hd::V4<float>> tf32(c.tf_size), bricks32(brick_count);
+  std::vector<hd::V4<float>> tf32(c.tf_size), bricks32(brick_count), integral32;
   const double* vd = own(volume.impl(), k).as<double>();
   pool_.parallel_for(voxels, 1 << 16, [&](size_t b, size_t e) {
     for (size_t i = b; i < e; ++i) vol[i] = float(vd[i]);
@@ -64,6 +64,10 @@ void CpuBackend::raymarch_fp32(const RaymarchParams& p, const Buffer<Real>& volu
   };
   to_float4(own(tf.impl(), k).as<double>(), tf32);
   to_float4(own(bricks.impl(), k).as<double>(), bricks32);
+  if (p.preintegrate) {
+    integral32.resize(size_t(kPreintegratedPerEntry) * c.tf_size);
+    to_float4(own(tf_integral->impl(), k).as<double>(), integral32);
+  }
   double* out = own(image.impl(), k).as<double>();
   // One row of 8x8 tiles per task: neighbouring rays share bricks and cache lines, and rows of
   // uneven cost balance over the pool.
@@ -75,7 +79,7 @@ void CpuBackend::raymarch_fp32(const RaymarchParams& p, const Buffer<Real>& volu
       uint32_t x, y;
       if (!volume::tile_pixel(c, uint32_t(id), x, y)) continue;
       const volume::V4<float> o = KernelBody<KernelId::raymarch>::pixel<float>(
-          c, x, y, vol.data(), tf32.data(), bricks32.data());
+          c, x, y, vol.data(), tf32.data(), bricks32.data(), integral32.data());
       double* px = out + 4 * (size_t(y) * c.width + x);
       px[0] = o.r;
       px[1] = o.g;

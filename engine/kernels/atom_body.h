@@ -126,13 +126,15 @@ template <>
 struct KernelBody<KernelId::raymarch> {
   static constexpr uint32_t kCpuGrain = 256;
   // Invocation id marches the pixel volume::tile_pixel gives (8x8 tiles); image[y * width + x]
-  // = its composited RGBA (colour premultiplied), rows from the top.
+  // = its composited RGBA (colour premultiplied), rows from the top. tf_integral: the
+  // pre-integrated table (volume::segment_mean), read when c.flags has kRayPreintegrate.
   template <class F, class Diag>
   MASAV_HD static void run(uint32_t id, const RaymarchLayout& c, Diag&, const F* volume,
-                           const hd::V4<F>* tf, const hd::V4<F>* bricks, hd::V4<F>* image) {
+                           const hd::V4<F>* tf, const hd::V4<F>* bricks, hd::V4<F>* image,
+                           const hd::V4<F>* tf_integral) {
     uint32_t x, y;
     if (!volume::tile_pixel(c, id, x, y)) return;
-    const volume::V4<F> o = pixel<F>(c, x, y, volume, tf, bricks);
+    const volume::V4<F> o = pixel<F>(c, x, y, volume, tf, bricks, tf_integral);
     image[size_t(y) * c.width + x] = hd::V4<F>{o.r, o.g, o.b, o.a};
   }
 
@@ -140,19 +142,25 @@ struct KernelBody<KernelId::raymarch> {
   // directly).
   template <class F>
   MASAV_HD static volume::V4<F> pixel(const RaymarchLayout& c, uint32_t x, uint32_t y,
-                                      const F* volume, const hd::V4<F>* tf,
-                                      const hd::V4<F>* bricks) {
+                                      const F* volume, const hd::V4<F>* tf, const hd::V4<F>* bricks,
+                                      const hd::V4<F>* tf_integral) {
     const uint32_t dx = c.dims.x, dy = c.dims.y;
     const uint32_t nbx = (dx + c.brick - 1) / c.brick, nby = (dy + c.brick - 1) / c.brick;
     auto vat = [volume, dx, dy](uint32_t i, uint32_t j, uint32_t k) {
       return volume[(size_t(k) * dy + j) * dx + i];
     };
-    auto tat = [tf](uint32_t k) { return volume::V4<F>{tf[k].x, tf[k].y, tf[k].z, tf[k].w}; };
     auto occ = [bricks, nbx, nby](uint32_t bx, uint32_t by, uint32_t bz) {
       const hd::V4<F> b = bricks[(size_t(bz) * nby + by) * nbx + bx];
       return volume::Occupancy<F>{b.z, b.w};
     };
-    return volume::raymarch_pixel<F>(c, x, y, vat, tat, occ);
+    auto entry = [](const hd::V4<F>* table) {
+      return [table](uint32_t k) {
+        return volume::V4<F>{table[k].x, table[k].y, table[k].z, table[k].w};
+      };
+    };
+    if (c.flags & kRayPreintegrate)
+      return volume::raymarch_pixel_preintegrated<F>(c, x, y, vat, entry(tf_integral), occ);
+    return volume::raymarch_pixel<F>(c, x, y, vat, entry(tf), occ);
   }
 };
 

@@ -250,7 +250,7 @@ RaymarchLayout raymarch_layout(const RaymarchParams& p) {
   c.width = p.width;
   c.height = p.height;
   c.brick = p.brick;
-  c.skip_empty = p.skip_empty ? 1u : 0u;
+  c.flags = (p.skip_empty ? kRaySkipEmpty : 0u) | (p.preintegrate ? kRayPreintegrate : 0u);
   return c;
 }
 
@@ -266,7 +266,8 @@ uint64_t max_ray_segments(const RaymarchParams& p) {
 }
 
 void validate(const DeviceApi& dev, const RaymarchParams& p, const Buffer<Real>& volume,
-              const Buffer<Real4>& tf, const Buffer<Real4>& bricks, const Buffer<Real4>& image) {
+              const Buffer<Real4>& tf, const Buffer<Real4>& bricks, const Buffer<Real4>& image,
+              const Buffer<Real4>* tf_integral) {
   const char* k = "raymarch";
   check_volume(p.volume, k);
   in_range(k, "width", p.width, 1, 16384);
@@ -289,6 +290,15 @@ void validate(const DeviceApi& dev, const RaymarchParams& p, const Buffer<Real>&
   in_range(k, "tf_size", p.tf_size, 2, 4096);
   if (p.mode != Compositing::front_to_back && p.mode != Compositing::lerp)
     throw_invalid(k, "mode", std::to_string(uint32_t(p.mode)), "front_to_back or lerp");
+  if (p.preintegrate) {
+    if (p.mode != Compositing::front_to_back)
+      throw_invalid(k, "preintegrate", "on with lerp compositing",
+                    "off, or on with front_to_back compositing (the lerp mode has no step)");
+    if (!tf_integral || !tf_integral->valid())
+      throw_invalid(k, "tf_integral", "none",
+                    "the pre-integrated table of the transfer function (preintegrate is on)");
+    at_least(k, "tf_integral", tf_integral->size(), uint64_t(kPreintegratedPerEntry) * p.tf_size);
+  }
   // Loop iterations of the worst ray: its segments, plus a slab test (3) per skipped brick.
   const UVec3 nb = brick_dims(p.volume, p.brick);
   const uint64_t segs = max_ray_segments(p) + 3ull * (uint64_t(nb.x) + nb.y + nb.z) + 16;

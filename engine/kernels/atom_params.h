@@ -177,8 +177,15 @@ MASAV_LAYOUT(RaymarchLayout) {
   uint width;
   uint height;
   uint brick;
-  uint skip_empty;
+  uint flags;  // kRaySkipEmpty | kRayPreintegrate
 };
+MASAV_CONSTANT(kRaySkipEmpty, 1)
+// The segment's colour and opacity from the pre-integrated table (volume::segment_mean) rather
+// than the transfer function at its midpoint.
+MASAV_CONSTANT(kRayPreintegrate, 2)
+// The pre-integrated table holds this many Real4 per transfer-function entry
+// (volume::segment_mean describes them).
+MASAV_CONSTANT(kPreintegratedPerEntry, 3)
 // The most loop iterations a ray may take (samples and skipped bricks), within the portable loop
 // budget (kPortableLoopBudget).
 MASAV_CONSTANT(kMaxRaySteps, 60000)
@@ -208,7 +215,7 @@ MASAV_LAYOUT_CHECK(VolumeBrickParams, 64, (volume, 0), (brick, 48), (tf_size, 52
 MASAV_LAYOUT_CHECK(RaymarchLayout, 128, (eye, 0), (step, 12), (forward, 16), (reference_step, 28),
                    (right, 32), (termination_alpha, 44), (up, 48), (value_min, 60), (box_min, 64),
                    (value_scale, 76), (box_max, 80), (mode, 92), (dims, 96), (tf_size, 108),
-                   (width, 112), (height, 116), (brick, 120), (skip_empty, 124))
+                   (width, 112), (height, 116), (brick, 120), (flags, 124))
 
 // A volume's description in the order one says it: dims, box, value range.
 inline VolumeDesc make_volume_desc(UVec3 dims, Vec3f box_min, Vec3f box_max, float value_min = 0,
@@ -235,6 +242,10 @@ struct RaymarchParams {
   float reference_step = 0.01f;     // the step the transfer function's alpha is defined for
   float termination_alpha = 0.99f;  // early ray termination (front_to_back); 1 = never
   bool skip_empty = true;
+  // Each segment's colour and opacity integrated over the scalar's linear change along it, from
+  // the table of volume::segment_mean (the raymarch's tf_integral, front_to_back only): a larger
+  // step keeps its accuracy.
+  bool preintegrate = false;
   uint32_t brick = 2;  // voxels per empty-space brick: fine bricks skip the most samples
   uint32_t tf_size = 256;
   Compositing mode = Compositing::front_to_back;
@@ -267,7 +278,8 @@ void validate(const DeviceApi& dev, const VoxelizeParams& p, const Buffer<Real4>
 void validate(const DeviceApi& dev, const VolumeBrickParams& p, const Buffer<Real>& volume,
               const Buffer<Real4>& tf, const Buffer<Real4>& bricks);
 void validate(const DeviceApi& dev, const RaymarchParams& p, const Buffer<Real>& volume,
-              const Buffer<Real4>& tf, const Buffer<Real4>& bricks, const Buffer<Real4>& image);
+              const Buffer<Real4>& tf, const Buffer<Real4>& bricks, const Buffer<Real4>& image,
+              const Buffer<Real4>* tf_integral);
 // Bricks of volume_bricks' output: its invocations.
 uint64_t brick_count(const VolumeBrickParams& p);
 // The raymarch's invocations: the image padded to whole 8x8 tiles (volume::tile_pixel).
