@@ -174,3 +174,72 @@ TEST_CASE("the SPH overlay shows the simulated time, the frame clock labelled ap
   player.scene().set("sph.preset", std::string("water"));
   CHECK(render::overlay_lines(player.overlay())[0] == "masav: SPH water");
 }
+
+TEST_CASE("colour bar ticks are round values between the range's ends") {
+  CHECK(render::nice_ticks(0, 0.3) == std::vector<double>{0, 0.1, 0.2, 0.30000000000000004});
+  CHECK(render::nice_ticks(0, 2.45).size() == 5);  // 0, 0.5, ..., 2
+  CHECK(render::nice_ticks(800, 1100) == std::vector<double>{800, 900, 1000, 1100});
+  CHECK(render::tick_label(0.5, 0.5) == "0.5");
+  CHECK(render::tick_label(1000, 100) == "1000");
+  CHECK(render::tick_label(0.0002, 0.0001) == "0.0002");
+  CHECK(render::nice_ticks(1, 1).size() == 1);  // an empty range: one tick, no division by 0
+}
+
+// The colour bar at the bottom left of an SPH frame: its gradient shows the colour map from the
+// range's bottom to its top at the heights of its ticks, its title names the quantity and the
+// unit, and its labels are the ticks' values -- found through the bar's layout, as drawn.
+TEST_CASE("the colour bar shows the colour map, its tick labels and the quantity's unit") {
+  scene::SceneFile file = scene::load_scene_file(MASAV_SOURCE_DIR "/scenes/sph_water.toml");
+  file.params.set("sph.count", int64_t(600));
+  file.params.set("render.width", int64_t(320));
+  file.params.set("render.height", int64_t(240));
+  file.params.set("camera.view", std::string("front"));
+  render::PlayerOptions po;
+  po.backend = "vulkan";
+  po.graphics = render::graphics_options();
+  render::ScenePlayer player(file, po);
+  player.update();
+  render::FrameRequest req;
+  req.readback = true;
+  player.draw(req);
+  const Image img{player.renderer().width(), player.renderer().height(),
+                  player.renderer().pixels()};
+  const render::OverlayInfo o = player.overlay();
+  REQUIRE(o.colour_bar.has_value());
+  const render::ColourBar& bar = *o.colour_bar;
+  CHECK(bar.title == "speed (m/s)");
+  CHECK(bar.lo == 0.0f);
+  CHECK(bar.hi > 1.0f);
+  player.ui().make_current();
+  const render::ColourBarLayout l = render::colour_bar_layout_in_frame(bar);
+  REQUIRE(l.ticks.size() >= 3);
+  CHECK(l.ticks.front().label == "0");
+  CHECK(l.x0 >= 0);
+  CHECK(l.y1 < float(img.h));
+  CHECK(l.title_y > float(img.h) / 2);  // bottom left, clear of the overlay's text
+  const render::ColormapTable thesis = render::colormap_table("thesis");
+  for (const auto& t : l.ticks) {
+    CAPTURE(t.label);
+    CHECK(t.label == render::tick_label(t.value, l.ticks[1].value - l.ticks[0].value));
+    CHECK(t.value >= bar.lo);
+    CHECK(t.value <= bar.hi);
+    // The gradient's colour at the tick's height is the colour map's at the tick's value.
+    const uint32_t y = uint32_t(std::clamp(t.y, l.y0 + 2.0f, l.y1 - 2.0f));
+    const uint32_t x = uint32_t(0.5f * (l.x0 + l.x1));
+    const size_t i = 4 * (size_t(y) * img.w + x);
+    const double v = bar.lo + (bar.hi - bar.lo) * (l.y1 - float(y)) / (l.y1 - l.y0);
+    const Vec4f want = render::colour_at(bar, v);
+    CHECK(std::abs(img.px[i] - 255.0 * want.x) < 16);
+    CHECK(std::abs(img.px[i + 1] - 255.0 * want.y) < 16);
+    CHECK(std::abs(img.px[i + 2] - 255.0 * want.z) < 16);
+  }
+  // The map's ends: blue at the bottom, red at the top.
+  CHECK(render::colour_at(bar, bar.lo).z == doctest::Approx(thesis.front().z));
+  CHECK(render::colour_at(bar, bar.hi).x == doctest::Approx(thesis.back().x));
+  // The title is drawn: light text pixels in its line.
+  size_t text = 0;
+  for (uint32_t y = uint32_t(l.title_y); y < uint32_t(l.title_y) + 10; ++y)
+    for (uint32_t x = uint32_t(l.title_x); x < uint32_t(l.title_x) + 80; ++x)
+      text += img.sum(x, y) > 600;
+  CHECK(text > 20);
+}

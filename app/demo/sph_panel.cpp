@@ -28,13 +28,20 @@ void sph_controls(render::ScenePlayer& player, DemoState& st) {
     ImGui::SameLine();
   }
   ImGui::NewLine();
+  // How the particles are drawn: flat sprites, lit spheres, or the fluid's surface.
+  for (const std::string& name : p.spec("render.point_style").choices) {
+    if (ImGui::RadioButton(name.c_str(), p.get_text("render.point_style") == name))
+      set_param(player, st, "render.point_style", name);
+    ImGui::SameLine();
+  }
+  ImGui::NewLine();
   if (const SphSimulation* sim = sph::simulation_of(player.scene())) {
     ImGui::Text("%u particles (%u obstacle), h = %.3g m", sim->particle_count(),
                 sim->layout().obstacle, sim->layout().h);
     ImGui::Text("t = %.4f s simulated, %llu steps (%llu retried)", sim->time(),
                 (unsigned long long)sim->steps(), (unsigned long long)sim->retries());
-    ImGui::Text("dt %.3g s, CFL limit %.3g s, max speed %.3g m/s", sim->last_dt(),
-                sim->dt_limit(), sim->last_stats().max_speed);
+    ImGui::Text("dt %.3g s, CFL limit %.3g s, max speed %.3g m/s", sim->last_dt(), sim->dt_limit(),
+                sim->last_stats().max_speed);
   }
   ImGui::TextDisabled("every [sph] key but color_by and substeps restarts");
 }
