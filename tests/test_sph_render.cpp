@@ -116,13 +116,14 @@ TEST_CASE("the SPH cube drop renders and the fluid ends at the bottom of the box
 
 TEST_CASE("demo sph screenshots" * doctest::skip(std::getenv("MASAV_DEMO_SPH_SHOTS") == nullptr)) {
   // Written by tests/data/demo_sph_script.txt: a (the water falling for a while), b (rk4,
-  // restarted and stepped once while paused), c (the same state in one colour).
+  // restarted and stepped once while paused), c (the same state in one colour), d (c as a fluid
+  // surface).
   const std::string dir = std::getenv("MASAV_DEMO_SPH_SHOTS");
   auto load = [&](const char* name) {
     const render::Rgba8Image img = render::read_png(dir + "/" + name);
     return Image{img.width, img.height, img.pixels};
   };
-  const Image a = load("a.png"), b = load("b.png"), c = load("c.png");
+  const Image a = load("a.png"), b = load("b.png"), c = load("c.png"), d = load("d.png");
   // The scene area: left of the panel, below the overlay.
   auto scene_area = [](const Image& f) { return lit_pixels(f, f.w / 2, f.h / 4, f.h); };
   const LitStats la = scene_area(a), lb = scene_area(b), lc = scene_area(c);
@@ -145,6 +146,31 @@ TEST_CASE("demo sph screenshots" * doctest::skip(std::getenv("MASAV_DEMO_SPH_SHO
     }
   MESSAGE(differ << " pixels recoloured");
   CHECK(differ > 300);
+  // The colour bar at the bottom left of the demo's frame: the thesis map's pure red top and
+  // blue bottom (b's fluid is back at the top of the box, away from the bar).
+  size_t red = 0, blue = 0;
+  for (uint32_t y = b.h / 2; y < b.h; ++y)
+    for (uint32_t x = 0; x < 40; ++x) {
+      const size_t i = 4 * (size_t(y) * b.w + x);
+      red += b.px[i] > 200 && b.px[i + 1] < 90 && b.px[i + 2] < 90;
+      blue += b.px[i + 2] > 200 && b.px[i] < 60 && b.px[i + 1] < 60;
+    }
+  MESSAGE("colour bar: " << red << " red, " << blue << " blue pixels");
+  CHECK(red > 10);
+  CHECK(blue > 10);
+  // The fluid surface: drawn, and shaded unlike the spheres of the same state.
+  const LitStats ld = scene_area(d);
+  size_t reshaded = 0;
+  for (uint32_t y = c.h / 4; y < c.h; ++y)
+    for (uint32_t x = 0; x < c.w / 2; ++x) {
+      const size_t i = 4 * (size_t(y) * c.w + x);
+      int e = 0;
+      for (int k = 0; k < 3; ++k) e = std::max(e, std::abs(int(c.px[i + k]) - int(d.px[i + k])));
+      reshaded += e > 40;
+    }
+  MESSAGE("surface: lit " << ld.count << ", " << reshaded << " pixels differ from the spheres");
+  CHECK(ld.count > 300);
+  CHECK(reshaded > 200);
 }
 
 TEST_CASE("the SPH overlay shows the simulated time, the frame clock labelled apart") {
