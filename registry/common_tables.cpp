@@ -27,7 +27,13 @@ const TableSchema& render_table() {
     s.real("point_size", 3.0, 0.5, 64.0, "point sprite diameter at the camera's distance", "px");
     s.choice("blend", "opaque", {"opaque", "additive"},
              "opaque sprites with depth test, or additive glow (depth-tested, not written)");
-    s.real("brightness", 1.0, 0.0, 16.0, "multiplies the points' colour");
+    s.choice("point_style", "spheres", {"sprites", "spheres", "surface"},
+             "opaque points: flat round sprites, lit sphere impostors with their own depth, or "
+             "a fluid surface (screen space: smoothed depth, thickness, refraction-like "
+             "shading); additive points are always glows");
+    s.real("brightness", 1.0, 0.0, 16.0,
+           "multiplies the points' colour (additive: 1 shows the structure of 200K particles; "
+           "the count, frame and sprite size are compensated)");
     s.flag("show_box", true, "draw the simulation box");
     s.flag("show_axes", true, "draw the x (red), y (green), z (blue) axes at the box corner");
     s.flag("overlay", true, "draw the text overlay (fps, backend, per-stage times)");

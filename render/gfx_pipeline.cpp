@@ -58,8 +58,9 @@ std::unique_ptr<GraphicsPipeline> make_graphics_pipeline(const vk::Context& ctx,
       .setDepthCompareOp(::vk::CompareOp::eLessOrEqual);
   ::vk::PipelineColorBlendAttachmentState blend;
   using F = ::vk::BlendFactor;
-  blend.setColorWriteMask(::vk::ColorComponentFlagBits::eR | ::vk::ColorComponentFlagBits::eG |
-                          ::vk::ColorComponentFlagBits::eB | ::vk::ColorComponentFlagBits::eA);
+  if (spec.color_write)
+    blend.setColorWriteMask(::vk::ColorComponentFlagBits::eR | ::vk::ColorComponentFlagBits::eG |
+                            ::vk::ColorComponentFlagBits::eB | ::vk::ColorComponentFlagBits::eA);
   if (spec.blend == Blend::alpha)
     blend.setBlendEnable(true)
         .setSrcColorBlendFactor(F::eSrcAlpha)

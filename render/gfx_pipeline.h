@@ -20,6 +20,7 @@ struct GraphicsSpec {
   bool depth_test = false;
   bool depth_write = false;
   Blend blend = Blend::none;
+  bool color_write = true;  // false: a pass that only writes storage buffers (or depth)
 };
 
 struct GraphicsPipeline {

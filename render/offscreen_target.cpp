@@ -13,26 +13,30 @@ constexpr ::vk::Format kDepthFormat = ::vk::Format::eD32Sfloat;
 
 }  // namespace
 
-::vk::raii::RenderPass make_render_pass(const vk::Context& ctx) {
+::vk::raii::RenderPass make_render_pass(const vk::Context& ctx, bool continued) {
   using L = ::vk::ImageLayout;
-  const ::vk::AttachmentDescription attachments[2] = {{{},
-                                                       kColorFormat,
-                                                       ::vk::SampleCountFlagBits::e1,
-                                                       ::vk::AttachmentLoadOp::eClear,
-                                                       ::vk::AttachmentStoreOp::eStore,
-                                                       ::vk::AttachmentLoadOp::eDontCare,
-                                                       ::vk::AttachmentStoreOp::eDontCare,
-                                                       L::eUndefined,
-                                                       L::eTransferSrcOptimal},
-                                                      {{},
-                                                       kDepthFormat,
-                                                       ::vk::SampleCountFlagBits::e1,
-                                                       ::vk::AttachmentLoadOp::eClear,
-                                                       ::vk::AttachmentStoreOp::eDontCare,
-                                                       ::vk::AttachmentLoadOp::eDontCare,
-                                                       ::vk::AttachmentStoreOp::eDontCare,
-                                                       L::eUndefined,
-                                                       L::eDepthStencilAttachmentOptimal}};
+  using Op = ::vk::AttachmentLoadOp;
+  const Op load = continued ? Op::eLoad : Op::eClear;
+  // Depth is kept between the passes of one frame (the fluid surface's passes).
+  const ::vk::AttachmentDescription attachments[2] = {
+      {{},
+       kColorFormat,
+       ::vk::SampleCountFlagBits::e1,
+       load,
+       ::vk::AttachmentStoreOp::eStore,
+       Op::eDontCare,
+       ::vk::AttachmentStoreOp::eDontCare,
+       continued ? L::eTransferSrcOptimal : L::eUndefined,
+       L::eTransferSrcOptimal},
+      {{},
+       kDepthFormat,
+       ::vk::SampleCountFlagBits::e1,
+       load,
+       ::vk::AttachmentStoreOp::eStore,
+       Op::eDontCare,
+       ::vk::AttachmentStoreOp::eDontCare,
+       continued ? L::eDepthStencilAttachmentOptimal : L::eUndefined,
+       L::eDepthStencilAttachmentOptimal}};
   const ::vk::AttachmentReference color_ref(0, L::eColorAttachmentOptimal);
   const ::vk::AttachmentReference depth_ref(1, L::eDepthStencilAttachmentOptimal);
   ::vk::SubpassDescription subpass({}, ::vk::PipelineBindPoint::eGraphics, {}, color_ref, {},
@@ -40,11 +44,22 @@ constexpr ::vk::Format kDepthFormat = ::vk::Format::eD32Sfloat;
   using S = ::vk::PipelineStageFlagBits;
   using A = ::vk::AccessFlagBits;
   // In: the previous frame's transfer (readback, blit) of the same image is done before we
-  // clear it. Out: colour writes are visible to the readback copy and the blit.
+  // clear it, and a continued pass waits for the frame's earlier passes (attachments, and the
+  // storage buffers their fragment shaders wrote). Out: colour writes are visible to the
+  // readback copy and the blit. Both passes have the same dependencies: pipelines and the
+  // framebuffer are made against one of them, and compatible passes differ only in load
+  // operations and layouts.
+  const ::vk::PipelineStageFlags earlier = S::eTransfer | S::eColorAttachmentOutput |
+                                           S::eEarlyFragmentTests | S::eLateFragmentTests |
+                                           S::eFragmentShader;
+  const ::vk::PipelineStageFlags later =
+      S::eColorAttachmentOutput | S::eEarlyFragmentTests | S::eFragmentShader;
   const ::vk::SubpassDependency deps[2] = {
-      {VK_SUBPASS_EXTERNAL, 0, S::eTransfer | S::eColorAttachmentOutput | S::eEarlyFragmentTests,
-       S::eColorAttachmentOutput | S::eEarlyFragmentTests, A::eTransferRead,
-       A::eColorAttachmentWrite | A::eDepthStencilAttachmentWrite},
+      {VK_SUBPASS_EXTERNAL, 0, earlier, later,
+       A::eTransferRead | A::eColorAttachmentWrite | A::eDepthStencilAttachmentWrite |
+           A::eShaderWrite,
+       A::eColorAttachmentRead | A::eColorAttachmentWrite | A::eDepthStencilAttachmentRead |
+           A::eDepthStencilAttachmentWrite | A::eShaderRead | A::eShaderWrite},
       {0, VK_SUBPASS_EXTERNAL, S::eColorAttachmentOutput, S::eTransfer, A::eColorAttachmentWrite,
        A::eTransferRead}};
   return ::vk::raii::RenderPass(ctx.device(),

@@ -15,7 +15,9 @@ constexpr ::vk::Format kColorFormat = ::vk::Format::eR8G8B8A8Unorm;
 
 // A colour-and-depth render pass compatible with every OffscreenTarget (pipelines are made once
 // against it). The colour image ends in TRANSFER_SRC layout, ready for readback or a blit.
-::vk::raii::RenderPass make_render_pass(const vk::Context& ctx);
+// The frame's render pass: cleared, or `continued` (loads what an earlier pass of the same frame
+// drew; the fluid surface draws in three passes).
+::vk::raii::RenderPass make_render_pass(const vk::Context& ctx, bool continued = false);
 
 class OffscreenTarget {
  public:

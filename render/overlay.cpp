@@ -46,6 +46,7 @@ void draw_overlay(const OverlayInfo& info) {
     dl->AddText(ImVec2(origin.x, origin.y + line_h * float(i)),
                 i == 0 ? IM_COL32(255, 220, 120, 255) : IM_COL32(235, 235, 235, 255),
                 lines[i].c_str());
+  if (info.colour_bar) draw_colour_bar(*info.colour_bar);
 }
 
 }  // namespace masav::render

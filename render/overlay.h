@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "engine/scene/stage_graph.h"
+#include "render/colour_bar.h"
 
 namespace masav::render {
 
@@ -22,6 +23,7 @@ struct OverlayInfo {
   double frame_ms = 0;  // wall time of the last frame
   std::string verify;   // cross-check status line
   std::string legend;   // colour-map legend: scalar name and range
+  std::optional<ColourBar> colour_bar;  // drawn at the right edge
   std::vector<scene::StageCounters> stages;
 };
 
@@ -30,7 +32,7 @@ std::vector<std::string> overlay_lines(const OverlayInfo& info);
 // The line with the frame, the time and the frame rate.
 std::string clock_line(uint64_t frame, double clock_s, std::optional<double> simulated_s);
 
-// Adds the overlay to the current ImGui frame (between NewFrame and Render).
+// Adds the overlay (and its colour bar) to the current ImGui frame (between NewFrame and Render).
 void draw_overlay(const OverlayInfo& info);
 
 }  // namespace masav::render

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <bit>
+#include <cmath>
 #include <cstring>
 
 #include "engine/core/error.h"
@@ -19,6 +20,7 @@ struct PointsPush {
   float size[4];
   float range[4];
   uint32_t mode[4];
+  float eye[4];  // the camera, and the world radius of the sphere a sprite stands for
 };
 static_assert(sizeof(PointsPush) <= 128);
 
@@ -26,6 +28,23 @@ struct ImagePush {
   uint32_t shape[4];
   float tone[4];
 };
+
+struct FluidSmoothPush {
+  uint32_t shape[4];
+  float sphere[4];
+};
+
+struct FluidShadePush {
+  uint32_t shape[4];
+  float proj[4];
+  float look[4];
+};
+
+// shaders/render/fluid_common.glsl: the planes, and those the smoothing reads and writes.
+constexpr uint32_t kFluidPlanes = 8, kFluidNearest = 0, kFluidSmoothed = 1, kFluidAcross = 7;
+// The smoothing filter's standard deviation and depth range, in sphere radii.
+constexpr float kFluidFilterRadii = 1.5f, kFluidDepthRadii = 4.0f;
+constexpr uint32_t kFluidEmptyBits = 0x7F61B1E6u;  // 3.0e38f, the shaders' kEmpty
 
 struct UiPush {
   float transform[4];
@@ -42,6 +61,16 @@ static_assert(sizeof(ImDrawVert) == 20, "the UI shader reads five words per vert
 
 }  // namespace
 
+float additive_weight(uint32_t count, uint32_t frame_height, float point_size_px) {
+  // Glows add up where the sprites overlap, about count x sprite area / the cloud's area in
+  // pixels (which grows as the frame height squared) of them per pixel.
+  const double overlap = double(count) / kAdditiveReferenceCount *
+                         std::pow(double(point_size_px) / kAdditiveReferenceSizePx, 2.0) /
+                         std::pow(double(frame_height) / kAdditiveReferenceHeightPx, 2.0);
+  // A few sprites in a large frame glow no brighter than opaque ones.
+  return float(std::min(1.0, kAdditiveGlow / std::max(overlap, 1e-12)));
+}
+
 Renderer::Renderer(RenderDevice& dev, const UiContext& ui, uint32_t width, uint32_t height)
     : dev_(dev), ui_(ui), bridge_(dev) {
   const vk::Context& ctx = dev.ctx();
@@ -52,6 +81,26 @@ Renderer::Renderer(RenderDevice& dev, const UiContext& ui, uint32_t width, uint3
       "render/points.vert", "render/points.frag", 3, sizeof(PointsPush), T::ePointList, true, true,
       Blend::none};
   points_opaque_ = make_graphics_pipeline(ctx, *pass_, points);
+  GraphicsSpec spheres = points;
+  spheres.frag = "render/spheres.frag";
+  points_spheres_ = make_graphics_pipeline(ctx, *pass_, spheres);
+  continue_pass_ = make_render_pass(ctx, true);
+  if (ctx.fragment_stores()) {
+    GraphicsSpec splat = points;
+    splat.frag = "render/fluid_splat.frag";
+    splat.buffers = 4;
+    splat.depth_test = splat.depth_write = false;
+    splat.color_write = false;
+    fluid_splat_ = make_graphics_pipeline(ctx, *pass_, splat);
+    fluid_smooth_ = make_graphics_pipeline(
+        ctx, *pass_,
+        {"render/fullscreen.vert", "render/fluid_smooth.frag", 1, sizeof(FluidSmoothPush),
+         T::eTriangleList, false, false, Blend::none, false});
+    fluid_shade_ = make_graphics_pipeline(
+        ctx, *pass_,
+        {"render/fullscreen.vert", "render/fluid_shade.frag", 1, sizeof(FluidShadePush),
+         T::eTriangleList, true, true, Blend::alpha});
+  }
   points.depth_write = false;
   points.blend = Blend::additive;
   points_additive_ = make_graphics_pipeline(ctx, *pass_, points);
@@ -217,24 +266,104 @@ void Renderer::draw_points(const ::vk::raii::CommandBuffer& cmd, const scene::Po
   const uint32_t marker = pts.marker_below_w ? 1u : 0u;
   const uint32_t marker_w = std::bit_cast<uint32_t>(pts.marker_below_w.value_or(0.0f));
   float lo = pts.scalar_lo, hi = pts.scalar_hi;
-  if (!p.get_flag("render.auto_range")) {
-    lo = float(p.get_real("render.range_min"));
-    hi = float(p.get_real("render.range_max"));
+  if (!p.get_flag("render.auto_range")) {  // given in the legend's units
+    lo = float(p.get_real("render.range_min")) / pts.shown_per_unit;
+    hi = float(p.get_real("render.range_max")) / pts.shown_per_unit;
   }
   const bool additive = p.get_text("render.blend") == "additive";
-  const GraphicsPipeline& pipe = additive ? *points_additive_ : *points_opaque_;
-  const ::vk::DescriptorSet set = bind(pipe, {positions, scalars, colormap_});
+  const float size_px = float(p.get_real("render.point_size"));
+  const float brightness = float(p.get_real("render.brightness")) *
+                           (additive ? additive_weight(pts.count, height(), size_px) : 1.0f);
+  const std::string& style = p.get_text("render.point_style");
+  const GraphicsPipeline& pipe = additive             ? *points_additive_
+                                 : style == "sprites" ? *points_opaque_
+                                                      : *points_spheres_;
+  // A sprite point_size px wide at the camera's distance stands for a sphere of this radius.
+  const float radius =
+      0.5f * size_px * 2.0f * camera_.distance / (std::abs(camera_.proj[1][1]) * float(height()));
+  const bool surface = !additive && style == "surface";
+  const GraphicsPipeline& used = surface ? *fluid_splat_ : pipe;
+  const ::vk::DescriptorSet set = surface ? bind(used, {positions, scalars, colormap_, fluid_})
+                                          : bind(used, {positions, scalars, colormap_});
   const PointsPush push{camera_.view_proj,
-                        {float(p.get_real("render.point_size")), camera_.distance,
-                         dev_.ctx().max_point_size(), float(p.get_real("render.brightness"))},
-                        {lo, hi, additive ? 1.0f : 0.0f, 0},
-                        {mode, marker, marker_w, 0}};
-  cmd.bindPipeline(::vk::PipelineBindPoint::eGraphics, *pipe.pipeline);
-  cmd.bindDescriptorSets(::vk::PipelineBindPoint::eGraphics, *pipe.layout, 0, set, {});
+                        {size_px, camera_.distance, dev_.ctx().max_point_size(), brightness},
+                        {lo, hi, additive ? 1.0f : 0.0f, float(height())},
+                        {mode, marker, marker_w, width()},
+                        {camera_.eye.x, camera_.eye.y, camera_.eye.z, radius}};
+  cmd.bindPipeline(::vk::PipelineBindPoint::eGraphics, *used.pipeline);
+  cmd.bindDescriptorSets(::vk::PipelineBindPoint::eGraphics, *used.layout, 0, set, {});
   cmd.pushConstants<PointsPush>(
-      *pipe.layout, ::vk::ShaderStageFlagBits::eVertex | ::vk::ShaderStageFlagBits::eFragment, 0,
+      *used.layout, ::vk::ShaderStageFlagBits::eVertex | ::vk::ShaderStageFlagBits::eFragment, 0,
       push);
   cmd.draw(pts.count, 1, 0, 0);
+}
+
+bool Renderer::wants_surface(const FrameRequest& f) const {
+  return f.view && f.params && f.view->points && f.view->points->positions &&
+         f.view->points->count > 0 && f.params->get_text("render.blend") != "additive" &&
+         f.params->get_text("render.point_style") == "surface";
+}
+
+void Renderer::clear_fluid(const ::vk::raii::CommandBuffer& cmd) {
+  const vk::Context& ctx = dev_.ctx();
+  if (!fluid_splat_)
+    throw Error("render", "render.point_style",
+                fmt::format("the fluid surface writes storage buffers from fragment shaders, "
+                            "which {} does not support (fragmentStoresAndAtomics)",
+                            ctx.caps().device_name),
+                "set render.point_style = \"spheres\" on this device");
+  const uint64_t plane = uint64_t(width()) * height() * 4;
+  const uint64_t bytes = plane * kFluidPlanes;
+  const uint64_t limit = ctx.caps().max_buffer_bytes;
+  if (limit && bytes > limit)
+    throw Error("render", "render.point_style",
+                fmt::format("the fluid surface of a {}x{} frame needs {} MiB in one buffer, {} "
+                            "holds at most {} MiB",
+                            width(), height(), bytes >> 20, ctx.caps().device_name, limit >> 20),
+                fmt::format("lower render.width x render.height to at most {} pixels, or set "
+                            "render.point_style = \"spheres\"",
+                            limit / (4 * kFluidPlanes)));
+  if (!fluid_ || fluid_->bytes < bytes)
+    fluid_ = vk::allocate(ctx, bytes, vk::MemoryUse::device, "fluid surface planes");
+  cmd.fillBuffer(*fluid_->buffer, 0, plane, kFluidEmptyBits);
+  cmd.fillBuffer(*fluid_->buffer, plane, bytes - plane, 0u);
+  const ::vk::MemoryBarrier filled(
+      ::vk::AccessFlagBits::eTransferWrite,
+      ::vk::AccessFlagBits::eShaderRead | ::vk::AccessFlagBits::eShaderWrite);
+  cmd.pipelineBarrier(::vk::PipelineStageFlagBits::eTransfer,
+                      ::vk::PipelineStageFlagBits::eFragmentShader, {}, filled, {}, {});
+}
+
+void Renderer::draw_fluid(const ::vk::raii::CommandBuffer& cmd, const scene::ParamSet& p,
+                          FluidPass pass) {
+  const bool shade = pass == FluidPass::shade;
+  const float size_px = float(p.get_real("render.point_size"));
+  const float focal_px = 0.5f * std::abs(camera_.proj[1][1]) * float(height());
+  const float radius = 0.5f * size_px * camera_.distance / focal_px;
+  const GraphicsPipeline& pipe = shade ? *fluid_shade_ : *fluid_smooth_;
+  const ::vk::DescriptorSet set = bind(pipe, {fluid_});
+  cmd.bindPipeline(::vk::PipelineBindPoint::eGraphics, *pipe.pipeline);
+  cmd.bindDescriptorSets(::vk::PipelineBindPoint::eGraphics, *pipe.layout, 0, set, {});
+  const auto stages = ::vk::ShaderStageFlagBits::eVertex | ::vk::ShaderStageFlagBits::eFragment;
+  if (shade) {
+    const FluidShadePush push{
+        {width(), height(), 0, 0},
+        {camera_.proj[0][0], camera_.proj[1][1], camera_.proj[2][2], camera_.proj[3][2]},
+        {radius, float(p.get_real("render.brightness")), 0, 0}};
+    cmd.pushConstants<FluidShadePush>(*pipe.layout, stages, 0, push);
+  } else {
+    // Rows into kFluidAcross, columns into kFluidSmoothed; the second round starts from the
+    // first's result, with the width split between the rounds (variances add).
+    const bool rows = pass == FluidPass::rows || pass == FluidPass::rows_again;
+    const uint32_t src = pass == FluidPass::rows ? kFluidNearest
+                         : rows                  ? kFluidSmoothed
+                                                 : kFluidAcross;
+    const FluidSmoothPush push{
+        {width(), height(), src, rows ? kFluidAcross : kFluidSmoothed},
+        {radius, focal_px, kFluidFilterRadii / std::sqrt(2.0f), kFluidDepthRadii}};
+    cmd.pushConstants<FluidSmoothPush>(*pipe.layout, stages, 0, push);
+  }
+  cmd.draw(3, 1, 0, 0);
 }
 
 void Renderer::draw_ui(const ::vk::raii::CommandBuffer& cmd, ImDrawData* data) {
@@ -297,6 +426,7 @@ void Renderer::render(const FrameRequest& f) {
   const float aspect = float(scene_w) / float(scene_h);
   if (f.view && f.params) camera_ = make_camera(*f.params, f.view->box, aspect, f.time_s);
 
+  const bool surface = wants_surface(f);
   const auto& cmd = dev_.begin();
   // Compute writes (same queue, earlier submissions) become visible to the draws.
   const ::vk::MemoryBarrier from_compute(::vk::AccessFlagBits::eShaderWrite |
@@ -308,18 +438,32 @@ void Renderer::render(const FrameRequest& f) {
           ::vk::PipelineStageFlagBits::eHost,
       ::vk::PipelineStageFlagBits::eVertexShader | ::vk::PipelineStageFlagBits::eFragmentShader, {},
       from_compute, {}, {});
+  if (surface) clear_fluid(cmd);
   const ::vk::ClearValue clears[2] = {
       ::vk::ClearColorValue(std::array<float, 4>{0.02f, 0.02f, 0.04f, 1.0f}),
       ::vk::ClearDepthStencilValue(1.0f, 0)};
-  cmd.beginRenderPass(::vk::RenderPassBeginInfo(*pass_, target_->framebuffer(),
-                                                {{0, 0}, {width(), height()}}, clears),
-                      ::vk::SubpassContents::eInline);
-  cmd.setViewport(0, ::vk::Viewport(0, 0, float(scene_w), float(scene_h), 0, 1));
-  cmd.setScissor(0, ::vk::Rect2D({0, 0}, {scene_w, scene_h}));
+  auto begin_pass = [&](::vk::RenderPass pass) {
+    cmd.beginRenderPass(::vk::RenderPassBeginInfo(pass, target_->framebuffer(),
+                                                  {{0, 0}, {width(), height()}}, clears),
+                        ::vk::SubpassContents::eInline);
+    cmd.setViewport(0, ::vk::Viewport(0, 0, float(scene_w), float(scene_h), 0, 1));
+    cmd.setScissor(0, ::vk::Rect2D({0, 0}, {scene_w, scene_h}));
+  };
+  begin_pass(*pass_);
   if (f.view && f.params) {
     if (f.view->background) draw_background(cmd, *f.view->background);
     draw_lines(cmd, f.view->box, *f.params, false);
     if (f.view->points) draw_points(cmd, *f.view->points, *f.params);
+    if (surface) {
+      // Each pass's storage writes are complete before the next pass reads them
+      // (continue_pass_'s dependency).
+      for (const FluidPass pass : {FluidPass::rows, FluidPass::columns, FluidPass::rows_again,
+                                   FluidPass::columns_again, FluidPass::shade}) {
+        cmd.endRenderPass();
+        begin_pass(*continue_pass_);
+        draw_fluid(cmd, *f.params, pass);
+      }
+    }
     draw_lines(cmd, f.view->box, *f.params, true);
   }
   cmd.setViewport(0, ::vk::Viewport(0, 0, float(width()), float(height()), 0, 1));

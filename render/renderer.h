@@ -1,8 +1,9 @@
 #pragma once
 // Draws a scene's layers with Vulkan into an offscreen target: the background image a kernel
-// computed (full-screen quad), the box and axes (lines), the particles (point sprites through a
-// colour map, depth-tested), then ImGui's draw data (overlay text, the demo's panel). Headless
-// runs read the frame back for PNGs; the demo blits it to the window.
+// computed (full-screen quad), the box and axes (lines), the particles (through a colour map:
+// additive glows, or opaque flat sprites, lit sphere impostors with their own depth, or a
+// screen-space fluid surface), then ImGui's draw data (overlay text and colour bar, the demo's
+// panel). Headless runs read the frame back for PNGs; the demo blits it to the window.
 #include <functional>
 #include <memory>
 #include <string>
@@ -39,6 +40,15 @@ struct FrameRequest {
   ::vk::PipelineStageFlags wait_stage;
 };
 
+// Additive sprites: render.brightness = 1 is a glow that shows the structure of 200K particles
+// drawn 2 px wide in a frame 540 px high (the atom scenes' defaults; measured: state 8's lobes,
+// torus and nodal cones stay unsaturated). Each sprite gets brightness x this weight, so that the
+// count, the frame size and the sprite size leave the picture's exposure as it is.
+constexpr double kAdditiveGlow = 0.15;
+constexpr double kAdditiveReferenceCount = 200000, kAdditiveReferenceHeightPx = 540,
+                 kAdditiveReferenceSizePx = 2;
+float additive_weight(uint32_t count, uint32_t frame_height, float point_size_px);
+
 class Renderer {
  public:
   Renderer(RenderDevice& dev, const UiContext& ui, uint32_t width, uint32_t height);
@@ -65,19 +75,27 @@ class Renderer {
   void draw_points(const ::vk::raii::CommandBuffer& cmd, const scene::PointLayer& pts,
                    const scene::ParamSet& p);
   void draw_ui(const ::vk::raii::CommandBuffer& cmd, ImDrawData* data);
+  // The fluid surface (render.point_style = surface): its planes cleared before the frame's
+  // first pass, the points splatted into them (draw_points), then five more passes: the depth
+  // smoothed along rows, columns, rows and columns again (one round alone leaves streaks along
+  // its last direction where it stops at depth steps), then the surface shaded.
+  enum class FluidPass : uint8_t { rows, columns, rows_again, columns_again, shade };
+  bool wants_surface(const FrameRequest& f) const;
+  void clear_fluid(const ::vk::raii::CommandBuffer& cmd);
+  void draw_fluid(const ::vk::raii::CommandBuffer& cmd, const scene::ParamSet& p, FluidPass pass);
   std::shared_ptr<vk::Allocation> host_buffer(std::shared_ptr<vk::Allocation>& slot, size_t bytes,
                                               const char* label);
 
   RenderDevice& dev_;
   const UiContext& ui_;
   LayerBridge bridge_;
-  ::vk::raii::RenderPass pass_ = nullptr;
+  ::vk::raii::RenderPass pass_ = nullptr, continue_pass_ = nullptr;
   std::unique_ptr<OffscreenTarget> target_;
-  std::unique_ptr<GraphicsPipeline> points_opaque_, points_additive_, lines_, axes_, image_,
-      ui_pipe_;
+  std::unique_ptr<GraphicsPipeline> points_opaque_, points_spheres_, points_additive_, lines_,
+      axes_, image_, ui_pipe_, fluid_splat_, fluid_smooth_, fluid_shade_;
   ::vk::raii::DescriptorPool pool_ = nullptr;
   std::shared_ptr<vk::Allocation> colormap_, line_vertices_, axis_vertices_, ui_vertices_,
-      ui_indices_, atlas_, dummy_;
+      ui_indices_, atlas_, dummy_, fluid_;
   std::string colormap_name_;
   std::vector<std::shared_ptr<vk::Allocation>> frame_buffers_;  // alive until the frame ends
   Camera camera_;

@@ -37,7 +37,16 @@ ScenePlayer::~ScenePlayer() {
   backend_.reset();
 }
 
+void check_render_params(const scene::ParamSet& p) {
+  if (p.get_text("render.point_style") == "surface" && p.get_text("render.blend") == "additive")
+    throw Error("", "render.point_style",
+                "render.point_style = surface needs opaque points, but render.blend = additive",
+                "set render.blend = \"opaque\" for the fluid surface, or choose "
+                "render.point_style = sprites or spheres");
+}
+
 void ScenePlayer::make_scene(scene::SceneFile file) {
+  check_render_params(file.params);
   const scene::SceneType& type = scene::find_scene_type(file.type);
   auto next = type.create(*backend_, file.params);
   scene_ = std::move(next);
@@ -87,11 +96,17 @@ OverlayInfo ScenePlayer::overlay(double fps, double frame_ms) const {
   o.verify = verify_status_;
   const scene::SceneView v = scene_->view();
   if (v.points && !v.points->scalar_name.empty()) {
-    float lo = v.points->scalar_lo, hi = v.points->scalar_hi;
+    const float shown = v.points->shown_per_unit;
+    float lo = v.points->scalar_lo * shown, hi = v.points->scalar_hi * shown;
     if (!p.get_flag("render.auto_range"))
       lo = float(p.get_real("render.range_min")), hi = float(p.get_real("render.range_max"));
     o.legend = fmt::format("colour: {} from {:.3g} to {:.3g} ({})", v.points->scalar_name, lo, hi,
                            p.get_text("render.colormap"));
+    const ColormapTable table = colormap_table(p.get_text("render.colormap"));
+    o.colour_bar = ColourBar{v.points->scalar_name, lo, hi, {table.begin(), table.end()}};
+  } else if (v.background && v.background->key) {
+    const scene::ColourKey& k = *v.background->key;
+    o.colour_bar = ColourBar{k.title, k.lo, k.hi, k.colours};
   }
   o.stages = scene_->graph().counters();
   return o;

@@ -71,6 +71,9 @@ class ScenePlayer {
   std::function<void()> platform_frame_;
 };
 
+// Throws for render parameters that contradict each other (naming both and what to change).
+void check_render_params(const scene::ParamSet& p);
+
 // The frame size a scene asks for.
 uint32_t frame_width(const scene::ParamSet& p);
 uint32_t frame_height(const scene::ParamSet& p);

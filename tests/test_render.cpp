@@ -203,6 +203,108 @@ TEST_CASE("opaque sprites are depth-tested: the nearer of two overlapping points
   CHECK(d.r > 150);
 }
 
+// Two spheres, the second 0.9 radii to the right and 0.3 radii farther: at its centre, its own
+// surface is nearer than the first sphere's, whose centre is nearer. A sphere impostor
+// with its own depth shows the second there; a flat sprite at its centre's depth shows the first.
+TEST_CASE("sphere impostors are lit and depth-correct: intersecting spheres cut each other") {
+  const uint32_t W = 96, H = 96;
+  Rig rig("vulkan", W, H);
+  scene::ParamSet p = plain_params(W, H);
+  p.set("render.point_size", 30.0);
+  rig.draw({}, p);  // the camera for this frame size
+  const render::Camera& cam = rig.renderer->camera();
+  const float r = 0.5f * 30.0f * cam.distance / (0.5f * std::abs(cam.proj[1][1]) * float(H));
+  // Front view: the camera looks along +y (smaller y is nearer), x to the right.
+  const Vec4f a{0.5f - 0.45f * r, 0.4f, 0.5f, 0}, b{0.5f + 0.45f * r, 0.4f + 0.3f * r, 0.5f, 0};
+  Points pts = make_points(*rig.backend, {a, b}, {1.0f, 0.0f});  // red, blue (thesis map)
+  const auto [ax, ay] = project(cam, a.x, a.y, a.z, W, H);
+  const auto [bx, by] = project(cam, b.x, b.y, b.z, W, H);
+  const Frame spheres = rig.draw(pts.view, p);
+  const Rgb at_a = spheres.at(ax, ay), at_b = spheres.at(bx, by);
+  MESSAGE("spheres: centre a " << at_a.r << "," << at_a.b << "; centre b " << at_b.r << ","
+                               << at_b.b);
+  CHECK(at_a.r > 100);
+  CHECK(at_a.b < 30);
+  CHECK(at_b.b > 100);  // the second sphere's surface is in front of the first one there
+  CHECK(at_b.r < 30);
+  // Lit: the side towards the lamp (above left of the camera) is brighter than the far side.
+  const int off = int(0.3f * r / (2.0f * r) * 30.0f);
+  const Rgb lit_side = spheres.at(ax - off, ay - off), dark_side = spheres.at(ax - off, ay + off);
+  CHECK(lit_side.r > dark_side.r + 20);
+  // Flat sprites (the same points) get their centre's depth: the first point hides the second.
+  p.set("render.point_style", std::string("sprites"));
+  const Frame sprites = rig.draw(pts.view, p);
+  const Rgb flat_b = sprites.at(bx, by);
+  CHECK(flat_b.r > 60);  // the first sphere's side, darker than its centre
+  CHECK(flat_b.b < 30);
+}
+
+// A slab of spheres (a lattice 0.8 radii apart, 3 layers deep) seen face on: the fluid surface
+// covers it without holes, and its shading is smooth where the spheres' is bumpy.
+TEST_CASE("the fluid surface is one connected, smoothly shaded sheet over the particles") {
+  const uint32_t W = 160, H = 120;
+  Rig rig("vulkan", W, H);
+  scene::ParamSet p = plain_params(W, H);
+  p.set("render.point_size", 8.0);
+  rig.draw({}, p);
+  const render::Camera& cam = rig.renderer->camera();
+  const float r = 0.5f * 8.0f * cam.distance / (0.5f * std::abs(cam.proj[1][1]) * float(H));
+  std::vector<Vec4f> pos;
+  const float step = 0.8f * r;
+  for (int k = 0; k < 3; ++k)
+    for (float z = 0.25f; z <= 0.75f; z += step)
+      for (float x = 0.2f; x <= 0.8f; x += step) pos.push_back({x, 0.45f + float(k) * step, z, 0});
+  Points pts = make_points(*rig.backend, pos, std::vector<float>(pos.size(), 0.5f));
+  const auto [x0, y0] = project(cam, 0.3f, 0.45f, 0.65f, W, H);  // inside the slab's face
+  const auto [x1, y1] = project(cam, 0.7f, 0.45f, 0.35f, W, H);
+  REQUIRE(x1 - x0 > 20);
+  REQUIRE(y1 - y0 > 15);
+  struct Stats {
+    size_t covered = 0, n = 0;
+    double mean = 0, sd = 0;
+  };
+  auto stats = [&](const Frame& f) {
+    Stats s;
+    std::vector<double> v;
+    for (int y = y0; y <= y1; ++y)
+      for (int x = x0; x <= x1; ++x) {
+        const Rgb c = f.at(x, y);
+        ++s.n;
+        s.covered += c.r + c.g + c.b > 60;
+        v.push_back(c.r + c.g + c.b);
+      }
+    for (double q : v) s.mean += q / double(v.size());
+    for (double q : v) s.sd += (q - s.mean) * (q - s.mean) / double(v.size());
+    s.sd = std::sqrt(s.sd);
+    return s;
+  };
+  const Stats bumpy = stats(rig.draw(pts.view, p));
+  p.set("render.point_style", std::string("surface"));
+  const Frame surface = rig.draw(pts.view, p);
+  const Stats smooth = stats(surface);
+  MESSAGE("spheres: covered " << bumpy.covered << "/" << bumpy.n << ", mean " << bumpy.mean
+                              << ", sd " << bumpy.sd << "; surface: covered " << smooth.covered
+                              << ", mean " << smooth.mean << ", sd " << smooth.sd);
+  CHECK(smooth.covered == smooth.n);  // connected: no holes between the particles
+  CHECK(smooth.sd < 0.2 * bumpy.sd);  // one smooth sheet, not a sphere per particle
+  CHECK(smooth.mean > 60);            // and drawn, in the colour map's green
+  const Rgb mid = surface.at((x0 + x1) / 2, (y0 + y1) / 2);
+  CHECK(mid.g > mid.r + 20);
+  CHECK(mid.g > mid.b + 20);
+  // Outside the slab: nothing drawn.
+  const Rgb corner = surface.at(3, 3);
+  CHECK(corner.r + corner.g + corner.b < 30);
+  // The surface needs opaque points: with additive glow the combination is refused.
+  p.set("render.blend", std::string("additive"));
+  try {
+    render::check_render_params(p);
+    FAIL("surface with additive blending was accepted");
+  } catch (const Error& e) {
+    CHECK(std::string(e.what()).find("render.point_style") != std::string::npos);
+    CHECK(std::string(e.what()).find("render.blend") != std::string::npos);
+  }
+}
+
 TEST_CASE("a kernel's image fills the background and the box is drawn over it") {
   const uint32_t W = 64, H = 48;
   Rig rig("vulkan", W, H);

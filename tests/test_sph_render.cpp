@@ -116,13 +116,14 @@ TEST_CASE("the SPH cube drop renders and the fluid ends at the bottom of the box
 
 TEST_CASE("demo sph screenshots" * doctest::skip(std::getenv("MASAV_DEMO_SPH_SHOTS") == nullptr)) {
   // Written by tests/data/demo_sph_script.txt: a (the water falling for a while), b (rk4,
-  // restarted and stepped once while paused), c (the same state in one colour).
+  // restarted and stepped once while paused), c (the same state in one colour), d (c as a fluid
+  // surface).
   const std::string dir = std::getenv("MASAV_DEMO_SPH_SHOTS");
   auto load = [&](const char* name) {
     const render::Rgba8Image img = render::read_png(dir + "/" + name);
     return Image{img.width, img.height, img.pixels};
   };
-  const Image a = load("a.png"), b = load("b.png"), c = load("c.png");
+  const Image a = load("a.png"), b = load("b.png"), c = load("c.png"), d = load("d.png");
   // The scene area: left of the panel, below the overlay.
   auto scene_area = [](const Image& f) { return lit_pixels(f, f.w / 2, f.h / 4, f.h); };
   const LitStats la = scene_area(a), lb = scene_area(b), lc = scene_area(c);
@@ -145,6 +146,31 @@ TEST_CASE("demo sph screenshots" * doctest::skip(std::getenv("MASAV_DEMO_SPH_SHO
     }
   MESSAGE(differ << " pixels recoloured");
   CHECK(differ > 300);
+  // The colour bar at the bottom left of the demo's frame: the thesis map's pure red top and
+  // blue bottom (b's fluid is back at the top of the box, away from the bar).
+  size_t red = 0, blue = 0;
+  for (uint32_t y = b.h / 2; y < b.h; ++y)
+    for (uint32_t x = 0; x < 40; ++x) {
+      const size_t i = 4 * (size_t(y) * b.w + x);
+      red += b.px[i] > 200 && b.px[i + 1] < 90 && b.px[i + 2] < 90;
+      blue += b.px[i + 2] > 200 && b.px[i] < 60 && b.px[i + 1] < 60;
+    }
+  MESSAGE("colour bar: " << red << " red, " << blue << " blue pixels");
+  CHECK(red > 10);
+  CHECK(blue > 10);
+  // The fluid surface: drawn, and shaded unlike the spheres of the same state.
+  const LitStats ld = scene_area(d);
+  size_t reshaded = 0;
+  for (uint32_t y = c.h / 4; y < c.h; ++y)
+    for (uint32_t x = 0; x < c.w / 2; ++x) {
+      const size_t i = 4 * (size_t(y) * c.w + x);
+      int e = 0;
+      for (int k = 0; k < 3; ++k) e = std::max(e, std::abs(int(c.px[i + k]) - int(d.px[i + k])));
+      reshaded += e > 40;
+    }
+  MESSAGE("surface: lit " << ld.count << ", " << reshaded << " pixels differ from the spheres");
+  CHECK(ld.count > 300);
+  CHECK(reshaded > 200);
 }
 
 TEST_CASE("the SPH overlay shows the simulated time, the frame clock labelled apart") {
@@ -173,4 +199,73 @@ TEST_CASE("the SPH overlay shows the simulated time, the frame clock labelled ap
   // The title follows a preset change.
   player.scene().set("sph.preset", std::string("water"));
   CHECK(render::overlay_lines(player.overlay())[0] == "masav: SPH water");
+}
+
+TEST_CASE("colour bar ticks are round values between the range's ends") {
+  CHECK(render::nice_ticks(0, 0.3) == std::vector<double>{0, 0.1, 0.2, 0.30000000000000004});
+  CHECK(render::nice_ticks(0, 2.45).size() == 5);  // 0, 0.5, ..., 2
+  CHECK(render::nice_ticks(800, 1100) == std::vector<double>{800, 900, 1000, 1100});
+  CHECK(render::tick_label(0.5, 0.5) == "0.5");
+  CHECK(render::tick_label(1000, 100) == "1000");
+  CHECK(render::tick_label(0.0002, 0.0001) == "0.0002");
+  CHECK(render::nice_ticks(1, 1).size() == 1);  // an empty range: one tick, no division by 0
+}
+
+// The colour bar at the bottom left of an SPH frame: its gradient shows the colour map from the
+// range's bottom to its top at the heights of its ticks, its title names the quantity and the
+// unit, and its labels are the ticks' values -- found through the bar's layout, as drawn.
+TEST_CASE("the colour bar shows the colour map, its tick labels and the quantity's unit") {
+  scene::SceneFile file = scene::load_scene_file(MASAV_SOURCE_DIR "/scenes/sph_water.toml");
+  file.params.set("sph.count", int64_t(600));
+  file.params.set("render.width", int64_t(320));
+  file.params.set("render.height", int64_t(240));
+  file.params.set("camera.view", std::string("front"));
+  render::PlayerOptions po;
+  po.backend = "vulkan";
+  po.graphics = render::graphics_options();
+  render::ScenePlayer player(file, po);
+  player.update();
+  render::FrameRequest req;
+  req.readback = true;
+  player.draw(req);
+  const Image img{player.renderer().width(), player.renderer().height(),
+                  player.renderer().pixels()};
+  const render::OverlayInfo o = player.overlay();
+  REQUIRE(o.colour_bar.has_value());
+  const render::ColourBar& bar = *o.colour_bar;
+  CHECK(bar.title == "speed (m/s)");
+  CHECK(bar.lo == 0.0f);
+  CHECK(bar.hi > 1.0f);
+  player.ui().make_current();
+  const render::ColourBarLayout l = render::colour_bar_layout_in_frame(bar);
+  REQUIRE(l.ticks.size() >= 3);
+  CHECK(l.ticks.front().label == "0");
+  CHECK(l.x0 >= 0);
+  CHECK(l.y1 < float(img.h));
+  CHECK(l.title_y > float(img.h) / 2);  // bottom left, clear of the overlay's text
+  const render::ColormapTable thesis = render::colormap_table("thesis");
+  for (const auto& t : l.ticks) {
+    CAPTURE(t.label);
+    CHECK(t.label == render::tick_label(t.value, l.ticks[1].value - l.ticks[0].value));
+    CHECK(t.value >= bar.lo);
+    CHECK(t.value <= bar.hi);
+    // The gradient's colour at the tick's height is the colour map's at the tick's value.
+    const uint32_t y = uint32_t(std::clamp(t.y, l.y0 + 2.0f, l.y1 - 2.0f));
+    const uint32_t x = uint32_t(0.5f * (l.x0 + l.x1));
+    const size_t i = 4 * (size_t(y) * img.w + x);
+    const double v = bar.lo + (bar.hi - bar.lo) * (l.y1 - float(y)) / (l.y1 - l.y0);
+    const Vec4f want = render::colour_at(bar, v);
+    CHECK(std::abs(img.px[i] - 255.0 * want.x) < 16);
+    CHECK(std::abs(img.px[i + 1] - 255.0 * want.y) < 16);
+    CHECK(std::abs(img.px[i + 2] - 255.0 * want.z) < 16);
+  }
+  // The map's ends: blue at the bottom, red at the top.
+  CHECK(render::colour_at(bar, bar.lo).z == doctest::Approx(thesis.front().z));
+  CHECK(render::colour_at(bar, bar.hi).x == doctest::Approx(thesis.back().x));
+  // The title is drawn: light text pixels in its line.
+  size_t text = 0;
+  for (uint32_t y = uint32_t(l.title_y); y < uint32_t(l.title_y) + 10; ++y)
+    for (uint32_t x = uint32_t(l.title_x); x < uint32_t(l.title_x) + 80; ++x)
+      text += img.sum(x, y) > 600;
+  CHECK(text > 20);
 }

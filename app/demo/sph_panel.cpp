@@ -41,6 +41,13 @@ void sph_controls(render::ScenePlayer& player, DemoState& st) {
   ImGui::EndDisabled();
   ImGui::Text("achieved %.3g s/s (defaults for a %s)", st.sim_rate_achieved,
               st.device_class.c_str());
+  // How the particles are drawn: flat sprites, lit spheres, or the fluid's surface.
+  for (const std::string& name : p.spec("render.point_style").choices) {
+    if (ImGui::RadioButton(name.c_str(), p.get_text("render.point_style") == name))
+      set_param(player, st, "render.point_style", name);
+    ImGui::SameLine();
+  }
+  ImGui::NewLine();
   if (const SphSimulation* sim = sph::simulation_of(player.scene())) {
     ImGui::Text("%u particles (%u obstacle), h = %.3g m", sim->particle_count(),
                 sim->layout().obstacle, sim->layout().h);

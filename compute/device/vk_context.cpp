@@ -366,6 +366,9 @@ Context::Context(const ContextOptions& options) {
     // Point sprites larger than one pixel need largePoints (every desktop driver and lavapipe).
     features.largePoints = physical_->getFeatures().largePoints;
     max_point_size_ = features.largePoints ? props.limits.pointSizeRange[1] : 1.0f;
+    // The fluid surface splats particles into storage buffers from fragment shaders.
+    features.fragmentStoresAndAtomics = physical_->getFeatures().fragmentStoresAndAtomics;
+    fragment_stores_ = features.fragmentStoresAndAtomics;
   }
   ::vk::DeviceCreateInfo dinfo({}, qinfo, {}, device_extensions, &features);
   try {

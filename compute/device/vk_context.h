@@ -67,6 +67,8 @@ class Context {
   bool subgroup_ballot() const { return subgroup_ballot_; }
   bool graphics() const { return graphics_; }
   float max_point_size() const { return max_point_size_; }
+  // Fragment shaders may write storage buffers (graphics contexts; the fluid surface needs it).
+  bool fragment_stores() const { return fragment_stores_; }
 
  private:
   std::unique_ptr<::vk::raii::Context> context_;
@@ -80,6 +82,7 @@ class Context {
   bool subgroup_ballot_ = false;
   bool graphics_ = false;
   float max_point_size_ = 1.0f;
+  bool fragment_stores_ = false;
   std::array<uint8_t, VK_UUID_SIZE> cache_uuid_{};
   Capabilities caps_;
 };

@@ -13,6 +13,17 @@
 
 namespace masav::atom {
 
+// Measured on states 1-10 (200K particles, the scene files' other defaults, front view): the
+// 90th percentile of the light is 0.0026 (state 10) to 0.07 (state 1) times the isotropic
+// scale at <r>, 0.02 in the middle. The scene files fix each state's own scale instead.
+constexpr double kFullColourIsotropic = 0.02;
+
+double full_colour_light(const OrbitalState& s) {
+  constexpr double kPi = 3.14159265358979323846;
+  const double r = expect_r(s.n, s.l);
+  return kFullColourIsotropic * kReferencePowerLm / (4.0 * kPi * r * r) / (4.0 * kPi);
+}
+
 ViewPreset parse_view(const std::string& name) {
   if (name == "top") return ViewPreset::top;
   if (name == "left") return ViewPreset::left;

@@ -18,6 +18,14 @@ namespace masav::atom {
 // setting): light is linear in Phi.
 constexpr float kReferencePowerLm = 250000.0f;
 
+// The light, in cd/a0^2, drawn at full colour when nebula.exposure is 0: a fixed physical scale
+// of the state, the same for every viewpoint and backend. `light` is luminance: the nucleus's
+// illuminance Phi / (4 pi r^2) (lm/a0^2) times the scattered fraction per steradian, i.e.
+// lm sr^-1 a0^-2 = cd/a0^2. The scale is kFullColourIsotropic times what an unshadowed particle
+// at the state's mean radius <r> sends towards any viewer when it scatters isotropically,
+// Phi_ref / (4 pi <r>^2) / (4 pi), at the reference power.
+double full_colour_light(const OrbitalState& s);
+
 enum class ViewPreset { top, left, front };
 ViewPreset parse_view(const std::string& name);  // top, left, front
 // Eye at `distance` from the nucleus on the preset's axis, and the matching up vector.

@@ -109,11 +109,13 @@ class AtomCloudScene final : public scene::SceneInstance {
       pl.count = uint32_t(core_.positions.size());
       pl.from = scene::PointLayer::ScalarFrom::buffer;
       pl.scalar = &core_.light.impl();
-      // The rescale: light * light_to_unit = 1 is the colour map's top.
+      // The rescale: light * light_to_unit = 1 is the colour map's top. The buffer holds the
+      // light at the reference power; the legend shows it at the current one.
       pl.scalar_lo = 0;
       pl.scalar_hi = float(1.0 / std::max(double(light_to_unit_), 1e-30));
+      pl.shown_per_unit = float(params_.get_real("nebula.power_lm") / kReferencePowerLm);
       pl.scalar_name =
-          fmt::format("light at {:.0f}K lm", params_.get_real("nebula.power_lm") / 1e3);
+          fmt::format("light at {:.0f}K lm (cd/a0^2)", params_.get_real("nebula.power_lm") / 1e3);
       pl.scalar_key = "light";
       pl.version = graph_.version("viewer");
       v.points = pl;
@@ -125,6 +127,8 @@ class AtomCloudScene final : public scene::SceneInstance {
       img.height = image_h_;
       img.format = scene::ImageLayer::Format::rgba32f;
       img.gain = float(params_.get_real("volume.gain"));
+      img.key = scene::ColourKey{"volume sample s*g + t*p (1 = light at full colour)", 0.0f, 1.0f,
+                                 tf_colours_};
       img.version = graph_.version("raymarch");
       v.background = img;
     }
@@ -192,9 +196,11 @@ class AtomCloudScene final : public scene::SceneInstance {
   scene::CameraPose pose() const { return scene::camera_pose(params_, box(), time_s_); }
 
   void rescale() {
+    // A fixed scale (the state's, or the file's): never the light of the current view, so the
+    // colours mean the same in every view and on every backend.
     const double exposure = params_.get_real("nebula.exposure") > 0
                                 ? params_.get_real("nebula.exposure")
-                                : double(core_.exposure());
+                                : 1.0 / full_colour_light(state_of(params_));
     light_to_unit_ = float(exposure * params_.get_real("nebula.power_lm") / kReferencePowerLm);
   }
 
@@ -205,6 +211,8 @@ class AtomCloudScene final : public scene::SceneInstance {
     if (tf_.size() != tf.size()) tf_ = backend_.create<Real4>(tf.size(), "transfer function");
     backend_.upload(tf_, tf);
     tf_integral_ = upload_preintegrated(backend_, tf);
+    tf_colours_.clear();
+    for (const Vec4d& c : tf) tf_colours_.push_back({float(c.x), float(c.y), float(c.z), 1.0f});
   }
 
   RaymarchParams raymarch_params() const {
@@ -254,6 +262,7 @@ class AtomCloudScene final : public scene::SceneInstance {
   double time_s_ = 0;
   float light_to_unit_ = 1;
   Buffer<Real4> tf_, tf_integral_, bricks_, image_;
+  std::vector<Vec4f> tf_colours_;  // the transfer function's colours, for the colour bar
   uint32_t image_w_ = 0, image_h_ = 0;
 };
 

@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "engine/core/buffer.h"
 #include "engine/core/types.h"
@@ -26,12 +27,24 @@ struct PointLayer {
   ScalarFrom from = ScalarFrom::none;
   const BufferImpl* scalar = nullptr;
   float scalar_lo = 0, scalar_hi = 1;  // colour-map range
-  std::string scalar_name;             // for the legend, e.g. "neighbours within r"
-  std::string scalar_key;              // the quantity alone, for exported arrays: "speed"
+  // For the legend and the colour bar: "quantity (unit)", e.g. "speed (m/s)".
+  std::string scalar_name;
+  std::string scalar_key;  // the quantity alone, for exported arrays: "speed"
+  // The legend, the colour bar and render.range_min/max show scalar * shown_per_unit (the
+  // atom's light buffer holds the light at a reference power; the legend, at the current one).
+  float shown_per_unit = 1;
   // Points whose position w is below this are drawn in grey whatever their scalar (the SPH
   // scene's obstacle particles, whose w is their inverse mass scale).
   std::optional<float> marker_below_w;
-  uint64_t version = 0;                // changes when positions or scalars change
+  uint64_t version = 0;  // changes when positions or scalars change
+};
+
+// What an image's colours stand for, for the colour bar: `colours` evenly spaced from `lo` to
+// `hi` of the quantity named in `title` ("quantity (unit)").
+struct ColourKey {
+  std::string title;
+  float lo = 0, hi = 1;
+  std::vector<Vec4f> colours;
 };
 
 // An image computed on the backend (the raymarch; the particle demo's star field), drawn as a
@@ -45,7 +58,8 @@ struct ImageLayer {
   };
   Format format = Format::rgba32f;
   float gain = 1.0f, gamma = 1.0f;
-  bool mono = false;  // use the red channel for all three
+  bool mono = false;             // use the red channel for all three
+  std::optional<ColourKey> key;  // none: the image's colours stand for no one quantity
   uint64_t version = 0;
 };
 

@@ -5,12 +5,15 @@ layout(push_constant) uniform Push {
   vec4 size;
   vec4 range;
   uvec4 mode;
+  vec4 eye;
 } pc;
 
 layout(location = 0) in vec3 v_color;
+layout(location = 1) flat in vec4 v_depth;  // clip z, w of the centre (and the nearest point)
 layout(location = 0) out vec4 out_color;
 
 void main() {
+  if (v_depth.y <= 0.0) discard;  // behind the camera
   const vec2 d = gl_PointCoord * 2.0 - 1.0;
   const float r2 = dot(d, d);
   if (r2 > 1.0) discard;

@@ -16,13 +16,18 @@ layout(push_constant) uniform Push {
   uvec4 mode;   // x: 0 none, 1 u32 buffer, 2 f32 buffer, 3 position.w, 4 position.z,
                 //    5 length of xyz of a vec4 buffer;
                 // y: 1 = grey marker for points with position.w below uintBitsToFloat(z)
+  vec4 eye;     // xyz: the camera; w: the sphere radius a sprite stands for (world units)
 } pc;
 
 layout(location = 0) out vec3 v_color;
+// Clip z and w of the centre (xy) and of the sphere's point nearest the camera (zw).
+layout(location = 1) flat out vec4 v_depth;
 
 void main() {
   const vec4 p = positions[gl_VertexIndex];
   gl_Position = pc.view_proj * vec4(p.xyz, 1.0);
+  const vec3 to_eye = normalize(pc.eye.xyz - p.xyz);
+  v_depth = vec4(gl_Position.zw, (pc.view_proj * vec4(p.xyz + to_eye * pc.eye.w, 1.0)).zw);
   float s = 0.5 * (pc.range.x + pc.range.y);
   switch (pc.mode.x) {
     case 1u: s = float(scalar_words[gl_VertexIndex]); break;
