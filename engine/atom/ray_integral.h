@@ -35,7 +35,10 @@ double clamped_ramp_depth(const double o[3], const double d[3], double lo, doubl
         if (t > t0 && t < t1) cuts[n++] = t;
       }
   cuts[n++] = t1;
-  std::sort(cuts, cuts + n);
+  // At most 8 cuts: insertion sort (std::sort's unrolled insertion trips GCC 12's array-bounds
+  // warning on so short an array).
+  for (int i = 1; i < n; ++i)
+    for (int j = i; j > 0 && cuts[j] < cuts[j - 1]; --j) std::swap(cuts[j], cuts[j - 1]);
   auto v_at = [&](double t) {
     double v = 0;
     for (int a = 0; a < 3; ++a) v += std::clamp(o[a] + d[a] * t, lo, hi);
