@@ -214,19 +214,30 @@ TEST_CASE(
       }
 }
 
-TEST_CASE("raymarch: opacity equals the analytic line integral; error falls with the step") {
-  const Volume vol = ramp_volume({24, 24, 24}, {-1, -1, -1}, {1, 1, 1});
-  const double c = 1.5, ref = 0.01;
-  const auto tf = absorption_tf(4096, c, ref);
+namespace {
+
+// The small oblique view of a ramp volume the analytic line-integral tests render: no early
+// termination, a 4096-entry transfer function.
+RaymarchParams analytic_view(const Volume& vol, double reference_step) {
   RaymarchParams rp;
   rp.volume = vol.desc;
   rp.width = 12;
   rp.height = 10;
   rp.eye = {2.2f, 1.7f, 2.9f};
   rp.fov_y_deg = 45;
-  rp.reference_step = float(ref);
+  rp.reference_step = float(reference_step);
   rp.termination_alpha = 1.0f;
   rp.tf_size = 4096;
+  return rp;
+}
+
+}  // namespace
+
+TEST_CASE("raymarch: opacity equals the analytic line integral; error falls with the step") {
+  const Volume vol = ramp_volume({24, 24, 24}, {-1, -1, -1}, {1, 1, 1});
+  const double c = 1.5, ref = 0.01;
+  const auto tf = absorption_tf(4096, c, ref);
+  RaymarchParams rp = analytic_view(vol, ref);
   rp.skip_empty = false;
   const std::vector<double> want = analytic_alpha(rp, 24, LinearExtinction{c});
   double prev = 0;
@@ -255,15 +266,7 @@ TEST_CASE(
   // error at fine steps.
   const Volume vol = ramp_volume({24, 24, 24}, {-1, -1, -1}, {1, 1, 1});
   const double ref = 0.01;
-  RaymarchParams rp;
-  rp.volume = vol.desc;
-  rp.width = 12;
-  rp.height = 10;
-  rp.eye = {2.2f, 1.7f, 2.9f};
-  rp.fov_y_deg = 45;
-  rp.reference_step = float(ref);
-  rp.termination_alpha = 1.0f;
-  rp.tf_size = 4096;
+  RaymarchParams rp = analytic_view(vol, ref);
   auto sweep = [&](const std::vector<Vec4d>& tf, const std::vector<double>& want, bool peaked) {
     for (bool skip : {false, true})
       for (float step : {0.4f, 0.2f, 0.1f, 0.05f, 0.025f}) {
