@@ -36,9 +36,9 @@ __global__ void density_kernel(SphStepLayout<float> c, const V4* __restrict__ po
   if (i < c.n) {
     const uint32_t dims[3] = {c.dims.x, c.dims.y, c.dims.z};
     auto pos_at = [pos](uint32_t j) { return sph::xyz(pos[j]); };
-    const auto r =
-        sph::density_at<float>(uint32_t(i), pos_at(uint32_t(i)), cells[i], dims, start, end, c.max_candidates, c,
-                               pos_at, sph::row_masks(neighbor_rows, uint32_t(i), c.n));
+    const auto r = sph::density_at<float>(uint32_t(i), pos_at(uint32_t(i)), cells[i], dims, start,
+                                          end, c.max_candidates, c, pos_at,
+                                          sph::row_masks(neighbor_rows, uint32_t(i), c.n));
     const float p = sph::pressure_of(r.density, c);
     density[i] = r.density;
     pressure[i] = p;

@@ -340,8 +340,7 @@ LOOP_LIMIT_CASE("sph kernels: loop ticks = rows + cells + candidates, capped bel
   // The worst any SPH kernel can do: 3 + 9 row loops, 27 cells, the unions at subgroups of 64,
   // the cooperative walk's extra budget (260, shaders/common/sph_coop.glsl), the validated
   // maximum of candidates (65000) stay under lavapipe's limit; one more candidate is refused.
-  CHECK(3 + 9 + 27 + 9 * 3 * 6 + 260 + 65000 <
-        test::loop_counter().caps().max_loop_iterations);
+  CHECK(3 + 9 + 27 + 9 * 3 * 6 + 260 + 65000 < test::loop_counter().caps().max_loop_iterations);
 
   // Over neighbour row masks: recording them adds no loop to sph_density; sph_forces walks per
   // lane (no row unions) a row too long for its mask whole, so the crowded row costs what it

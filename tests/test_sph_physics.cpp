@@ -103,7 +103,7 @@ TEST_CASE("[sph-physics] a settled water column has hydrostatic pressure p = rho
   INFO("steps " << sim.steps() << ", max speed " << d.max_speed << " m/s, kinetic energy "
                 << kinetic_half << " J at t/2, " << d.kinetic << " J at t");
   CHECK(d.max_speed < 0.02 * std::sqrt(g * 10 * dx));  // settled
-  CHECK(d.kinetic < kinetic_half);                      // and still settling
+  CHECK(d.kinetic < kinetic_half);                     // and still settling
   CHECK(d.outside == 0);
 
   // Slabs of two particle layers (the symmetric pressure gradient cannot see a pressure that

@@ -40,8 +40,8 @@ void host_bodies(const test::SphCase& c, const std::vector<Vec4d>& pos,
   rho_out.resize(p.n);
   acc_out.resize(p.n);
   for (uint32_t i = 0; i < p.n; ++i) {
-    const auto d = sph::density_at<T>(uint32_t(i), pos_at(i), cells[i], dims, start.data(), end.data(),
-                                      p.max_candidates, k, pos_at);
+    const auto d = sph::density_at<T>(uint32_t(i), pos_at(i), cells[i], dims, start.data(),
+                                      end.data(), p.max_candidates, k, pos_at);
     rho_out[i] = double(d.density);
     const auto f = sph::force_at<T>(i, fetch(i), cells[i], dims, start.data(), end.data(),
                                     p.max_candidates, k, pos_at, fetch);
@@ -67,8 +67,8 @@ bool masked_forces_same(const test::SphCase& c, const std::vector<Vec4d>& pos,
   };
   rows.assign(size_t(kSphRowMaskWords) * p.n, 0xdeadbeefu);  // every word must be written
   for (uint32_t i = 0; i < p.n; ++i)
-    sph::density_at<T>(uint32_t(i), pos_at(i), cells[i], dims, start.data(), end.data(), p.max_candidates, k,
-                       pos_at, sph::row_masks(rows.data(), i, p.n));
+    sph::density_at<T>(uint32_t(i), pos_at(i), cells[i], dims, start.data(), end.data(),
+                       p.max_candidates, k, pos_at, sph::row_masks(rows.data(), i, p.n));
   for (uint32_t i = 0; i < p.n; ++i) {
     const auto full = sph::force_at<T>(i, fetch(i), cells[i], dims, start.data(), end.data(),
                                        p.max_candidates, k, pos_at, fetch);

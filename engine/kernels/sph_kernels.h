@@ -90,8 +90,7 @@ MASAV_HD inline WallMirrors<T> wall_mirrors(V3<T> x, const SphStepLayout<T>& c) 
 
 // Calls f(d, r2) for each image of x_j within h of x_i, d = x_i - image.
 template <class T, class F>
-MASAV_HD inline void for_each_wall_image(V3<T> xi, V3<T> xj, const WallMirrors<T>& m, T h2,
-                                         F&& f) {
+MASAV_HD inline void for_each_wall_image(V3<T> xi, V3<T> xj, const WallMirrors<T>& m, T h2, F&& f) {
   const T direct[3] = {xi.x - xj.x, xi.y - xj.y, xi.z - xj.z};
   // Each distance to the plane first: near a wall both are small and exact in fp32.
   const T mirrored[3] = {(xi.x - m.plane[0]) + (xj.x - m.plane[0]),
@@ -259,10 +258,10 @@ struct DensityResult {
 // each row lie within h (zero for an empty, missing or too long row).
 template <class T, class PosAt>
 MASAV_HD inline DensityResult<T> density_at(uint32_t self, V3<T> xi, uint32_t cell,
-                                            const uint32_t dims[3],
-                                            const uint32_t* cell_start, const uint32_t* cell_end,
-                                            uint32_t max_candidates, const SphStepLayout<T>& c,
-                                            PosAt&& pos_at, RowMasks<uint32_t> masks = {}) {
+                                            const uint32_t dims[3], const uint32_t* cell_start,
+                                            const uint32_t* cell_end, uint32_t max_candidates,
+                                            const SphStepLayout<T>& c, PosAt&& pos_at,
+                                            RowMasks<uint32_t> masks = {}) {
   T sum = T(0);
   uint32_t neighbors = 0;
   bool overflow = false;

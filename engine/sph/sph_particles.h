@@ -4,8 +4,8 @@
 #include <cstdint>
 #include <vector>
 
-#include "engine/sph/sph_params.h"
 #include "engine/core/types.h"
+#include "engine/sph/sph_params.h"
 
 namespace masav {
 

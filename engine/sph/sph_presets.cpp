@@ -14,8 +14,8 @@ namespace {
 // sqrt(v0^2 + 2 g H). At Mach 0.1 a weakly compressible fluid's density varies by about 1%
 // (as M^2) in the flow; the impacts reach a few percent.
 double sound_speed_for_fall(const SphScene& s) {
-  const double g = std::sqrt(s.gravity.x * s.gravity.x + s.gravity.y * s.gravity.y +
-                             s.gravity.z * s.gravity.z);
+  const double g =
+      std::sqrt(s.gravity.x * s.gravity.x + s.gravity.y * s.gravity.y + s.gravity.z * s.gravity.z);
   const Vec3d v = s.block.velocity;
   const double fall = s.block.max.y - s.box_min.y;
   return 10.0 * std::sqrt(v.x * v.x + v.y * v.y + v.z * v.z + 2.0 * g * fall);

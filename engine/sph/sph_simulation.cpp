@@ -274,9 +274,8 @@ void SphSimulation::integrate(SphStageOp op, double dt, const Buffer<Real4>& x0,
   // that energy hill and gain what the image term then gives back. A quarter spacing in, the
   // clamp only ever moves a particle down that hill (dissipates), and the first lattice layer
   // (half a spacing in) is untouched.
-  const double margin = scene_.walls && scene_.model == SphPressureModel::wcsph
-                            ? 0.25 * layout_.dx
-                            : 0.0;
+  const double margin =
+      scene_.walls && scene_.model == SphPressureModel::wcsph ? 0.25 * layout_.dx : 0.0;
   const Vec3d &lo = scene_.box_min, &hi = scene_.box_max;
   p.box_min = {lo.x + margin, lo.y + margin, lo.z + margin};
   p.box_max = {hi.x - margin, hi.y - margin, hi.z - margin};

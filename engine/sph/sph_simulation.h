@@ -66,7 +66,7 @@ struct SphState {
 
 struct SphStepStats {
   double max_speed = 0, max_accel = 0, max_drift = 0;  // m/s, m/s^2, m
-  double max_density = 0;  // kg/m^3
+  double max_density = 0;                              // kg/m^3
   uint32_t max_candidates = 0, max_neighbors = 0, outside = 0;
 };
 
