@@ -52,7 +52,7 @@ void add_candidate(Me me, uint j, inout Sum s) {
   const vec3 xj = positions[j].xyz;
   const vec3 d = me.x - xj;
   const float r2 = dot(d, d);
-  if (!(r2 < p.h2)) return;
+  if (!(r2 < p.h2) || (j == me.i && me.mirrors.axes == 0u)) return;
   const float rho_j = density[j];
   const float q_j = pressure[j] / (rho_j * rho_j);
   const vec3 vj = velocities[j].xyz;

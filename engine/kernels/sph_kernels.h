@@ -372,10 +372,14 @@ MASAV_HD inline ForceResult<T> force_at(uint32_t self, const Neighbor<T>& me, ui
     const V3<T> d = me.x - pos_at(j);
     const T r2 = dot(d, d);
     if (!(r2 < c.h2)) return;
-    if (mirrors.axes) acc = acc + wall_image_accel(me, fetch(j), mirrors, c);  // also j == self
-    if (j == self) return;
+    if (j == self) {  // only its own wall images
+      if (mirrors.axes) acc = acc + wall_image_accel(me, me, mirrors, c);
+      return;
+    }
+    const Neighbor<T> o = fetch(j);
+    if (mirrors.axes) acc = acc + wall_image_accel(me, o, mirrors, c);
     ++neighbors;
-    acc = acc + pair_accel(me, fetch(j), d, r2, c);
+    acc = acc + pair_accel(me, o, d, r2, c);
   };
   const uint32_t candidates =
       walk_rows(cell, dims, cell_start, cell_end, max_candidates, overflow,

@@ -259,6 +259,65 @@ MASAV_HD inline T pow_step(T x, T e) {
 
 // The last segment boundary at or before t (segments of `step` from tn, n of them), as a segment
 // index in [0, n].
+// A pixel's ray clipped to the volume's box, in voxel coordinates (voxel centres at integers),
+// with the brick grid that empty-space skipping walks: what both marches start from.
+template <class T>
+struct VoxelRay {
+  RayGeometry g;
+  T tn, tf;    // where the ray enters and leaves the box
+  uint32_t n;  // segments of c.step between them (the last may be shorter)
+  uint32_t dims[3];
+  hd::V3<T> u0, du, inv_du;  // voxel position u0 + du t; 1 / du (0 where du is)
+  T brick;                   // voxels per brick
+  uint32_t blocks[3];        // 2x2x2 blocks of bricks per axis
+};
+
+// False when the ray misses the box.
+template <class T>
+MASAV_HD inline bool voxel_ray(const RaymarchLayout& c, uint32_t px, uint32_t py, VoxelRay<T>& r) {
+  r.g = ray_geometry(c);
+  const hd::V3<T> eye = v3<T>(c.eye), dir = pixel_direction<T>(c, px, py);
+  const hd::V3<T> lo = v3<T>(c.box_min), hi = v3<T>(c.box_max);
+  r.tn = T(0);
+  r.tf = T(kFar);
+  if (!slab(eye, dir, lo, hi, r.tn, r.tf)) return false;
+  r.n = uint32_t(hd::ceil_t((r.tf - r.tn) / T(c.step)));
+  r.dims[0] = c.dims.x;
+  r.dims[1] = c.dims.y;
+  r.dims[2] = c.dims.z;
+  const hd::V3<T> sp{T(r.g.spacing[0]), T(r.g.spacing[1]), T(r.g.spacing[2])};
+  r.u0 = hd::V3<T>{(eye.x - lo.x) / sp.x - T(0.5), (eye.y - lo.y) / sp.y - T(0.5),
+                   (eye.z - lo.z) / sp.z - T(0.5)};
+  r.du = hd::V3<T>{dir.x / sp.x, dir.y / sp.y, dir.z / sp.z};
+  r.inv_du = hd::V3<T>{r.du.x != T(0) ? T(1) / r.du.x : T(0), r.du.y != T(0) ? T(1) / r.du.y : T(0),
+                       r.du.z != T(0) ? T(1) / r.du.z : T(0)};
+  r.brick = T(c.brick);
+  for (int a = 0; a < 3; ++a) r.blocks[a] = (r.g.bricks[a] + 1u) / 2u;
+  return true;
+}
+
+// What one occupancy lookup at voxel position u tells the ray: its 2x2x2 block of bricks, or
+// else its brick, is empty up to `until` (empty), or its brick is occupied up to `until`.
+template <class T>
+struct SkipSpan {
+  bool empty;
+  T until;
+};
+template <class T, class Occ>
+MASAV_HD inline SkipSpan<T> skip_span(const VoxelRay<T>& r, hd::V3<T> u, Occ&& occupancy) {
+  uint32_t bi[3];
+  for (int a = 0; a < 3; ++a) {  // clamped to >= 0 first: truncation is the floor
+    const uint32_t b = uint32_t(hd::max_t(hd::comp(u, a) / r.brick, T(0)));
+    bi[a] = hd::min_t(b, r.g.bricks[a] - 1u);
+  }
+  const Occupancy<T> o = occupancy(bi[0], bi[1], bi[2]);
+  if (o.block <= T(0)) {
+    const uint32_t bl[3] = {bi[0] / 2u, bi[1] / 2u, bi[2] / 2u};
+    return {true, cell_exit(r.u0, r.du, r.inv_du, bl, r.blocks, T(2) * r.brick)};
+  }
+  return {o.brick <= T(0), cell_exit(r.u0, r.du, r.inv_du, bi, r.g.bricks, r.brick)};
+}
+
 template <class T>
 MASAV_HD inline uint32_t last_boundary_before(T t, T tn, T step, uint32_t n) {
   const T q = (t - tn) / step;
@@ -278,28 +337,15 @@ MASAV_HD inline V4<T> raymarch_pixel_preintegrated(const RaymarchLayout& c, uint
                                                    uint32_t py, Vol&& vol, Pt&& pt,
                                                    Occ&& occupancy) {
   V4<T> acc{T(0), T(0), T(0), T(0)};
-  const RayGeometry g = ray_geometry(c);
-  const hd::V3<T> eye = v3<T>(c.eye), dir = pixel_direction<T>(c, px, py);
-  const hd::V3<T> lo = v3<T>(c.box_min), hi = v3<T>(c.box_max);
-  T tn = T(0), tf_ = T(kFar);
-  if (!slab(eye, dir, lo, hi, tn, tf_)) return acc;
-  const T step = T(c.step), len = tf_ - tn;
-  const uint32_t n = uint32_t(hd::ceil_t(len / step));
-  const uint32_t dims[3] = {c.dims.x, c.dims.y, c.dims.z};
-  const hd::V3<T> sp{T(g.spacing[0]), T(g.spacing[1]), T(g.spacing[2])};
-  const hd::V3<T> u0{(eye.x - lo.x) / sp.x - T(0.5), (eye.y - lo.y) / sp.y - T(0.5),
-                     (eye.z - lo.z) / sp.z - T(0.5)};
-  const hd::V3<T> du{dir.x / sp.x, dir.y / sp.y, dir.z / sp.z};
-  const hd::V3<T> inv_du{du.x != T(0) ? T(1) / du.x : T(0), du.y != T(0) ? T(1) / du.y : T(0),
-                         du.z != T(0) ? T(1) / du.z : T(0)};
+  VoxelRay<T> r;
+  if (!voxel_ray(c, px, py, r)) return acc;
+  const T tn = r.tn, tf_ = r.tf, step = T(c.step);
+  const uint32_t n = r.n;
   const T vmin = T(c.value_min), vscale = T(c.value_scale);
   const T inv_ref = T(1) / T(c.reference_step);
   const bool skip = (c.flags & kRaySkipEmpty) != 0u;
-  const T brick = T(c.brick);
-  const uint32_t blocks[3] = {(g.bricks[0] + 1u) / 2u, (g.bricks[1] + 1u) / 2u,
-                              (g.bricks[2] + 1u) / 2u};
   auto value_at = [&](T t) {
-    return tf_pos((trilinear(u0 + du * t, dims, vol) - vmin) * vscale, c.tf_size);
+    return tf_pos((trilinear(r.u0 + r.du * t, r.dims, vol) - vmin) * vscale, c.tf_size);
   };
   T occupied_until = T(-1);  // the ray is in an occupied brick for t < occupied_until
   TfPos<T> front{0u, T(0)};
@@ -309,25 +355,10 @@ MASAV_HD inline V4<T> raymarch_pixel_preintegrated(const RaymarchLayout& c, uint
     const T s0 = tn + T(i) * step;
     const T s1 = hd::min_t(s0 + step, tf_);
     if (skip && s0 >= occupied_until) {
-      const hd::V3<T> u = u0 + du * s0;
-      uint32_t bi[3];
-      for (int a = 0; a < 3; ++a) {  // clamped to >= 0 first: truncation is the floor
-        const uint32_t b = uint32_t(hd::max_t(hd::comp(u, a) / brick, T(0)));
-        bi[a] = hd::min_t(b, g.bricks[a] - 1u);
-      }
-      const Occupancy<T> o = occupancy(bi[0], bi[1], bi[2]);
-      T empty_until = T(-1);
-      if (o.block <= T(0)) {
-        const uint32_t bl[3] = {bi[0] / 2u, bi[1] / 2u, bi[2] / 2u};
-        empty_until = cell_exit(u0, du, inv_du, bl, blocks, T(2) * brick);
-      } else {
-        const T exit = cell_exit(u0, du, inv_du, bi, g.bricks, brick);
-        if (o.brick <= T(0))
-          empty_until = exit;
-        else
-          occupied_until = exit;
-      }
-      const uint32_t j = empty_until >= T(0) ? last_boundary_before(empty_until, tn, step, n) : 0u;
+      const SkipSpan<T> span = skip_span(r, r.u0 + r.du * s0, occupancy);
+      if (!span.empty) occupied_until = span.until;
+      const uint32_t j =
+          span.empty && span.until >= T(0) ? last_boundary_before(span.until, tn, step, n) : 0u;
       if (j > i) {  // segments i .. j-1 end inside the empty cell
         i = j;
         have_front = false;
@@ -367,28 +398,14 @@ template <class T, class Vol, class Tf, class Occ>
 MASAV_HD inline V4<T> raymarch_pixel(const RaymarchLayout& c, uint32_t px, uint32_t py, Vol&& vol,
                                      Tf&& tf, Occ&& occupancy) {
   V4<T> acc{T(0), T(0), T(0), T(0)};
-  const RayGeometry g = ray_geometry(c);
-  const hd::V3<T> eye = v3<T>(c.eye), dir = pixel_direction<T>(c, px, py);
-  const hd::V3<T> lo = v3<T>(c.box_min), hi = v3<T>(c.box_max);
-  T tn = T(0), tf_ = T(kFar);
-  if (!slab(eye, dir, lo, hi, tn, tf_)) return acc;
-  const T step = T(c.step), len = tf_ - tn;
-  const uint32_t n = uint32_t(hd::ceil_t(len / step));
-  const uint32_t dims[3] = {c.dims.x, c.dims.y, c.dims.z};
-  // The ray in voxel coordinates (voxel centres at integers).
-  const hd::V3<T> sp{T(g.spacing[0]), T(g.spacing[1]), T(g.spacing[2])};
-  const hd::V3<T> u0{(eye.x - lo.x) / sp.x - T(0.5), (eye.y - lo.y) / sp.y - T(0.5),
-                     (eye.z - lo.z) / sp.z - T(0.5)};
-  const hd::V3<T> du{dir.x / sp.x, dir.y / sp.y, dir.z / sp.z};
-  const hd::V3<T> inv_du{du.x != T(0) ? T(1) / du.x : T(0), du.y != T(0) ? T(1) / du.y : T(0),
-                         du.z != T(0) ? T(1) / du.z : T(0)};
+  VoxelRay<T> r;
+  if (!voxel_ray(c, px, py, r)) return acc;
+  const T tn = r.tn, tf_ = r.tf, step = T(c.step);
+  const uint32_t n = r.n;
   const T vmin = T(c.value_min), vscale = T(c.value_scale);
   const T exponent = step / T(c.reference_step);
   const bool lerp = c.mode == Compositing::lerp;
   const bool skip = (c.flags & kRaySkipEmpty) != 0u && !lerp;
-  const T brick = T(c.brick);
-  const uint32_t blocks[3] = {(g.bricks[0] + 1u) / 2u, (g.bricks[1] + 1u) / 2u,
-                              (g.bricks[2] + 1u) / 2u};
   T occupied_until = T(-1);  // the ray is in an occupied brick for t < occupied_until
   uint32_t i = 0;
   for (uint32_t it = 0; it < n && i < n; ++it) {
@@ -396,28 +413,16 @@ MASAV_HD inline V4<T> raymarch_pixel(const RaymarchLayout& c, uint32_t px, uint3
     const T s0 = tn + T(seg) * step;
     const T s1 = hd::min_t(s0 + step, tf_);
     const T tm = T(0.5) * (s0 + s1);
-    const hd::V3<T> u = u0 + du * tm;
+    const hd::V3<T> u = r.u0 + r.du * tm;
     if (skip && tm >= occupied_until) {
-      uint32_t bi[3];
-      for (int a = 0; a < 3; ++a) {  // clamped to >= 0 first: truncation is the floor
-        const uint32_t b = uint32_t(hd::max_t(hd::comp(u, a) / brick, T(0)));
-        bi[a] = hd::min_t(b, g.bricks[a] - 1u);
-      }
-      const Occupancy<T> o = occupancy(bi[0], bi[1], bi[2]);
-      if (o.block <= T(0)) {
-        const uint32_t bl[3] = {bi[0] / 2u, bi[1] / 2u, bi[2] / 2u};
-        i = first_segment_after(cell_exit(u0, du, inv_du, bl, blocks, T(2) * brick), tn, step, i,
-                                n);
+      const SkipSpan<T> span = skip_span(r, u, occupancy);
+      if (span.empty) {
+        i = first_segment_after(span.until, tn, step, i, n);
         continue;
       }
-      const T exit = cell_exit(u0, du, inv_du, bi, g.bricks, brick);
-      if (o.brick <= T(0)) {
-        i = first_segment_after(exit, tn, step, i, n);
-        continue;
-      }
-      occupied_until = exit;
+      occupied_until = span.until;
     }
-    const T v = trilinear(u, dims, vol);
+    const T v = trilinear(u, r.dims, vol);
     const V4<T> col = transfer((v - vmin) * vscale, c.tf_size, tf);
     if (lerp) {
       acc.r += (col.r - acc.r) * col.a;
