@@ -29,8 +29,8 @@ namespace masav::app {
 struct DamBreakOptions {
   BackendChoice choice{"auto", ""};
   uint32_t particles = 32768;
-  double t_end = 3.5;  // in T = t sqrt(2 g / a)
-  std::string integrator = "leapfrog";
+  double t_end = 3.5;      // in T = t sqrt(2 g / a)
+  std::string integrator;  // empty: leapfrog, or symplectic-euler for dfsph
   std::string pressure = "wcsph";
   std::optional<double> viscosity;
   std::string data = std::string(MASAV_SOURCE_DIR) + "/bench/data/dam_break_surge_front.csv";
@@ -84,8 +84,11 @@ double interpolate(const std::vector<Point>& sim, double t) {
 int run_dambreak(const DamBreakOptions& o) {
   const auto data = read_data(o.data);
   SphScene s = make_preset("dam-break", o.particles);
-  s.integrator = parse_integrator(o.integrator, "--integrator");
   s.model = parse_pressure_model(o.pressure, "--pressure");
+  if (!o.integrator.empty())
+    s.integrator = parse_integrator(o.integrator, "--integrator");
+  else if (s.model == SphPressureModel::dfsph)
+    s.integrator = SphIntegrator::symplectic_euler;
   if (o.viscosity) s.viscosity = *o.viscosity;
   auto backend = create_backend(o.choice.backend, o.choice.device);
   SphSimulation sim(*backend, s);
@@ -132,6 +135,10 @@ int run_dambreak(const DamBreakOptions& o) {
   j.field("integrator", to_string(s.integrator)).field("pressure_model", to_string(s.model));
   j.field("viscosity_m2_s", s.viscosity).field("sound_speed_m_s", s.sound_speed);
   j.field("steps", sim.steps()).field("wall_s", wall);
+  if (const SphSolveStats& ss = sim.solve_stats(); ss.steps > 0)
+    j.field("density_iterations_per_step", double(ss.density_iterations) / double(ss.steps))
+        .field("divergence_iterations_per_step",
+               double(ss.divergence_iterations) / double(ss.steps));
   j.key("simulated").begin_object().key("T").begin_array();
   for (const auto& p : front) j.value(p.t);
   j.end_array().key("Z").begin_array();
@@ -184,9 +191,10 @@ void add_dambreak_bench(CLI::App& bench) {
   add_ranged_option(*cmd, "--particles", o.particles, "fluid particles", 64u, 1u << 26);
   add_old_option(*cmd, "--n", "--particles", o.particles)->check(CLI::Range(64u, 1u << 26));
   add_ranged_option(*cmd, "--t-end", o.t_end, "end time in T = t sqrt(2 g / a)", 0.1, 20.0);
-  cmd->add_option("--integrator", o.integrator, "euler, symplectic-euler, rk4 or leapfrog")
-      ->capture_default_str();
-  cmd->add_option("--pressure", o.pressure, "wcsph or thesis")->capture_default_str();
+  cmd->add_option("--integrator", o.integrator,
+                  "euler, symplectic-euler, rk4 or leapfrog; default: leapfrog (dfsph: "
+                  "symplectic-euler)");
+  cmd->add_option("--pressure", o.pressure, "wcsph, thesis or dfsph")->capture_default_str();
   cmd->add_option("--viscosity", o.viscosity, "kinematic viscosity (m^2/s); default: preset's");
   cmd->add_option("--data", o.data, "measurements (CSV: source,T,Z)")->capture_default_str();
   cmd->add_option("--json", o.json, "write the simulated front and the comparison as JSON");

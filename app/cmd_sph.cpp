@@ -49,7 +49,18 @@ SphScene scene_from(const SphOptions& o) {
   SphScene s = make_preset(engine_sph_preset(o.preset), o.particles);
   if (!o.integrator.empty()) s.integrator = parse_integrator(o.integrator, "--integrator");
   if (!o.pressure.empty()) s.model = parse_pressure_model(o.pressure, "--pressure");
-  // Each pressure model reads one constant; the other one given would be silently ignored.
+  // dfsph's step is its own (a symplectic Euler step with its two solves).
+  if (s.model == SphPressureModel::dfsph && o.integrator.empty())
+    s.integrator = SphIntegrator::symplectic_euler;
+  // Each pressure model reads one constant (dfsph neither); another one given would be silently
+  // ignored.
+  const bool dfsph = s.model == SphPressureModel::dfsph;
+  if (dfsph && (o.kp || o.sound_speed))
+    throw Error("", o.kp ? "--kp" : "--sound-speed",
+                fmt::format("{} conflicts with the dfsph pressure model, which solves for its "
+                            "pressure instead",
+                            o.kp ? "--kp" : "--sound-speed"),
+                "drop it, or use --pressure wcsph (--sound-speed) or thesis (--kp)");
   const bool wcsph = s.model == SphPressureModel::wcsph;
   if (wcsph ? bool(o.kp) : bool(o.sound_speed))
     throw Error("", wcsph ? "--kp" : "--sound-speed",
@@ -158,6 +169,13 @@ int run_sph(const SphOptions& o) {
       "steps/s, {:.3g} M particle-steps/s\n",
       sim.steps(), sim.substeps(), sim.retries(), sim.time(), wall, double(sim.steps()) / wall,
       double(sim.substeps()) * sim.particle_count() / wall * 1e-6);
+  if (const SphSolveStats& ss = sim.solve_stats(); ss.steps > 0)
+    fmt::print(
+        "dfsph: {:.2f} density and {:.2f} divergence iterations per step, last mean residuals "
+        "{:.3g}% and {:.3g}%, {} solves stopped at the iteration limit\n",
+        double(ss.density_iterations) / double(ss.steps),
+        double(ss.divergence_iterations) / double(ss.steps), 100 * ss.last_density_error,
+        100 * ss.last_divergence_error, ss.unconverged);
   if (interrupted() && rc == 0) {
     fmt::print(stderr, "masav: interrupted after step {}; every row and file written is complete\n",
                sim.steps());
@@ -183,7 +201,8 @@ void add_sph_command(CLI::App& app) {
       ->check(CLI::Range(0.0, 1e6))
       ->excludes("--steps");
   cmd->add_option("--integrator", o.integrator, "euler, symplectic-euler, rk4 or leapfrog");
-  cmd->add_option("--pressure", o.pressure, "pressure model: wcsph or thesis");
+  cmd->add_option("--pressure", o.pressure,
+                  "pressure model: wcsph, thesis or dfsph (incompressible; symplectic-euler)");
   cmd->add_option("--dt", o.dt, "fixed time step (s); default: CFL-adaptive");
   cmd->add_option("--cfl-guard", o.cfl_guard, "reduce (split unstable steps), stop, or off");
   cmd->add_option("--viscosity", o.viscosity, "kinematic viscosity nu (m^2/s)");

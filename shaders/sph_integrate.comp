@@ -25,7 +25,7 @@ void main() {
   const uint i = flat_invocation_id();
   const bool live = i < p.n;
   const uint op = p.op;
-  const bool kick = op == SphStageOp_kick;
+  const bool kick = op == SphStageOp_kick || op == SphStageOp_accelerate;  // no positions
   const bool rk4 = op >= SphStageOp_rk4_stage1 && op <= SphStageOp_rk4_final;
   float speed2 = 0.0, disp2 = 0.0;
   bool bad = false, outside = false;

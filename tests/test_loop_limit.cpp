@@ -386,3 +386,71 @@ LOOP_LIMIT_CASE("sph kernels: loop ticks = rows + cells + candidates, capped bel
   sph_integrate(b, ip, {&pos, &vel, nullptr, &acc, &xo, &vo, nullptr, nullptr, &stats});
   CHECK(test::ticks_of(b) <= 6);
 }
+
+LOOP_LIMIT_CASE("dfsph kernels: loop ticks = rows + cells + candidates, as sph_forces' masked walk",
+                KernelId::dfsph_factor, KernelId::dfsph_rate, KernelId::dfsph_correct) {
+  Backend& b = test::loop_counter();
+  const uint32_t n = 3000;
+  const float h = 0.05f;
+  // One crowded cell, walls on every particle (see the sph kernels' case).
+  SphStepParams p;
+  p.grid = make_grid_params({0, 0, 0}, h, {1, 1, 1}, n);
+  p.n = n;
+  p.model = SphPressureModel::dfsph;
+  p.h = h;
+  p.mass = lattice_mass(1000.0, 0.025, h, true);
+  p.max_candidates = n;
+  p.walls = true;
+  p.box_min = {0, 0, 0};
+  p.box_max = {h, h, h};
+  auto pos = b.create<Real4>(n, "pos");
+  auto vel = b.create<Real4>(n, "vel");
+  std::vector<Vec4f> pts = cluster(n, h, 13);
+  for (auto& q : pts) q.w = 1.0f;
+  b.upload(pos, pts);
+  b.upload(vel, std::vector<Vec4f>(n));
+  HashGrid g = make_hash_grid(b, p.grid, n);
+  build_hash_grid(b, g, pos);
+  auto rho = b.create<Real>(n, "rho"), pr = b.create<Real>(n, "p");
+  auto factor = b.create<Real>(n, "factor"), kappa = b.create<Real>(n, "kappa"),
+       kappa_sum = b.create<Real>(n, "kappa sum");
+  auto residual = b.create<uint32_t>(kDfsphResidualWords, "residual");
+  auto stats = b.create<uint32_t>(kSphStatWords, "stats");
+  auto rows = b.create<uint32_t>(size_t(kSphRowMaskWords) * n, "rows");
+  b.fill(stats, 0u);
+  b.fill(kappa_sum, 0u);
+  const SphGridView view{&g.sorted_cells, &g.cell_start, &g.cell_end};
+  // Each kernel, walking every candidate and over the masks (the crowded row is too long for
+  // its mask, so it is walked whole either way): x loop 3 + y loop 9 + 1 cell in the row + n
+  // candidates, one pass each; the wall images are spelled out, not looped over.
+  for (const bool masked : {false, true}) {
+    CAPTURE(masked);
+    sph_density(b, p, {&pos, view, &rho, &pr, &stats, masked ? &rows : nullptr});
+    (void)test::ticks_of(b);
+    DfsphIO io;
+    io.positions = &pos;
+    io.velocities = &vel;
+    io.density = &rho;
+    io.factor = &factor;
+    io.grid = view;
+    io.kappa = &kappa;
+    io.kappa_sum = &kappa_sum;
+    io.residual = &residual;
+    io.stats = &stats;
+    io.neighbor_rows = masked ? &rows : nullptr;
+    const DfsphParams dp{p, DfsphSolve::density, 1e-3};
+    dfsph_factor(b, dp, io);
+    CHECK(test::ticks_of(b) == 3 + 9 + 1 + n);
+    dfsph_rate(b, dp, io);
+    CHECK(test::ticks_of(b) == 3 + 9 + 1 + n);
+    dfsph_correct(b, dp, io);
+    CHECK(test::ticks_of(b) == 3 + 9 + 1 + n);
+  }
+  // The worst case, 3 + 9 + 27 + the validated maximum of candidates, is sph_forces' masked
+  // walk's (the case above); one more candidate is refused.
+  p.max_candidates = 65001;
+  CHECK_THROWS_AS(
+      dfsph_factor(b, DfsphParams{p},
+                   DfsphIO{&pos, &vel, &rho, &factor, view, &kappa, &kappa_sum, &residual, &stats}),
+      Error);
+}

@@ -67,6 +67,9 @@ class CpuBackend final : public Backend {
                                 const char* kernel) const;
   template <class Found>
   void build_sph_lists(const SphListInputs& in, size_t chunks, Found&& found);
+  // The lists for `in` in sph_chunks(in.n) chunks: sph_density's where they match, else new.
+  void ensure_sph_lists(const SphListInputs& in);
+  size_t sph_chunks(uint32_t n) const;
   // raymarch in fp32 from fp32 copies of its inputs, a row of 8x8 tiles per task (cpu_volume.cpp).
   void raymarch_fp32(const RaymarchParams& p, const Buffer<Real>& volume, const Buffer<Real4>& tf,
                      const Buffer<Real4>& bricks, Buffer<Real4>& image,

@@ -77,6 +77,13 @@ bool finite3(V v) {
   return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
 }
 
+// The dfsph density's spiky terms (sph::density_term) over a neighbour list's squared distances.
+double spiky_density_sum(const double* r2, uint32_t count, const SphStepLayout<double>& c) {
+  double sum = 0.0;
+  for (uint32_t k = 0; k < count; ++k) sum += sph::density_term(r2[k], c);
+  return sum;
+}
+
 // Positions as three contiguous arrays (the row loops vectorise over them).
 struct Soa {
   std::vector<double> x, y, z;
@@ -167,6 +174,16 @@ void CpuBackend::build_sph_lists(const SphListInputs& in, size_t chunks, Found&&
   sph_lists_.remember(in);
 }
 
+size_t CpuBackend::sph_chunks(uint32_t n) const {
+  return chunk_count(pool_, n, 256);
+}
+
+void CpuBackend::ensure_sph_lists(const SphListInputs& in) {
+  const size_t chunks = sph_chunks(in.n);
+  if (!sph_lists_.matches(in, chunks))
+    build_sph_lists(in, chunks, [](size_t, uint32_t, uint32_t, const double*) {});
+}
+
 void CpuBackend::run_own(const KernelArgs<KernelId::sph_density>& a) {
   auto& [p, items_, positions, cells, cell_start, cell_end, density, pressure, stats,
          neighbor_rows] = a;
@@ -178,13 +195,15 @@ void CpuBackend::run_own(const KernelArgs<KernelId::sph_density>& a) {
   double* pr = own(pressure.impl(), k).as<double>();
   uint32_t* words = own(stats.impl(), k).as<uint32_t>();
   uint32_t* rows = neighbor_rows ? own(neighbor_rows->impl(), k).as<uint32_t>() : nullptr;
-  const size_t chunks = chunk_count(pool_, p.n, 256);
+  const size_t chunks = sph_chunks(p.n);
   std::vector<ChunkStats> st(chunks);
   // sph::density_at's sum over the neighbour list: the particle itself (r = 0, term 1) first,
   // then its neighbours; candidates beyond h add exactly nothing there.
   build_sph_lists(in, chunks, [&](size_t chunk, uint32_t i, uint32_t count, const double* r2) {
     ChunkStats& s = st[chunk];
-    rho[i] = c.density * (1.0 + density_sum(r2, count, c.inv_h2)) +
+    const double sum = c.model == SphPressureModel::dfsph ? spiky_density_sum(r2, count, c)
+                                                          : density_sum(r2, count, c.inv_h2);
+    rho[i] = c.density * (1.0 + sum) +
              wall_images_density(c, in.positions, i, sph_lists_.list(chunk, i), count);
     pr[i] = sph::pressure_of(rho[i], c);
     s.max_candidates = std::max(s.max_candidates, sph_lists_.candidates(i));
@@ -213,11 +232,10 @@ void CpuBackend::run_own(const KernelArgs<KernelId::sph_forces>& a) {
   const double* pr = own(pressure.impl(), k).as<double>();
   double* acc_out = own(accel.impl(), k).as<double>();
   uint32_t* words = own(stats.impl(), k).as<uint32_t>();
-  const size_t chunks = chunk_count(pool_, p.n, 256);
+  const size_t chunks = sph_chunks(p.n);
   std::vector<ChunkStats> st(chunks);
   // The lists sph_density left, if they belong to these positions and this grid; else new ones.
-  if (!sph_lists_.matches(in, chunks))
-    build_sph_lists(in, chunks, [](size_t, uint32_t, uint32_t, const double*) {});
+  ensure_sph_lists(in);
   // p / rho^2 once per particle rather than once per pair (the same bits: the shared function).
   std::vector<double>& p_rho2 = sph_p_rho2_;
   p_rho2.resize(p.n);

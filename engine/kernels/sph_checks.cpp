@@ -4,6 +4,7 @@
 
 #include "engine/core/device_api.h"
 #include "engine/core/error.h"
+#include "engine/kernels/dfsph_params.h"
 #include "engine/kernels/kernel_checks.h"
 #include "engine/kernels/sph_kernel_params.h"
 
@@ -54,7 +55,7 @@ void check_sph_step(const DeviceApi& dev, const SphStepParams& p, const char* ke
   finite_positive(kernel, "viscosity", p.viscosity, true);
   if (p.model == SphPressureModel::wcsph)
     finite_positive(kernel, "sound_speed", p.sound_speed, false);
-  else
+  else if (p.model == SphPressureModel::thesis)
     finite_positive(kernel, "kp", p.kp, true);
   for (double g : {p.gravity.x, p.gravity.y, p.gravity.z})
     if (!std::isfinite(g))
@@ -81,7 +82,68 @@ void check_neighbor_rows(const Buffer<uint32_t>* rows, const SphStepParams& p, c
                               need_words, kSphRowMaskWords, p.n));
 }
 
+// The DFSPH kernels' common parameters: a dfsph step and a solve.
+void check_dfsph(const DeviceApi& dev, const DfsphParams& p, const Buffer<Real4>& positions,
+                 const Buffer<uint32_t>& cells, const Buffer<uint32_t>& cell_start,
+                 const Buffer<uint32_t>& cell_end, const Buffer<uint32_t>* neighbor_rows,
+                 const char* kernel) {
+  check_sph_step(dev, p.step, kernel);
+  if (p.step.model != SphPressureModel::dfsph)
+    throw_invalid(kernel, "model", std::to_string(uint32_t(p.step.model)), "dfsph (2)");
+  const uint32_t solve = uint32_t(p.solve);
+  if (solve > uint32_t(DfsphSolve::density))
+    throw_invalid(kernel, "solve", std::to_string(solve), "divergence (0) or density (1)");
+  if (!std::isfinite(p.dt) || !(p.dt > 0))
+    throw_invalid(kernel, "dt", fmt::format("{}", p.dt), "finite and > 0 (seconds)");
+  if (p.slot >= kDfsphMaxSlots)
+    throw_invalid(kernel, "slot", std::to_string(p.slot),
+                  fmt::format("below {} (one residual slot per iteration)", kDfsphMaxSlots));
+  if (!(p.warm_scale >= 0 && p.warm_scale <= 1))
+    throw_invalid(kernel, "warm_scale", fmt::format("{}", p.warm_scale), "in [0, 1]");
+  need(dev, &positions, p.step.n, kernel, "positions");
+  check_view(dev, p.step, cells, cell_start, cell_end, kernel);
+  check_neighbor_rows(neighbor_rows, p.step, kernel);
+}
+
 }  // namespace
+
+void validate(const DeviceApi& dev, const DfsphParams& p, const Buffer<Real4>& positions,
+              const Buffer<uint32_t>& cells, const Buffer<uint32_t>& cell_start,
+              const Buffer<uint32_t>& cell_end, const Buffer<Real>& factor,
+              const Buffer<uint32_t>& stats, const Buffer<uint32_t>* neighbor_rows) {
+  const char* k = "dfsph_factor";
+  check_dfsph(dev, p, positions, cells, cell_start, cell_end, neighbor_rows, k);
+  need(dev, &factor, p.step.n, k, "factor");
+  need(dev, &stats, kSphStatWords, k, "stats");
+}
+
+void validate(const DeviceApi& dev, const DfsphParams& p, const Buffer<Real4>& positions,
+              const Buffer<Real4>& velocities, const Buffer<Real>& density,
+              const Buffer<Real>& factor, const Buffer<uint32_t>& cells,
+              const Buffer<uint32_t>& cell_start, const Buffer<uint32_t>& cell_end,
+              const Buffer<Real>& kappa, const Buffer<Real>& kappa_sum,
+              const Buffer<uint32_t>& residual, const Buffer<uint32_t>* neighbor_rows) {
+  const char* k = "dfsph_rate";
+  check_dfsph(dev, p, positions, cells, cell_start, cell_end, neighbor_rows, k);
+  need(dev, &velocities, p.step.n, k, "velocities");
+  need(dev, &density, p.step.n, k, "density");
+  need(dev, &factor, p.step.n, k, "factor");
+  need(dev, &kappa, p.step.n, k, "kappa");
+  need(dev, &kappa_sum, p.step.n, k, "kappa_sum");
+  need(dev, &residual, kDfsphResidualWords, k, "residual");
+}
+
+void validate(const DeviceApi& dev, const DfsphParams& p, const Buffer<Real4>& positions,
+              const Buffer<Real>& kappa, const Buffer<uint32_t>& cells,
+              const Buffer<uint32_t>& cell_start, const Buffer<uint32_t>& cell_end,
+              const Buffer<Real4>& velocities, const Buffer<uint32_t>& stats,
+              const Buffer<uint32_t>* neighbor_rows) {
+  const char* k = "dfsph_correct";
+  check_dfsph(dev, p, positions, cells, cell_start, cell_end, neighbor_rows, k);
+  need(dev, &kappa, p.step.n, k, "kappa");
+  need(dev, &velocities, p.step.n, k, "velocities");
+  need(dev, &stats, kSphStatWords, k, "stats");
+}
 
 void validate(const DeviceApi& dev, const SphStepParams& p, const Buffer<Real4>& positions,
               const Buffer<uint32_t>& cells, const Buffer<uint32_t>& cell_start,
@@ -122,7 +184,7 @@ void validate(const DeviceApi& dev, const SphIntegrateParams& p, const Buffer<Re
               const Buffer<Real4>* sum_v, const Buffer<uint32_t>& stats) {
   const char* k = "sph_integrate";
   const uint32_t op = uint32_t(p.op);
-  if (op > uint32_t(SphStageOp::kick)) throw_invalid(k, "op", std::to_string(op), "a SphStageOp");
+  if (op > uint32_t(SphStageOp::drift)) throw_invalid(k, "op", std::to_string(op), "a SphStageOp");
   if (!std::isfinite(p.dt) || !(p.dt > 0))
     throw_invalid(k, "dt", fmt::format("{}", p.dt), "finite and > 0 (seconds)");
   if (p.walls) {
@@ -143,7 +205,7 @@ void validate(const DeviceApi& dev, const SphIntegrateParams& p, const Buffer<Re
   need(dev, &accel, p.n, k, "accel");
   need(dev, &v_out, p.n, k, "v_out");
   need(dev, &stats, kSphStatWords, k, "stats");
-  if (o != SphStageOp::kick) {
+  if (o != SphStageOp::kick && o != SphStageOp::accelerate) {
     need(dev, x0, p.n, k, "x0");
     need(dev, x_out, p.n, k, "x_out");
   }

@@ -15,6 +15,9 @@ MASAV_ENUM_BEGIN(SphPressureModel)
 MASAV_ENUMERATOR(SphPressureModel, wcsph, 0)
 // thesis Eq. 4.5-4.7 as printed: density-difference pressure, not symmetric
 MASAV_ENUMERATOR(SphPressureModel, thesis, 1)
+// divergence-free SPH (Bender & Koschier): incompressibility by two iterative pressure solves
+// per step (engine/kernels/dfsph_kernels.h); the force kernel adds viscosity and gravity only
+MASAV_ENUMERATOR(SphPressureModel, dfsph, 2)
 MASAV_ENUM_END(SphPressureModel)
 
 // Integrator stages (sph::integrate_stage in engine/kernels/sph_kernels.h).
@@ -27,6 +30,8 @@ MASAV_ENUMERATOR(SphStageOp, rk4_stage3, 4)
 MASAV_ENUMERATOR(SphStageOp, rk4_final, 5)
 MASAV_ENUMERATOR(SphStageOp, kick_drift, 6)  // leapfrog: v_half = v0 + dt/2 a, x1 = x0 + dt v_half
 MASAV_ENUMERATOR(SphStageOp, kick, 7)        // leapfrog: v1 = v_half + dt/2 a(x1)
+MASAV_ENUMERATOR(SphStageOp, accelerate, 8)  // dfsph: v1 = v0 + dt a (positions untouched)
+MASAV_ENUMERATOR(SphStageOp, drift, 9)       // dfsph: x1 = x0 + dt v0, v1 = v0, then the walls
 MASAV_ENUM_END(SphStageOp)
 
 // Per-step statistics the kernels accumulate in a small u32 buffer (kSphStatWords words,
@@ -64,12 +69,13 @@ MASAV_REAL_LAYOUT(SphStepLayout) {
   real_t h2;
   real_t inv_h;
   real_t inv_h2;
-  real_t density;    // m * 315 / (64 pi h^3)
-  real_t pressure;   // wcsph: m * 45 / (pi h^4); thesis: kp * m * 45 / (pi h^3) / 2
+  real_t density;  // m * 315 / (64 pi h^3); dfsph: m * 15 / (pi h^3) (spiky)
+  // wcsph: m * 45 / (pi h^4) / kappa; thesis: kp * m * 45 / (pi h^3) / 2; dfsph: m * 45 / (pi h^4)
+  real_t pressure;
   real_t viscosity;  // nu * m * 45 / (pi h^5)
   real_t rest_density;
   real_t inv_rest_density;
-  real_t eos;  // wcsph: Tait B = rho0 c0^2 / 7 (Pa); thesis: c^2 of the reported pressure
+  real_t eos;  // wcsph: Tait B = rho0 c0^2 / 7 (Pa); thesis: c^2 of the reported pressure; dfsph: 0
   real_t gravity[3];
   real_t lo[3];
   real_t hi[3];
@@ -195,9 +201,10 @@ struct SphIntegrateIO {
 // Signal speed of the pressure model (m/s): c0 for wcsph; for the thesis model, whose force
 // kp m sum (rho_j - rho_i)/(2 rho_j) grad W_thesis approximates -(3/14) kp h grad rho (the
 // continuum moment of Eq. 4.7's kernel), the sound speed of that isothermal gas,
-// sqrt(3/14 kp rho0 h). Used by the CFL limit and to report a thesis-model pressure
-// c^2 (rho - rho0).
+// sqrt(3/14 kp rho0 h); 0 for dfsph, whose solves replace the sound waves. Used by the CFL limit
+// and to report a thesis-model pressure c^2 (rho - rho0).
 inline double signal_speed(const SphStepParams& p) {
+  if (p.model == SphPressureModel::dfsph) return 0.0;  // incompressible: no sound to resolve
   if (p.model == SphPressureModel::thesis)
     return std::sqrt(3.0 / 14.0 * p.kp * p.rest_density * p.h);
   return p.sound_speed;
@@ -232,13 +239,16 @@ SphStepLayout<F> device_params(const SphStepParams& p, const Buffers&... buffers
   c.h2 = F(h * h);
   c.inv_h = F(1.0 / h);
   c.inv_h2 = F(1.0 / (h * h));
-  c.density = F(p.mass * 315.0 / (64.0 * pi * h * h * h));
-  c.pressure = F(thesis ? p.kp * p.mass * 45.0 / (pi * h * h * h) / 2.0
-                        : p.gradient_correction * p.mass * 45.0 / (pi * h * h * h * h));
+  const bool dfsph = p.model == SphPressureModel::dfsph;
+  c.density =
+      F(dfsph ? p.mass * 15.0 / (pi * h * h * h) : p.mass * 315.0 / (64.0 * pi * h * h * h));
+  c.pressure = F(thesis  ? p.kp * p.mass * 45.0 / (pi * h * h * h) / 2.0
+                 : dfsph ? p.mass * 45.0 / (pi * h * h * h * h)
+                         : p.gradient_correction * p.mass * 45.0 / (pi * h * h * h * h));
   c.viscosity = F(p.viscosity * p.mass * 45.0 / (pi * std::pow(h, 5)));
   c.rest_density = F(p.rest_density);
   c.inv_rest_density = F(1.0 / p.rest_density);
-  c.eos = F(thesis ? cs * cs : p.rest_density * p.sound_speed * p.sound_speed / 7.0);
+  c.eos = F(thesis ? cs * cs : dfsph ? 0.0 : p.rest_density * p.sound_speed * p.sound_speed / 7.0);
   const double g[3] = {p.gravity.x, p.gravity.y, p.gravity.z};
   const double lo[3] = {p.box_min.x, p.box_min.y, p.box_min.z};
   const double hi[3] = {p.box_max.x, p.box_max.y, p.box_max.z};

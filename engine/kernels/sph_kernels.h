@@ -46,8 +46,10 @@ MASAV_HD inline T dot(V3<T> a, V3<T> b) {
 
 // Pressure from density. wcsph: Tait, p = B ((rho/rho0)^7 - 1), clamped at 0 when asked (free
 // surfaces). thesis: the force needs no pressure; p = c^2 (rho - rho0) is reported for output.
+// dfsph: none here (its pressure comes from the solves, engine/kernels/dfsph_kernels.h).
 template <class T>
 MASAV_HD inline T pressure_of(T rho, const SphStepLayout<T>& c) {
+  if (c.model == SphPressureModel::dfsph) return T(0);  // the solves' pressure, not a state's
   if (c.model == SphPressureModel::thesis) return c.eos * (rho - c.rest_density);
   const T x = rho * c.inv_rest_density;
   const T x2 = x * x;
@@ -74,23 +76,30 @@ struct WallMirrors {
   uint32_t axes;  // bit a set: a wall within h on axis a
 };
 
+// The mirrors of a particle at x in the box [lo, hi] with support h (h2 = h^2).
 template <class T>
-MASAV_HD inline WallMirrors<T> wall_mirrors(V3<T> x, const SphStepLayout<T>& c) {
+MASAV_HD inline WallMirrors<T> box_mirrors(V3<T> x, const T lo[3], const T hi[3], T h2) {
   const T xs[3] = {x.x, x.y, x.z};
   WallMirrors<T> m{{T(0), T(0), T(0)}, 0u};
   for (int a = 0; a < 3; ++a) {
-    const T to_lo = xs[a] - c.lo[a], to_hi = c.hi[a] - xs[a];
-    const bool lo = to_lo <= to_hi;
-    const T d = lo ? to_lo : to_hi;
-    m.plane[a] = lo ? c.lo[a] : c.hi[a];
-    if (d * d < c.h2 || d < T(0)) m.axes |= 1u << a;
+    const T to_lo = xs[a] - lo[a], to_hi = hi[a] - xs[a];
+    const bool low = to_lo <= to_hi;
+    const T d = low ? to_lo : to_hi;
+    m.plane[a] = low ? lo[a] : hi[a];
+    if (d * d < h2 || d < T(0)) m.axes |= 1u << a;
   }
   return m;
 }
+template <class T>
+MASAV_HD inline WallMirrors<T> wall_mirrors(V3<T> x, const SphStepLayout<T>& c) {
+  return box_mirrors(x, c.lo, c.hi, c.h2);
+}
 
-// Calls f(d, r2) for each image of x_j within h of x_i, d = x_i - image.
+// Calls f(d, r2, s) for each image of x_j within h of x_i, d = x_i - image, s the mirror set
+// (bit a: reflected across axis a's wall).
 template <class T, class F>
-MASAV_HD inline void for_each_wall_image(V3<T> xi, V3<T> xj, const WallMirrors<T>& m, T h2, F&& f) {
+MASAV_HD inline void for_each_wall_image_set(V3<T> xi, V3<T> xj, const WallMirrors<T>& m, T h2,
+                                             F&& f) {
   const T direct[3] = {xi.x - xj.x, xi.y - xj.y, xi.z - xj.z};
   // Each distance to the plane first: near a wall both are small and exact in fp32.
   const T mirrored[3] = {(xi.x - m.plane[0]) + (xj.x - m.plane[0]),
@@ -101,8 +110,14 @@ MASAV_HD inline void for_each_wall_image(V3<T> xi, V3<T> xj, const WallMirrors<T
     const V3<T> d{(s & 1u) ? mirrored[0] : direct[0], (s & 2u) ? mirrored[1] : direct[1],
                   (s & 4u) ? mirrored[2] : direct[2]};
     const T r2 = dot(d, d);
-    if (r2 < h2) f(d, r2);
+    if (r2 < h2) f(d, r2, s);
   }
+}
+
+// Calls f(d, r2) for each image of x_j within h of x_i, d = x_i - image.
+template <class T, class F>
+MASAV_HD inline void for_each_wall_image(V3<T> xi, V3<T> xj, const WallMirrors<T>& m, T h2, F&& f) {
+  for_each_wall_image_set(xi, xj, m, h2, [&](V3<T> d, T r2, uint32_t) { f(d, r2); });
 }
 
 // Cell coordinates of a cell id (thesis Eq. 4.2 inverted).
@@ -211,10 +226,12 @@ MASAV_HD inline uint32_t take_lowest_bit(uint64_t& bits) {
   return b;
 }
 
-// (1 - q^2)^3 for r^2 < h^2, else 0, without a branch: the density sum's term.
+// The density sum's term for r^2 < h^2, else 0: poly6's (1 - q^2)^3, or for dfsph the spiky
+// kernel's (1 - q)^3, whose gradient is the one its solves use (a density and a gradient of
+// the same kernel: the solves then predict exactly the density they correct).
 template <class T>
 MASAV_HD inline T density_term(T r2, const SphStepLayout<T>& c) {
-  T u = T(1) - r2 * c.inv_h2;
+  T u = c.model == SphPressureModel::dfsph ? T(1) - sqrt(r2) * c.inv_h : T(1) - r2 * c.inv_h2;
   u = u > T(0) ? u : T(0);
   return u * u * u;
 }
@@ -314,7 +331,7 @@ MASAV_HD inline V3<T> pair_accel(const Neighbor<T>& me, const Neighbor<T>& o, V3
   const T r = sqrt(r2);
   const T u = T(1) - r * c.inv_h;  // 1 - q
   V3<T> a{T(0), T(0), T(0)};
-  if (r2 > T(0)) {  // pressure along r_hat = d / r
+  if (r2 > T(0) && c.model != SphPressureModel::dfsph) {  // pressure along r_hat = d / r
     T s;
     if (thesis)
       s = c.pressure * ((o.rho - me.rho) / o.rho) * (u * u * u);
@@ -335,6 +352,27 @@ MASAV_HD inline V3<T> wall_image_accel(const Neighbor<T>& me, const Neighbor<T>&
   for_each_wall_image(me.x, o.x, m, c.h2,
                       [&](V3<T> d, T r2) { a = a + pair_accel(me, image, d, r2, c); });
   return a;
+}
+
+// Calls visit(j) for the candidates of the 27 cells around `cell` (walk_rows' order): with
+// `masks` (sph_density's, for the same positions and grid), a row that fits a mask visits only
+// its recorded neighbours, in ascending order; other rows visit every candidate. The visitor
+// repeats the distance test. Returns the candidates of the rows walked.
+template <class Visit>
+MASAV_HD inline uint32_t walk_candidates(uint32_t cell, const uint32_t dims[3],
+                                         const uint32_t* cell_start, const uint32_t* cell_end,
+                                         uint32_t max_candidates, RowMasks<const uint32_t> masks,
+                                         bool& overflow, Visit&& visit) {
+  return walk_rows(cell, dims, cell_start, cell_end, max_candidates, overflow,
+                   [&](uint32_t row, uint32_t first, uint32_t last) {
+                     if (last == first) return;
+                     if (masks.words && row_fits_mask(first, last)) {
+                       for (uint64_t bits = load_row_mask(masks, row); bits != 0;)
+                         visit(first + take_lowest_bit(bits));
+                     } else {
+                       for (uint32_t j = first; j < last; ++j) visit(j);
+                     }
+                   });
 }
 
 template <class T>
@@ -368,30 +406,20 @@ MASAV_HD inline ForceResult<T> force_at(uint32_t self, const Neighbor<T>& me, ui
   uint32_t neighbors = 0;
   bool overflow = false;
   const WallMirrors<T> mirrors = c.walls ? wall_mirrors(me.x, c) : WallMirrors<T>{};
-  auto visit = [&](uint32_t j) {
-    const V3<T> d = me.x - pos_at(j);
-    const T r2 = dot(d, d);
-    if (!(r2 < c.h2)) return;
-    if (j == self) {  // only its own wall images
-      if (mirrors.axes) acc = acc + wall_image_accel(me, me, mirrors, c);
-      return;
-    }
-    const Neighbor<T> o = fetch(j);
-    if (mirrors.axes) acc = acc + wall_image_accel(me, o, mirrors, c);
-    ++neighbors;
-    acc = acc + pair_accel(me, o, d, r2, c);
-  };
-  const uint32_t candidates =
-      walk_rows(cell, dims, cell_start, cell_end, max_candidates, overflow,
-                [&](uint32_t row, uint32_t first, uint32_t last) {
-                  if (last == first) return;
-                  if (masks.words && row_fits_mask(first, last)) {
-                    for (uint64_t bits = load_row_mask(masks, row); bits != 0;)
-                      visit(first + take_lowest_bit(bits));
-                  } else {
-                    for (uint32_t j = first; j < last; ++j) visit(j);
-                  }
-                });
+  const uint32_t candidates = walk_candidates(
+      cell, dims, cell_start, cell_end, max_candidates, masks, overflow, [&](uint32_t j) {
+        const V3<T> d = me.x - pos_at(j);
+        const T r2 = dot(d, d);
+        if (!(r2 < c.h2)) return;
+        if (j == self) {  // only its own wall images
+          if (mirrors.axes) acc = acc + wall_image_accel(me, me, mirrors, c);
+          return;
+        }
+        const Neighbor<T> o = fetch(j);
+        if (mirrors.axes) acc = acc + wall_image_accel(me, o, mirrors, c);
+        ++neighbors;
+        acc = acc + pair_accel(me, o, d, r2, c);
+      });
   return {acc, neighbors, candidates, overflow};
 }
 
@@ -442,9 +470,11 @@ MASAV_HD inline bool wall_response(V3<T>& x, V3<T>& v, const T lo[3], const T hi
 //   rk4_final         y1 = y0 + dt/6 (k1 + 2 k2 + 2 k3 + k4)
 //   kick_drift        v_half = v0 + dt/2 a, x1 = x0 + dt v_half
 //   kick              v1 = v_half + dt/2 a(x1)
+//   accelerate        v1 = v0 + dt a (dfsph's prediction before its density solve)
+//   drift             x1 = x0 + dt v0, v1 = v0 (dfsph, after its density solve)
 MASAV_HD inline bool op_ends_step(SphStageOp op) {
   return op == SphStageOp::euler || op == SphStageOp::symplectic_euler ||
-         op == SphStageOp::rk4_final || op == SphStageOp::kick_drift;
+         op == SphStageOp::rk4_final || op == SphStageOp::kick_drift || op == SphStageOp::drift;
 }
 
 // One particle's stage update. x0/v0: step-start state; vk: stage velocity (RK4); a: stage
@@ -491,6 +521,14 @@ MASAV_HD inline void integrate_stage(SphStageOp op, T dt, V3<T> x0, V3<T> v0, V3
       v_out = v0 + half * a;
       x_out = x0 + dt * v_out;
       break;
+    case SphStageOp::accelerate:
+      x_out = x0;
+      v_out = v0 + dt * a;
+      break;
+    case SphStageOp::drift:
+      x_out = x0 + dt * v0;
+      v_out = v0;
+      break;
     case SphStageOp::kick:
     default:
       x_out = x0;
@@ -532,7 +570,8 @@ struct StageReport {
 };
 
 // sph_integrate's whole per-particle body: reads particle i's state, runs stage_particle, writes
-// the outputs. Buffers the op does not use may be null (x0 and x_out for kick, vk outside RK4
+// the outputs. Buffers the op does not use may be null (x0 and x_out for kick and accelerate,
+// vk outside RK4
 // stages 2-4, the sums outside RK4 and kick_drift).
 template <class T>
 MASAV_HD inline StageReport<T> integrate_particle(uint32_t i, const SphIntegrateLayout<T>& p,
@@ -540,7 +579,7 @@ MASAV_HD inline StageReport<T> integrate_particle(uint32_t i, const SphIntegrate
                                                   const hd::V4<T>* vk, const hd::V4<T>* accel,
                                                   hd::V4<T>* x_out, hd::V4<T>* v_out,
                                                   hd::V4<T>* sum_x, hd::V4<T>* sum_v) {
-  const bool kick = p.op == SphStageOp::kick;
+  const bool kick = p.op == SphStageOp::kick || p.op == SphStageOp::accelerate;  // no positions
   const bool rk4 = p.op >= SphStageOp::rk4_stage1 && p.op <= SphStageOp::rk4_final;
   const bool uses_vk = rk4 && p.op != SphStageOp::rk4_stage1;
   const hd::V4<T> xw = kick ? hd::V4<T>{T(0), T(0), T(0), T(0)} : x0[i];

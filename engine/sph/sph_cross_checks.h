@@ -6,6 +6,7 @@
 
 namespace masav::verify {
 
-std::vector<KernelCheck> sph_checks();
+std::vector<KernelCheck> sph_checks();    // with dfsph_checks()
+std::vector<KernelCheck> dfsph_checks();  // engine/sph/dfsph_cross_checks.cpp
 
 }  // namespace masav::verify

@@ -33,7 +33,7 @@ SphDiagnostics compute_diagnostics(const SphState& s, const SphSimulation& sim) 
       ++d.outside;
     if (sc.model == SphPressureModel::wcsph) {
       d.internal += m * tait_internal_energy(s.density[i], sp);
-    } else if (s.density[i] > 0) {
+    } else if (sc.model == SphPressureModel::thesis && s.density[i] > 0) {
       // The thesis force is an isothermal gas's (signal_speed): e = c^2 ln(rho / rho0).
       d.internal += m * thesis_c2 * std::log(s.density[i] / sc.rest_density);
     }

@@ -11,7 +11,8 @@ namespace masav {
 struct SphDiagnostics {
   double kinetic = 0;    // J, sum 1/2 M v^2 over particles that move (M = inertial mass)
   double potential = 0;  // J, -sum M g . x over particles that move
-  double internal = 0;   // J, sum m e(rho): wcsph's Tait energy; thesis: c^2 ln(rho/rho0)
+  // J, sum m e(rho): wcsph's Tait energy; thesis: c^2 ln(rho/rho0); dfsph: 0 (incompressible)
+  double internal = 0;
   double total() const { return kinetic + potential + internal; }
   Vec3d momentum;             // kg m/s, sum M v
   double momentum_scale = 0;  // kg m/s, sum M |v| (what momentum errors are relative to)

@@ -42,4 +42,31 @@ void sph_integrate(Backend& b, const SphIntegrateParams& p, const SphIntegrateIO
                   given(b, io.stats, k, "stats"));
 }
 
+void dfsph_factor(Backend& b, const DfsphParams& p, const DfsphIO& io) {
+  const char* k = "dfsph_factor";
+  b.dfsph_factor(p, given(b, io.positions, k, "positions"), given(b, io.grid.cells, k, "cells"),
+                 given(b, io.grid.cell_start, k, "cell_start"),
+                 given(b, io.grid.cell_end, k, "cell_end"), given(b, io.factor, k, "factor"),
+                 given(b, io.stats, k, "stats"), io.neighbor_rows);
+}
+
+void dfsph_rate(Backend& b, const DfsphParams& p, const DfsphIO& io) {
+  const char* k = "dfsph_rate";
+  b.dfsph_rate(p, given(b, io.positions, k, "positions"), given(b, io.velocities, k, "velocities"),
+               given(b, io.density, k, "density"), given(b, io.factor, k, "factor"),
+               given(b, io.grid.cells, k, "cells"), given(b, io.grid.cell_start, k, "cell_start"),
+               given(b, io.grid.cell_end, k, "cell_end"), given(b, io.kappa, k, "kappa"),
+               given(b, io.kappa_sum, k, "kappa_sum"), given(b, io.residual, k, "residual"),
+               io.neighbor_rows);
+}
+
+void dfsph_correct(Backend& b, const DfsphParams& p, const DfsphIO& io) {
+  const char* k = "dfsph_correct";
+  b.dfsph_correct(
+      p, given(b, io.positions, k, "positions"), given(b, io.kappa, k, "kappa"),
+      given(b, io.grid.cells, k, "cells"), given(b, io.grid.cell_start, k, "cell_start"),
+      given(b, io.grid.cell_end, k, "cell_end"), given(b, io.velocities, k, "velocities"),
+      given(b, io.stats, k, "stats"), io.neighbor_rows);
+}
+
 }  // namespace masav

@@ -10,4 +10,10 @@ void sph_density(Backend& b, const SphStepParams& p, const SphDensityIO& io);
 void sph_forces(Backend& b, const SphStepParams& p, const SphForcesIO& io);
 void sph_integrate(Backend& b, const SphIntegrateParams& p, const SphIntegrateIO& io);
 
+// The DFSPH kernels (engine/kernels/dfsph_params.h): the buffers each reads or writes must be
+// given in `io`.
+void dfsph_factor(Backend& b, const DfsphParams& p, const DfsphIO& io);
+void dfsph_rate(Backend& b, const DfsphParams& p, const DfsphIO& io);
+void dfsph_correct(Backend& b, const DfsphParams& p, const DfsphIO& io);
+
 }  // namespace masav

@@ -6,6 +6,7 @@
 
 #include "engine/core/enum_names.h"
 #include "engine/core/error.h"
+#include "engine/kernels/dfsph_params.h"
 #include "engine/kernels/kernel_checks.h"
 
 namespace masav {
@@ -47,7 +48,7 @@ void check_inside(std::string_view what, const Vec3d& lo, const Vec3d& hi, const
 
 namespace {
 const char* const kIntegrators[] = {"euler", "symplectic-euler", "rk4", "leapfrog"};
-const char* const kPressureModels[] = {"wcsph", "thesis"};
+const char* const kPressureModels[] = {"wcsph", "thesis", "dfsph"};
 const char* const kCflGuards[] = {"reduce", "stop", "off"};
 
 template <class E, size_t N>
@@ -72,7 +73,7 @@ SphIntegrator parse_integrator(std::string_view s, std::string_view field) {
   return parse<SphIntegrator>(s, field, kIntegrators, "euler, symplectic-euler, rk4 or leapfrog");
 }
 SphPressureModel parse_pressure_model(std::string_view s, std::string_view field) {
-  return parse<SphPressureModel>(s, field, kPressureModels, "wcsph or thesis");
+  return parse<SphPressureModel>(s, field, kPressureModels, "wcsph, thesis or dfsph");
 }
 SphCflGuard parse_cfl_guard(std::string_view s, std::string_view field) {
   return parse<SphCflGuard>(s, field, kCflGuards, "reduce, stop or off");
@@ -119,8 +120,23 @@ void validate(const SphScene& s) {
   in_range("viscosity", s.viscosity, 0.0, 1e3);
   if (s.model == SphPressureModel::wcsph)
     in_range("sound_speed", s.sound_speed, 0.0, 1e5, true);
-  else
+  else if (s.model == SphPressureModel::thesis)
     in_range("kp", s.kp, 0.0, 1e12);
+  if (s.model == SphPressureModel::dfsph) {
+    if (s.integrator != SphIntegrator::symplectic_euler)
+      throw_invalid(kWhere, "integrator", to_string(s.integrator),
+                    "symplectic-euler with pressure dfsph (its step is a symplectic Euler step "
+                    "with a density solve before the drift and a divergence solve after it)");
+    if (s.block.density_ratio != 1.0)
+      throw_invalid(kWhere, "density_ratio", fmt::format("{}", s.block.density_ratio),
+                    "1 with pressure dfsph (an incompressible fluid cannot start compressed: "
+                    "use wcsph or thesis for the explosion)");
+    in_range("dfsph_density_error", s.dfsph_density_error, 1e-7, 0.1);
+    in_range("dfsph_divergence_error", s.dfsph_divergence_error, 1e-7, 0.1);
+    if (s.dfsph_max_iterations < 2 || s.dfsph_max_iterations > kDfsphMaxSlots)
+      throw_invalid(kWhere, "dfsph_max_iterations", std::to_string(s.dfsph_max_iterations),
+                    fmt::format("in [2, {}]", kDfsphMaxSlots));
+  }
   finite("gravity", s.gravity);
   in_range("restitution", s.restitution, 0.0, 1.0);
   in_range("tangential_damping", s.tangential_damping, 0.0, 1.0);

@@ -67,7 +67,14 @@ struct SphScene {
   double sound_speed = 20.0;               // c0 (m/s), wcsph
   double kp = 0.0;                         // thesis pressure constant (m^4 kg^-1 s^-2)
   bool clamp_negative_pressure = true;     // wcsph: no tension at free surfaces
-  Vec3d gravity{0.0, -9.81, 0.0};          // m/s^2 (y is up)
+  // dfsph: the solves stop once the mean residual over the moving particles is at most this
+  // (relative: compression (rho*/rho0 - 1)^+, divergence dt (drho/dt)^+ / rho0), after at least
+  // 2 (density) or 1 (divergence) and at most dfsph_max_iterations iterations (SPlisHSPlasH's
+  // defaults: 0.01% and 0.1%).
+  double dfsph_density_error = 1e-4;
+  double dfsph_divergence_error = 1e-3;
+  uint32_t dfsph_max_iterations = 100;
+  Vec3d gravity{0.0, -9.81, 0.0};  // m/s^2 (y is up)
 
   // Box.
   Vec3d box_min{0, 0, 0}, box_max{1, 1, 1};  // m
@@ -76,6 +83,8 @@ struct SphScene {
   double tangential_damping = 0.0;
 
   // Time stepping.
+  // dfsph steps with its own scheme, a symplectic Euler step with its two solves: it takes
+  // symplectic_euler only.
   SphIntegrator integrator = SphIntegrator::leapfrog;
   std::optional<double> dt;    // fixed step (s); unset: CFL-adaptive
   double cfl_velocity = 0.2;   // dt <= C h / (c + v_max)

@@ -11,7 +11,7 @@
 
 namespace masav {
 
-double lattice_mass(double rho0, double dx, double h) {
+double lattice_mass(double rho0, double dx, double h, bool spiky) {
   const int reach = int(std::ceil(h / dx));
   double sum = 0;
   for (int i = -reach; i <= reach; ++i)
@@ -19,26 +19,30 @@ double lattice_mass(double rho0, double dx, double h) {
       for (int k = -reach; k <= reach; ++k) {
         const double r2 = (double(i) * i + double(j) * j + double(k) * k) * dx * dx;
         if (r2 < h * h) {
-          const double u = 1.0 - r2 / (h * h);
+          const double u = spiky ? 1.0 - std::sqrt(r2) / h : 1.0 - r2 / (h * h);
           sum += u * u * u;
         }
       }
-  return rho0 / (315.0 / (64.0 * std::numbers::pi * h * h * h) * sum);
+  const double w0 =
+      spiky ? 15.0 / (std::numbers::pi * h * h * h) : 315.0 / (64.0 * std::numbers::pi * h * h * h);
+  return rho0 / (w0 * sum);
 }
 
-double spiky_gradient_moment(double dx, double h) {
+double spiky_gradient_moment(double dx, double h, bool spiky) {
   const int reach = int(std::ceil(h / dx));
-  double poly6 = 0, moment = 0;
+  double density = 0, moment = 0;  // per unit mass
   for (int i = -reach; i <= reach; ++i)
     for (int j = -reach; j <= reach; ++j)
       for (int k = -reach; k <= reach; ++k) {
         const double r = std::sqrt(double(i) * i + double(j) * j + double(k) * k) * dx;
         if (r >= h) continue;
-        const double u = 1.0 - (r * r) / (h * h);
-        poly6 += 315.0 / (64.0 * std::numbers::pi * h * h * h) * u * u * u;
+        const double u = spiky ? 1.0 - r / h : 1.0 - (r * r) / (h * h);
+        density += (spiky ? 15.0 / (std::numbers::pi * h * h * h)
+                          : 315.0 / (64.0 * std::numbers::pi * h * h * h)) *
+                   u * u * u;
         moment += r * 45.0 / (std::numbers::pi * std::pow(h, 6)) * (h - r) * (h - r) / 3.0;
       }
-  return moment / poly6;  // m / rho0 = 1 / poly6 for the lattice-normalised mass
+  return moment / density;  // m / rho0 = 1 / density for the lattice-normalised mass
 }
 
 namespace {
@@ -80,8 +84,9 @@ SphParticles build_particles(const SphScene& s) {
   out.dx = sp * std::cbrt(s.block.density_ratio);
   out.h = s.smoothing_radius ? *s.smoothing_radius : s.h_over_dx * out.dx;
   check_support(s, out.dx, out.h);
-  out.mass = lattice_mass(s.rest_density, out.dx, out.h);
-  out.gradient_correction = 1.0 / spiky_gradient_moment(out.dx, out.h);
+  out.mass = lattice_mass(s.rest_density, out.dx, out.h, s.model == SphPressureModel::dfsph);
+  out.gradient_correction =
+      1.0 / spiky_gradient_moment(out.dx, out.h, s.model == SphPressureModel::dfsph);
 
   // Layer heights: uniform, or (hydrostatic) each layer's spacing shrunk by the Tait density
   // under the weight of the layers above it (spacing ~ 1 / density in a box whose walls hold the

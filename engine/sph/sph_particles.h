@@ -17,7 +17,7 @@ struct SphParticles {
   double placed_dx = 0;            // spacing the fluid was placed at (dx / density_ratio^(1/3))
   double h = 0;                    // support radius (m)
   double mass = 0;                 // SPH mass of every particle (kg)
-  double gradient_correction = 1;  // 1 / spiky_gradient_moment(dx, h)
+  double gradient_correction = 1;  // 1 / spiky_gradient_moment(dx, h, dfsph)
   UVec3 lattice;                   // fluid lattice (x, y layers, z)
   uint32_t total() const { return fluid + obstacle; }
 };
@@ -25,10 +25,12 @@ struct SphParticles {
 SphParticles build_particles(const SphScene& s);
 
 // The particle mass for which a particle inside a full cubic lattice of spacing dx has
-// density rho0 with the poly6 kernel of support h (so a block at rest starts at rest density).
-double lattice_mass(double rho0, double dx, double h);
+// density rho0 with the poly6 kernel of support h (so a block at rest starts at rest density),
+// or with the spiky kernel (the dfsph model's density).
+double lattice_mass(double rho0, double dx, double h, bool spiky = false);
 // kappa = -1/3 sum_j (m/rho0) r_j W_spiky'(r_j) over the lattice of spacing dx (see
-// SphStepParams::gradient_correction); 1 for a continuum.
-double spiky_gradient_moment(double dx, double h);
+// SphStepParams::gradient_correction), m the lattice mass of the poly6 or (spiky) the spiky
+// density; 1 for a continuum.
+double spiky_gradient_moment(double dx, double h, bool spiky = false);
 
 }  // namespace masav

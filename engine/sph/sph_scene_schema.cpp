@@ -21,9 +21,10 @@ const scene::TableSchema& sph_table() {
               "fluid particles (the obstacle adds its own); up to the device's largest buffer; "
               "restarts",
               "particles");
-    s.choice("pressure", "wcsph", {"wcsph", "thesis"},
-             "pressure model: wcsph (Tait, symmetric) or thesis (Eq. 4.5-4.7 as printed); "
-             "restarts");
+    s.choice("pressure", "wcsph", {"wcsph", "thesis", "dfsph"},
+             "pressure model: wcsph (Tait, symmetric), thesis (Eq. 4.5-4.7 as printed) or "
+             "dfsph (divergence-free SPH, incompressible; steps with symplectic Euler whatever "
+             "the integrator); restarts");
     s.choice("integrator", "leapfrog", {"euler", "symplectic-euler", "rk4", "leapfrog"},
              "time integrator (thesis Fig. 4.2, Eq. 4.8-4.12; leapfrog: kick-drift-kick); "
              "restarts");
@@ -66,6 +67,7 @@ SphScene scene_from_params(const scene::ParamSet& p) {
   SphScene s = make_preset(preset_name(p.get_text("sph.preset")), uint32_t(p.get_int("sph.count")));
   s.model = parse_pressure_model(p.get_text("sph.pressure"), "sph.pressure");
   s.integrator = parse_integrator(p.get_text("sph.integrator"), "sph.integrator");
+  if (s.model == SphPressureModel::dfsph) s.integrator = SphIntegrator::symplectic_euler;
   s.cfl_guard = parse_cfl_guard(p.get_text("sph.cfl_guard"), "sph.cfl_guard");
   if (p.get_text("sph.dt_mode") == "fixed")
     s.dt = p.get_real("sph.dt_s");

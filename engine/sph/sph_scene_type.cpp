@@ -168,11 +168,14 @@ scene::SceneType sph_scene_type() {
   t.name = "sph";
   t.help = "SPH fluid (thesis ch. 4): explosion, water drop, dam break, mud, obstacle presets";
   t.tables = {&sph_table()};
-  t.kernels = [](const ParamSet&) {
-    return std::vector<KernelId>{
-        KernelId::grid_assign_cells,  KernelId::grid_count_cells,  KernelId::grid_cell_offsets,
+  t.kernels = [](const ParamSet& p) {
+    std::vector<KernelId> k{
+        KernelId::grid_assign_cells,  KernelId::grid_count_cells,   KernelId::grid_cell_offsets,
         KernelId::grid_scatter_cells, KernelId::grid_rank_and_move, KernelId::gather,
-        KernelId::sph_density,        KernelId::sph_forces,        KernelId::sph_integrate};
+        KernelId::sph_density,        KernelId::sph_forces,         KernelId::sph_integrate};
+    if (p.get_text("sph.pressure") == "dfsph")  // only the dfsph model runs its solves
+      k.insert(k.end(), {KernelId::dfsph_factor, KernelId::dfsph_rate, KernelId::dfsph_correct});
+    return k;
   };
   t.check_inputs = [](const ParamSet& p) {
     scene::CheckInputs c;

@@ -70,7 +70,17 @@ struct SphStepStats {
   uint32_t max_candidates = 0, max_neighbors = 0, outside = 0;
 };
 
-enum class SphStage : uint8_t { grid, density, forces, integrate, count };
+enum class SphStage : uint8_t { grid, density, forces, integrate, solve, count };
+
+// The dfsph model's pressure solves since the start (engine/kernels/dfsph_kernels.h).
+struct SphSolveStats {
+  uint64_t steps = 0;               // steps that ran both solves
+  uint64_t density_iterations = 0;  // summed over the steps
+  uint64_t divergence_iterations = 0;
+  uint64_t unconverged = 0;       // solves that stopped at dfsph_max_iterations
+  double last_density_error = 0;  // the last density solve's final mean residual
+  double last_divergence_error = 0;
+};
 const char* to_string(SphStage s);
 
 class SphSimulation {
@@ -102,6 +112,7 @@ class SphSimulation {
   uint32_t particle_count() const { return n_; }
   SphStepParams step_params() const { return step_params_; }
   const SphStepStats& last_stats() const { return stats_; }
+  const SphSolveStats& solve_stats() const { return solve_stats_; }  // dfsph only
   Backend& backend() { return backend_; }
 
   // Current state, in particle-id order, with density and pressure at these positions.
@@ -163,6 +174,14 @@ class SphSimulation {
   void step_euler(double dt, SphStageOp op);
   void step_rk4(double dt);
   void step_leapfrog(double dt);
+  // dfsph (sph_simulation_dfsph.cpp): density and factor at x (the grid sorted at x), one
+  // solve on velocities v with its kappa sum, the step.
+  void dfsph_fields(const Buffer<Real4>& x);
+  DfsphParams dfsph_params(DfsphSolve solve, double dt) const;
+  void dfsph_solve(DfsphSolve solve, double dt, const Buffer<Real4>& x, Buffer<Real4>& v,
+                   Buffer<Real>& kappa_sum);
+  void step_dfsph(double dt);
+  bool dfsph() const { return scene_.model == SphPressureModel::dfsph; }
   SphStepStats read_stats(uint32_t words[kSphStatWords]);
   [[noreturn]] void fail_non_finite(double dt);
   void mark(SphStage ended);
@@ -186,6 +205,14 @@ class SphSimulation {
   // runs both); empty where they are not kept (see keeps_neighbor_rows).
   Buffer<uint32_t> neighbor_rows_;
   Buffer<Real> density_, pressure_;
+  // dfsph: the factor at pos_ (or the step's new positions), one iteration's kappa, each
+  // solve's kappa sum in pos_'s order (warm starts) and in the new order, the residual slots.
+  Buffer<Real> factor_, kappa_, kappa_density_, kappa_divergence_, kappa_density_t_,
+      kappa_divergence_t_;
+  Buffer<uint32_t> residual_;
+  bool kappa_warm_ = false;  // the kappa sums hold a previous step's (in pos_'s order)
+  uint32_t min_neighbors_ = 0;
+  SphSolveStats solve_stats_;
   Checkpoint checkpoint_;  // the state at the start of run()'s block; empty where it does not fit
   uint32_t block_steps_ = 8;
   SphWatchdog watchdog_;

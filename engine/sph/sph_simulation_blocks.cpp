@@ -38,7 +38,7 @@ void SphSimulation::set_block_steps(uint32_t k) {
 }
 
 uint32_t SphSimulation::block_steps() const {
-  return checkpoint_.pos.valid() ? block_steps_ : 1;
+  return checkpoint_.pos.valid() ? block_steps_ : 1;  // none kept for dfsph
 }
 
 uint64_t SphSimulation::run(uint64_t steps, double t_end) {

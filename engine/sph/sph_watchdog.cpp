@@ -38,7 +38,7 @@ SphWatchdog make_watchdog(const SphState& s, const SphSimulation& sim, double ma
   // Tait's gamma = 7 makes 2 rho0 127 times its pressure scale (an inviscid water drop's impact
   // legally spikes to 1.5 rho0); the thesis force is an isothermal gas's, which legitimately
   // compresses further (stress suite: up to 1.6 rho0).
-  const double factor = sc.model == SphPressureModel::wcsph ? 2.0 : 3.0;
+  const double factor = sc.model == SphPressureModel::thesis ? 3.0 : 2.0;
   w.max_density = factor * std::max(sc.rest_density, max_density);
   w.energy0 = available_energy(s, sim);
   return w;

@@ -5,6 +5,7 @@
 #include "engine/kernels/sph_kernel_params.h"
 
 float sph_pressure_of(float rho, SphStepLayout c) {
+  if (c.model == SphPressureModel_dfsph) return 0.0;
   if (c.model == SphPressureModel_thesis) return c.eos * (rho - c.rest_density);
   const float x = rho * c.inv_rest_density;
   const float x2 = x * x;
@@ -19,7 +20,9 @@ ivec3 sph_cell_coords(uint id, uvec3 dims) {
 }
 
 float sph_density_term(float r2, SphStepLayout c) {
-  const float u = max(1.0 - r2 * c.inv_h2, 0.0);
+  const float u = max(c.model == SphPressureModel_dfsph ? 1.0 - sqrt(r2) * c.inv_h
+                                                        : 1.0 - r2 * c.inv_h2,
+                      0.0);
   return u * u * u;
 }
 
@@ -30,7 +33,7 @@ vec3 sph_pair_accel(vec3 vi, float rho_i, float pi_over_rho2, vec3 vo, float rho
   const float r = sqrt(r2);
   const float u = 1.0 - r * c.inv_h;
   vec3 a = vec3(0.0);
-  if (r2 > 0.0) {
+  if (r2 > 0.0 && c.model != SphPressureModel_dfsph) {
     float s;
     if (thesis) s = c.pressure * ((rho_o - rho_i) / rho_o) * (u * u * u);
     else s = c.pressure * (pi_over_rho2 + po_over_rho2) * (u * u);
@@ -46,15 +49,19 @@ struct SphMirrors {
   vec3 plane;
   uint axes;
 };
-SphMirrors sph_wall_mirrors(vec3 x, SphStepLayout c) {
-  const vec3 lo = vec3(c.lo[0], c.lo[1], c.lo[2]), hi = vec3(c.hi[0], c.hi[1], c.hi[2]);
+// sph::box_mirrors; no axes when `walls` is 0.
+SphMirrors sph_box_mirrors(vec3 x, vec3 lo, vec3 hi, float h2, uint walls) {
   const vec3 to_lo = x - lo, to_hi = hi - x;
   const bvec3 low = lessThanEqual(to_lo, to_hi);
   const vec3 d = mix(to_hi, to_lo, low);
-  const bvec3 near = bvec3(d.x * d.x < c.h2 || d.x < 0.0, d.y * d.y < c.h2 || d.y < 0.0,
-                           d.z * d.z < c.h2 || d.z < 0.0);
+  const bvec3 near = bvec3(d.x * d.x < h2 || d.x < 0.0, d.y * d.y < h2 || d.y < 0.0,
+                           d.z * d.z < h2 || d.z < 0.0);
   const uint axes = (near.x ? 1u : 0u) | (near.y ? 2u : 0u) | (near.z ? 4u : 0u);
-  return SphMirrors(mix(hi, lo, low), c.walls != 0u ? axes : 0u);
+  return SphMirrors(mix(hi, lo, low), walls != 0u ? axes : 0u);
+}
+SphMirrors sph_wall_mirrors(vec3 x, SphStepLayout c) {
+  return sph_box_mirrors(x, vec3(c.lo[0], c.lo[1], c.lo[2]), vec3(c.hi[0], c.hi[1], c.hi[2]),
+                         c.h2, c.walls);
 }
 // x_i minus the image of x_j across the walls in mirror set s (bits of axes).
 vec3 sph_image_offset(vec3 xi, vec3 xj, SphMirrors m, uint s) {
@@ -144,7 +151,7 @@ bool sph_wall_response(inout vec3 x, inout vec3 v, vec3 lo, vec3 hi, float resti
 
 bool sph_op_ends_step(uint op) {
   return op == SphStageOp_euler || op == SphStageOp_symplectic_euler || op == SphStageOp_rk4_final ||
-         op == SphStageOp_kick_drift;
+         op == SphStageOp_kick_drift || op == SphStageOp_drift;
 }
 
 void sph_integrate_stage(uint op, float dt, vec3 x0, vec3 v0, vec3 vk, vec3 a, out vec3 x_out,
@@ -178,6 +185,12 @@ void sph_integrate_stage(uint op, float dt, vec3 x0, vec3 v0, vec3 vk, vec3 a, o
   } else if (op == SphStageOp_kick_drift) {
     v_out = v0 + half_dt * a;
     x_out = x0 + dt * v_out;
+  } else if (op == SphStageOp_accelerate) {
+    x_out = x0;
+    v_out = v0 + dt * a;
+  } else if (op == SphStageOp_drift) {
+    x_out = x0 + dt * v0;
+    v_out = v0;
   } else {
     x_out = x0;
     v_out = v0 + half_dt * a;

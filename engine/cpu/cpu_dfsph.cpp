@@ -1,0 +1,154 @@
+// DFSPH kernels of the CPU reference: the shared per-particle bodies of
+// engine/kernels/dfsph_kernels.h in double precision over the neighbour lists sph_density left
+// (cpu_sph_lists.h; rebuilt where they do not match), one contiguous chunk of sorted particles
+// per task. Statistics and residual sums are gathered per chunk and merged once.
+#include <algorithm>
+#include <bit>
+#include <cmath>
+#include <vector>
+
+#include "engine/cpu/cpu_backend.h"
+#include "engine/kernels/dfsph_kernels.h"
+
+namespace masav::cpu {
+namespace {
+
+using V = sph::V3<double>;
+
+V load3(const double* a, size_t i) {
+  return V{a[4 * i], a[4 * i + 1], a[4 * i + 2]};
+}
+
+// The candidates of sorted particle i: itself, then its neighbour list.
+struct ListWalk {
+  const SphNeighborLists& lists;
+  size_t chunk;
+  uint32_t i;
+  template <class Visit>
+  void operator()(Visit&& visit) const {
+    visit(i);
+    const uint32_t* list = lists.list(chunk, i);
+    for (uint32_t k = 0, n = lists.count(i); k < n; ++k) visit(list[k]);
+  }
+};
+
+// Per chunk: the smallest sorted index with a non-finite result or an overflowed walk, the
+// largest |v|^2, the residual units.
+struct ChunkStats {
+  uint32_t non_finite = UINT32_MAX, overflow = UINT32_MAX;
+  double max_speed2 = 0;
+  uint64_t residual = 0;
+};
+
+void merge(uint32_t* words, const std::vector<ChunkStats>& chunks) {
+  for (const ChunkStats& c : chunks) {
+    if (c.overflow != UINT32_MAX)
+      words[kSphStatOverflow] = std::max(words[kSphStatOverflow], ~c.overflow);
+    if (c.non_finite != UINT32_MAX)
+      words[kSphStatNonFinite] = std::max(words[kSphStatNonFinite], ~c.non_finite);
+    words[kSphStatMaxSpeed2] =
+        std::max(words[kSphStatMaxSpeed2], std::bit_cast<uint32_t>(float(c.max_speed2)));
+  }
+}
+
+}  // namespace
+
+void CpuBackend::run_own(const KernelArgs<KernelId::dfsph_factor>& a) {
+  auto& [p, items_, positions, cells, cell_start, cell_end, factor, stats, neighbor_rows] = a;
+  const char* k = "dfsph_factor";
+  const auto c = device_params<double>(p);
+  SphListInputs in = sph_list_inputs(p.step, cells, cell_start, cell_end, c.h2, k);
+  const double* pos = own(positions.impl(), k).as<double>();
+  in.positions = pos;
+  double* f = own(factor.impl(), k).as<double>();
+  ensure_sph_lists(in);
+  const size_t chunks = sph_chunks(p.step.n);
+  std::vector<ChunkStats> st(chunks);
+  auto pos_at = [pos](uint32_t j) { return load3(pos, j); };
+  pool_.run_chunks(p.step.n, chunks, [&](size_t chunk, size_t b, size_t e) {
+    ChunkStats& s = st[chunk];
+    for (size_t i = b; i < e; ++i) {
+      const uint32_t self = uint32_t(i);
+      f[i] =
+          sph::dfsph_factor_of(self, load3(pos, i), c, ListWalk{sph_lists_, chunk, self}, pos_at);
+      if (!std::isfinite(f[i])) s.non_finite = std::min(s.non_finite, self);
+      if (sph_lists_.overflow(self)) s.overflow = std::min(s.overflow, self);
+    }
+  });
+  merge(own(stats.impl(), k).as<uint32_t>(), st);
+}
+
+void CpuBackend::run_own(const KernelArgs<KernelId::dfsph_rate>& a) {
+  auto& [p, items_, positions, velocities, density, factor, cells, cell_start, cell_end, kappa,
+         kappa_sum, residual, neighbor_rows] = a;
+  const char* k = "dfsph_rate";
+  const auto c = device_params<double>(p);
+  SphListInputs in = sph_list_inputs(p.step, cells, cell_start, cell_end, c.h2, k);
+  const double* pos = own(positions.impl(), k).as<double>();
+  in.positions = pos;
+  const double* vel = own(velocities.impl(), k).as<double>();
+  const double* rho = own(density.impl(), k).as<double>();
+  const double* f = own(factor.impl(), k).as<double>();
+  double* kap = own(kappa.impl(), k).as<double>();
+  double* sum = own(kappa_sum.impl(), k).as<double>();
+  ensure_sph_lists(in);
+  const size_t chunks = sph_chunks(p.step.n);
+  std::vector<ChunkStats> st(chunks);
+  auto pos_at = [pos](uint32_t j) { return load3(pos, j); };
+  auto vel_at = [vel](uint32_t j) { return load3(vel, j); };
+  pool_.run_chunks(p.step.n, chunks, [&](size_t chunk, size_t b, size_t e) {
+    ChunkStats& s = st[chunk];
+    for (size_t i = b; i < e; ++i) {
+      const uint32_t self = uint32_t(i);
+      const auto r = sph::dfsph_rate_of(self, load3(pos, i), load3(vel, i), rho[i], f[i], c,
+                                        ListWalk{sph_lists_, chunk, self}, pos_at, vel_at);
+      kap[i] = r.kappa;
+      sum[i] = sph::dfsph_kappa_sum(sum[i], r.kappa, c);
+      if (pos[4 * i + 3] > 0) s.residual += sph::dfsph_residual_units(r.residual);
+    }
+  });
+  uint64_t total = 0;
+  for (const ChunkStats& s : st) total += s.residual;
+  uint32_t* words = own(residual.impl(), k).as<uint32_t>() + 2 * size_t(p.slot);
+  const uint64_t now = (uint64_t(words[1]) << 32 | words[0]) + total;
+  words[0] = uint32_t(now);
+  words[1] = uint32_t(now >> 32);
+}
+
+void CpuBackend::run_own(const KernelArgs<KernelId::dfsph_correct>& a) {
+  auto& [p, items_, positions, kappa, cells, cell_start, cell_end, velocities, stats,
+         neighbor_rows] = a;
+  const char* k = "dfsph_correct";
+  const auto c = device_params<double>(p);
+  SphListInputs in = sph_list_inputs(p.step, cells, cell_start, cell_end, c.h2, k);
+  const double* pos = own(positions.impl(), k).as<double>();
+  in.positions = pos;
+  const double* kap = own(kappa.impl(), k).as<double>();
+  double* vel = own(velocities.impl(), k).as<double>();
+  ensure_sph_lists(in);
+  const size_t chunks = sph_chunks(p.step.n);
+  std::vector<ChunkStats> st(chunks);
+  auto pos_at = [pos](uint32_t j) { return load3(pos, j); };
+  auto kappa_at = [kap](uint32_t j) { return kap[j]; };
+  pool_.run_chunks(p.step.n, chunks, [&](size_t chunk, size_t b, size_t e) {
+    ChunkStats& s = st[chunk];
+    for (size_t i = b; i < e; ++i) {
+      const uint32_t self = uint32_t(i);
+      const double w = pos[4 * i + 3];
+      if (!(w > 0)) continue;  // pinned: never moves
+      const V dv = sph::dfsph_correction_of(self, load3(pos, i), kap[i], c,
+                                            ListWalk{sph_lists_, chunk, self}, pos_at, kappa_at);
+      const V v = load3(vel, i) + w * dv;
+      vel[4 * i] = v.x;
+      vel[4 * i + 1] = v.y;
+      vel[4 * i + 2] = v.z;
+      if (!(std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z)))
+        s.non_finite = std::min(s.non_finite, self);
+      else
+        s.max_speed2 = std::max(s.max_speed2, sph::dot(v, v));
+    }
+  });
+  merge(own(stats.impl(), k).as<uint32_t>(), st);
+}
+
+}  // namespace masav::cpu

@@ -1,0 +1,124 @@
+// SphSimulation's step for the dfsph pressure model (divergence-free SPH, Bender & Koschier;
+// formulas in engine/kernels/dfsph_kernels.h). One step of dt from a state whose velocities are
+// divergence-free and whose density and factor belong to its positions:
+//   1. viscosity and gravity at the step's start (sph_forces; dfsph adds no pressure there),
+//      v* = v + dt a (sph_integrate: accelerate);
+//   2. the density solve: v* corrected until the density it predicts at the step's end,
+//      rho + dt drho/dt, is within dfsph_density_error of rho0 on average;
+//   3. x1 = x + dt v* with the box walls (sph_integrate: drift), the grid rebuilt at x1;
+//   4. density and factor at x1, then the divergence solve: v1 corrected until drho/dt ~ 0.
+// Each solve starts from half of the previous step's kappa sum (the warm start) and runs at
+// least 2 (density) or 1 (divergence) iterations; after each from then on the host reads the
+// iteration's residual (one wait per iteration: the loop's length depends on it). The step
+// ends, like leapfrog's, with the fields at the new positions, so the next step starts there.
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+#include "engine/sph/sph_kernel_calls.h"
+#include "engine/sph/sph_simulation.h"
+
+namespace masav {
+
+DfsphParams SphSimulation::dfsph_params(DfsphSolve solve, double dt) const {
+  DfsphParams p;
+  p.step = step_params_;
+  p.solve = solve;
+  p.dt = dt;
+  p.min_neighbors = min_neighbors_;
+  return p;
+}
+
+void SphSimulation::dfsph_fields(const Buffer<Real4>& x) {
+  const SphGridView view{&grid_.sorted_cells, &grid_.cell_start, &grid_.cell_end};
+  sph_density(backend_, step_params_,
+              SphDensityIO{&x, view, &density_, &pressure_, &stats_buf_, neighbor_rows()});
+  mark(SphStage::density);
+  DfsphIO io;
+  io.positions = &x;
+  io.grid = view;
+  io.factor = &factor_;
+  io.stats = &stats_buf_;
+  io.neighbor_rows = neighbor_rows();
+  dfsph_factor(backend_, dfsph_params(DfsphSolve::density, 1.0), io);
+  mark(SphStage::solve);
+}
+
+void SphSimulation::dfsph_solve(DfsphSolve solve, double dt, const Buffer<Real4>& x,
+                                Buffer<Real4>& v, Buffer<Real>& kappa_sum) {
+  const bool density = solve == DfsphSolve::density;
+  const double target = density ? scene_.dfsph_density_error : scene_.dfsph_divergence_error;
+  const uint32_t min_iterations = density ? 2 : 1;
+  const uint32_t max_iterations = scene_.dfsph_max_iterations;
+  const uint32_t movers = layout_.fluid + (scene_.obstacle.pinned ? 0u : layout_.obstacle);
+  DfsphParams p = dfsph_params(solve, dt);
+  DfsphIO io;
+  io.positions = &x;
+  io.velocities = &v;
+  io.density = &density_;
+  io.factor = &factor_;
+  io.grid = {&grid_.sorted_cells, &grid_.cell_start, &grid_.cell_end};
+  io.kappa_sum = &kappa_sum;
+  io.residual = &residual_;
+  io.stats = &stats_buf_;
+  io.neighbor_rows = neighbor_rows();
+  backend_.fill(residual_, 0u);
+  if (kappa_warm_) {  // warm start: warm_scale of the last solve's kappa sum
+    p.first = true;
+    io.kappa = &kappa_sum;
+    dfsph_correct(backend_, p, io);
+  }
+  io.kappa = &kappa_;
+  uint32_t done = 0;
+  double error = 0;
+  bool converged = false;
+  while (done < max_iterations && !converged) {
+    p.slot = done;
+    p.first = done == 0;
+    dfsph_rate(backend_, p, io);
+    p.first = false;
+    dfsph_correct(backend_, p, io);
+    ++done;
+    if (done >= min_iterations) {
+      const std::vector<uint32_t> words = backend_.download(residual_);
+      const uint64_t units = uint64_t(words[2 * p.slot + 1]) << 32 | words[2 * p.slot];
+      error = double(units) / double(kDfsphResidualScale) / double(std::max(movers, 1u));
+      converged = error <= target;
+    }
+  }
+  mark(SphStage::solve);
+  (density ? solve_stats_.density_iterations : solve_stats_.divergence_iterations) += done;
+  (density ? solve_stats_.last_density_error : solve_stats_.last_divergence_error) = error;
+  if (!converged) ++solve_stats_.unconverged;
+}
+
+void SphSimulation::step_dfsph(double dt) {
+  if (!accel_valid_) {  // density and factor at pos_ (a new start, or after a roll back)
+    sort_state();
+    dfsph_fields(pos_);
+    backend_.fill(kappa_density_, 0u);
+    backend_.fill(kappa_divergence_, 0u);
+    kappa_warm_ = false;
+    accel_valid_ = true;
+  }
+  const SphGridView view{&grid_.sorted_cells, &grid_.cell_start, &grid_.cell_end};
+  sph_forces(backend_, step_params_,
+             SphForcesIO{&pos_, &vel_, &density_, &pressure_, view, &accel_, &stats_buf_,
+                         neighbor_rows()});
+  mark(SphStage::forces);
+  integrate(SphStageOp::accelerate, dt, pos_, vel_, nullptr, nullptr, vs_, nullptr, nullptr);
+  dfsph_solve(DfsphSolve::density, dt, pos_, vs_, kappa_density_);
+  integrate(SphStageOp::drift, dt, pos_, vs_, nullptr, &xs_, vs_, nullptr, nullptr);
+  rebuild_moving(xs_, ta_, vs_, tb_, ids_, ids_t_);
+  reorder(backend_, grid_, kappa_density_.impl(), kappa_density_t_.impl());
+  reorder(backend_, grid_, kappa_divergence_.impl(), kappa_divergence_t_.impl());
+  mark(SphStage::grid);
+  accel_valid_ = false;  // density_ and factor_ now belong to the new positions
+  dfsph_fields(ta_);
+  dfsph_solve(DfsphSolve::divergence, dt, ta_, tb_, kappa_divergence_t_);
+  ++solve_stats_.steps;
+}
+
+}  // namespace masav

@@ -1,0 +1,75 @@
+// DFSPH math: the GLSL twin of engine/kernels/dfsph_kernels.h (the spiky gradient, mirrored
+// velocities, residual units) and the candidate walk the three DFSPH kernels share. Formulas and
+// conventions are documented there; keep the two in step. The including shader declares
+// positions[], cell_start[], cell_end[], neighbor_rows[], the push block `p` (DfsphLayout) and
+// defines dfsph_visit(j), which the walk calls for each candidate (it tests the distance).
+
+#include "engine/kernels/dfsph_params.h"
+
+// m grad_i W_spiky for d = x_i - x_j, r^2 < h^2; 0 at r = 0.
+vec3 dfsph_gradient(vec3 d, float r2, DfsphLayout c) {
+  if (!(r2 > 0.0)) return vec3(0.0);
+  const float r = sqrt(r2);
+  const float u = 1.0 - r * c.inv_h;
+  return (-(c.grad * u * u) / r) * d;
+}
+
+vec3 dfsph_mirror_velocity(vec3 v, uint s) {
+  return mix(v, -v, bvec3((s & 1u) != 0u, (s & 2u) != 0u, (s & 4u) != 0u));
+}
+
+SphMirrors dfsph_mirrors(vec3 x, DfsphLayout c) {
+  return sph_box_mirrors(x, vec3(c.lo[0], c.lo[1], c.lo[2]), vec3(c.hi[0], c.hi[1], c.hi[2]),
+                         c.h2, c.walls);
+}
+
+// Whether xj's image in mirror set s lies within h of xi; its offset xi - image in d.
+bool dfsph_image(vec3 xi, vec3 xj, SphMirrors m, uint s, float h2, out vec3 d, out float r2) {
+  d = vec3(0.0);
+  r2 = 0.0;
+  if ((s & ~m.axes) != 0u) return false;
+  d = sph_image_offset(xi, xj, m, s);
+  r2 = dot(d, d);
+  return r2 < h2;
+}
+
+uint dfsph_residual_units(float r) {
+  r = r < 1.0 ? r : 1.0;
+  r = r > 0.0 ? r : 0.0;
+  return uint(r * float(kDfsphResidualScale));
+}
+
+void dfsph_visit(uint j);
+
+// Per lane, each row's neighbours from sph_density's masks (p.neighbor_rows != 0), or every
+// candidate of a row too long for its mask or when there are no masks: one loop per row, so a
+// subgroup iterates at most as often as its longest row (lavapipe's loop cap counts passes).
+void dfsph_walk(bool live, uint i, ivec3 cc, inout uint candidates, inout bool overflow) {
+  for (int dx = -1; dx <= 1; ++dx) {
+    LOOP_TICK();
+    for (int dy = -1; dy <= 1; ++dy) {
+      LOOP_TICK();
+      const uvec2 r =
+          sph_lane_row(live, cc, dx, dy, p.dims, p.max_candidates, candidates, overflow);
+      const bool whole = p.neighbor_rows == 0u || !sph_row_fits_mask(r);
+      uvec2 bits = uvec2(0u);
+      if (!whole && r.y > r.x) {
+        const uint row = sph_row_index(dx, dy);
+        bits = uvec2(neighbor_rows[sph_mask_word(row, 0u, i, p.n)],
+                     neighbor_rows[sph_mask_word(row, 1u, i, p.n)]);
+      }
+      uint next = r.x;
+      while (whole ? next < r.y : (bits.x | bits.y) != 0u) {
+        LOOP_TICK();
+        uint j;
+        if (whole) {
+          j = next;
+          ++next;
+        } else {
+          j = r.x + sph_mask_take(bits);
+        }
+        dfsph_visit(j);
+      }
+    }
+  }
+}
