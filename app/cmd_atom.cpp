@@ -17,7 +17,7 @@
 #include "engine/atom/atom_export.h"
 #include "engine/atom/atom_schema.h"
 #include "engine/atom/transfer_function.h"
-#include "engine/atom/volume_io.h"
+#include "engine/atom/volume_file.h"
 #include "engine/core/error.h"
 #include "engine/io/output_lock.h"
 #include "engine/io/png_writer.h"
@@ -50,12 +50,10 @@ struct AtomCliOptions {
 
 struct VolumeCliOptions {
   BackendChoice choice;
-  std::string file, out = "out/volume", type, array, tf, view = "front", mode = "front_to_back";
+  atom::VolumeFileOptions source;
+  std::string out = "out/volume", tf, view = "front", mode = "front_to_back";
   std::string preintegrate = "off";
   int reps = 0;
-  std::vector<uint32_t> dims;
-  std::vector<float> spacing;
-  bool big_endian = false;
   uint32_t width = 512, height = 512;
   float step_voxels = 0.5f;
 };
@@ -181,25 +179,6 @@ int run_atom(const AtomCliOptions& o) {
   return 0;
 }
 
-// Options that only a raw file (or only a .vti) reads are refused for the other formats, whose
-// headers say the same thing: naming both beats silently ignoring one.
-void check_format_options(const VolumeCliOptions& o, const std::string& ext) {
-  const bool raw = ext != ".nrrd" && ext != ".nhdr" && ext != ".vti";
-  const std::pair<bool, const char*> raw_only[] = {{!o.dims.empty(), "--dims"},
-                                                   {!o.type.empty(), "--type"},
-                                                   {!o.spacing.empty(), "--spacing"},
-                                                   {o.big_endian, "--big-endian"}};
-  for (const auto& [given, name] : raw_only)
-    if (given && !raw)
-      throw Error("", name,
-                  fmt::format("{} conflicts with the {} file '{}', whose header describes it", name,
-                              ext, o.file),
-                  fmt::format("drop {} (it is for raw files)", name));
-  if (!o.array.empty() && ext != ".vti")
-    throw Error("", "--array", fmt::format("--array conflicts with the file '{}'", o.file),
-                "drop --array (it picks an array of a .vti file)");
-}
-
 int run_volume(const VolumeCliOptions& o) {
   const std::vector<Vec4d> tf = transfer(o.tf);  // every input is checked before any work
   const atom::ViewPreset view = atom::parse_view(o.view);
@@ -210,8 +189,7 @@ int run_volume(const VolumeCliOptions& o) {
   if (o.preintegrate == "on" && o.mode != "front_to_back")
     throw_invalid("masav volume", "--preintegrate", "on with --mode " + o.mode,
                   "off, or on with --mode front_to_back (lerp has no step to integrate over)");
-  const std::string ext = std::filesystem::path(o.file).extension().string();
-  check_format_options(o, ext);
+  atom::check_volume_file_options(o.source);
   // --out names a directory, as for every command; a .png name is the file it used to name.
   std::string png = o.out + "/volume.png";
   if (std::filesystem::path(o.out).extension() == ".png") {
@@ -223,25 +201,8 @@ int run_volume(const VolumeCliOptions& o) {
   }
   // Reading, uploading and raymarching a large volume take seconds each on a CPU device.
   Progress progress("volume steps", 4);
-  progress.update(0, "reading " + o.file);
-  atom::ScalarVolume vol;
-  if (ext == ".nrrd" || ext == ".nhdr") {
-    vol = atom::load_nrrd(o.file);
-  } else if (ext == ".vti") {
-    vol = atom::load_vti(o.file, o.array);
-  } else {
-    if (o.dims.size() != 3)
-      throw_invalid("masav volume", "--dims", fmt::format("{} values", o.dims.size()),
-                    "three sizes X,Y,Z for a raw file");
-    if (o.type.empty())
-      throw_invalid("masav volume", "--type", "none",
-                    "the sample type of a raw file (uint8, int16, "
-                    "float32, ...)");
-    Vec3f sp{1, 1, 1};
-    if (o.spacing.size() == 3) sp = {o.spacing[0], o.spacing[1], o.spacing[2]};
-    vol = atom::load_raw(o.file, {o.dims[0], o.dims[1], o.dims[2]}, atom::parse_sample_type(o.type),
-                         o.big_endian, sp);
-  }
+  progress.update(0, "reading " + o.source.file);
+  const atom::ScalarVolume vol = atom::load_volume_file(o.source);
   const VolumeDesc desc = atom::volume_desc(vol);
   progress.advance(fmt::format("uploading {}x{}x{} values", desc.dims.x, desc.dims.y, desc.dims.z));
   auto backend = create_backend(o.choice.backend, o.choice.device);
@@ -331,14 +292,16 @@ void add_atom_command(CLI::App& app) {
   auto* vc = add_command(app, "volume", "raymarch a scalar volume (raw, .nrrd/.nhdr, .vti) to PNG",
                          v, run_volume);
   add_backend_options(*vc, v.choice, false);
-  vc->add_option("file", v.file, "the volume file")->required();
+  vc->add_option("file", v.source.file, "the volume file")->required();
   vc->add_option("--out,-o", v.out, "output directory: volume.png")->capture_default_str();
-  vc->add_option("--dims", v.dims, "raw: sizes X Y Z")->delimiter(',')->expected(3);
-  vc->add_option("--type", v.type,
+  vc->add_option("--dims", v.source.dims, "raw: sizes X Y Z")->delimiter(',')->expected(3);
+  vc->add_option("--type", v.source.type,
                  "raw: uint8, int8, uint16, int16, uint32, int32, float32, float64");
-  vc->add_option("--spacing", v.spacing, "raw: voxel size X,Y,Z")->delimiter(',')->expected(3);
-  vc->add_flag("--big-endian", v.big_endian, "raw: big-endian samples");
-  vc->add_option("--array", v.array, "vti: the array to read (default: the first)");
+  vc->add_option("--spacing", v.source.spacing, "raw: voxel size X,Y,Z")
+      ->delimiter(',')
+      ->expected(3);
+  vc->add_flag("--big-endian", v.source.big_endian, "raw: big-endian samples");
+  vc->add_option("--array", v.source.array, "vti: the array to read (default: the first)");
   vc->add_option("--tf", v.tf, "transfer function file (lines: value r g b a)");
   vc->add_option("--view", v.view, "top, left or front")->capture_default_str();
   accept_old_values(vc->add_option("--mode", v.mode, "front_to_back or lerp (the thesis)"))

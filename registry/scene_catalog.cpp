@@ -2,6 +2,7 @@
 #include "registry/scene_catalog.h"
 
 #include "engine/atom/atom_scene_types.h"
+#include "engine/atom/volume_scene.h"
 #include "engine/core/error.h"
 #include "engine/points/particles_scene.h"
 #include "engine/sph/sph_scene_type.h"
@@ -10,12 +11,15 @@
 namespace masav::scene {
 
 const std::vector<SceneType>& scene_types() {
+  // clang-format off
   static const std::vector<SceneType> types = {
       points::particles_scene_type(),
       atom::atom_scene_type(),
       atom::atom_volume_scene_type(),
+      atom::volume_scene_type(),
       sph::sph_scene_type(),
   };
+  // clang-format on
   return types;
 }
 

@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 #include <imgui.h>
 
+#include "app/demo/tooltip.h"
 #include "engine/atom/orbital.h"
 
 namespace masav::app {
@@ -20,8 +21,7 @@ void atom_controls(render::ScenePlayer& player, DemoState& st) {
     if (current) ImGui::PushStyleColor(ImGuiCol_Button, ImVec4(0.2f, 0.5f, 0.3f, 1));
     if (ImGui::Button(label.c_str(), ImVec2(30, 0))) set_param(player, st, "atom.state", names[i]);
     if (current) ImGui::PopStyleColor();
-    if (ImGui::IsItemHovered())
-      ImGui::SetTooltip("%s: %s", names[i].c_str(), atom::describe(s).c_str());
+    if (tooltip_due()) ImGui::SetTooltip("%s: %s", names[i].c_str(), atom::describe(s).c_str());
     if (i % 5 != 4) ImGui::SameLine();
   }
   ImGui::TextDisabled("custom: atom.state = custom, then n, l, m below");

@@ -1,7 +1,8 @@
 // `masav demo [scene.toml]`: the desktop demo -- a GLFW window sized to the screen, the scene
 // drawn with Vulkan in its own viewport beside an ImGui panel holding SPEC §3's controls, with
-// keyboard shortcuts, screenshots, recordings and saved scenes. `--script FILE` drives it without
-// a user (the tests run it under xvfb-run and inspect its screenshots).
+// keyboard shortcuts, screenshots, recordings, saved scenes and volume files opened from the panel
+// or dropped on the window. `--script FILE` drives it without a user (the tests run it under
+// xvfb-run and inspect its screenshots).
 #define GLFW_INCLUDE_NONE
 #include <GLFW/glfw3.h>
 #include <backends/imgui_impl_glfw.h>
@@ -20,6 +21,7 @@
 #include "app/demo/demo_script.h"
 #include "app/demo/demo_window.h"
 #include "app/demo/sim_rate.h"
+#include "app/demo/volume_open.h"
 #include "app/interrupt.h"
 #include "app/scene_options.h"
 #include "engine/atom/orbital.h"
@@ -98,6 +100,7 @@ class Demo {
     auto last = std::chrono::steady_clock::now();
     while (!window_.should_close() && !state_.requests.quit && !interrupted()) {
       glfwPollEvents();
+      take_dropped_files();
       if (!script_.empty() || scripted_) run_script();
       if (state_.requests.quit) break;
       apply_actions();
@@ -293,22 +296,46 @@ class Demo {
                   "report the device and driver; --no-verify shows the scene anyway");
   }
 
+  // Shows another scene on the same backend; on error the current one stays.
+  void show_scene(scene::SceneFile next) {
+    fit_to_viewport(next.params);
+    player_->load_scene(std::move(next));
+    state_.scene_files = find_scene_files(player_->file().source);
+    player_->renderer().resize(swapchain_->width(), swapchain_->height());
+    device_defaults();
+    if (!options_.no_verify) verify(false);
+  }
+
+  // A file dropped on the window opens as the panel's "Open" would, with the panel's raw and
+  // .vti options; of several dropped at once, the last is opened.
+  void take_dropped_files() {
+    for (const std::string& path : window_.take_dropped_files()) {
+      state_.open_fields.path = path;
+      state_.requests.open_volume = state_.open_fields;
+    }
+  }
+
+  // A volume file that is refused (the checks of `masav volume`) leaves the current scene and
+  // says why in the panel; the demo, and a script driving it, go on.
+  void open_volume(const OpenFields& f) {
+    try {
+      show_scene(volume_scene_file(f));
+      state_.message.clear();
+      fmt::print("demo: opened {}: {}\n", f.path, player_->scene().title());
+    } catch (const Error& e) {
+      state_.message = e.what();
+      fmt::print(stderr, "masav demo: cannot open {}: {}\n", f.path, e.what());
+    }
+  }
+
   void apply_requests() {
     DemoRequests& r = state_.requests;
-    if (r.scene_file || r.backend || r.reset) {
+    if (r.scene_file || r.backend || r.reset || r.open_volume) {
       restart_timing_ = true;
       state_.fps = state_.frame_ms = 0;
     }
     try {
-      if (r.scene_file) {
-        scene::SceneFile next = scene::load_scene_file(*r.scene_file);
-        fit_to_viewport(next.params);
-        player_->load_scene(std::move(next));
-        state_.scene_files = find_scene_files(player_->file().source);
-        player_->renderer().resize(swapchain_->width(), swapchain_->height());
-        device_defaults();
-        if (!options_.no_verify) verify(false);
-      }
+      if (r.scene_file) show_scene(scene::load_scene_file(*r.scene_file));
       if (r.backend) {
         scene::SceneFile current = player_->file();
         current.params = player_->scene().params();
@@ -323,13 +350,16 @@ class Demo {
         device_defaults();
       }
       if (r.verify) verify(false);
-      state_.message.clear();
+      // A change that worked ends the last error's message; a frame without one keeps it.
+      if (r.scene_file || r.backend || r.reset || r.verify) state_.message.clear();
     } catch (const Error& e) {
       state_.message = e.what();
       fmt::print(stderr, "masav demo: {}\n", e.what());
       if (!player_) throw;  // a backend switch that failed leaves nothing to show
       if (scripted_) failed_ = true;
     }
+    // After the others, whose success clears the message: a refusal stays in the panel.
+    if (r.open_volume) open_volume(*r.open_volume);
     r = DemoRequests{};
   }
 
@@ -384,6 +414,10 @@ class Demo {
         state_.actions.push_back(*shortcut_by_name(a0));
       } else if (c.verb == "button") {
         state_.actions.push_back(*button_by_name(a0));
+      } else if (c.verb == "open") {
+        state_.open_fields =
+            open_fields_from_words(c.args, fmt::format("{}:{}", options_.script, c.line));
+        state_.requests.open_volume = state_.open_fields;
       } else if (c.verb == "rate") {
         state_.sim_rate = a0 == "off" ? 0.0 : std::stod(a0);
       }
@@ -462,6 +496,8 @@ class Demo {
       // What the overlay showed on it: the title and the clock line (the tests read them).
       const std::vector<std::string> shown = render::overlay_lines(player_->overlay());
       fmt::print("demo: wrote {}: {} | {}\n", screenshot_, shown[0], shown[1]);
+      if (!state_.message.empty())
+        fmt::print("demo: the panel shows at {}: {}\n", screenshot_, state_.message);
       write_layout(screenshot_ + ".layout");
       if (sph::simulation_of(player_->scene()))
         fmt::print("demo: rate at {}: asked {} s/s, achieved {:.3g} s/s, {} steps per frame\n",
@@ -525,7 +561,7 @@ void add_demo_command(CLI::App& app) {
   cmd->add_option("--script", o.script,
                   "drive the demo from a script (wait N, set K V, view V, scene F, backend B, "
                   "pause, step, reset, verify, panel on|off, key K, button B, rate R, "
-                  "screenshot F, quit)");
+                  "open FILE [dims=X,Y,Z type=T ...], screenshot F, quit)");
   cmd->add_option("--window", o.window, "window size WIDTHxHEIGHT (default: 90% of the screen)");
   cmd->add_option("--out,-o", o.out, "output directory of screenshots, recordings, saved scenes")
       ->capture_default_str();

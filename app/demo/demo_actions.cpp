@@ -3,6 +3,8 @@
 #define GLFW_INCLUDE_NONE
 #include <GLFW/glfw3.h>
 
+#include <algorithm>
+
 namespace masav::app {
 
 const std::vector<Shortcut>& shortcuts() {
@@ -26,6 +28,37 @@ const std::vector<Shortcut>& shortcuts() {
     return s;
   }();
   return all;
+}
+
+std::vector<ShortcutRow> shortcut_rows() {
+  std::vector<ShortcutRow> rows;
+  const Shortcut* prev = nullptr;
+  for (const Shortcut& k : shortcuts()) {
+    if (prev && prev->request.action == k.request.action && std::string(prev->what) == k.what)
+      rows.back().keys += std::string(", ") + k.label;
+    else
+      rows.push_back({k.label, k.what});
+    prev = &k;
+  }
+  for (ShortcutRow& r : rows)
+    if (r.keys == "1, 2, 3, 4, 5, 6, 7, 8, 9, 0") r.keys = "1-9, 0";
+  return rows;
+}
+
+std::vector<std::string> row_key_labels(const std::string& keys) {
+  std::vector<std::string> out;
+  size_t at = 0;
+  while (at <= keys.size()) {
+    const size_t comma = std::min(keys.find(", ", at), keys.size());
+    const std::string label = keys.substr(at, comma - at);
+    if (label.size() == 3 && label[1] == '-' && label[0] < label[2]) {
+      for (char c = label[0]; c <= label[2]; ++c) out.push_back(std::string(1, c));
+    } else {
+      out.push_back(label);
+    }
+    at = comma + 2;
+  }
+  return out;
 }
 
 std::optional<ActionRequest> shortcut_by_name(const std::string& name) {

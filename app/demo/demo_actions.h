@@ -33,11 +33,20 @@ struct Shortcut {
 
 // Every shortcut: space, n, r, 1-9 and 0, p, v, s, tab.
 const std::vector<Shortcut>& shortcuts();
+// The panel's list of shortcuts, made from shortcuts(): one row per action, its keys joined
+// ("1-9, 0" for the ten state keys).
+struct ShortcutRow {
+  std::string keys;
+  std::string what;
+};
+std::vector<ShortcutRow> shortcut_rows();
+// The key labels a row's `keys` stands for ("1-9, 0" -> 1, 2, ..., 9, 0).
+std::vector<std::string> row_key_labels(const std::string& keys);
 // A key by its script name ("space", "3", "tab"); nullopt if there is none.
 std::optional<ActionRequest> shortcut_by_name(const std::string& name);
 // A panel button by its script name: pause, step, reset, screenshot, record, save, panel.
 std::optional<ActionRequest> button_by_name(const std::string& name);
-// The names `key` and `button` accept, for error messages.
+// The names `key` and `button` accept, for error messages and the script's usage.
 std::string shortcut_names();
 std::string button_names();
 

@@ -11,6 +11,8 @@
 #include "app/demo/atom_controls.h"
 #include "app/demo/param_widgets.h"
 #include "app/demo/sph_panel.h"
+#include "app/demo/tooltip.h"
+#include "app/demo/volume_open.h"
 #include "engine/atom/orbital.h"
 #include "engine/core/error.h"
 #include "registry/scene_catalog.h"
@@ -134,17 +136,12 @@ void capture_controls(DemoState& st) {
 
 void shortcut_table() {
   if (!ImGui::BeginTable("keys", 2, ImGuiTableFlags_SizingFixedFit)) return;
-  bool digits_shown = false;
-  for (const Shortcut& k : shortcuts()) {
-    if (k.request.action == Action::preset) {
-      if (digits_shown) continue;
-      digits_shown = true;
-    }
+  for (const ShortcutRow& row : shortcut_rows()) {
     ImGui::TableNextRow();
     ImGui::TableNextColumn();
-    ImGui::TextUnformatted(k.request.action == Action::preset ? "1-9, 0" : k.label);
+    ImGui::TextUnformatted(row.keys.c_str());
     ImGui::TableNextColumn();
-    ImGui::TextUnformatted(k.what);
+    ImGui::TextUnformatted(row.what.c_str());
   }
   ImGui::EndTable();
 }
@@ -166,7 +163,7 @@ void draw_panel(render::ScenePlayer& player, DemoState& st) {
   if (!st.show_panel) {
     begin_panel("##strip", st);
     if (ImGui::Button("<", ImVec2(-1, 0))) st.actions.push_back({Action::panel});
-    if (ImGui::IsItemHovered()) ImGui::SetTooltip("expand the panel (Tab)");
+    if (tooltip_due()) ImGui::SetTooltip("expand the panel (Tab)");
     ImGui::End();
     return;
   }
@@ -186,6 +183,9 @@ void draw_panel(render::ScenePlayer& player, DemoState& st) {
     ImGui::EndCombo();
   }
   ImGui::Text("%s, %.1f fps (%.1f ms)", player.file().type.c_str(), st.fps, st.frame_ms);
+  bool open = false;
+  volume_open_controls(st.open_fields, open);
+  if (open) st.requests.open_volume = st.open_fields;
 
   // Transport.
   if (ImGui::Button(st.paused ? "Resume" : "Pause")) st.actions.push_back({Action::pause});
@@ -228,7 +228,11 @@ void draw_panel(render::ScenePlayer& player, DemoState& st) {
                                                           : player.verify_status().c_str());
   if (ImGui::Button("Run cross-check")) st.requests.verify = true;
 
-  if (!st.message.empty()) ImGui::TextColored(ImVec4(1, 0.4f, 0.3f, 1), "%s", st.message.c_str());
+  if (!st.message.empty()) {  // wrapped: a file's refusal names its path and the remedy
+    ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(1, 0.4f, 0.3f, 1));
+    ImGui::TextWrapped("%s", st.message.c_str());
+    ImGui::PopStyleColor();
+  }
 
   // Every parameter of the scene's own tables, then rendering and camera.
   const scene::SceneType& type = scene::find_scene_type(player.file().type);

@@ -11,6 +11,7 @@
 
 #include "app/demo/demo_actions.h"
 #include "app/demo/demo_layout.h"
+#include "app/demo/volume_open.h"
 #include "render/scene_player.h"
 
 namespace masav::app {
@@ -18,6 +19,7 @@ namespace masav::app {
 struct DemoRequests {
   std::optional<std::string> scene_file;
   std::optional<std::string> backend;
+  std::optional<OpenFields> open_volume;  // "Open", a dropped file or the script's `open`
   bool reset = false;
   bool verify = false;
   bool quit = false;
@@ -30,6 +32,7 @@ struct DemoState {
   DemoLayout layout;                     // this frame's scene viewport and panel
   std::vector<std::string> scene_files;  // offered in the scene selector
   std::vector<std::string> backends;     // available compute backends
+  OpenFields open_fields;                // the panel's "open a volume file" fields
   std::string message;                   // the last error, shown until the next change
   std::string saved;                     // the last file the demo wrote, shown until the next
   std::string recording;                 // "" or what is being recorded, where

@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "app/demo/demo_actions.h"
+#include "app/demo/volume_open.h"
 #include "engine/core/error.h"
 #include "engine/util/bounded_file.h"
 
@@ -15,8 +16,9 @@ namespace masav::app {
 namespace {
 
 struct Form {
-  size_t args;
-  const char* usage;
+  size_t args;  // at least this many; exactly this many unless `more`
+  std::string usage;
+  bool more = false;
 };
 
 const std::map<std::string, Form>& forms() {
@@ -34,9 +36,11 @@ const std::map<std::string, Form>& forms() {
       {"verify", {0, "verify"}},
       {"panel", {1, "panel on|off"}},
       {"screenshot", {1, "screenshot PATH"}},
-      {"key", {1, "key space|n|r|p|v|s|tab|1..9|0"}},
+      {"key", {1, "key " + shortcut_names()}},
       {"button", {1, "button pause|step|reset|screenshot|record|save|panel"}},
       {"rate", {1, "rate SIMULATED_SECONDS_PER_SECOND|off"}},
+      {"open",
+       {1, "open PATH [dims=X,Y,Z] [type=T] [spacing=X,Y,Z] [big_endian] [array=NAME]", true}},
       {"quit", {0, "quit"}},
   };
   return f;
@@ -64,9 +68,10 @@ std::vector<ScriptCommand> load_script(const std::string& path) {
       for (const auto& [verb, form] : forms()) all += (all.empty() ? "" : ", ") + verb;
       throw_invalid(at, "script command", c.verb, "one of " + all);
     }
-    if (c.args.size() != it->second.args)
+    if (c.args.size() < it->second.args || (c.args.size() > it->second.args && !it->second.more))
       throw_invalid(at, "arguments of " + c.verb, std::to_string(c.args.size()),
-                    fmt::format("{} (as in: {})", it->second.args, it->second.usage));
+                    fmt::format("{}{} (as in: {})", it->second.more ? "at least " : "",
+                                it->second.args, it->second.usage));
     if (c.verb == "wait") {
       int n = 0;
       const auto& a = c.args[0];
@@ -83,6 +88,7 @@ std::vector<ScriptCommand> load_script(const std::string& path) {
       throw_invalid(at, "key", c.args[0], "one of " + shortcut_names());
     if (c.verb == "button" && !button_by_name(c.args[0]))
       throw_invalid(at, "button", c.args[0], "one of " + button_names());
+    if (c.verb == "open") (void)open_fields_from_words(c.args, at);
     if (c.verb == "rate" && c.args[0] != "off") {
       char* end = nullptr;
       const double r = std::strtod(c.args[0].c_str(), &end);

@@ -11,10 +11,13 @@
 //   panel on|off           expand or collapse the control panel
 //   screenshot PATH        write the next frame (panel and overlay included) as PNG, and the
 //                          layout beside it (PATH.layout: window, scene and panel rectangles)
-//   key NAME               a keyboard shortcut (space, n, r, p, v, s, tab, 1..9, 0)
+//   key NAME               a keyboard shortcut (the names of shortcuts(): space, n, r, ...)
 //   button NAME            a panel button (pause, step, reset, screenshot, record, save, panel)
 //   rate R|off             simulated seconds per second of a stepped scene (SPH); off: the
 //                          scene's own sph.substeps per frame
+//   open PATH [dims=X,Y,Z] [type=T] [spacing=X,Y,Z] [big_endian] [array=NAME]
+//                          open a volume file, as the panel's "Open" does (the options of
+//                          `masav volume` for raw and .vti files)
 //   quit                   close the demo (also at the end of the script)
 #include <string>
 #include <vector>

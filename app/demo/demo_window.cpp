@@ -55,6 +55,18 @@ DemoWindow::DemoWindow(uint32_t width, uint32_t height, const std::string& title
   }
   // Room for the panel and a scene viewport beside it.
   glfwSetWindowSizeLimits(window_, 480, 320, GLFW_DONT_CARE, GLFW_DONT_CARE);
+  // Files dropped on the window wait here until the demo's loop takes them.
+  glfwSetWindowUserPointer(window_, this);
+  glfwSetDropCallback(window_, [](GLFWwindow* w, int count, const char** paths) {
+    auto* self = static_cast<DemoWindow*>(glfwGetWindowUserPointer(w));
+    for (int i = 0; i < count; ++i) self->dropped_.emplace_back(paths[i]);
+  });
+}
+
+std::vector<std::string> DemoWindow::take_dropped_files() {
+  std::vector<std::string> out = std::move(dropped_);
+  dropped_.clear();
+  return out;
 }
 
 DemoWindow::~DemoWindow() {

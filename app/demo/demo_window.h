@@ -2,6 +2,7 @@
 // The demo's window (GLFW, no OpenGL context): the display check, the Vulkan instance
 // extensions and presentation support GLFW reports, and the window surface.
 #include <string>
+#include <vector>
 
 #include "compute/device/vk_context.h"
 
@@ -29,10 +30,13 @@ class DemoWindow {
   // The primary monitor's work area (the screen less task bars) when the window was opened.
   uint32_t work_width() const { return work_w_; }
   uint32_t work_height() const { return work_h_; }
+  // The files dropped on the window since the last call (GLFW's drop callback), oldest first.
+  std::vector<std::string> take_dropped_files();
 
  private:
   GLFWwindow* window_ = nullptr;
   uint32_t work_w_ = 0, work_h_ = 0;
+  std::vector<std::string> dropped_;
 };
 
 }  // namespace masav::app

@@ -7,6 +7,8 @@
 #include <cmath>
 #include <cstring>
 
+#include "app/demo/tooltip.h"
+
 namespace masav::app {
 
 bool param_widget(const scene::ParamSpec& spec, const std::string& path,
@@ -74,7 +76,7 @@ bool param_widget(const scene::ParamSpec& spec, const std::string& path,
       break;
     }
   }
-  if (ImGui::IsItemHovered() && !spec.help.empty())
+  if (tooltip_due() && !spec.help.empty())
     ImGui::SetTooltip("%s\n%s", spec.help.c_str(), spec.allowed().c_str());
   ImGui::PopID();
   return changed;

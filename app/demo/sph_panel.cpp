@@ -2,6 +2,7 @@
 
 #include <imgui.h>
 
+#include "app/demo/tooltip.h"
 #include "engine/sph/sph_scene_schema.h"
 #include "engine/sph/sph_scene_type.h"
 #include "engine/sph/sph_simulation.h"
@@ -31,7 +32,7 @@ void sph_controls(render::ScenePlayer& player, DemoState& st) {
   // Simulated time per wall-clock second: the demo picks the steps per frame to match it.
   bool paced = st.sim_rate > 0;
   if (ImGui::Checkbox("pace", &paced)) st.sim_rate = paced ? 0.1 : 0.0;
-  if (ImGui::IsItemHovered()) ImGui::SetTooltip("off: sph.substeps steps per frame");
+  if (tooltip_due()) ImGui::SetTooltip("off: sph.substeps steps per frame");
   ImGui::SameLine();
   float rate = float(st.sim_rate);
   ImGui::BeginDisabled(!paced);

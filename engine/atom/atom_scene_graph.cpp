@@ -8,10 +8,8 @@
 #include "engine/atom/atom_scene.h"
 #include "engine/atom/atom_schema.h"
 #include "engine/atom/orbital.h"
-#include "engine/atom/preintegration.h"
-#include "engine/atom/transfer_function.h"
+#include "engine/atom/volume_render.h"
 #include "engine/core/error.h"
-#include "engine/kernels/atom_checks.h"
 #include "engine/scene/camera_pose.h"
 
 namespace masav::atom {
@@ -34,7 +32,10 @@ class TableStage final : public scene::Stage {
 class AtomCloudScene final : public scene::SceneInstance {
  public:
   AtomCloudScene(Backend& b, const ParamSet& p, bool volume)
-      : SceneInstance(b, p), volume_(volume), core_(b, (validate(p), scene_options_of(p))) {
+      : SceneInstance(b, p),
+        volume_(volume),
+        core_(b, (validate(p), scene_options_of(p))),
+        render_(b) {
     synced_ = domain_version();
     file_subject_ = subject();
     add_parameter_inputs();
@@ -77,12 +78,14 @@ class AtomCloudScene final : public scene::SceneInstance {
     if (!volume_) return;
     add("voxelize", {"light", "volume.dims", "volume.s", "volume.t"},
         [this] { core_.voxelize(light_to_unit_); });
-    add("transfer", {"volume.transfer_file"}, [this] { transfer(); });
-    add("bricks", {"voxelize", "transfer"}, [this] { bricks(); });
+    add("transfer", {"volume.transfer_file"},
+        [this] { render_.load_transfer(params_.get_text("volume.transfer_file")); });
+    add("bricks", {"voxelize", "transfer"},
+        [this] { render_.build_bricks(core_.volume(), core_.sample); });
     add("raymarch",
         {"bricks", "view", "render.width", "render.height", "volume.step_voxels",
          "volume.compositing", "volume.preintegrate"},
-        [this] { raymarch(); });
+        [this] { render_.raymarch(params_, "volume", core_.volume(), core_.sample, pose()); });
   }
 
   std::vector<std::string> targets() const override {
@@ -120,18 +123,10 @@ class AtomCloudScene final : public scene::SceneInstance {
       pl.version = graph_.version("viewer");
       v.points = pl;
     }
-    if (volume_ && image_.valid() && graph_.version("raymarch") > 0) {
-      scene::ImageLayer img;
-      img.pixels = &image_.impl();
-      img.width = image_w_;
-      img.height = image_h_;
-      img.format = scene::ImageLayer::Format::rgba32f;
-      img.gain = float(params_.get_real("volume.gain"));
-      img.key = scene::ColourKey{"volume sample s*g + t*p (1 = light at full colour)", 0.0f, 1.0f,
-                                 tf_colours_};
-      img.version = graph_.version("raymarch");
-      v.background = img;
-    }
+    if (volume_)
+      v.background = render_.image_layer(float(params_.get_real("volume.gain")),
+                                         "volume sample s*g + t*p (1 = light at full colour)", 0.0f,
+                                         1.0f, graph_.version("raymarch"));
     return v;
   }
 
@@ -204,66 +199,13 @@ class AtomCloudScene final : public scene::SceneInstance {
     light_to_unit_ = float(exposure * params_.get_real("nebula.power_lm") / kReferencePowerLm);
   }
 
-  void transfer() {
-    const std::string& file = params_.get_text("volume.transfer_file");
-    const std::vector<Vec4d> tf =
-        resample_transfer(file.empty() ? default_transfer_points() : load_transfer_points(file));
-    if (tf_.size() != tf.size()) tf_ = backend_.create<Real4>(tf.size(), "transfer function");
-    backend_.upload(tf_, tf);
-    tf_integral_ = upload_preintegrated(backend_, tf);
-    tf_colours_.clear();
-    for (const Vec4d& c : tf) tf_colours_.push_back({float(c.x), float(c.y), float(c.z), 1.0f});
-  }
-
-  RaymarchParams raymarch_params() const {
-    RaymarchParams rp;
-    rp.volume = core_.volume();
-    rp.tf_size = uint32_t(tf_.size());
-    return rp;
-  }
-
-  void bricks() {
-    const RaymarchParams rp = raymarch_params();
-    const UVec3 nb = brick_dims(rp.volume, rp.brick);
-    const size_t n = size_t(nb.x) * nb.y * nb.z;
-    if (bricks_.size() != n) bricks_ = backend_.create<Real4>(n, "bricks");
-    backend_.volume_bricks({rp.volume, rp.brick, rp.tf_size}, core_.sample, tf_, bricks_);
-  }
-
-  void raymarch() {
-    RaymarchParams rp = raymarch_params();
-    rp.width = uint32_t(params_.get_int("render.width"));
-    rp.height = uint32_t(params_.get_int("render.height"));
-    const scene::CameraPose c = pose();
-    rp.eye = c.eye;
-    rp.target = c.target;
-    rp.up = c.up;
-    rp.fov_y_deg = c.fov_y_deg;
-    const VolumeDesc& d = rp.volume;
-    const float voxel = std::min({(d.box_max.x - d.box_min.x) / float(d.dims.x),
-                                  (d.box_max.y - d.box_min.y) / float(d.dims.y),
-                                  (d.box_max.z - d.box_min.z) / float(d.dims.z)});
-    rp.step = float(params_.get_real("volume.step_voxels")) * voxel;
-    rp.reference_step = voxel;
-    rp.mode = params_.get_text("volume.compositing") == "lerp" ? Compositing::lerp
-                                                               : Compositing::front_to_back;
-    rp.preintegrate = params_.get_flag("volume.preintegrate");
-    const size_t pixels = size_t(rp.width) * rp.height;
-    if (image_.size() != pixels) image_ = backend_.create<Real4>(pixels, "raymarched image");
-    backend_.raymarch(rp, core_.sample, tf_, bricks_, image_, &tf_integral_);
-    image_w_ = rp.width;
-    image_h_ = rp.height;
-  }
-
   bool volume_;
   AtomScene core_;
   uint64_t synced_ = 0;
   std::string file_subject_;  // subject() as the scene was created
   double time_s_ = 0;
   float light_to_unit_ = 1;
-  Buffer<Real4> tf_, tf_integral_, bricks_, image_;
-  std::vector<Vec4f> tf_colours_;  // the transfer function's colours, for the colour bar
-  uint32_t image_w_ = 0, image_h_ = 0;
+  VolumeRender render_;
 };
 
 }  // namespace

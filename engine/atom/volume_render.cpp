@@ -1,0 +1,70 @@
+#include "engine/atom/volume_render.h"
+
+#include <algorithm>
+
+#include "engine/atom/preintegration.h"
+#include "engine/atom/transfer_function.h"
+#include "engine/kernels/atom_checks.h"
+
+namespace masav::atom {
+
+void VolumeRender::load_transfer(const std::string& file) {
+  const std::vector<Vec4d> tf =
+      resample_transfer(file.empty() ? default_transfer_points() : load_transfer_points(file));
+  if (tf_.size() != tf.size()) tf_ = backend_.create<Real4>(tf.size(), "transfer function");
+  backend_.upload(tf_, tf);
+  tf_integral_ = upload_preintegrated(backend_, tf);
+  tf_colours_.clear();
+  for (const Vec4d& c : tf) tf_colours_.push_back({float(c.x), float(c.y), float(c.z), 1.0f});
+}
+
+void VolumeRender::build_bricks(const VolumeDesc& d, const Buffer<Real>& volume) {
+  const uint32_t brick = RaymarchParams{}.brick;
+  const UVec3 nb = brick_dims(d, brick);
+  const size_t n = size_t(nb.x) * nb.y * nb.z;
+  if (bricks_.size() != n) bricks_ = backend_.create<Real4>(n, "bricks");
+  backend_.volume_bricks({d, brick, uint32_t(tf_.size())}, volume, tf_, bricks_);
+}
+
+void VolumeRender::raymarch(const scene::ParamSet& p, const std::string& table, const VolumeDesc& d,
+                            const Buffer<Real>& volume, const scene::CameraPose& c) {
+  RaymarchParams rp;
+  rp.volume = d;
+  rp.tf_size = uint32_t(tf_.size());
+  rp.width = uint32_t(p.get_int("render.width"));
+  rp.height = uint32_t(p.get_int("render.height"));
+  rp.eye = c.eye;
+  rp.target = c.target;
+  rp.up = c.up;
+  rp.fov_y_deg = c.fov_y_deg;
+  const float voxel = std::min({(d.box_max.x - d.box_min.x) / float(d.dims.x),
+                                (d.box_max.y - d.box_min.y) / float(d.dims.y),
+                                (d.box_max.z - d.box_min.z) / float(d.dims.z)});
+  rp.step = float(p.get_real(table + ".step_voxels")) * voxel;
+  rp.reference_step = voxel;
+  rp.mode =
+      p.get_text(table + ".compositing") == "lerp" ? Compositing::lerp : Compositing::front_to_back;
+  rp.preintegrate = p.get_flag(table + ".preintegrate");
+  const size_t pixels = size_t(rp.width) * rp.height;
+  if (image_.size() != pixels) image_ = backend_.create<Real4>(pixels, "raymarched image");
+  backend_.raymarch(rp, volume, tf_, bricks_, image_, &tf_integral_);
+  image_w_ = rp.width;
+  image_h_ = rp.height;
+}
+
+std::optional<scene::ImageLayer> VolumeRender::image_layer(float gain, std::string key_title,
+                                                           float key_lo, float key_hi,
+                                                           uint64_t version) const {
+  if (!image_.valid() || version == 0) return std::nullopt;
+  scene::ImageLayer img;
+  img.pixels = &image_.impl();
+  img.width = image_w_;
+  img.height = image_h_;
+  img.format = scene::ImageLayer::Format::rgba32f;
+  img.gain = gain;
+  img.key = scene::ColourKey{std::move(key_title), key_lo, key_hi, tf_colours_};
+  img.version = version;
+  return img;
+}
+
+}  // namespace masav::atom

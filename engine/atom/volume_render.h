@@ -1,0 +1,42 @@
+#pragma once
+// A scene's raymarched volume: the transfer function's tables, the volume's bricks and the image
+// raymarched from the scene's camera. The atom-volume scene (the voxelized cloud) and the volume
+// scene (a file) both draw through it, with their raymarch keys in their own table.
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "engine/kernels/backend.h"
+#include "engine/scene/camera_pose.h"
+#include "engine/scene/param_schema.h"
+#include "engine/scene/scene_view.h"
+
+namespace masav::atom {
+
+class VolumeRender {
+ public:
+  explicit VolumeRender(Backend& b) : backend_(b) {}
+
+  // The transfer function of `file` ("" = the thesis's blue -> green -> red), its pre-integrated
+  // table, and the colours of its colour bar.
+  void load_transfer(const std::string& file);
+  // The bricks' value ranges for empty-space skipping (after load_transfer).
+  void build_bricks(const VolumeDesc& d, const Buffer<Real>& volume);
+  // Raymarches at render.width x render.height from the camera pose, with `table`.step_voxels,
+  // .compositing and .preintegrate (after build_bricks).
+  void raymarch(const scene::ParamSet& p, const std::string& table, const VolumeDesc& d,
+                const Buffer<Real>& volume, const scene::CameraPose& c);
+
+  // The last image, as the scene's background with a colour bar of the transfer function from
+  // key_lo to key_hi; none before the first raymarch.
+  std::optional<scene::ImageLayer> image_layer(float gain, std::string key_title, float key_lo,
+                                               float key_hi, uint64_t version) const;
+
+ private:
+  Backend& backend_;
+  Buffer<Real4> tf_, tf_integral_, bricks_, image_;
+  std::vector<Vec4f> tf_colours_;
+  uint32_t image_w_ = 0, image_h_ = 0;
+};
+
+}  // namespace masav::atom
