@@ -92,5 +92,5 @@ TEST_CASE("sph: bad input names the field, the value and the allowed range") {
   s.block.min.x = std::nan("");
   fails(s, "block.min");
   CHECK_THROWS_WITH_AS(parse_integrator("rk5"), doctest::Contains("rk4 or leapfrog"), Error);
-  CHECK_THROWS_WITH_AS(parse_pressure_model("ideal"), doctest::Contains("wcsph or thesis"), Error);
+  CHECK_THROWS_WITH_AS(parse_pressure_model("ideal"), doctest::Contains("wcsph, thesis or dfsph"), Error);
 }
