@@ -4,6 +4,7 @@
 // a table (CSV) and JSON that tools/plot_sph_bench.py turns into a plot.
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <map>
@@ -103,9 +104,15 @@ int run_dambreak(const DamBreakOptions& o) {
       to_string(s.integrator), s.viscosity, s.sound_speed, backend->caps().device_name);
 
   std::vector<Point> front;
+  // The fluid's compression (rho / rho0 - 1)^+ at the samples: its mean over the particles,
+  // averaged over the samples and at its largest, and the largest of any particle.
+  double compression_sum = 0, compression_peak = 0, compression_max = 0;
   auto sample = [&] {
     const SphDiagnostics d = compute_diagnostics(sim.download(), sim);
     front.push_back({sim.time() * t_scale, d.surge_front / a});
+    compression_sum += d.mean_compression;
+    compression_peak = std::max(compression_peak, d.mean_compression);
+    compression_max = std::max(compression_max, d.max_compression);
   };
   sample();
   const double t_end = o.t_end / t_scale, every = 0.02 / t_scale;  // a sample every 0.02 in T
@@ -123,8 +130,14 @@ int run_dambreak(const DamBreakOptions& o) {
   }
   progress.finish();
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  fmt::print("  {} steps to t = {:.4f} s (T = {:.2f}) in {:.1f} s ({:.1f} steps/s)\n", sim.steps(),
-             sim.time(), sim.time() * t_scale, wall, sim.steps() / wall);
+  const double particle_steps = double(sim.substeps()) * lay.fluid / wall;
+  const double compression_mean = compression_sum / double(front.size());
+  fmt::print(
+      "  {} steps to t = {:.4f} s (T = {:.2f}) in {:.1f} s ({:.1f} steps/s, {:.3g} M "
+      "particle-steps/s)\n  compression: mean {:.3f}% (averaged over the samples), at most "
+      "{:.3f}%; largest of a particle {:.2f}%\n",
+      sim.steps(), sim.time(), sim.time() * t_scale, wall, sim.steps() / wall,
+      particle_steps * 1e-6, 100 * compression_mean, 100 * compression_peak, 100 * compression_max);
 
   JsonWriter j;
   j.begin_object();
@@ -135,6 +148,9 @@ int run_dambreak(const DamBreakOptions& o) {
   j.field("integrator", to_string(s.integrator)).field("pressure_model", to_string(s.model));
   j.field("viscosity_m2_s", s.viscosity).field("sound_speed_m_s", s.sound_speed);
   j.field("steps", sim.steps()).field("wall_s", wall);
+  j.field("particle_steps_per_s", particle_steps);
+  j.field("mean_compression", compression_mean).field("peak_mean_compression", compression_peak);
+  j.field("max_compression", compression_max);
   if (const SphSolveStats& ss = sim.solve_stats(); ss.steps > 0)
     j.field("density_iterations_per_step", double(ss.density_iterations) / double(ss.steps))
         .field("divergence_iterations_per_step",
