@@ -81,7 +81,8 @@ class AtomCloudScene final : public scene::SceneInstance {
     add("bricks", {"voxelize", "transfer"}, [this] { bricks(); });
     add("raymarch",
         {"bricks", "view", "render.width", "render.height", "volume.step_voxels",
-         "volume.compositing", "volume.preintegrate"},
+         "volume.compositing", "volume.preintegrate", "volume.clip", "volume.clip_position",
+         "volume.clip_keep", "volume.shade", "volume.shade_specular"},
         [this] { raymarch(); });
   }
 
@@ -248,6 +249,13 @@ class AtomCloudScene final : public scene::SceneInstance {
     rp.mode = params_.get_text("volume.compositing") == "lerp" ? Compositing::lerp
                                                                : Compositing::front_to_back;
     rp.preintegrate = params_.get_flag("volume.preintegrate");
+    const std::string& clip = params_.get_text("volume.clip");
+    rp.clip.enabled = clip != "off";
+    rp.clip.axis = clip == "y" ? 1u : (clip == "z" ? 2u : 0u);
+    rp.clip.position = float(params_.get_real("volume.clip_position"));
+    rp.clip.keep_above = params_.get_text("volume.clip_keep") == "above";
+    rp.shading.enabled = params_.get_flag("volume.shade");
+    rp.shading.specular = float(params_.get_real("volume.shade_specular"));
     const size_t pixels = size_t(rp.width) * rp.height;
     if (image_.size() != pixels) image_ = backend_.create<Real4>(pixels, "raymarched image");
     backend_.raymarch(rp, core_.sample, tf_, bricks_, image_, &tf_integral_);
