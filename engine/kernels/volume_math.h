@@ -1,7 +1,8 @@
 #pragma once
 // Volume ray casting (thesis chapter 3), shared by the CPU reference (T = double) and CUDA
 // (T = float); shaders/common/volume.glsl is the GLSL twin: the slab ray-box test (thesis
-// Alg. 3.1), trilinear sampling, the 1-D transfer function, and one pixel's march.
+// Alg. 3.1), the clipping plane, trilinear sampling, gradient (Blinn-Phong) shading, the 1-D
+// transfer function, and one pixel's march.
 //
 // Sampling: the ray's span inside the box [t_near, t_far] is cut into n = ceil(len / step)
 // segments of length `step` (the last shorter); each is sampled at its midpoint. Front-to-back
