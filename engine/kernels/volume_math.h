@@ -158,6 +158,47 @@ MASAV_HD inline Lighting<T> lighting(const RaymarchLayout& c, hd::V3<T> dir) {
   return L;
 }
 
+// Central differences of the trilinear field one voxel either side of u, per axis:
+// trilinear(u + e_a) - trilinear(u - e_a). Where u is a voxel or more inside the outermost
+// centres on every axis with its cell's far neighbour in range too, the six lookups share u's
+// cell and weights, shifted by one voxel, and the 32 voxels they read are read once; elsewhere
+// (clamping changes the cells) they are six trilinear lookups.
+template <class T, class Vol>
+MASAV_HD inline hd::V3<T> central_gradient(hd::V3<T> u, const uint32_t dims[3], Vol&& vol) {
+  bool inner = true;
+  for (int a = 0; a < 3; ++a)
+    inner = inner && hd::comp(u, a) >= T(1) && hd::comp(u, a) < T(dims[a] - 2u);
+  if (!inner) {
+    const hd::V3<T> ex{T(1), T(0), T(0)}, ey{T(0), T(1), T(0)}, ez{T(0), T(0), T(1)};
+    return hd::V3<T>{trilinear(u + ex, dims, vol) - trilinear(u - ex, dims, vol),
+                     trilinear(u + ey, dims, vol) - trilinear(u - ey, dims, vol),
+                     trilinear(u + ez, dims, vol) - trilinear(u - ez, dims, vol)};
+  }
+  const uint32_t i = uint32_t(u.x), j = uint32_t(u.y), k = uint32_t(u.z);  // u >= 1: the floor
+  const T fx = u.x - T(i), fy = u.y - T(j), fz = u.z - T(k);
+  const T wx[2] = {T(1) - fx, fx}, wy[2] = {T(1) - fy, fy}, wz[2] = {T(1) - fz, fz};
+  T c[2][2][2];  // the cell's corners: c[z][y][x] = vol(i + x, j + y, k + z)
+  for (uint32_t z = 0; z < 2u; ++z)
+    for (uint32_t y = 0; y < 2u; ++y)
+      for (uint32_t x = 0; x < 2u; ++x) c[z][y][x] = vol(i + x, j + y, k + z);
+  T gx = T(0), gy = T(0), gz = T(0);
+  for (uint32_t b = 0; b < 2u; ++b)
+    for (uint32_t a = 0; a < 2u; ++a) {
+      // gx: the x difference on the cell's edge at (j + a, k + b), weighted wy[a] wz[b]; gy, gz
+      // likewise on the edges along y and z.
+      const T dx = wx[0] * (c[b][a][1] - vol(i - 1u, j + a, k + b)) +
+                   wx[1] * (vol(i + 2u, j + a, k + b) - c[b][a][0]);
+      const T dy = wy[0] * (c[b][1][a] - vol(i + a, j - 1u, k + b)) +
+                   wy[1] * (vol(i + a, j + 2u, k + b) - c[b][0][a]);
+      const T dz = wz[0] * (c[1][b][a] - vol(i + a, j + b, k - 1u)) +
+                   wz[1] * (vol(i + a, j + b, k + 2u) - c[0][b][a]);
+      gx += wy[a] * wz[b] * dx;
+      gy += wx[a] * wz[b] * dy;
+      gz += wx[a] * wy[b] * dz;
+    }
+  return hd::V3<T>{gx, gy, gz};
+}
+
 // A sample's shaded colour: rgb * (ambient + diffuse |n.l|) + specular (n.h)^shininess, with n the
 // normalised gradient of the trilinear field by central differences one voxel either side
 // (spacing: world units per voxel on each axis). Two-sided: n is turned towards the light. Where
@@ -167,10 +208,8 @@ template <class T, class Vol>
 MASAV_HD inline V4<T> shade_at(V4<T> col, hd::V3<T> u, const uint32_t dims[3],
                                const float spacing[3], T value_scale, const Lighting<T>& L,
                                Vol&& vol) {
-  const hd::V3<T> ex{T(1), T(0), T(0)}, ey{T(0), T(1), T(0)}, ez{T(0), T(0), T(1)};
-  const T gx = trilinear(u + ex, dims, vol) - trilinear(u - ex, dims, vol);
-  const T gy = trilinear(u + ey, dims, vol) - trilinear(u - ey, dims, vol);
-  const T gz = trilinear(u + ez, dims, vol) - trilinear(u - ez, dims, vol);
+  const hd::V3<T> g = central_gradient(u, dims, vol);
+  const T gx = g.x, gy = g.y, gz = g.z;
   const T largest = hd::max_t(hd::abs_t(gx), hd::max_t(hd::abs_t(gy), hd::abs_t(gz)));
   if (largest * hd::abs_t(value_scale) < T(2e-4)) return col;  // 2 voxels apart: 1e-4 per voxel
   hd::V3<T> n =
