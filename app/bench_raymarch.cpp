@@ -21,6 +21,7 @@ struct RaymarchBenchOptions : BenchOptions {
   int reps = 5;
   bool large = false;
   uint32_t brick = RaymarchParams{}.brick;
+  std::string state = "state1";
 };
 
 namespace {
@@ -51,15 +52,20 @@ std::vector<float> large_volume(uint32_t n) {
 }
 
 int run_raymarch_bench(const RaymarchBenchOptions& o, JsonWriter& j) {
+  const ThesisRow* state = nullptr;
+  for (const ThesisRow& r : kThesisTable23)
+    if (o.state == r.state) state = &r;
+  if (!state)
+    throw_invalid("masav bench raymarch", "--state", o.state, "a preset state1 .. state10");
   fmt::print(
-      "bench raymarch: the state1 cloud voxelized on 60^3 (front view, step 1/2 voxel, "
+      "bench raymarch: the {} cloud voxelized on 60^3 (front view, step 1/2 voxel, "
       "empty-space skipping, ERT 0.99), median of {} runs\n",
-      o.reps);
+      o.state, o.reps);
   j.field("thesis_ms_min", kThesisRaymarchMs[0]).field("thesis_ms_max", kThesisRaymarchMs[1]);
   j.key("rows").begin_array();
   auto backends = open_backends(o.choice, "--reps 1");
-  // Per backend: 5 rows at 60^3 (+1 at 256^3), then 2 transfer functions x 5 steps x 2.
-  Progress progress("raymarch rows", backends.size() * ((o.large ? 6 : 5) + 20));
+  // Per backend: 6 rows at 60^3 (+1 at 256^3), then 2 transfer functions x 5 steps x 2.
+  Progress progress("raymarch rows", backends.size() * ((o.large ? 7 : 6) + 20));
   const auto tf = atom::resample_transfer(atom::default_transfer_points());
   fmt::print("  {:<8} {:>10} {:>12} {:>10} {:>8} {:>12}\n", "backend", "volume", "image",
              "ms/frame", "fps", "Mrays/s");
@@ -71,17 +77,19 @@ int run_raymarch_bench(const RaymarchBenchOptions& o, JsonWriter& j) {
       if (!rp.skip_empty) note += "  (no skipping)";
       if (step_voxels != 0.5) note += fmt::format("  (step {} voxel)", step_voxels);
       if (rp.preintegrate) note += "  (pre-integrated)";
+      if (rp.shading.enabled) note += "  (shaded)";
       fmt::print("  {:<8} {:>10} {:>7}x{:<4} {:>10.2f} {:>8.1f} {:>12.1f}{}\n", b.name(), volume, w,
                  h, ms, 1e3 / ms, rays * 1e-6, note);
       begin_row(j, b);
       j.field("volume", volume).field("width", w).field("height", h);
       j.field("skip_empty", rp.skip_empty).field("preintegrate", rp.preintegrate);
+      j.field("shade", rp.shading.enabled);
       j.field("step_voxels", step_voxels);
       j.field("median_ms", ms).field("rays_per_s", rays).end_object();
       progress.advance(fmt::format("{} {} {}x{}", b.name(), volume, w, h));
     };
-    // The thesis's count for state 1.
-    atom::AtomScene scene(b, bench_scene_options("state1", 630720, 256));
+    // The thesis's count for the state.
+    atom::AtomScene scene(b, bench_scene_options(state->state, state->particles, 256));
     scene.run_all();
     struct Case {
       uint32_t w, h;
@@ -89,19 +97,23 @@ int run_raymarch_bench(const RaymarchBenchOptions& o, JsonWriter& j) {
     struct Variant {
       bool skip, preintegrate;
       double step_voxels;
+      bool shade = false;
     };
     for (Case c : {Case{512, 512}, Case{1024, 1024}}) {
-      // The effects of skipping and of pre-integration (the same step, then twice it) show at
-      // 512^2; the rows alternate so that a machine's load changes both sides alike.
-      for (Variant v : {Variant{true, false, 0.5}, Variant{false, false, 0.5},
-                        Variant{true, true, 0.5}, Variant{true, true, 1.0}}) {
-        if (c.w > 512 && (!v.skip || v.preintegrate)) continue;
+      // The effects of skipping, of pre-integration (the same step, then twice it) and of
+      // gradient shading show at 512^2; the rows alternate so that a machine's load changes both
+      // sides alike.
+      for (Variant v :
+           {Variant{true, false, 0.5}, Variant{false, false, 0.5}, Variant{true, true, 0.5},
+            Variant{true, true, 1.0}, Variant{true, false, 0.5, true}}) {
+        if (c.w > 512 && (!v.skip || v.preintegrate || v.shade)) continue;
         RaymarchParams rp =
             atom::default_raymarch(scene.volume(), atom::ViewPreset::front, c.w, c.h);
         rp.skip_empty = v.skip;
         rp.preintegrate = v.preintegrate;
         rp.step = float(rp.step * 2 * v.step_voxels);
         rp.brick = o.brick;
+        rp.shading.enabled = v.shade;
         row("60^3", rp, v.step_voxels, time_raymarch(b, rp, scene.sample, tf, o.reps).ms);
       }
     }
@@ -219,6 +231,8 @@ void add_raymarch_bench(CLI::App& bench) {
   add_reps_option(*cmd, o.reps);
   cmd->add_flag("--large", o.large, "also a 256^3 volume at 1920x1080");
   add_ranged_option(*cmd, "--brick", o.brick, "voxels per brick of empty-space skipping", 2u, 16u);
+  cmd->add_option("--state", o.state, "the thesis's preset state voxelized (its Table 2.3 count)")
+      ->capture_default_str();
   add_json_option(*cmd, o.json);
 }
 

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <filesystem>
 #include <limits>
+#include <string>
 #include <type_traits>
 
 #include "app/bench_common.h"
@@ -53,6 +54,9 @@ struct VolumeCliOptions {
   atom::VolumeFileOptions source;
   std::string out = "out/volume", tf, view = "front", mode = "front_to_back";
   std::string preintegrate = "off";
+  std::string clip;  // AXIS:POSITION[:above|below]
+  bool shade = false;
+  float shade_specular = 0.3f;
   int reps = 0;
   uint32_t width = 512, height = 512;
   float step_voxels = 0.5f;
@@ -179,6 +183,42 @@ int run_atom(const AtomCliOptions& o) {
   return 0;
 }
 
+// --clip AXIS:POSITION[:above|below], spelled as the scene keys volume.clip, clip_position and
+// clip_keep spell their values.
+RaymarchParams::Clip parse_clip(const std::string& text) {
+  RaymarchParams::Clip c;
+  if (text.empty()) return c;
+  const std::string want =
+      "AXIS:POSITION[:SIDE] with AXIS x, y or z, POSITION in [0, 1] (a fraction of the box) and "
+      "SIDE above (the default) or below, e.g. z:0.5:below";
+  std::vector<std::string> parts;
+  for (size_t b = 0;;) {
+    const size_t e = text.find(':', b);
+    parts.push_back(text.substr(b, e == std::string::npos ? e : e - b));
+    if (e == std::string::npos) break;
+    b = e + 1;
+  }
+  if (parts.size() < 2 || parts.size() > 3) throw_invalid("masav volume", "--clip", text, want);
+  if (parts[0] != "x" && parts[0] != "y" && parts[0] != "z")
+    throw_invalid("masav volume", "--clip axis", parts[0], "x, y or z (" + want + ")");
+  c.axis = uint32_t(parts[0][0] - 'x');
+  size_t used = 0;
+  double pos = -1;
+  try {
+    pos = std::stod(parts[1], &used);
+  } catch (const std::exception&) {
+    used = 0;
+  }
+  if (used == 0 || used != parts[1].size() || !(pos >= 0 && pos <= 1))
+    throw_invalid("masav volume", "--clip position", parts[1], "a number in [0, 1] (" + want + ")");
+  c.position = float(pos);
+  if (parts.size() == 3 && parts[2] != "above" && parts[2] != "below")
+    throw_invalid("masav volume", "--clip side", parts[2], "above or below (" + want + ")");
+  c.keep_above = parts.size() < 3 || parts[2] == "above";
+  c.enabled = true;
+  return c;
+}
+
 int run_volume(const VolumeCliOptions& o) {
   const std::vector<Vec4d> tf = transfer(o.tf);  // every input is checked before any work
   const atom::ViewPreset view = atom::parse_view(o.view);
@@ -190,6 +230,7 @@ int run_volume(const VolumeCliOptions& o) {
     throw_invalid("masav volume", "--preintegrate", "on with --mode " + o.mode,
                   "off, or on with --mode front_to_back (lerp has no step to integrate over)");
   atom::check_volume_file_options(o.source);
+  const RaymarchParams::Clip clip = parse_clip(o.clip);
   // --out names a directory, as for every command; a .png name is the file it used to name.
   std::string png = o.out + "/volume.png";
   if (std::filesystem::path(o.out).extension() == ".png") {
@@ -213,6 +254,9 @@ int run_volume(const VolumeCliOptions& o) {
   rp.step *= 2.0f * o.step_voxels;
   rp.mode = o.mode == "lerp" ? Compositing::lerp : Compositing::front_to_back;
   rp.preintegrate = o.preintegrate == "on";
+  rp.clip = clip;
+  rp.shading.enabled = o.shade;
+  rp.shading.specular = o.shade_specular;
   rp.volume = desc;
   rp.tf_size = uint32_t(tf.size());
   atom::RaymarchBuffers r = atom::prepare_raymarch(*backend, buf, tf, rp);
@@ -312,6 +356,14 @@ void add_atom_command(CLI::App& app) {
   vc->add_option("--preintegrate", v.preintegrate,
                  "on: integrate the transfer function over each step (front-to-back only)")
       ->capture_default_str();
+  vc->add_option("--clip", v.clip,
+                 "AXIS:POSITION[:above|below]: keep the volume above (or below) the plane across "
+                 "axis x, y or z at POSITION in [0, 1] of the box, e.g. z:0.5:below");
+  vc->add_flag("--shade", v.shade,
+               "Blinn-Phong shading from the volume's gradient, lit from the camera");
+  add_ranged_option(*vc, "--shade-specular", v.shade_specular,
+                    "specular weight of --shade (ambient 0.3, diffuse 0.7, shininess 24)", 0.0f,
+                    1.0f);
   vc->add_option("--reps", v.reps, "also time this many more frames and print ms/frame")
       ->check(CLI::Range(0, 1000));
 }

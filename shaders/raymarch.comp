@@ -18,6 +18,24 @@ MASAV_PUSH(RaymarchLayout);
 #include "volume.glsl"
 #include "preintegration.glsl"
 
+// The twins of volume::ray_width and its neighbours: RaymarchLayout's packed small integers.
+uint ray_width() { return p.image_size & 0xffffu; }
+uint ray_height() { return p.image_size >> 16; }
+uint ray_brick() { return (p.bits >> kRayBrickShift) & 31u; }
+uint ray_tf_size() { return (p.bits >> kRayTfSizeShift) & 8191u; }
+
+// The ray's span clipped by the plane, where kRayClip asks for it (volume::voxel_ray).
+bool clip_ray(vec3 eye, vec3 dir, inout float tn, inout float tfar) {
+  if ((p.bits & kRayClip) == 0u) return true;
+  return clip_span(eye, dir, (p.bits >> kRayClipAxisShift) & 3u, p.clip_position,
+                   (p.bits & kRayClipKeepAbove) != 0u, tn, tfar);
+}
+
+Lighting ray_lighting(vec3 dir) {
+  return lighting(dir, (p.bits & kRayHeadlight) != 0u, p.shade_light, p.shade_ambient_diffuse,
+                  p.shade_specular);
+}
+
 // The GLSL twin of volume::cell_exit: where the ray u(t) = u0 + du t leaves cell ci of `count`
 // cells of `size` voxels on one axis (the outermost cells reach to infinity outward).
 float axis_exit(float u0, float du, float inv_du, uint ci, uint count, float size, float exit) {
@@ -52,16 +70,17 @@ uint first_segment_after(float t, float tn, float step_len, uint i, uint n) {
 
 vec4 march(uint px, uint py) {
   vec4 acc = vec4(0.0);
-  const uint width = p.width, height = p.height;
-  const bool lerp_mode = p.mode == Compositing_lerp;
-  const bool skip = (p.flags & kRaySkipEmpty) != 0u && !lerp_mode;
+  const uint width = ray_width(), height = ray_height();
+  const bool lerp_mode = (p.bits & kRayLerp) != 0u;
+  const bool skip = (p.bits & kRaySkipEmpty) != 0u && !lerp_mode;
+  const bool shade = (p.bits & kRayShade) != 0u;
   const vec3 eye = p.eye;
   const float nx = (float(px) + 0.5) / float(width) * 2.0 - 1.0;
   const float ny = 1.0 - (float(py) + 0.5) / float(height) * 2.0;
   const vec3 dir = normalize(p.forward + p.right * nx + p.up * ny);
   const vec3 lo = p.box_min, hi = p.box_max;
   float tn = 0.0, tfar = VOLUME_FAR;
-  if (!slab(eye, dir, lo, hi, tn, tfar)) return acc;
+  if (!slab(eye, dir, lo, hi, tn, tfar) || !clip_ray(eye, dir, tn, tfar)) return acc;
   const float step_len = p.step, len = tfar - tn;
   const uint n = uint(ceil(len / step_len));
   const uvec3 dims = p.dims;
@@ -70,8 +89,10 @@ vec4 march(uint px, uint py) {
   const vec3 du = dir / spacing;
   const vec3 inv_du = vec3(du.x != 0.0 ? 1.0 / du.x : 0.0, du.y != 0.0 ? 1.0 / du.y : 0.0,
                            du.z != 0.0 ? 1.0 / du.z : 0.0);
-  const float brick = float(p.brick);
-  const uvec3 nb = (dims + p.brick - 1u) / p.brick;
+  const float brick = float(ray_brick());
+  const uvec3 nb = (dims + ray_brick() - 1u) / ray_brick();
+  Lighting light;
+  if (shade) light = ray_lighting(dir);
   const uvec3 blocks = (nb + 1u) / 2u;
   const float exponent = step_len / p.reference_step;
   float occupied_until = -1.0;  // the ray is in an occupied brick for t < occupied_until
@@ -106,7 +127,8 @@ vec4 march(uint px, uint py) {
     }
     if (!skipped) {
       const float v = trilinear(u, dims);
-      const vec4 col = transfer((v - p.value_min) * p.value_scale, p.tf_size);
+      vec4 col = transfer((v - p.value_min) * p.value_scale, ray_tf_size());
+      if (shade && col.a > 0.0) col = shade_at(col, u, dims, spacing, p.value_scale, light);
       if (lerp_mode) {
         acc.rgb += (col.rgb - acc.rgb) * col.a;
         acc.a += (1.0 - acc.a) * col.a;
@@ -130,7 +152,7 @@ uint last_boundary_before(float t, float tn, float step_len, uint n) {
 }
 
 TfPos value_at(vec3 u0, vec3 du, float t, uvec3 dims) {
-  return tf_pos((trilinear(u0 + du * t, dims) - p.value_min) * p.value_scale, p.tf_size);
+  return tf_pos((trilinear(u0 + du * t, dims) - p.value_min) * p.value_scale, ray_tf_size());
 }
 
 // The twin of volume::raymarch_pixel_preintegrated: the scalar at segment boundaries, each
@@ -138,14 +160,15 @@ TfPos value_at(vec3 u0, vec3 du, float t, uvec3 dims) {
 // block or brick skipped.
 vec4 march_preintegrated(uint px, uint py) {
   vec4 acc = vec4(0.0);
-  const bool skip = (p.flags & kRaySkipEmpty) != 0u;
+  const bool skip = (p.bits & kRaySkipEmpty) != 0u;
+  const bool shade = (p.bits & kRayShade) != 0u;
   const vec3 eye = p.eye;
-  const float nx = (float(px) + 0.5) / float(p.width) * 2.0 - 1.0;
-  const float ny = 1.0 - (float(py) + 0.5) / float(p.height) * 2.0;
+  const float nx = (float(px) + 0.5) / float(ray_width()) * 2.0 - 1.0;
+  const float ny = 1.0 - (float(py) + 0.5) / float(ray_height()) * 2.0;
   const vec3 dir = normalize(p.forward + p.right * nx + p.up * ny);
   const vec3 lo = p.box_min, hi = p.box_max;
   float tn = 0.0, tfar = VOLUME_FAR;
-  if (!slab(eye, dir, lo, hi, tn, tfar)) return acc;
+  if (!slab(eye, dir, lo, hi, tn, tfar) || !clip_ray(eye, dir, tn, tfar)) return acc;
   const float step_len = p.step, len = tfar - tn;
   const uint n = uint(ceil(len / step_len));
   const uvec3 dims = p.dims;
@@ -154,8 +177,10 @@ vec4 march_preintegrated(uint px, uint py) {
   const vec3 du = dir / spacing;
   const vec3 inv_du = vec3(du.x != 0.0 ? 1.0 / du.x : 0.0, du.y != 0.0 ? 1.0 / du.y : 0.0,
                            du.z != 0.0 ? 1.0 / du.z : 0.0);
-  const float brick = float(p.brick);
-  const uvec3 nb = (dims + p.brick - 1u) / p.brick;
+  const float brick = float(ray_brick());
+  const uvec3 nb = (dims + ray_brick() - 1u) / ray_brick();
+  Lighting light;
+  if (shade) light = ray_lighting(dir);
   const uvec3 blocks = (nb + 1u) / 2u;
   const float inv_ref = 1.0 / p.reference_step;
   float occupied_until = -1.0;  // the ray is in an occupied brick for t < occupied_until
@@ -201,7 +226,14 @@ vec4 march_preintegrated(uint px, uint py) {
       if (m.w > 0.0) {  // alpha = 1 - exp(-depth); colour = emission / depth per unit alpha
         const float alpha = 1.0 - exp(-m.w * (s1 - s0) * inv_ref);
         const float w = (1.0 - acc.a) * alpha;
-        acc.rgb += (w / m.w) * m.rgb;
+        if (shade) {  // the segment's mean colour, lit at its midpoint
+          const float inv = 1.0 / m.w;
+          const vec4 col = shade_at(vec4(m.rgb * inv, m.w), u0 + du * (0.5 * (s0 + s1)), dims,
+                                    spacing, p.value_scale, light);
+          acc.rgb += w * col.rgb;
+        } else {
+          acc.rgb += (w / m.w) * m.rgb;
+        }
         acc.a += w;
         done = acc.a >= p.termination_alpha;
       }
@@ -214,12 +246,13 @@ vec4 march_preintegrated(uint px, uint py) {
 // Invocation id marches the pixel of volume::tile_pixel: 8x8 tiles, row-major.
 void run() {
   const uint id = flat_invocation_id();
-  const uint tiles_x = (p.width + 7u) / 8u;
+  const uint width = ray_width();
+  const uint tiles_x = (width + 7u) / 8u;
   const uint tile = id / 64u, in_tile = id % 64u;
   const uint x = tile % tiles_x * 8u + in_tile % 8u, y = tile / tiles_x * 8u + in_tile / 8u;
-  if (x >= p.width || y >= p.height) return;
-  const bool preintegrated = (p.flags & kRayPreintegrate) != 0u;
-  image[y * p.width + x] = preintegrated ? march_preintegrated(x, y) : march(x, y);
+  if (x >= width || y >= ray_height()) return;
+  const bool preintegrated = (p.bits & kRayPreintegrate) != 0u;
+  image[y * width + x] = preintegrated ? march_preintegrated(x, y) : march(x, y);
 }
 
 void main() {

@@ -1,10 +1,12 @@
 // The atom scenes rendered headless through Vulkan (lavapipe in CI, validation on): not blank;
 // state 1 (1s, spherically symmetric) seen from the top is symmetric under a quarter turn; more
-// source power gives a brighter frame; the raymarched volume fills the frame behind the box.
+// source power gives a brighter frame; the raymarched volume fills the frame behind the box, its
+// clipping plane removes one side of it and its shading changes the picture.
 // With MASAV_ATOM_DEMO_SHOTS set, the "atom demo screenshots" case inspects what
 // `masav demo --script tests/data/atom_demo_script.txt` wrote under xvfb-run.
 #include <doctest/doctest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
@@ -265,6 +267,52 @@ TEST_CASE("the atom-volume scene raymarches the lit cloud behind the box") {
   size_t differ = 0;
   for (size_t i = 0; i < b.px.size(); i += 4) differ += std::abs(int(b.px[i]) - int(c.px[i])) > 24;
   CHECK(differ > b.px.size() / 4 / 50);
+}
+
+TEST_CASE("the atom-volume scene's clipping plane removes one side; shading relights the rest") {
+  CacheDir cache;
+  scene::SceneFile f = atom_file("atom_volume.toml", 40000);
+  f.params.set("volume.dims", int64_t(40));
+  f.params.set("camera.orbit_speed_deg", 0.0);
+  f.params.set("camera.view", std::string("front"));
+  render::ScenePlayer player(f, vulkan());
+  const Image whole = draw(player);
+  // The mean column of the light above the background, and how much there is.
+  auto centroid_x = [](const Image& img) {
+    double s = 0, sx = 0;
+    for (uint32_t y = 0; y < img.h; ++y)
+      for (uint32_t x = 0; x < img.w; ++x) {
+        const double e = std::max(0.0, img.luma(x, y) - 20);
+        s += e;
+        sx += e * x;
+      }
+    return sx / s;
+  };
+  player.scene().set("volume.clip", std::string("x"));
+  player.scene().set("volume.clip_keep", std::string("above"));
+  const Image above = draw(player);
+  player.scene().set("volume.clip_keep", std::string("below"));
+  const Image below = draw(player);
+  MESSAGE("clip x at 0.5: light above the background "
+          << whole.excess() << " whole, " << above.excess() << " above, " << below.excess()
+          << " below; centroid x " << centroid_x(above) << " / " << centroid_x(below) << " of "
+          << whole.w);
+  CHECK(above.excess() < 0.8 * whole.excess());
+  CHECK(below.excess() < 0.8 * whole.excess());
+  CHECK(above.excess() > 0.1 * whole.excess());  // half the cloud is still there
+  // The front view looks along +y with x to the right: keeping x above the middle keeps the
+  // right half of the picture.
+  CHECK(centroid_x(above) > centroid_x(below) + 0.05 * whole.w);
+  player.scene().set("volume.clip", std::string("off"));
+  player.scene().set("volume.shade", true);
+  const Image shaded = draw(player);
+  size_t differ = 0;
+  for (size_t i = 0; i < whole.px.size(); i += 4)
+    differ += std::abs(int(whole.px[i + 1]) - int(shaded.px[i + 1])) > 8;
+  MESSAGE("shaded: " << differ << " pixels of " << whole.px.size() / 4
+                     << " changed; light above the background " << shaded.excess());
+  CHECK(differ > whole.px.size() / 4 / 50);
+  CHECK(shaded.lit_fraction() > 0.5 * whole.lit_fraction());
 }
 
 TEST_CASE("atom demo screenshots" *

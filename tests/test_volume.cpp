@@ -16,6 +16,7 @@
 #include "engine/kernels/grid_cell.h"
 #include "engine/util/error_metrics.h"
 #include "tests/backend_fixture.h"
+#include "tests/raymarch_render.h"
 
 using namespace masav;
 
@@ -38,10 +39,7 @@ Voxels voxelize_on(Backend& b, const VoxelizeParams& vp, const std::vector<Vec4f
   return {b.download(p), b.download(g), b.download(s)};
 }
 
-struct Volume {
-  VolumeDesc desc;
-  std::vector<double> values;
-};
+using test::Volume;
 
 // v = a . (voxel coordinates) + d: trilinear interpolation reproduces it exactly between the
 // outermost voxel centres (and clamps beyond them).
@@ -66,20 +64,7 @@ std::vector<Vec4d> absorption_tf(uint32_t size, double c, double ref) {
   return tf;
 }
 
-std::vector<Vec4d> render(Backend& b, const RaymarchParams& rp, const Volume& vol,
-                          const std::vector<Vec4d>& tf) {
-  auto v = b.create<Real>(vol.values.size(), "volume");
-  b.upload(v, vol.values);
-  auto t = b.create<Real4>(tf.size(), "tf");
-  b.upload(t, tf);
-  const UVec3 nb = brick_dims(rp.volume, rp.brick);
-  auto bricks = b.create<Real4>(size_t(nb.x) * nb.y * nb.z, "bricks");
-  b.volume_bricks({rp.volume, rp.brick, rp.tf_size}, v, t, bricks);
-  auto img = b.create<Real4>(size_t(rp.width) * rp.height, "image");
-  const Buffer<Real4> table = atom::upload_preintegrated(b, tf);
-  b.raymarch(rp, v, t, bricks, img, &table);
-  return b.download(img);
-}
+using test::render;
 
 // kappa(v) = c v per unit length: absorption_tf's extinction.
 struct LinearExtinction {

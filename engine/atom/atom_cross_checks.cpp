@@ -386,8 +386,16 @@ std::vector<KernelCheck> atom_checks() {
         rp.preintegrate = true;
         rp.step = 2 * rp.step;
         b.raymarch(rp, bv.volume, bv.transfer, bv.bricks, img, &bv.preintegrated);
+        const std::vector<double> preintegrated = flatten(b.download(img));
+        // Clipped across x a little off the middle and shaded (the headlight).
+        rp.preintegrate = false;
+        rp.step = 0.5f * rp.step;
+        rp.clip = {true, 0, 0.45f, true};
+        rp.shading.enabled = true;
+        b.raymarch(rp, bv.volume, bv.transfer, bv.bricks, img, nullptr);
         return CheckOutputs{{"image", {}, plain},
-                            {"image preintegrated", {}, flatten(b.download(img))}};
+                            {"image preintegrated", {}, preintegrated},
+                            {"image clipped and shaded", {}, flatten(b.download(img))}};
       }));
   return c;
 }

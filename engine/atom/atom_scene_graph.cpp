@@ -84,7 +84,8 @@ class AtomCloudScene final : public scene::SceneInstance {
         [this] { render_.build_bricks(core_.volume(), core_.sample); });
     add("raymarch",
         {"bricks", "view", "render.width", "render.height", "volume.step_voxels",
-         "volume.compositing", "volume.preintegrate"},
+         "volume.compositing", "volume.preintegrate", "volume.clip", "volume.clip_position",
+         "volume.clip_keep", "volume.shade", "volume.shade_specular"},
         [this] { render_.raymarch(params_, "volume", core_.volume(), core_.sample, pose()); });
   }
 

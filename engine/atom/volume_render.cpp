@@ -45,6 +45,13 @@ void VolumeRender::raymarch(const scene::ParamSet& p, const std::string& table, 
   rp.mode =
       p.get_text(table + ".compositing") == "lerp" ? Compositing::lerp : Compositing::front_to_back;
   rp.preintegrate = p.get_flag(table + ".preintegrate");
+  const std::string& clip = p.get_text(table + ".clip");
+  rp.clip.enabled = clip != "off";
+  rp.clip.axis = clip == "y" ? 1u : (clip == "z" ? 2u : 0u);
+  rp.clip.position = float(p.get_real(table + ".clip_position"));
+  rp.clip.keep_above = p.get_text(table + ".clip_keep") == "above";
+  rp.shading.enabled = p.get_flag(table + ".shade");
+  rp.shading.specular = float(p.get_real(table + ".shade_specular"));
   const size_t pixels = size_t(rp.width) * rp.height;
   if (image_.size() != pixels) image_ = backend_.create<Real4>(pixels, "raymarched image");
   backend_.raymarch(rp, volume, tf_, bricks_, image_, &tf_integral_);

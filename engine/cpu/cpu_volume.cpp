@@ -53,7 +53,7 @@ void CpuBackend::raymarch_fp32(const RaymarchParams& p, const Buffer<Real>& volu
   const size_t brick_count = size_t(nb.x) * nb.y * nb.z;
   // fp32 copies of what the rays read (a fraction of a frame's work: one read per voxel).
   std::vector<float> vol(voxels);
-  std::vector<hd::V4<float>> tf32(c.tf_size), bricks32(brick_count), integral32;
+  std::vector<hd::V4<float>> tf32(p.tf_size), bricks32(brick_count), integral32;
   const double* vd = own(volume.impl(), k).as<double>();
   pool_.parallel_for(voxels, 1 << 16, [&](size_t b, size_t e) {
     for (size_t i = b; i < e; ++i) vol[i] = float(vd[i]);
@@ -65,22 +65,22 @@ void CpuBackend::raymarch_fp32(const RaymarchParams& p, const Buffer<Real>& volu
   to_float4(own(tf.impl(), k).as<double>(), tf32);
   to_float4(own(bricks.impl(), k).as<double>(), bricks32);
   if (p.preintegrate) {
-    integral32.resize(size_t(kPreintegratedPerEntry) * c.tf_size);
+    integral32.resize(size_t(kPreintegratedPerEntry) * p.tf_size);
     to_float4(own(tf_integral->impl(), k).as<double>(), integral32);
   }
   double* out = own(image.impl(), k).as<double>();
   // One row of 8x8 tiles per task: neighbouring rays share bricks and cache lines, and rows of
   // uneven cost balance over the pool.
   const uint32_t tile_px = volume::kRayTile * volume::kRayTile;
-  const uint32_t tiles_x = (c.width + volume::kRayTile - 1) / volume::kRayTile;
-  const uint32_t tile_rows = (c.height + volume::kRayTile - 1) / volume::kRayTile;
+  const uint32_t tiles_x = (p.width + volume::kRayTile - 1) / volume::kRayTile;
+  const uint32_t tile_rows = (p.height + volume::kRayTile - 1) / volume::kRayTile;
   pool_.run_chunks(tile_rows, tile_rows, [&](size_t, size_t b, size_t e) {
     for (size_t id = b * tiles_x * tile_px; id < e * tiles_x * tile_px; ++id) {
       uint32_t x, y;
       if (!volume::tile_pixel(c, uint32_t(id), x, y)) continue;
       const volume::V4<float> o = KernelBody<KernelId::raymarch>::pixel<float>(
           c, x, y, vol.data(), tf32.data(), bricks32.data(), integral32.data());
-      double* px = out + 4 * (size_t(y) * c.width + x);
+      double* px = out + 4 * (size_t(y) * p.width + x);
       px[0] = o.r;
       px[1] = o.g;
       px[2] = o.b;

@@ -127,7 +127,7 @@ struct KernelBody<KernelId::raymarch> {
   static constexpr uint32_t kCpuGrain = 256;
   // Invocation id marches the pixel volume::tile_pixel gives (8x8 tiles); image[y * width + x]
   // = its composited RGBA (colour premultiplied), rows from the top. tf_integral: the
-  // pre-integrated table (volume::segment_mean), read when c.flags has kRayPreintegrate.
+  // pre-integrated table (volume::segment_mean), read when c.bits has kRayPreintegrate.
   template <class F, class Diag>
   MASAV_HD static void run(uint32_t id, const RaymarchLayout& c, Diag&, const F* volume,
                            const hd::V4<F>* tf, const hd::V4<F>* bricks, hd::V4<F>* image,
@@ -135,7 +135,7 @@ struct KernelBody<KernelId::raymarch> {
     uint32_t x, y;
     if (!volume::tile_pixel(c, id, x, y)) return;
     const volume::V4<F> o = pixel<F>(c, x, y, volume, tf, bricks, tf_integral);
-    image[size_t(y) * c.width + x] = hd::V4<F>{o.r, o.g, o.b, o.a};
+    image[size_t(y) * volume::ray_width(c) + x] = hd::V4<F>{o.r, o.g, o.b, o.a};
   }
 
   // Pixel (x, y) in precision F from buffers in F (the CPU backend's fp32 render path calls this
@@ -145,7 +145,8 @@ struct KernelBody<KernelId::raymarch> {
                                       const F* volume, const hd::V4<F>* tf, const hd::V4<F>* bricks,
                                       const hd::V4<F>* tf_integral) {
     const uint32_t dx = c.dims.x, dy = c.dims.y;
-    const uint32_t nbx = (dx + c.brick - 1) / c.brick, nby = (dy + c.brick - 1) / c.brick;
+    const uint32_t brick = volume::ray_brick(c);
+    const uint32_t nbx = (dx + brick - 1) / brick, nby = (dy + brick - 1) / brick;
     auto vat = [volume, dx, dy](uint32_t i, uint32_t j, uint32_t k) {
       return volume[(size_t(k) * dy + j) * dx + i];
     };
@@ -158,7 +159,7 @@ struct KernelBody<KernelId::raymarch> {
         return volume::V4<F>{table[k].x, table[k].y, table[k].z, table[k].w};
       };
     };
-    if (c.flags & kRayPreintegrate)
+    if (c.bits & kRayPreintegrate)
       return volume::raymarch_pixel_preintegrated<F>(c, x, y, vat, entry(tf_integral), occ);
     return volume::raymarch_pixel<F>(c, x, y, vat, entry(tf), occ);
   }

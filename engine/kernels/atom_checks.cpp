@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "engine/core/error.h"
@@ -32,6 +33,28 @@ void at_least(std::string_view kernel, std::string_view what, size_t have, uint6
   if (have < need)
     throw_invalid(kernel, fmt::format("{} size", what), std::to_string(have),
                   fmt::format("at least {}", need));
+}
+
+// x in [0, 1] as the nearest of 65,536 steps (volume::unorm16 reads it back).
+uint32_t unorm16(double x) {
+  return uint32_t(std::lround(std::clamp(x, 0.0, 1.0) * 65535.0));
+}
+
+uint32_t snorm16(double x) {
+  return uint32_t(int32_t(std::lround(std::clamp(x, -1.0, 1.0) * 32767.0))) & 0xffffu;
+}
+
+// A direction as two snorm16 on the octahedron |x| + |y| + |z| = 1 folded onto its upper half
+// (volume::octahedral reads it back, to about 1e-4 rad).
+uint32_t octahedral_snorm16(Vec3f d) {
+  const double l = std::abs(double(d.x)) + std::abs(double(d.y)) + std::abs(double(d.z));
+  double x = d.x / l, y = d.y / l;
+  if (d.z < 0) {
+    const double fx = (1 - std::abs(y)) * (x < 0 ? -1 : 1);
+    y = (1 - std::abs(x)) * (y < 0 ? -1 : 1);
+    x = fx;
+  }
+  return snorm16(x) | snorm16(y) << 16;
 }
 
 // What both nebula kernels check; `out` is the per-particle output (illumination or light).
@@ -244,13 +267,26 @@ RaymarchLayout raymarch_layout(const RaymarchParams& p) {
   c.value_scale = 1.0f / (v.value_max - v.value_min);
   c.box_min = v.box_min;
   c.box_max = v.box_max;
-  c.mode = p.mode;
   c.dims = v.dims;
-  c.tf_size = p.tf_size;
-  c.width = p.width;
-  c.height = p.height;
-  c.brick = p.brick;
-  c.flags = (p.skip_empty ? kRaySkipEmpty : 0u) | (p.preintegrate ? kRayPreintegrate : 0u);
+  c.image_size = p.width | p.height << 16;
+  uint32_t flags = (p.skip_empty ? kRaySkipEmpty : 0u) | (p.preintegrate ? kRayPreintegrate : 0u) |
+                   (p.mode == Compositing::lerp ? kRayLerp : 0u);
+  if (p.clip.enabled) {
+    flags |= kRayClip | (p.clip.keep_above ? kRayClipKeepAbove : 0u);
+    const double lo[3] = {v.box_min.x, v.box_min.y, v.box_min.z};
+    const double hi[3] = {v.box_max.x, v.box_max.y, v.box_max.z};
+    const uint32_t a = p.clip.axis;
+    c.clip_position = float(lo[a] + double(p.clip.position) * (hi[a] - lo[a]));
+  }
+  const RaymarchParams::Shading& sh = p.shading;
+  if (sh.enabled) {
+    flags |= kRayShade | (sh.headlight ? kRayHeadlight : 0u);
+    c.shade_ambient_diffuse = unorm16(sh.ambient) | unorm16(sh.diffuse) << 16;
+    c.shade_specular = unorm16(sh.specular) | unorm16(sh.shininess / kRayMaxShininess) << 16;
+    c.shade_light = octahedral_snorm16(sh.light_dir);
+  }
+  c.bits = flags | (p.clip.enabled ? p.clip.axis : 0u) << kRayClipAxisShift |
+           p.brick << kRayBrickShift | p.tf_size << kRayTfSizeShift;
   return c;
 }
 
@@ -290,6 +326,20 @@ void validate(const DeviceApi& dev, const RaymarchParams& p, const Buffer<Real>&
   in_range(k, "tf_size", p.tf_size, 2, 4096);
   if (p.mode != Compositing::front_to_back && p.mode != Compositing::lerp)
     throw_invalid(k, "mode", std::to_string(uint32_t(p.mode)), "front_to_back or lerp");
+  if (p.clip.enabled) {
+    in_range(k, "clip axis", p.clip.axis, 0, 2);
+    in_range(k, "clip position", p.clip.position, 0, 1);
+  }
+  if (p.shading.enabled) {
+    const RaymarchParams::Shading& sh = p.shading;
+    in_range(k, "shading ambient", sh.ambient, 0, 1);
+    in_range(k, "shading diffuse", sh.diffuse, 0, 1);
+    in_range(k, "shading specular", sh.specular, 0, 1);
+    in_range(k, "shading shininess", sh.shininess, 1, kRayMaxShininess);
+    const Vec3f l = sh.light_dir;
+    if (!sh.headlight && (!finite3(l) || !(std::abs(l.x) + std::abs(l.y) + std::abs(l.z) > 1e-6f)))
+      throw_invalid(k, "shading light_dir", str3(l), "finite and not (0, 0, 0)");
+  }
   if (p.preintegrate) {
     if (p.mode != Compositing::front_to_back)
       throw_invalid(k, "preintegrate", "on with lerp compositing",

@@ -158,7 +158,8 @@ MASAV_ENUM_END(Compositing)
 
 // What raymarch reads: RaymarchParams with the camera as a ray basis (computed once, in fp32, by
 // device_params): the ray through pixel (x, y) heads along forward + nx right + ny up, with
-// nx, ny in [-1, 1] from left to right and bottom to top.
+// nx, ny in [-1, 1] from left to right and bottom to top. Vulkan gives a push block 128 bytes, so
+// small integers share words (volume::ray_width and its neighbours unpack them).
 MASAV_LAYOUT(RaymarchLayout) {
   vec3 eye;
   float step;
@@ -171,18 +172,34 @@ MASAV_LAYOUT(RaymarchLayout) {
   vec3 box_min;
   float value_scale;  // 1 / (value_max - value_min)
   vec3 box_max;
-  MASAV_ENUM(Compositing) mode;
+  float clip_position;  // the clipping plane's world coordinate on its axis (kRayClip)
   uvec3 dims;
-  uint tf_size;
-  uint width;
-  uint height;
-  uint brick;
-  uint flags;  // kRaySkipEmpty | kRayPreintegrate
+  uint image_size;  // width | height << 16
+  // kRay* flags | clip axis << kRayClipAxisShift | brick << kRayBrickShift
+  // | tf_size << kRayTfSizeShift
+  uint bits;
+  uint shade_ambient_diffuse;  // ambient | diffuse << 16, each unorm16 (kRayShade)
+  uint shade_specular;         // specular | shininess / kRayMaxShininess << 16, each unorm16
+  uint shade_light;            // the direction towards a fixed light, octahedral snorm16 x 2
 };
 MASAV_CONSTANT(kRaySkipEmpty, 1)
 // The segment's colour and opacity from the pre-integrated table (volume::segment_mean) rather
 // than the transfer function at its midpoint.
 MASAV_CONSTANT(kRayPreintegrate, 2)
+// Compositing::lerp (else front_to_back).
+MASAV_CONSTANT(kRayLerp, 4)
+// Keep only the part of the volume on one side of an axis-aligned plane (volume::clip_span).
+MASAV_CONSTANT(kRayClip, 8)
+// The clip keeps coordinates at or above clip_position (else at or below).
+MASAV_CONSTANT(kRayClipKeepAbove, 16)
+// Blinn-Phong shading from the volume's gradient (volume::shade_at).
+MASAV_CONSTANT(kRayShade, 32)
+// The light sits at the camera (else it shines from shade_light).
+MASAV_CONSTANT(kRayHeadlight, 64)
+MASAV_CONSTANT(kRayClipAxisShift, 8)  // 2 bits: 0 x, 1 y, 2 z
+MASAV_CONSTANT(kRayBrickShift, 10)    // 5 bits: 2 .. 16
+MASAV_CONSTANT(kRayTfSizeShift, 16)   // 13 bits: 2 .. 4096
+MASAV_CONSTANT(kRayMaxShininess, 256)
 // The pre-integrated table holds this many Real4 per transfer-function entry
 // (volume::segment_mean describes them).
 MASAV_CONSTANT(kPreintegratedPerEntry, 3)
@@ -214,8 +231,9 @@ MASAV_LAYOUT_CHECK(VolumeDesc, 48, (dims, 0), (value_min, 12), (box_min, 16), (v
 MASAV_LAYOUT_CHECK(VolumeBrickParams, 64, (volume, 0), (brick, 48), (tf_size, 52))
 MASAV_LAYOUT_CHECK(RaymarchLayout, 128, (eye, 0), (step, 12), (forward, 16), (reference_step, 28),
                    (right, 32), (termination_alpha, 44), (up, 48), (value_min, 60), (box_min, 64),
-                   (value_scale, 76), (box_max, 80), (mode, 92), (dims, 96), (tf_size, 108),
-                   (width, 112), (height, 116), (brick, 120), (flags, 124))
+                   (value_scale, 76), (box_max, 80), (clip_position, 92), (dims, 96),
+                   (image_size, 108), (bits, 112), (shade_ambient_diffuse, 116),
+                   (shade_specular, 120), (shade_light, 124))
 
 // A volume's description in the order one says it: dims, box, value range.
 inline VolumeDesc make_volume_desc(UVec3 dims, Vec3f box_min, Vec3f box_max, float value_min = 0,
@@ -249,6 +267,25 @@ struct RaymarchParams {
   uint32_t brick = 2;  // voxels per empty-space brick: fine bricks skip the most samples
   uint32_t tf_size = 256;
   Compositing mode = Compositing::front_to_back;
+  // An axis-aligned plane through the volume; samples on the removed side contribute nothing.
+  struct Clip {
+    bool enabled = false;
+    uint32_t axis = 0;      // 0 x, 1 y, 2 z
+    float position = 0.5f;  // fraction of the box's extent on that axis, [0, 1]
+    bool keep_above = true;
+  } clip;
+  // Blinn-Phong shading with the normal from the volume's gradient (central differences of the
+  // trilinear field): colour * (ambient + diffuse |n.l|) + specular (n.h)^shininess. Stored as
+  // 16-bit fractions (ambient, diffuse, specular in [0, 1], shininess in [1, kRayMaxShininess]).
+  struct Shading {
+    bool enabled = false;
+    bool headlight = true;     // the light at the camera; else from light_dir
+    Vec3f light_dir{1, 1, 1};  // towards the light (normalised on upload)
+    float ambient = 0.3f;
+    float diffuse = 0.7f;
+    float specular = 0.3f;
+    float shininess = 24.0f;
+  } shading;
 };
 
 // The ray basis and derived constants every backend's raymarch reads (fp32, computed once;

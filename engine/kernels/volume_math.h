@@ -1,7 +1,8 @@
 #pragma once
 // Volume ray casting (thesis chapter 3), shared by the CPU reference (T = double) and CUDA
 // (T = float); shaders/common/volume.glsl is the GLSL twin: the slab ray-box test (thesis
-// Alg. 3.1), trilinear sampling, the 1-D transfer function, and one pixel's march.
+// Alg. 3.1), the clipping plane, trilinear sampling, gradient (Blinn-Phong) shading, the 1-D
+// transfer function, and one pixel's march.
 //
 // Sampling: the ray's span inside the box [t_near, t_far] is cut into n = ceil(len / step)
 // segments of length `step` (the last shorter); each is sampled at its midpoint. Front-to-back
@@ -22,6 +23,23 @@ template <class T>
 struct V4 {
   T r, g, b, a;
 };
+
+// The small integers RaymarchLayout packs into shared words.
+MASAV_HD inline uint32_t ray_width(const RaymarchLayout& c) {
+  return c.image_size & 0xffffu;
+}
+MASAV_HD inline uint32_t ray_height(const RaymarchLayout& c) {
+  return c.image_size >> 16;
+}
+MASAV_HD inline uint32_t ray_brick(const RaymarchLayout& c) {
+  return (c.bits >> kRayBrickShift) & 31u;
+}
+MASAV_HD inline uint32_t ray_tf_size(const RaymarchLayout& c) {
+  return (c.bits >> kRayTfSizeShift) & 8191u;
+}
+MASAV_HD inline uint32_t ray_clip_axis(const RaymarchLayout& c) {
+  return (c.bits >> kRayClipAxisShift) & 3u;
+}
 
 // Kay-Kajiya slabs: clips [t_near, t_far] to the box; false when the ray misses it (or the
 // clipped span is empty). A zero direction component needs the origin inside that slab.
@@ -47,6 +65,24 @@ MASAV_HD inline bool slab(hd::V3<T> o, hd::V3<T> d, hd::V3<T> lo, hd::V3<T> hi, 
   return true;
 }
 
+// The clipping plane: the ray o + d t keeps the part of [t_near, t_far] whose coordinate on
+// `axis` lies at or above `plane` (keep_above) or at or below it; false when nothing is left.
+// Clipping the span rather than testing each sample costs nothing per sample, and the kept span
+// is sampled from its own start as an unclipped ray would be.
+template <class T>
+MASAV_HD inline bool clip_span(hd::V3<T> o, hd::V3<T> d, uint32_t axis, T plane, bool keep_above,
+                               T& t_near, T& t_far) {
+  const T oa = hd::comp(o, int(axis)), da = hd::comp(d, int(axis));
+  if (da == T(0)) return keep_above ? oa >= plane : oa <= plane;
+  const T t = (plane - oa) / da;
+  if ((da > T(0)) == keep_above) {
+    if (t > t_near) t_near = t;
+  } else if (t < t_far) {
+    t_far = t;
+  }
+  return t_near < t_far;
+}
+
 // Trilinear interpolation at voxel coordinates u (voxel centres at integers), clamped to the
 // outermost centres. at(i, j, k) returns the voxel value.
 template <class T, class At>
@@ -68,6 +104,125 @@ MASAV_HD inline T trilinear(hd::V3<T> u, const uint32_t dims[3], At&& at) {
   const T c0 = c00 * (T(1) - f[1]) + c10 * f[1];
   const T c1 = c01 * (T(1) - f[1]) + c11 * f[1];
   return c0 * (T(1) - f[2]) + c1 * f[2];
+}
+
+// unorm16 and snorm16 as GLSL's unpackUnorm2x16 / unpackSnorm2x16 read one half of a word.
+template <class T>
+MASAV_HD inline T unorm16(uint32_t bits) {
+  return T(bits & 0xffffu) / T(65535);
+}
+template <class T>
+MASAV_HD inline T snorm16(uint32_t bits) {
+  const uint32_t u = bits & 0xffffu;
+  const T s = u >= 32768u ? -T(65536u - u) : T(u);
+  return hd::max_t(s / T(32767), T(-1));
+}
+
+// The unit direction an octahedral pair of snorm16 encodes (raymarch_layout writes it).
+template <class T>
+MASAV_HD inline hd::V3<T> octahedral(uint32_t bits) {
+  T x = snorm16<T>(bits), y = snorm16<T>(bits >> 16);
+  const T z = T(1) - hd::abs_t(x) - hd::abs_t(y);
+  if (z < T(0)) {
+    const T fx = (T(1) - hd::abs_t(y)) * (x < T(0) ? T(-1) : T(1));
+    y = (T(1) - hd::abs_t(x)) * (y < T(0) ? T(-1) : T(1));
+    x = fx;
+  }
+  return hd::normalize(hd::V3<T>{x, y, z});
+}
+
+// Blinn-Phong per ray: the unit vector towards the light and the half vector between it and the
+// viewer (the headlight: both -dir), and the material.
+template <class T>
+struct Lighting {
+  hd::V3<T> l, h;
+  T ambient, diffuse, specular, shininess;
+};
+
+template <class T>
+MASAV_HD inline Lighting<T> lighting(const RaymarchLayout& c, hd::V3<T> dir) {
+  Lighting<T> L;
+  const hd::V3<T> v = dir * T(-1);
+  L.l = v;
+  L.h = v;
+  if ((c.bits & kRayHeadlight) == 0u) {
+    L.l = octahedral<T>(c.shade_light);
+    const hd::V3<T> s = L.l + v;
+    const T len = hd::length(s);
+    L.h = len > T(1e-6) ? s * (T(1) / len) : L.l;  // light straight behind the volume: h = l
+  }
+  L.ambient = unorm16<T>(c.shade_ambient_diffuse);
+  L.diffuse = unorm16<T>(c.shade_ambient_diffuse >> 16);
+  L.specular = unorm16<T>(c.shade_specular);
+  L.shininess = unorm16<T>(c.shade_specular >> 16) * T(kRayMaxShininess);
+  return L;
+}
+
+// Central differences of the trilinear field one voxel either side of u, per axis:
+// trilinear(u + e_a) - trilinear(u - e_a). Where u is a voxel or more inside the outermost
+// centres on every axis with its cell's far neighbour in range too, the six lookups share u's
+// cell and weights, shifted by one voxel, and the 32 voxels they read are read once; elsewhere
+// (clamping changes the cells) they are six trilinear lookups.
+template <class T, class Vol>
+MASAV_HD inline hd::V3<T> central_gradient(hd::V3<T> u, const uint32_t dims[3], Vol&& vol) {
+  bool inner = true;
+  for (int a = 0; a < 3; ++a)
+    inner = inner && hd::comp(u, a) >= T(1) && hd::comp(u, a) < T(dims[a] - 2u);
+  if (!inner) {
+    const hd::V3<T> ex{T(1), T(0), T(0)}, ey{T(0), T(1), T(0)}, ez{T(0), T(0), T(1)};
+    return hd::V3<T>{trilinear(u + ex, dims, vol) - trilinear(u - ex, dims, vol),
+                     trilinear(u + ey, dims, vol) - trilinear(u - ey, dims, vol),
+                     trilinear(u + ez, dims, vol) - trilinear(u - ez, dims, vol)};
+  }
+  const uint32_t i = uint32_t(u.x), j = uint32_t(u.y), k = uint32_t(u.z);  // u >= 1: the floor
+  const T fx = u.x - T(i), fy = u.y - T(j), fz = u.z - T(k);
+  const T wx[2] = {T(1) - fx, fx}, wy[2] = {T(1) - fy, fy}, wz[2] = {T(1) - fz, fz};
+  T c[2][2][2];  // the cell's corners: c[z][y][x] = vol(i + x, j + y, k + z)
+  for (uint32_t z = 0; z < 2u; ++z)
+    for (uint32_t y = 0; y < 2u; ++y)
+      for (uint32_t x = 0; x < 2u; ++x) c[z][y][x] = vol(i + x, j + y, k + z);
+  T gx = T(0), gy = T(0), gz = T(0);
+  for (uint32_t b = 0; b < 2u; ++b)
+    for (uint32_t a = 0; a < 2u; ++a) {
+      // gx: the x difference on the cell's edge at (j + a, k + b), weighted wy[a] wz[b]; gy, gz
+      // likewise on the edges along y and z.
+      const T dx = wx[0] * (c[b][a][1] - vol(i - 1u, j + a, k + b)) +
+                   wx[1] * (vol(i + 2u, j + a, k + b) - c[b][a][0]);
+      const T dy = wy[0] * (c[b][1][a] - vol(i + a, j - 1u, k + b)) +
+                   wy[1] * (vol(i + a, j + 2u, k + b) - c[b][0][a]);
+      const T dz = wz[0] * (c[1][b][a] - vol(i + a, j + b, k - 1u)) +
+                   wz[1] * (vol(i + a, j + b, k + 2u) - c[0][b][a]);
+      gx += wy[a] * wz[b] * dx;
+      gy += wx[a] * wz[b] * dy;
+      gz += wx[a] * wy[b] * dz;
+    }
+  return hd::V3<T>{gx, gy, gz};
+}
+
+// A sample's shaded colour: rgb * (ambient + diffuse |n.l|) + specular (n.h)^shininess, with n the
+// normalised gradient of the trilinear field by central differences one voxel either side
+// (spacing: world units per voxel on each axis). Two-sided: n is turned towards the light. Where
+// the field changes by less than 1e-4 of its value range per voxel there is no surface to light
+// and the colour stays as the transfer function gave it.
+template <class T, class Vol>
+MASAV_HD inline V4<T> shade_at(V4<T> col, hd::V3<T> u, const uint32_t dims[3],
+                               const float spacing[3], T value_scale, const Lighting<T>& L,
+                               Vol&& vol) {
+  const hd::V3<T> g = central_gradient(u, dims, vol);
+  const T gx = g.x, gy = g.y, gz = g.z;
+  const T largest = hd::max_t(hd::abs_t(gx), hd::max_t(hd::abs_t(gy), hd::abs_t(gz)));
+  if (largest * hd::abs_t(value_scale) < T(2e-4)) return col;  // 2 voxels apart: 1e-4 per voxel
+  hd::V3<T> n =
+      hd::normalize(hd::V3<T>{gx / T(spacing[0]), gy / T(spacing[1]), gz / T(spacing[2])});
+  T ndl = hd::dot(n, L.l);
+  if (ndl < T(0)) {
+    n = n * T(-1);
+    ndl = -ndl;
+  }
+  const T ndh = hd::max_t(hd::dot(n, L.h), T(0));
+  const T lit = L.ambient + L.diffuse * ndl;
+  const T spec = ndh > T(0) ? L.specular * hd::pow_t(ndh, L.shininess) : T(0);
+  return V4<T>{col.r * lit + spec, col.g * lit + spec, col.b * lit + spec, col.a};
 }
 
 // Transfer function: `size` RGBA entries over [0, 1], linear between entries. tf(k) returns entry
@@ -174,7 +329,7 @@ MASAV_HD inline RayGeometry ray_geometry(const RaymarchLayout& c) {
   const uint32_t dims[3] = {c.dims.x, c.dims.y, c.dims.z};
   for (int a = 0; a < 3; ++a) {
     g.spacing[a] = (hi[a] - lo[a]) / float(dims[a]);
-    g.bricks[a] = (dims[a] + c.brick - 1u) / c.brick;
+    g.bricks[a] = (dims[a] + ray_brick(c) - 1u) / ray_brick(c);
   }
   return g;
 }
@@ -187,8 +342,8 @@ MASAV_HD inline hd::V3<T> v3(Vec3f a) {
 // Pixel (x, y) looks along normalize(forward + ndc_x * right + ndc_y * up), y = 0 the top row.
 template <class T>
 MASAV_HD inline hd::V3<T> pixel_direction(const RaymarchLayout& c, uint32_t x, uint32_t y) {
-  const T nx = (T(x) + T(0.5)) / T(c.width) * T(2) - T(1);
-  const T ny = T(1) - (T(y) + T(0.5)) / T(c.height) * T(2);
+  const T nx = (T(x) + T(0.5)) / T(ray_width(c)) * T(2) - T(1);
+  const T ny = T(1) - (T(y) + T(0.5)) / T(ray_height(c)) * T(2);
   return hd::normalize(v3<T>(c.forward) + v3<T>(c.right) * nx + v3<T>(c.up) * ny);
 }
 
@@ -204,11 +359,11 @@ MASAV_HD inline uint64_t tiled_pixel_count(uint32_t width, uint32_t height) {
 }
 
 MASAV_HD inline bool tile_pixel(const RaymarchLayout& c, uint32_t id, uint32_t& x, uint32_t& y) {
-  const uint32_t tiles_x = (c.width + kRayTile - 1u) / kRayTile;
+  const uint32_t tiles_x = (ray_width(c) + kRayTile - 1u) / kRayTile;
   const uint32_t tile = id / (kRayTile * kRayTile), in = id % (kRayTile * kRayTile);
   x = tile % tiles_x * kRayTile + in % kRayTile;
   y = tile / tiles_x * kRayTile + in / kRayTile;
-  return x < c.width && y < c.height;
+  return x < ray_width(c) && y < ray_height(c);
 }
 
 // The largest transfer alpha over a brick, and over the block of 2x2x2 bricks that holds it
@@ -267,6 +422,7 @@ struct VoxelRay {
   T tn, tf;    // where the ray enters and leaves the box
   uint32_t n;  // segments of c.step between them (the last may be shorter)
   uint32_t dims[3];
+  hd::V3<T> dir;             // the ray's unit direction in the world
   hd::V3<T> u0, du, inv_du;  // voxel position u0 + du t; 1 / du (0 where du is)
   T brick;                   // voxels per brick
   uint32_t blocks[3];        // 2x2x2 blocks of bricks per axis
@@ -281,6 +437,10 @@ MASAV_HD inline bool voxel_ray(const RaymarchLayout& c, uint32_t px, uint32_t py
   r.tn = T(0);
   r.tf = T(kFar);
   if (!slab(eye, dir, lo, hi, r.tn, r.tf)) return false;
+  if ((c.bits & kRayClip) != 0u && !clip_span(eye, dir, ray_clip_axis(c), T(c.clip_position),
+                                              (c.bits & kRayClipKeepAbove) != 0u, r.tn, r.tf))
+    return false;
+  r.dir = dir;
   r.n = uint32_t(hd::ceil_t((r.tf - r.tn) / T(c.step)));
   r.dims[0] = c.dims.x;
   r.dims[1] = c.dims.y;
@@ -291,7 +451,7 @@ MASAV_HD inline bool voxel_ray(const RaymarchLayout& c, uint32_t px, uint32_t py
   r.du = hd::V3<T>{dir.x / sp.x, dir.y / sp.y, dir.z / sp.z};
   r.inv_du = hd::V3<T>{r.du.x != T(0) ? T(1) / r.du.x : T(0), r.du.y != T(0) ? T(1) / r.du.y : T(0),
                        r.du.z != T(0) ? T(1) / r.du.z : T(0)};
-  r.brick = T(c.brick);
+  r.brick = T(ray_brick(c));
   for (int a = 0; a < 3; ++a) r.blocks[a] = (r.g.bricks[a] + 1u) / 2u;
   return true;
 }
@@ -343,9 +503,11 @@ MASAV_HD inline V4<T> raymarch_pixel_preintegrated(const RaymarchLayout& c, uint
   const uint32_t n = r.n;
   const T vmin = T(c.value_min), vscale = T(c.value_scale);
   const T inv_ref = T(1) / T(c.reference_step);
-  const bool skip = (c.flags & kRaySkipEmpty) != 0u;
+  const bool skip = (c.bits & kRaySkipEmpty) != 0u;
+  const bool shade = (c.bits & kRayShade) != 0u;
+  const Lighting<T> light = shade ? lighting(c, r.dir) : Lighting<T>{};
   auto value_at = [&](T t) {
-    return tf_pos((trilinear(r.u0 + r.du * t, r.dims, vol) - vmin) * vscale, c.tf_size);
+    return tf_pos((trilinear(r.u0 + r.du * t, r.dims, vol) - vmin) * vscale, ray_tf_size(c));
   };
   T occupied_until = T(-1);  // the ray is in an occupied brick for t < occupied_until
   TfPos<T> front{0u, T(0)};
@@ -373,10 +535,20 @@ MASAV_HD inline V4<T> raymarch_pixel_preintegrated(const RaymarchLayout& c, uint
     if (m.a > T(0)) {  // alpha = 1 - exp(-depth); colour = emission / depth per unit alpha
       const T alpha = T(1) - hd::exp_t(-m.a * (s1 - s0) * inv_ref);
       const T wgt = (T(1) - acc.a) * alpha;
-      const T cw = wgt / m.a;
-      acc.r += cw * m.r;
-      acc.g += cw * m.g;
-      acc.b += cw * m.b;
+      if (shade) {  // the segment's mean colour, lit at its midpoint
+        const T inv = T(1) / m.a;
+        const V4<T> col =
+            shade_at(V4<T>{m.r * inv, m.g * inv, m.b * inv, m.a},
+                     r.u0 + r.du * (T(0.5) * (s0 + s1)), r.dims, r.g.spacing, vscale, light, vol);
+        acc.r += wgt * col.r;
+        acc.g += wgt * col.g;
+        acc.b += wgt * col.b;
+      } else {
+        const T cw = wgt / m.a;
+        acc.r += cw * m.r;
+        acc.g += cw * m.g;
+        acc.b += cw * m.b;
+      }
       acc.a += wgt;
       if (acc.a >= T(c.termination_alpha)) break;
     }
@@ -404,8 +576,10 @@ MASAV_HD inline V4<T> raymarch_pixel(const RaymarchLayout& c, uint32_t px, uint3
   const uint32_t n = r.n;
   const T vmin = T(c.value_min), vscale = T(c.value_scale);
   const T exponent = step / T(c.reference_step);
-  const bool lerp = c.mode == Compositing::lerp;
-  const bool skip = (c.flags & kRaySkipEmpty) != 0u && !lerp;
+  const bool lerp = (c.bits & kRayLerp) != 0u;
+  const bool skip = (c.bits & kRaySkipEmpty) != 0u && !lerp;
+  const bool shade = (c.bits & kRayShade) != 0u;
+  const Lighting<T> light = shade ? lighting(c, r.dir) : Lighting<T>{};
   T occupied_until = T(-1);  // the ray is in an occupied brick for t < occupied_until
   uint32_t i = 0;
   for (uint32_t it = 0; it < n && i < n; ++it) {
@@ -423,7 +597,8 @@ MASAV_HD inline V4<T> raymarch_pixel(const RaymarchLayout& c, uint32_t px, uint3
       occupied_until = span.until;
     }
     const T v = trilinear(u, r.dims, vol);
-    const V4<T> col = transfer((v - vmin) * vscale, c.tf_size, tf);
+    V4<T> col = transfer((v - vmin) * vscale, ray_tf_size(c), tf);
+    if (shade && col.a > T(0)) col = shade_at(col, u, r.dims, r.g.spacing, vscale, light, vol);
     if (lerp) {
       acc.r += (col.r - acc.r) * col.a;
       acc.g += (col.g - acc.g) * col.a;
