@@ -4,27 +4,13 @@
 // warp and added with one atomic per warp.
 #include "cuda_ref/cuda_launch.h"
 #include "cuda_ref/dfsph_launch.h"
+#include "cuda_ref/warp_reduce.cuh"
 #include "engine/kernels/dfsph_kernels.h"
 
 namespace masav::cuda::launch {
 namespace {
 
 using V4 = hd::V4<float>;
-
-__device__ uint64_t dfsph_thread() {
-  return (uint64_t(blockIdx.y) * gridDim.x + blockIdx.x) * blockDim.x + threadIdx.x;
-}
-__device__ uint32_t warp_max(uint32_t v) {
-  for (int o = 16; o > 0; o >>= 1) v = max(v, __shfl_xor_sync(0xffffffffu, v, o));
-  return v;
-}
-__device__ uint32_t warp_sum(uint32_t v) {
-  for (int o = 16; o > 0; o >>= 1) v += __shfl_xor_sync(0xffffffffu, v, o);
-  return v;
-}
-__device__ bool lane0() {
-  return (threadIdx.x & 31u) == 0u;
-}
 
 // The candidate walk of sorted particle i (sph::walk_candidates); sets `overflow`.
 struct GridWalk {
@@ -48,7 +34,7 @@ __global__ void factor_kernel(DfsphLayout<float> c, const V4* __restrict__ pos,
                               const uint32_t* __restrict__ start, const uint32_t* __restrict__ end,
                               float* factor, uint32_t* stats,
                               const uint32_t* __restrict__ neighbor_rows) {
-  const uint64_t i = dfsph_thread();
+  const uint64_t i = particle_thread();
   uint32_t over = 0, bad = 0;
   if (i < c.n) {
     bool overflow = false;
@@ -74,7 +60,7 @@ __global__ void rate_kernel(DfsphLayout<float> c, const V4* __restrict__ pos,
                             const uint32_t* __restrict__ start, const uint32_t* __restrict__ end,
                             float* kappa, float* kappa_sum, uint32_t* residual,
                             const uint32_t* __restrict__ neighbor_rows) {
-  const uint64_t i = dfsph_thread();
+  const uint64_t i = particle_thread();
   uint32_t units = 0;
   if (i < c.n) {
     bool overflow = false;
@@ -101,7 +87,7 @@ __global__ void correct_kernel(DfsphLayout<float> c, const V4* __restrict__ pos,
                                const uint32_t* __restrict__ start, const uint32_t* __restrict__ end,
                                V4* vel, uint32_t* stats,
                                const uint32_t* __restrict__ neighbor_rows) {
-  const uint64_t i = dfsph_thread();
+  const uint64_t i = particle_thread();
   uint32_t bad = 0, s2 = 0;
   if (i < c.n) {
     const V4 pw = pos[i];

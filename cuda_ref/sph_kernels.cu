@@ -4,26 +4,11 @@
 // reduced per warp and added with one atomic per warp.
 #include "cuda_ref/cuda_launch.h"
 #include "cuda_ref/sph_launch.h"
+#include "cuda_ref/warp_reduce.cuh"
 #include "engine/kernels/sph_kernels.h"
 
 namespace masav::cuda::launch {
 namespace {
-
-__device__ uint64_t sph_thread() {
-  return (uint64_t(blockIdx.y) * gridDim.x + blockIdx.x) * blockDim.x + threadIdx.x;
-}
-
-__device__ uint32_t warp_max(uint32_t v) {
-  for (int o = 16; o > 0; o >>= 1) v = max(v, __shfl_xor_sync(0xffffffffu, v, o));
-  return v;
-}
-__device__ uint32_t warp_sum(uint32_t v) {
-  for (int o = 16; o > 0; o >>= 1) v += __shfl_xor_sync(0xffffffffu, v, o);
-  return v;
-}
-__device__ bool lane0() {
-  return (threadIdx.x & 31u) == 0u;
-}
 
 // Every thread of the block reaches the reductions (kBlock is a multiple of 32).
 __global__ void density_kernel(SphStepLayout<float> c, const V4* __restrict__ pos,
@@ -31,7 +16,7 @@ __global__ void density_kernel(SphStepLayout<float> c, const V4* __restrict__ po
                                const uint32_t* __restrict__ start, const uint32_t* __restrict__ end,
                                float* density, float* pressure, uint32_t* stats,
                                uint32_t* neighbor_rows) {
-  const uint64_t i = sph_thread();
+  const uint64_t i = particle_thread();
   uint32_t cand = 0, within = 0, over = 0, bad = 0, rho_bits = 0;
   if (i < c.n) {
     const uint32_t dims[3] = {c.dims.x, c.dims.y, c.dims.z};
@@ -70,7 +55,7 @@ __global__ void forces_kernel(SphStepLayout<float> c, const V4* __restrict__ pos
                               const uint32_t* __restrict__ start, const uint32_t* __restrict__ end,
                               V4* accel, uint32_t* stats,
                               const uint32_t* __restrict__ neighbor_rows) {
-  const uint64_t i = sph_thread();
+  const uint64_t i = particle_thread();
   uint32_t cand = 0, over = 0, bad = 0, a2 = 0;
   if (i < c.n) {
     const uint32_t dims[3] = {c.dims.x, c.dims.y, c.dims.z};
@@ -107,7 +92,7 @@ __global__ void forces_kernel(SphStepLayout<float> c, const V4* __restrict__ pos
 __global__ void integrate_kernel(SphIntegrateLayout<float> p, const V4* x0, const V4* v0,
                                  const V4* vk, const V4* accel, V4* x_out, V4* v_out, V4* sum_x,
                                  V4* sum_v, uint32_t* stats) {
-  const uint64_t i = sph_thread();
+  const uint64_t i = particle_thread();
   uint32_t s2 = 0, d2 = 0, bad = 0, outside = 0;
   if (i < p.n) {
     const auto r =

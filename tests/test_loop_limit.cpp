@@ -34,6 +34,41 @@ std::vector<Vec4f> cluster(uint32_t n, float extent, uint64_t seed) {
   return p;
 }
 
+// One crowded cell of 3,000 particles: every particle is every particle's candidate, and the
+// walls' images reach every particle (the box is one support radius wide).
+struct CrowdedCell {
+  uint32_t n = 3000;
+  float h = 0.05f;
+  SphStepParams p;
+  Buffer<Real4> pos, vel;
+  std::vector<Vec4f> pts;
+  HashGrid g;
+};
+CrowdedCell crowded_cell(Backend& b, SphPressureModel model, uint64_t seed) {
+  CrowdedCell c;
+  const uint32_t n = c.n;
+  const float h = c.h;
+  SphStepParams& p = c.p;
+  p.grid = make_grid_params({0, 0, 0}, h, {1, 1, 1}, n);
+  p.n = n;
+  p.model = model;
+  p.h = h;
+  p.mass = lattice_mass(1000.0, 0.025, h, model == SphPressureModel::dfsph);
+  p.max_candidates = n;
+  p.walls = true;
+  p.box_min = {0, 0, 0};
+  p.box_max = {h, h, h};
+  c.pos = b.create<Real4>(n, "pos");
+  c.vel = b.create<Real4>(n, "vel");
+  c.pts = cluster(n, h, seed);
+  for (auto& q : c.pts) q.w = 1.0f;
+  b.upload(c.pos, c.pts);
+  b.upload(c.vel, std::vector<Vec4f>(n));
+  c.g = make_hash_grid(b, p.grid, n);
+  build_hash_grid(b, c.g, c.pos);
+  return c;
+}
+
 }  // namespace
 
 TEST_CASE("every kernel of kernels.inc has a loop-limit case") {
@@ -302,26 +337,13 @@ LOOP_LIMIT_CASE("drift_points loops three times (one per axis), independent of n
 LOOP_LIMIT_CASE("sph kernels: loop ticks = rows + cells + candidates, capped below the limit",
                 KernelId::sph_density, KernelId::sph_forces, KernelId::sph_integrate) {
   Backend& b = test::loop_counter();
-  const uint32_t n = 3000;
-  const float h = 0.05f;
-  // One crowded cell: every particle is every particle's candidate.
-  SphStepParams p;
-  p.grid = make_grid_params({0, 0, 0}, h, {1, 1, 1}, n);
-  p.n = n;
-  p.h = h;
-  p.mass = lattice_mass(1000.0, 0.025, h);
-  p.max_candidates = n;
-  p.walls = true;  // wall images on every particle (the box is one support radius wide)
-  p.box_min = {0, 0, 0};
-  p.box_max = {h, h, h};
-  auto pos = b.create<Real4>(n, "pos");
-  auto vel = b.create<Real4>(n, "vel");
-  std::vector<Vec4f> pts = cluster(n, h, 12);
-  for (auto& q : pts) q.w = 1.0f;
-  b.upload(pos, pts);
-  b.upload(vel, std::vector<Vec4f>(n));
-  HashGrid g = make_hash_grid(b, p.grid, n);
-  build_hash_grid(b, g, pos);
+  CrowdedCell cc = crowded_cell(b, SphPressureModel::wcsph, 12);
+  const uint32_t n = cc.n;
+  const float h = cc.h;
+  SphStepParams& p = cc.p;
+  auto &pos = cc.pos, &vel = cc.vel;
+  const std::vector<Vec4f>& pts = cc.pts;
+  HashGrid& g = cc.g;
   auto rho = b.create<Real>(n, "rho"), pr = b.create<Real>(n, "p");
   auto acc = b.create<Real4>(n, "acc");
   auto stats = b.create<uint32_t>(kSphStatWords, "stats");
@@ -390,27 +412,11 @@ LOOP_LIMIT_CASE("sph kernels: loop ticks = rows + cells + candidates, capped bel
 LOOP_LIMIT_CASE("dfsph kernels: loop ticks = rows + cells + candidates, as sph_forces' masked walk",
                 KernelId::dfsph_factor, KernelId::dfsph_rate, KernelId::dfsph_correct) {
   Backend& b = test::loop_counter();
-  const uint32_t n = 3000;
-  const float h = 0.05f;
-  // One crowded cell, walls on every particle (see the sph kernels' case).
-  SphStepParams p;
-  p.grid = make_grid_params({0, 0, 0}, h, {1, 1, 1}, n);
-  p.n = n;
-  p.model = SphPressureModel::dfsph;
-  p.h = h;
-  p.mass = lattice_mass(1000.0, 0.025, h, true);
-  p.max_candidates = n;
-  p.walls = true;
-  p.box_min = {0, 0, 0};
-  p.box_max = {h, h, h};
-  auto pos = b.create<Real4>(n, "pos");
-  auto vel = b.create<Real4>(n, "vel");
-  std::vector<Vec4f> pts = cluster(n, h, 13);
-  for (auto& q : pts) q.w = 1.0f;
-  b.upload(pos, pts);
-  b.upload(vel, std::vector<Vec4f>(n));
-  HashGrid g = make_hash_grid(b, p.grid, n);
-  build_hash_grid(b, g, pos);
+  CrowdedCell cc = crowded_cell(b, SphPressureModel::dfsph, 13);
+  const uint32_t n = cc.n;
+  SphStepParams& p = cc.p;
+  auto &pos = cc.pos, &vel = cc.vel;
+  HashGrid& g = cc.g;
   auto rho = b.create<Real>(n, "rho"), pr = b.create<Real>(n, "p");
   auto factor = b.create<Real>(n, "factor"), kappa = b.create<Real>(n, "kappa"),
        kappa_sum = b.create<Real>(n, "kappa sum");

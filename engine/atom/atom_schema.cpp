@@ -4,6 +4,7 @@
 
 #include "engine/atom/orbital.h"
 #include "engine/atom/scatter_threshold.h"
+#include "engine/atom/volume_render.h"
 #include "engine/core/error.h"
 
 namespace masav::atom {
@@ -89,16 +90,7 @@ const scene::TableSchema& volume_table() {
     s.flag("preintegrate", false,
            "integrate the transfer function over each step (front_to_back only): a step of a "
            "voxel keeps the accuracy of a finer one");
-    s.choice("clip", "off", {"off", "x", "y", "z"},
-             "clipping plane across this axis: the volume on one side of it is removed");
-    s.real("clip_position", 0.5, 0.0, 1.0, "where the clipping plane cuts its axis", "of the box");
-    s.steps(0.01);
-    s.choice("clip_keep", "above", {"above", "below"},
-             "the side of the clipping plane kept: higher or lower coordinates");
-    s.flag("shade", false,
-           "Blinn-Phong shading from the volume's gradient, lit from the camera (headlight)");
-    s.real("shade_specular", 0.3, 0.0, 1.0, "specular weight of the shading");
-    s.steps(0.05);
+    add_clip_shade_keys(s);
     s.real("gain", 1.0, 0.0, 16.0, "multiplies the raymarched image");
     s.flag("show_particles", false, "draw the lit particles over the volume as well");
     return s;

@@ -26,6 +26,19 @@ void VolumeRender::build_bricks(const VolumeDesc& d, const Buffer<Real>& volume)
   backend_.volume_bricks({d, brick, uint32_t(tf_.size())}, volume, tf_, bricks_);
 }
 
+void add_clip_shade_keys(scene::TableSchema& s) {
+  s.choice("clip", "off", {"off", "x", "y", "z"},
+           "clipping plane across this axis: the volume on one side of it is removed");
+  s.real("clip_position", 0.5, 0.0, 1.0, "where the clipping plane cuts its axis", "of the box");
+  s.steps(0.01);
+  s.choice("clip_keep", "above", {"above", "below"},
+           "the side of the clipping plane kept: higher or lower coordinates");
+  s.flag("shade", false,
+         "Blinn-Phong shading from the volume's gradient, lit from the camera (headlight)");
+  s.real("shade_specular", 0.3, 0.0, 1.0, "specular weight of the shading");
+  s.steps(0.05);
+}
+
 void VolumeRender::raymarch(const scene::ParamSet& p, const std::string& table, const VolumeDesc& d,
                             const Buffer<Real>& volume, const scene::CameraPose& c) {
   RaymarchParams rp;

@@ -13,6 +13,10 @@
 
 namespace masav::atom {
 
+// The clipping plane's and the shading's keys (clip, clip_position, clip_keep, shade,
+// shade_specular) of a table raymarch() reads.
+void add_clip_shade_keys(scene::TableSchema& s);
+
 class VolumeRender {
  public:
   explicit VolumeRender(Backend& b) : backend_(b) {}
@@ -23,7 +27,7 @@ class VolumeRender {
   // The bricks' value ranges for empty-space skipping (after load_transfer).
   void build_bricks(const VolumeDesc& d, const Buffer<Real>& volume);
   // Raymarches at render.width x render.height from the camera pose, with `table`.step_voxels,
-  // .compositing and .preintegrate (after build_bricks).
+  // .compositing, .preintegrate and the clip and shade keys (after build_bricks).
   void raymarch(const scene::ParamSet& p, const std::string& table, const VolumeDesc& d,
                 const Buffer<Real>& volume, const scene::CameraPose& c);
 

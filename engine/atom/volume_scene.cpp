@@ -44,16 +44,7 @@ const scene::TableSchema& raymarch_table() {
              "emission-absorption front to back, or the thesis's lerp");
     s.flag("preintegrate", false,
            "integrate the transfer function over each step (front_to_back only)");
-    s.choice("clip", "off", {"off", "x", "y", "z"},
-             "clipping plane across this axis: the volume on one side of it is removed");
-    s.real("clip_position", 0.5, 0.0, 1.0, "where the clipping plane cuts its axis", "of the box");
-    s.steps(0.01);
-    s.choice("clip_keep", "above", {"above", "below"},
-             "the side of the clipping plane kept: higher or lower coordinates");
-    s.flag("shade", false,
-           "Blinn-Phong shading from the volume's gradient, lit from the camera (headlight)");
-    s.real("shade_specular", 0.3, 0.0, 1.0, "specular weight of the shading");
-    s.steps(0.05);
+    add_clip_shade_keys(s);
     s.real("gain", 1.0, 0.0, 16.0, "multiplies the raymarched image");
     return s;
   }();
@@ -102,12 +93,12 @@ class VolumeFileScene final : public scene::SceneInstance {
     stage("transfer", {"raymarch.transfer_file"},
           [this] { render_.load_transfer(params_.get_text("raymarch.transfer_file")); });
     stage("bricks", {"load", "transfer"}, [this] { render_.build_bricks(desc_, volume_); });
-    stage("raymarch",
-          {"bricks", "view", "render.width", "render.height", "raymarch.step_voxels",
-           "raymarch.compositing", "raymarch.preintegrate", "raymarch.clip",
-           "raymarch.clip_position", "raymarch.clip_keep", "raymarch.shade",
-           "raymarch.shade_specular"},
-          [this] { render_.raymarch(params_, "raymarch", desc_, volume_, pose()); });
+    stage(
+        "raymarch",
+        {"bricks", "view", "render.width", "render.height", "raymarch.step_voxels",
+         "raymarch.compositing", "raymarch.preintegrate", "raymarch.clip", "raymarch.clip_position",
+         "raymarch.clip_keep", "raymarch.shade", "raymarch.shade_specular"},
+        [this] { render_.raymarch(params_, "raymarch", desc_, volume_, pose()); });
   }
 
   std::vector<std::string> targets() const override { return {"raymarch"}; }

@@ -165,26 +165,7 @@ SphSimulation::SphSimulation(Backend& backend, const SphScene& scene)
   if (keeps_neighbor_rows(backend_, n_, dfsph()))
     neighbor_rows_ =
         backend_.create<uint32_t>(size_t(kSphRowMaskWords) * n_, "sph neighbour row masks");
-  if (dfsph()) {
-    auto real = [&](const char* label) { return backend_.create<Real>(n_, label); };
-    factor_ = real("dfsph factor");
-    kappa_ = real("dfsph kappa");
-    kappa_density_ = real("dfsph density kappa sums");
-    kappa_divergence_ = real("dfsph divergence kappa sums");
-    kappa_density_t_ = real("dfsph sorted density kappa sums");
-    kappa_divergence_t_ = real("dfsph sorted divergence kappa sums");
-    residual_ = backend_.create<uint32_t>(kDfsphResidualWords, "dfsph residuals");
-    // The divergence solve skips particles with fewer than 3/4 of a full lattice's neighbours
-    // (splashes, thin sheets), whose density change rate says little about compression.
-    const double reach = h / layout_.dx;
-    const int r = int(std::ceil(reach));
-    uint32_t lattice = 0;
-    for (int i = -r; i <= r; ++i)
-      for (int j = -r; j <= r; ++j)
-        for (int k = -r; k <= r; ++k)
-          if (double(i * i + j * j + k * k) < reach * reach) ++lattice;
-    min_neighbors_ = uint32_t(std::ceil(0.75 * lattice));
-  }
+  if (dfsph()) allocate_dfsph();
   // dfsph reads its solves' residuals every iteration: it steps one at a time (no blocks).
   if (!dfsph() && keeps_checkpoint(backend_, n_, neighbor_rows_.valid())) {
     checkpoint_.pos = real4("sph checkpoint positions");
@@ -661,59 +642,6 @@ void SphSimulation::set_velocities(const std::vector<Vec4d>& by_id) {
     watchdog_.max_speed = std::max(watchdog_.max_speed, 2 * vmax);
     set_watchdog_baseline(download());
   }
-}
-
-SphState SphSimulation::download() {
-  const Buffer<Real4>* px = &pos_;
-  const Buffer<Real4>* pv = &vel_;
-  const Buffer<uint32_t>* pid = &ids_;
-  if (!fields_current_) {
-    // Density at the current positions without touching the committed state: sort copies of
-    // the positions, velocities and ids into a fresh grid (scratch buffers), evaluate there.
-    rebuild_moving(pos_, ta_, vel_, tb_, ids_, ids_t_);
-    backend_.fill(stats_buf_, 0u);
-    const SphGridView view{&grid_.sorted_cells, &grid_.cell_start, &grid_.cell_end};
-    sph_density(backend_, step_params_,
-                SphDensityIO{&ta_, view, &density_, &pressure_, &stats_buf_, neighbor_rows()});
-    sph_forces(backend_, step_params_,
-               SphForcesIO{&ta_, &tb_, &density_, &pressure_, view, &accel_, &stats_buf_,
-                           neighbor_rows()});
-    accel_valid_ = false;
-    px = &ta_;
-    pv = &tb_;
-    pid = &ids_t_;
-    // dfsph's pressure, its density solve's kappa sum times rho^2, in the scratch order.
-    if (dfsph()) reorder(backend_, grid_, kappa_density_.impl(), kappa_.impl());
-  }
-  const auto pos = backend_.download(*px);
-  const auto vel = backend_.download(*pv);
-  const auto ids = backend_.download(*pid);
-  const auto rho = backend_.download(density_);
-  std::vector<double> pr = backend_.download(pressure_);
-  if (dfsph()) {
-    // p / rho^2 of the density solve, times rho^2 and the lattice's gradient moment: the SPH
-    // gradient of a pressure field on the rest lattice is 1 / gradient_correction of its true
-    // gradient (0.78 for the spiky density's lattice mass at h = 2 dx), so the pressure that
-    // balances a force is that much larger than the physical one.
-    pr = backend_.download(fields_current_ ? kappa_density_ : kappa_);
-    for (uint32_t i = 0; i < n_; ++i) pr[i] *= rho[i] * rho[i] / layout_.gradient_correction;
-  }
-  const auto acc = backend_.download(accel_);
-  SphState s;
-  s.positions.resize(n_);
-  s.velocities.resize(n_);
-  s.density.resize(n_);
-  s.pressure.resize(n_);
-  s.neighbors.resize(n_);
-  for (uint32_t i = 0; i < n_; ++i) {
-    const uint32_t id = ids[i];
-    s.positions[id] = pos[i];
-    s.velocities[id] = vel[i];
-    s.density[id] = rho[i];
-    s.pressure[id] = pr[i];
-    s.neighbors[id] = acc[i].w + 1.0;
-  }
-  return s;
 }
 
 }  // namespace masav

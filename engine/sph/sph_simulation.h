@@ -176,6 +176,7 @@ class SphSimulation {
   void step_leapfrog(double dt);
   // dfsph (sph_simulation_dfsph.cpp): density and factor at x (the grid sorted at x), one
   // solve on velocities v with its kappa sum, the step.
+  void allocate_dfsph();
   void dfsph_fields(const Buffer<Real4>& x);
   DfsphParams dfsph_params(DfsphSolve solve, double dt) const;
   void dfsph_solve(DfsphSolve solve, double dt, const Buffer<Real4>& x, Buffer<Real4>& v,

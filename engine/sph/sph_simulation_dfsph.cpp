@@ -22,6 +22,28 @@
 
 namespace masav {
 
+// The solves' buffers, and the neighbour count below which the divergence solve skips a particle.
+void SphSimulation::allocate_dfsph() {
+  auto real = [&](const char* label) { return backend_.create<Real>(n_, label); };
+  factor_ = real("dfsph factor");
+  kappa_ = real("dfsph kappa");
+  kappa_density_ = real("dfsph density kappa sums");
+  kappa_divergence_ = real("dfsph divergence kappa sums");
+  kappa_density_t_ = real("dfsph sorted density kappa sums");
+  kappa_divergence_t_ = real("dfsph sorted divergence kappa sums");
+  residual_ = backend_.create<uint32_t>(kDfsphResidualWords, "dfsph residuals");
+  // The divergence solve skips particles with fewer than 3/4 of a full lattice's neighbours
+  // (splashes, thin sheets), whose density change rate says little about compression.
+  const double reach = layout_.h / layout_.dx;
+  const int r = int(std::ceil(reach));
+  uint32_t lattice = 0;
+  for (int i = -r; i <= r; ++i)
+    for (int j = -r; j <= r; ++j)
+      for (int k = -r; k <= r; ++k)
+        if (double(i * i + j * j + k * k) < reach * reach) ++lattice;
+  min_neighbors_ = uint32_t(std::ceil(0.75 * lattice));
+}
+
 DfsphParams SphSimulation::dfsph_params(DfsphSolve solve, double dt) const {
   DfsphParams p;
   p.step = step_params_;

@@ -1,0 +1,62 @@
+// SphSimulation::download: the state in particle-id order, with density and pressure at its
+// positions (evaluated on a re-sorted scratch copy when the last fields belong to an older
+// state).
+#include "engine/sph/sph_kernel_calls.h"
+#include "engine/sph/sph_simulation.h"
+
+namespace masav {
+
+SphState SphSimulation::download() {
+  const Buffer<Real4>* px = &pos_;
+  const Buffer<Real4>* pv = &vel_;
+  const Buffer<uint32_t>* pid = &ids_;
+  if (!fields_current_) {
+    // Density at the current positions without touching the committed state: sort copies of
+    // the positions, velocities and ids into a fresh grid (scratch buffers), evaluate there.
+    rebuild_moving(pos_, ta_, vel_, tb_, ids_, ids_t_);
+    backend_.fill(stats_buf_, 0u);
+    const SphGridView view{&grid_.sorted_cells, &grid_.cell_start, &grid_.cell_end};
+    sph_density(backend_, step_params_,
+                SphDensityIO{&ta_, view, &density_, &pressure_, &stats_buf_, neighbor_rows()});
+    sph_forces(backend_, step_params_,
+               SphForcesIO{&ta_, &tb_, &density_, &pressure_, view, &accel_, &stats_buf_,
+                           neighbor_rows()});
+    accel_valid_ = false;
+    px = &ta_;
+    pv = &tb_;
+    pid = &ids_t_;
+    // dfsph's pressure, its density solve's kappa sum times rho^2, in the scratch order.
+    if (dfsph()) reorder(backend_, grid_, kappa_density_.impl(), kappa_.impl());
+  }
+  const auto pos = backend_.download(*px);
+  const auto vel = backend_.download(*pv);
+  const auto ids = backend_.download(*pid);
+  const auto rho = backend_.download(density_);
+  std::vector<double> pr = backend_.download(pressure_);
+  if (dfsph()) {
+    // p / rho^2 of the density solve, times rho^2 and the lattice's gradient moment: the SPH
+    // gradient of a pressure field on the rest lattice is 1 / gradient_correction of its true
+    // gradient (0.78 for the spiky density's lattice mass at h = 2 dx), so the pressure that
+    // balances a force is that much larger than the physical one.
+    pr = backend_.download(fields_current_ ? kappa_density_ : kappa_);
+    for (uint32_t i = 0; i < n_; ++i) pr[i] *= rho[i] * rho[i] / layout_.gradient_correction;
+  }
+  const auto acc = backend_.download(accel_);
+  SphState s;
+  s.positions.resize(n_);
+  s.velocities.resize(n_);
+  s.density.resize(n_);
+  s.pressure.resize(n_);
+  s.neighbors.resize(n_);
+  for (uint32_t i = 0; i < n_; ++i) {
+    const uint32_t id = ids[i];
+    s.positions[id] = pos[i];
+    s.velocities[id] = vel[i];
+    s.density[id] = rho[i];
+    s.pressure[id] = pr[i];
+    s.neighbors[id] = acc[i].w + 1.0;
+  }
+  return s;
+}
+
+}  // namespace masav
