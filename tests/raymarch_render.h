@@ -1,6 +1,7 @@
 #pragma once
 // A scalar volume and one raymarched frame of it on a backend: what the raymarch test files
 // (test_volume.cpp, test_volume_clip_shade.cpp) render with.
+#include <cmath>
 #include <vector>
 
 #include "engine/atom/preintegration.h"
@@ -28,6 +29,36 @@ inline std::vector<Vec4d> render(Backend& b, const RaymarchParams& rp, const Vol
   const Buffer<Real4> table = atom::upload_preintegrated(b, tf);
   b.raymarch(rp, v, t, bricks, img, &table);
   return b.download(img);
+}
+
+// A smooth 20 x 24 x 16 volume, a 128-entry transfer function and a 40 x 30 view of it at a
+// step of 0.02: the case the cross-backend comparisons render.
+struct SmoothCase {
+  Volume vol;
+  std::vector<Vec4d> tf;
+  RaymarchParams rp;
+};
+inline SmoothCase smooth_case() {
+  const UVec3 dims{20, 24, 16};
+  SmoothCase c{{make_volume_desc(dims, {-1, -1.2f, -0.8f}, {1, 1.2f, 0.8f}, -0.2f, 1.1f), {}}};
+  for (uint32_t k = 0; k < dims.z; ++k)
+    for (uint32_t j = 0; j < dims.y; ++j)
+      for (uint32_t i = 0; i < dims.x; ++i)
+        c.vol.values.push_back(std::sin(0.4 * i) * std::cos(0.3 * j) + 0.05 * k);
+  c.tf.resize(128);
+  for (uint32_t k = 0; k < 128; ++k) {
+    const double v = k / 127.0;
+    c.tf[k] = {v, 1 - std::abs(2 * v - 1), 1 - v, 0.3 * v};
+  }
+  RaymarchParams& rp = c.rp;
+  rp.volume = c.vol.desc;
+  rp.width = 40;
+  rp.height = 30;
+  rp.eye = {2.5f, -1.5f, 2.0f};
+  rp.step = 0.02f;
+  rp.reference_step = 0.02f;
+  rp.tf_size = 128;
+  return c;
 }
 
 }  // namespace masav::test

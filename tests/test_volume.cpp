@@ -65,6 +65,8 @@ std::vector<Vec4d> absorption_tf(uint32_t size, double c, double ref) {
 }
 
 using test::render;
+using test::smooth_case;
+using test::SmoothCase;
 
 // kappa(v) = c v per unit length: absorption_tf's extinction.
 struct LinearExtinction {
@@ -384,25 +386,10 @@ TEST_CASE("raymarch: the thesis's lerp compositing of n samples of a uniform vol
 }
 
 TEST_CASE("raymarch matches the CPU reference on a smooth volume with the default colours") {
-  const UVec3 dims{20, 24, 16};
-  Volume vol{make_volume_desc(dims, {-1, -1.2f, -0.8f}, {1, 1.2f, 0.8f}, -0.2f, 1.1f), {}};
-  for (uint32_t k = 0; k < dims.z; ++k)
-    for (uint32_t j = 0; j < dims.y; ++j)
-      for (uint32_t i = 0; i < dims.x; ++i)
-        vol.values.push_back(std::sin(0.4 * i) * std::cos(0.3 * j) + 0.05 * k);
-  std::vector<Vec4d> tf(128);
-  for (uint32_t k = 0; k < 128; ++k) {
-    const double v = k / 127.0;
-    tf[k] = {v, 1 - std::abs(2 * v - 1), 1 - v, 0.3 * v};
-  }
-  RaymarchParams rp;
-  rp.volume = vol.desc;
-  rp.width = 40;
-  rp.height = 30;
-  rp.eye = {2.5f, -1.5f, 2.0f};
-  rp.step = 0.02f;
-  rp.reference_step = 0.02f;
-  rp.tf_size = 128;
+  SmoothCase sc = smooth_case();
+  const Volume& vol = sc.vol;
+  const std::vector<Vec4d>& tf = sc.tf;
+  RaymarchParams& rp = sc.rp;
   for (int variant : {0, 1, 2}) {  // front to back, lerp, front to back pre-integrated
     const Compositing mode = variant == 1 ? Compositing::lerp : Compositing::front_to_back;
     rp.mode = mode;

@@ -19,6 +19,8 @@
 
 using namespace masav;
 using test::render;
+using test::smooth_case;
+using test::SmoothCase;
 using test::Volume;
 
 namespace {
@@ -217,25 +219,10 @@ TEST_CASE("raymarch: clip and shading off leave the image bit-identical, whateve
 }
 
 TEST_CASE("raymarch with clip and shading matches the CPU reference") {
-  const UVec3 dims{20, 24, 16};
-  Volume vol{make_volume_desc(dims, {-1, -1.2f, -0.8f}, {1, 1.2f, 0.8f}, -0.2f, 1.1f), {}};
-  for (uint32_t k = 0; k < dims.z; ++k)
-    for (uint32_t j = 0; j < dims.y; ++j)
-      for (uint32_t i = 0; i < dims.x; ++i)
-        vol.values.push_back(std::sin(0.4 * i) * std::cos(0.3 * j) + 0.05 * k);
-  std::vector<Vec4d> tf(128);
-  for (uint32_t k = 0; k < 128; ++k) {
-    const double v = k / 127.0;
-    tf[k] = {v, 1 - std::abs(2 * v - 1), 1 - v, 0.3 * v};
-  }
-  RaymarchParams rp;
-  rp.volume = vol.desc;
-  rp.width = 40;
-  rp.height = 30;
-  rp.eye = {2.5f, -1.5f, 2.0f};
-  rp.step = 0.02f;
-  rp.reference_step = 0.02f;
-  rp.tf_size = 128;
+  SmoothCase sc = smooth_case();
+  const Volume& vol = sc.vol;
+  const std::vector<Vec4d>& tf = sc.tf;
+  RaymarchParams& rp = sc.rp;
   rp.clip = {true, 0, 0.4f, true};
   rp.shading.enabled = true;
   for (int variant : {0, 1, 2, 3}) {  // front to back, lerp, pre-integrated; a fixed light
@@ -265,7 +252,7 @@ TEST_CASE("central_gradient: the shared-cell path equals six trilinear lookups")
   const uint32_t dims[3] = {9, 7, 6};
   std::mt19937 rng(15);
   std::uniform_real_distribution<double> value(-1, 1), unit(0, 1);
-  std::vector<double> v(size_t(dims[0]) * dims[1] * dims[2]);
+  std::vector<double> v(size_t{dims[0]} * dims[1] * dims[2]);
   for (double& x : v) x = value(rng);
   auto at = [&](uint32_t i, uint32_t j, uint32_t k) {
     return v[(size_t(k) * dims[1] + j) * dims[0] + i];
