@@ -11,11 +11,8 @@
 // least 2 (density) or 1 (divergence) iterations; after each from then on the host reads the
 // iteration's residual (one wait per iteration: the loop's length depends on it). The step
 // ends, like leapfrog's, with the fields at the new positions, so the next step starts there.
-#include <fmt/format.h>
-
 #include <algorithm>
 #include <cmath>
-#include <numbers>
 
 #include "engine/sph/sph_kernel_calls.h"
 #include "engine/sph/sph_simulation.h"
@@ -104,8 +101,10 @@ void SphSimulation::dfsph_solve(DfsphSolve solve, double dt, const Buffer<Real4>
     dfsph_correct(backend_, p, io);
     ++done;
     if (done >= min_iterations) {
-      const std::vector<uint32_t> words = backend_.download(residual_);
-      const uint64_t units = uint64_t(words[2 * p.slot + 1]) << 32 | words[2 * p.slot];
+      uint32_t words[2];  // this iteration's slot only
+      backend_.download_bytes(residual_.impl(), words, sizeof(words),
+                              2 * size_t(p.slot) * sizeof(uint32_t));
+      const uint64_t units = uint64_t(words[1]) << 32 | words[0];
       error = double(units) / double(kDfsphResidualScale) / double(std::max(movers, 1u));
       converged = error <= target;
     }
