@@ -13,15 +13,8 @@
 
 namespace masav::atom {
 
-// Measured on states 1-10 (200K particles, the scene files' other defaults, front view): the
-// 90th percentile of the light is 0.0026 (state 10) to 0.07 (state 1) times the isotropic
-// scale at <r>, 0.02 in the middle. The scene files fix each state's own scale instead.
-constexpr double kFullColourIsotropic = 0.02;
-
-double full_colour_light(const OrbitalState& s) {
-  constexpr double kPi = 3.14159265358979323846;
-  const double r = expect_r(s.n, s.l);
-  return kFullColourIsotropic * kReferencePowerLm / (4.0 * kPi * r * r) / (4.0 * kPi);
+Vec3f full_colour_viewer(double box_half_width) {
+  return view_eye(ViewPreset::front, float(1.9 * box_half_width * std::sqrt(3.0)));
 }
 
 ViewPreset parse_view(const std::string& name) {
@@ -49,7 +42,6 @@ Vec3f view_up(ViewPreset v) {
 
 AtomScene::AtomScene(Backend& b, AtomSceneOptions o) : b_(b) {
   reconfigure(std::move(o));
-  exposure_ = o_.exposure;
 }
 
 void AtomScene::reconfigure(AtomSceneOptions o) {
@@ -109,6 +101,7 @@ void AtomScene::build_density() {
 }
 
 void AtomScene::build_table() {
+  full_colour_ = 0;  // a new phase table
   const auto t0 = std::chrono::steady_clock::now();
   if (o_.use_cache) {
     table_ = scatter_table_cached(b_, o_.scatter, o_.cache_dir, &times_.table_from_cache);
@@ -140,6 +133,7 @@ NebulaLightParams AtomScene::light_params() const {
 }
 
 void AtomScene::illuminate() {
+  full_colour_ = 0;  // a new light field
   if (illumination.size() != o_.particles)
     illumination = b_.create<Real>(o_.particles, "illumination");
   times_.illuminate_ms =
@@ -150,19 +144,35 @@ void AtomScene::view() {
   if (light.size() != o_.particles) light = b_.create<Real>(o_.particles, "light");
   times_.view_ms = timed(
       [&] { b_.nebula_view(light_params(), positions, density, phase, illumination, light); });
-  if (exposure_ <= 0) {
-    // Automatic exposure, fixed once: the 90th percentile of the light at the reference power
-    // maps to full green, so a change of Phi brightens or darkens as in the thesis.
-    std::vector<double> l = b_.download(light);
-    const size_t k = l.size() * 9 / 10;
-    std::nth_element(l.begin(), l.begin() + k, l.end());
-    const double ref = l[k] * kReferencePowerLm / std::max(1e-30, double(o_.source_power_lm));
-    exposure_ = ref > 0 ? float(1.0 / ref) : 1.0f;
+}
+
+float AtomScene::exposure() {
+  return o_.exposure > 0 ? o_.exposure : float(1.0 / full_colour_light());
+}
+
+double AtomScene::full_colour_light() {
+  if (full_colour_ > 0) return full_colour_;
+  const Vec3f front = full_colour_viewer(half_);
+  std::vector<double> l;
+  if (o_.viewer.x == front.x && o_.viewer.y == front.y && o_.viewer.z == front.z) {
+    l = b_.download(light);
+  } else {
+    NebulaLightParams p = light_params();
+    p.viewer = front;
+    Buffer<Real> seen = b_.create<Real>(o_.particles, "light from the front");
+    b_.nebula_view(p, positions, density, phase, illumination, seen);
+    l = b_.download(seen);
   }
+  const size_t k = l.size() * 9 / 10;
+  std::nth_element(l.begin(), l.begin() + std::ptrdiff_t(k), l.end());
+  // At the reference power: a change of Phi brightens or darkens, as in the thesis.
+  const double ref = l[k] * kReferencePowerLm / std::max(1e-30, double(o_.source_power_lm));
+  full_colour_ = ref > 0 ? ref : 1.0;
+  return full_colour_;
 }
 
 void AtomScene::voxelize() {
-  voxelize(exposure_);
+  voxelize(exposure());
 }
 
 void AtomScene::voxelize(float light_to_unit) {

@@ -18,13 +18,9 @@ namespace masav::atom {
 // setting): light is linear in Phi.
 constexpr float kReferencePowerLm = 250000.0f;
 
-// The light, in cd/a0^2, drawn at full colour when nebula.exposure is 0: a fixed physical scale
-// of the state, the same for every viewpoint and backend. `light` is luminance: the nucleus's
-// illuminance Phi / (4 pi r^2) (lm/a0^2) times the scattered fraction per steradian, i.e.
-// lm sr^-1 a0^-2 = cd/a0^2. The scale is kFullColourIsotropic times what an unshadowed particle
-// at the state's mean radius <r> sends towards any viewer when it scatters isotropically,
-// Phi_ref / (4 pi <r>^2) / (4 pi), at the reference power.
-double full_colour_light(const OrbitalState& s);
+// Where the light that fixes a state's colour scale is seen from: in front, 1.9 box
+// half-diagonals away (`masav atom --view front`, the view the scene files' exposures came from).
+Vec3f full_colour_viewer(double box_half_width);
 
 enum class ViewPreset { top, left, front };
 ViewPreset parse_view(const std::string& name);  // top, left, front
@@ -50,7 +46,7 @@ struct AtomSceneOptions {
   float step_a0 = 0.0f;       // midpoint path step; 0 = half a cell
   uint32_t volume_dims = 60;  // voxelize: N^3
   float s = 0.6f, t = 0.4f;   // sample = s g + t p (the thesis: s > t)
-  float exposure = 0.0f;      // light -> [0, 1] green; 0 = automatic (see view())
+  float exposure = 0.0f;      // light -> [0, 1] green; 0 = 1 / full_colour_light()
 };
 
 struct StageTimes {
@@ -67,14 +63,17 @@ class AtomScene {
   void reconfigure(AtomSceneOptions o);
   // Moves the viewer of view() (the scene graph's camera).
   void set_viewer(Vec3f viewer) { o_.viewer = viewer; }
-  // Lets the next view() choose the automatic exposure again (after the light changed).
-  void reset_exposure() { exposure_ = o_.exposure; }
 
   void build_cloud();
   void build_density();
   void build_table();
   void illuminate();
-  void view();  // also fixes the automatic exposure on its first run
+  void view();
+  // The state's own scale, in cd/a0^2 at the reference power: the 90th percentile of the light
+  // seen from full_colour_viewer() (one more view pass where the viewer is elsewhere), kept
+  // until the light field changes. It follows the state and its lighting, never the current
+  // view; backends differ only by their rounding of the light.
+  double full_colour_light();
   void voxelize();
   // Voxelizes with light * light_to_unit as the light (the scene graph folds the source power
   // into it: light is linear in Phi).
@@ -88,7 +87,8 @@ class AtomScene {
   const GridParams& density_grid() const { return density_grid_; }
   const GridParams& volume_grid() const { return volume_grid_; }
   NebulaLightParams light_params() const;
-  float exposure() const { return exposure_; }
+  // light -> [0, 1]: options().exposure, or 1 / full_colour_light() where that is 0.
+  float exposure();
   const ScatterTable& table() const { return table_; }
   // The voxelized volume's description: the box, N^3, values (sample) in [0, 1].
   VolumeDesc volume() const;
@@ -107,7 +107,7 @@ class AtomScene {
   OrbitalTables tables_;
   ScatterTable table_;
   float kappa_ = 1;
-  float exposure_ = 0;
+  double full_colour_ = 0;  // full_colour_light(); 0 = not measured for this light field
   StageTimes times_;
 };
 

@@ -66,10 +66,8 @@ class AtomCloudScene final : public scene::SceneInstance {
           });
         });
     add("illuminate",
-        {"density", "nebula.tau_peak", "nebula.path", "nebula.step_a0", "scatter.albedo"}, [this] {
-          core_.reset_exposure();  // a new light field: choose the automatic exposure anew
-          core_.illuminate();
-        });
+        {"density", "nebula.tau_peak", "nebula.path", "nebula.step_a0", "scatter.albedo"},
+        [this] { core_.illuminate(); });
     add("viewer", {"illuminate", "scatter_table", "view"}, [this] {
       core_.set_viewer(pose().eye);
       core_.view();
@@ -192,11 +190,11 @@ class AtomCloudScene final : public scene::SceneInstance {
   scene::CameraPose pose() const { return scene::camera_pose(params_, box(), time_s_); }
 
   void rescale() {
-    // A fixed scale (the state's, or the file's): never the light of the current view, so the
-    // colours mean the same in every view and on every backend.
+    // A fixed scale (the file's, or the state's own): never the light of the
+    // current view, so the colours mean the same in every view and on every backend.
     const double exposure = params_.get_real("nebula.exposure") > 0
                                 ? params_.get_real("nebula.exposure")
-                                : 1.0 / full_colour_light(state_of(params_));
+                                : 1.0 / core_.full_colour_light();
     light_to_unit_ = float(exposure * params_.get_real("nebula.power_lm") / kReferencePowerLm);
   }
 

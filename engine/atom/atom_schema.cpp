@@ -39,8 +39,8 @@ const scene::TableSchema& nebula_table() {
     s.steps(25000.0);
     s.real("exposure", 0.0, 0.0, 1e30,
            "the light (cd/a0^2: lm per steradian per a0^2 towards the viewer) at full colour is "
-           "1 / exposure; 0 = the state's own fixed scale (from Phi = 250K lm and its mean "
-           "radius <r>), the same in every view and on every backend",
+           "1 / exposure; 0 = the state's own fixed scale: the 90th percentile of its light at "
+           "Phi = 250K lm seen from the front, the same in every view and on every backend",
            "a0^2/cd");
     s.integer("density_dims", 60, 2, 512, "density grid cells per axis (the thesis's cubes)");
     s.real("box_probability", 0.999, 0.9, 0.999999,

@@ -1,0 +1,66 @@
+// The atom scenes' colour scale where no scene file fixes it (nebula.exposure = 0: a custom
+// state, or a state picked in the demo): the state's own full-colour light, measured from the
+// front. It must land where the shipped scene files' exposures put each state (they were set
+// from the same 90th percentile; a scale from the mean radius alone was 3.5x too dark for
+// state 1 and 7.7x too bright for state 10), and it must not move with the view or the backend.
+#include <doctest/doctest.h>
+#include <fmt/format.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+
+#include "engine/scene/scene.h"
+#include "registry/scene_catalog.h"
+#include "registry/scene_file.h"
+#include "tests/backend_fixture.h"
+
+using namespace masav;
+
+namespace {
+
+// The colour map's top (cd/a0^2 at the scene's power): 1 / exposure.
+double full_colour(scene::SceneInstance& s) {
+  scene::FrameClock clock;
+  s.update(clock);
+  const scene::SceneView v = s.view();
+  REQUIRE(v.points.has_value());
+  return v.points->scalar_hi;
+}
+
+}  // namespace
+
+TEST_CASE("atom exposure 0: the state's own scale, as the scene files set it, in every view") {
+  namespace fs = std::filesystem;
+  const fs::path cache = fs::temp_directory_path() / "masav_atom_exposure_cache";
+  setenv("MASAV_CACHE_DIR", cache.c_str(), 1);
+  // States 1, 5 and 10 span the scene files' scales from 50 to 0.037 cd/a0^2.
+  for (const char* state : {"state1", "state5", "state10"}) {
+    CAPTURE(state);
+    scene::SceneFile f = scene::load_scene_file(std::string(MASAV_SOURCE_DIR) +
+                                                "/scenes/atom_" + state + ".toml");
+    const double file_scale = 1.0 / f.params.get_real("nebula.exposure");
+    f.params.set("nebula.exposure", 0.0);
+    f.params.set("atom.count", int64_t(200000));
+    f.params.set("verify.enabled", false);
+    const auto& type = scene::find_scene_type("atom");
+    auto s = type.create(test::backend(), f.params);
+    auto r = type.create(test::reference(), f.params);
+    const double own = full_colour(*s), on_reference = full_colour(*r);
+    s->set("camera.view", std::string("top"));
+    const double from_top = full_colour(*s);
+    s->set("camera.view", std::string("orbit"));
+    s->set("camera.yaw_deg", 123.0);
+    const double orbiting = full_colour(*s);
+    MESSAGE(fmt::format("{}: own scale {:.4g} cd/a0^2 (reference backend {:.4g}), scene file {:.4g}",
+                        state, own, on_reference, file_scale));
+    CHECK(own > file_scale / 1.1);
+    CHECK(own < file_scale * 1.1);
+    CHECK(from_top == own);
+    CHECK(orbiting == own);
+    CHECK(std::abs(own - on_reference) <= 1e-3 * on_reference);
+    CHECK(s->graph().counters("illuminate").runs == 1);
+  }
+  unsetenv("MASAV_CACHE_DIR");
+  fs::remove_all(cache);
+}
