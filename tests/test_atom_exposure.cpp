@@ -64,3 +64,36 @@ TEST_CASE("atom exposure 0: the state's own scale, as the scene files set it, in
   unsetenv("MASAV_CACHE_DIR");
   fs::remove_all(cache);
 }
+
+// A scene file's exposure is its state's: the demo's state buttons switch atom.state, and state 1
+// under state 8's exposure would be a white blob 80x over full colour. Another state takes its
+// own scale; an exposure set while it shows applies to it.
+TEST_CASE("atom exposure: a scene file's exposure stays with its state") {
+  namespace fs = std::filesystem;
+  const fs::path cache = fs::temp_directory_path() / "masav_atom_exposure_switch_cache";
+  setenv("MASAV_CACHE_DIR", cache.c_str(), 1);
+  scene::SceneFile f =
+      scene::load_scene_file(std::string(MASAV_SOURCE_DIR) + "/scenes/atom_state8.toml");
+  f.params.set("atom.count", int64_t(20000));
+  f.params.set("verify.enabled", false);
+  const auto& type = scene::find_scene_type("atom");
+  auto s = type.create(test::backend(), f.params);
+  const double file_scale = 1.0 / f.params.get_real("nebula.exposure");
+  CHECK(full_colour(*s) == doctest::Approx(file_scale).epsilon(1e-6));
+  s->set("atom.state", std::string("state1"));
+  scene::ParamSet own = f.params;
+  own.set("atom.state", std::string("state1"));
+  own.set("nebula.exposure", 0.0);
+  auto state1 = type.create(test::backend(), own);
+  const double state1_scale = full_colour(*state1);
+  MESSAGE(fmt::format("state 8's file scale {:.4g} cd/a0^2; state 1's own {:.4g}", file_scale,
+                      state1_scale));
+  CHECK(state1_scale > 10 * file_scale);
+  CHECK(full_colour(*s) == state1_scale);
+  s->set("nebula.exposure", 0.5);  // set for state 1: it applies
+  CHECK(full_colour(*s) == doctest::Approx(2.0).epsilon(1e-6));
+  s->set("atom.state", std::string("state8"));  // and not to state 8 again
+  CHECK(full_colour(*s) != doctest::Approx(2.0).epsilon(1e-3));
+  unsetenv("MASAV_CACHE_DIR");
+  fs::remove_all(cache);
+}

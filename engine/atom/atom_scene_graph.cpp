@@ -38,6 +38,8 @@ class AtomCloudScene final : public scene::SceneInstance {
         render_(b) {
     synced_ = domain_version();
     file_subject_ = subject();
+    exposure_set_ = params_.get_real("nebula.exposure");
+    exposure_subject_ = file_subject_;
     add_parameter_inputs();
     auto stage = [](auto fn) { return std::make_unique<scene::LambdaStage>(fn); };
     auto add = [&](const char* name, std::vector<std::string> in, std::function<void()> fn) {
@@ -190,11 +192,17 @@ class AtomCloudScene final : public scene::SceneInstance {
   scene::CameraPose pose() const { return scene::camera_pose(params_, box(), time_s_); }
 
   void rescale() {
-    // A fixed scale (the file's, or the state's own): never the light of the
-    // current view, so the colours mean the same in every view and on every backend.
-    const double exposure = params_.get_real("nebula.exposure") > 0
-                                ? params_.get_real("nebula.exposure")
-                                : 1.0 / core_.full_colour_light();
+    // A fixed scale (the file's, or the state's own): never the light of the current view, so
+    // the colours mean the same in every view and on every backend. An exposure belongs to the
+    // state it was set for (a scene file's to the file's state): another state shown takes its
+    // own scale until an exposure is set for it.
+    const double set = params_.get_real("nebula.exposure");
+    if (set != exposure_set_) {
+      exposure_set_ = set;
+      exposure_subject_ = subject();
+    }
+    const double exposure =
+        set > 0 && subject() == exposure_subject_ ? set : 1.0 / core_.full_colour_light();
     light_to_unit_ = float(exposure * params_.get_real("nebula.power_lm") / kReferencePowerLm);
   }
 
@@ -202,6 +210,8 @@ class AtomCloudScene final : public scene::SceneInstance {
   AtomScene core_;
   uint64_t synced_ = 0;
   std::string file_subject_;  // subject() as the scene was created
+  double exposure_set_ = 0;       // nebula.exposure as rescale() last saw it
+  std::string exposure_subject_;  // subject() when nebula.exposure was set
   double time_s_ = 0;
   float light_to_unit_ = 1;
   VolumeRender render_;
