@@ -42,8 +42,9 @@ struct FluidShadePush {
 
 // shaders/render/fluid_common.glsl: the planes, and those the smoothing reads and writes.
 constexpr uint32_t kFluidPlanes = 8, kFluidNearest = 0, kFluidSmoothed = 1, kFluidAcross = 7;
-// The smoothing filter's standard deviation and depth range, in sphere radii.
-constexpr float kFluidFilterRadii = 1.5f, kFluidDepthRadii = 4.0f;
+// The smoothing filter's standard deviation and depth range, in sphere radii: a lattice's
+// bumps (within a radius of each other) merge, a drop three radii in front does not.
+constexpr float kFluidFilterRadii = 1.5f, kFluidDepthRadii = 1.0f;
 constexpr uint32_t kFluidEmptyBits = 0x7F61B1E6u;  // 3.0e38f, the shaders' kEmpty
 
 struct UiPush {
@@ -352,14 +353,12 @@ void Renderer::draw_fluid(const ::vk::raii::CommandBuffer& cmd, const scene::Par
         {radius, float(p.get_real("render.brightness")), 0, 0}};
     cmd.pushConstants<FluidShadePush>(*pipe.layout, stages, 0, push);
   } else {
-    // Rows into kFluidAcross, columns into kFluidSmoothed; the second round starts from the
-    // first's result, with the width split between the rounds (variances add).
-    const bool rows = pass == FluidPass::rows || pass == FluidPass::rows_again;
-    const uint32_t src = pass == FluidPass::rows ? kFluidNearest
-                         : rows                  ? kFluidSmoothed
-                                                 : kFluidAcross;
+    // Two rounds, kFluidNearest into kFluidAcross into kFluidSmoothed, with the width split
+    // between them (variances add).
+    const bool first = pass == FluidPass::smooth;
     const FluidSmoothPush push{
-        {width(), height(), src, rows ? kFluidAcross : kFluidSmoothed},
+        {width(), height(), first ? kFluidNearest : kFluidAcross,
+         first ? kFluidAcross : kFluidSmoothed},
         {radius, focal_px, kFluidFilterRadii / std::sqrt(2.0f), kFluidDepthRadii}};
     cmd.pushConstants<FluidSmoothPush>(*pipe.layout, stages, 0, push);
   }
@@ -457,8 +456,7 @@ void Renderer::render(const FrameRequest& f) {
     if (surface) {
       // Each pass's storage writes are complete before the next pass reads them
       // (continue_pass_'s dependency).
-      for (const FluidPass pass : {FluidPass::rows, FluidPass::columns, FluidPass::rows_again,
-                                   FluidPass::columns_again, FluidPass::shade}) {
+      for (const FluidPass pass : {FluidPass::smooth, FluidPass::smooth_again, FluidPass::shade}) {
         cmd.endRenderPass();
         begin_pass(*continue_pass_);
         draw_fluid(cmd, *f.params, pass);

@@ -79,7 +79,7 @@ class Renderer {
   // first pass, the points splatted into them (draw_points), then five more passes: the depth
   // smoothed along rows, columns, rows and columns again (one round alone leaves streaks along
   // its last direction where it stops at depth steps), then the surface shaded.
-  enum class FluidPass : uint8_t { rows, columns, rows_again, columns_again, shade };
+  enum class FluidPass : uint8_t { smooth, smooth_again, shade };
   bool wants_surface(const FrameRequest& f) const;
   void clear_fluid(const ::vk::raii::CommandBuffer& cmd);
   void draw_fluid(const ::vk::raii::CommandBuffer& cmd, const scene::ParamSet& p, FluidPass pass);

@@ -8,6 +8,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
@@ -303,6 +304,59 @@ TEST_CASE("the fluid surface is one connected, smoothly shaded sheet over the pa
     CHECK(std::string(e.what()).find("render.point_style") != std::string::npos);
     CHECK(std::string(e.what()).find("render.blend") != std::string::npos);
   }
+}
+
+// Drops three radii in front of the slab: their own disks aside, the sheet behind them is shaded
+// as without them. A filter that lets the drops pull on the sheet's depth leaves halos, and a
+// rows-then-columns filter stretches them into vertical streaks.
+TEST_CASE("drops in front of the fluid surface leave the sheet behind them undisturbed") {
+  const uint32_t W = 320, H = 240;
+  Rig rig("vulkan", W, H);
+  scene::ParamSet p = plain_params(W, H);
+  p.set("render.point_size", 8.0);
+  p.set("render.point_style", std::string("surface"));
+  rig.draw({}, p);
+  const render::Camera& cam = rig.renderer->camera();
+  const float focal = 0.5f * std::abs(cam.proj[1][1]) * float(H);
+  const float r = 0.5f * 8.0f * cam.distance / focal;
+  std::vector<Vec4f> slab;
+  const float step = 0.8f * r;
+  for (int k = 0; k < 3; ++k)
+    for (float z = 0.25f; z <= 0.75f; z += step)
+      for (float x = 0.2f; x <= 0.8f; x += step) slab.push_back({x, 0.45f + float(k) * step, z, 0});
+  const std::vector<std::array<float, 2>> drops_xz = {{0.4f, 0.5f}, {0.6f, 0.45f}, {0.5f, 0.6f}};
+  std::vector<Vec4f> with_drops = slab;
+  for (const auto& d : drops_xz) with_drops.push_back({d[0], 0.45f - 3.0f * r, d[1], 0});
+  Points a = make_points(*rig.backend, slab, std::vector<float>(slab.size(), 0.5f));
+  const Frame sheet = rig.draw(a.view, p);
+  Points b = make_points(*rig.backend, with_drops, std::vector<float>(with_drops.size(), 0.5f));
+  const Frame dropped = rig.draw(b.view, p);
+  // A drop's disk on screen is 8 px wide; the sheet is compared beyond 1.5 disk radii of it.
+  std::vector<std::pair<int, int>> centres;
+  for (const auto& d : drops_xz) centres.push_back(project(cam, d[0], 0.45f - 3.0f * r, d[1], W, H));
+  const auto [x0, y0] = project(cam, 0.3f, 0.45f, 0.7f, W, H);
+  const auto [x1, y1] = project(cam, 0.7f, 0.45f, 0.3f, W, H);
+  size_t compared = 0, disturbed = 0, disturbed_near = 0;
+  int worst = 0;
+  for (int y = std::min(y0, y1); y <= std::max(y0, y1); ++y)
+    for (int x = std::min(x0, x1); x <= std::max(x0, x1); ++x) {
+      double nearest = 1e9;
+      for (const auto& [cx, cy] : centres) nearest = std::min(nearest, std::hypot(x - cx, y - cy));
+      if (nearest < 6.0) continue;  // the drop itself
+      const Rgb u = sheet.at(x, y), v = dropped.at(x, y);
+      const int diff = std::max({std::abs(u.r - v.r), std::abs(u.g - v.g), std::abs(u.b - v.b)});
+      ++compared;
+      worst = std::max(worst, diff);
+      if (diff > 12) {
+        ++disturbed;
+        disturbed_near += nearest < 10.0;
+      }
+    }
+  MESSAGE("sheet pixels compared " << compared << ", disturbed (> 12/255) " << disturbed << " ("
+                                   << disturbed_near << " within 10 px of a drop), worst "
+                                   << worst);
+  REQUIRE(compared > 1200);
+  CHECK(double(disturbed) < 0.01 * double(compared));
 }
 
 TEST_CASE("a kernel's image fills the background and the box is drawn over it") {

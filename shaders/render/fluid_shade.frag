@@ -1,6 +1,6 @@
 #version 450
 #extension GL_GOOGLE_include_directive : require
-// Fluid surface, pass 3: the smoothed depth turned back into view-space points, normals from
+// Fluid surface, the last pass: the smoothed depth turned back into view-space points, normals from
 // their neighbours (the side with the smaller depth step, so edges stay sharp), then water-like
 // shading: the colour map's colour absorbed with thickness (Beer-Lambert: thin sheets let the
 // scene behind show through, as refraction would), Fresnel reflection of a sky, a specular

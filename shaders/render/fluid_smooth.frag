@@ -1,10 +1,11 @@
 #version 450
 #extension GL_GOOGLE_include_directive : require
-// Fluid surface, passes 2 to 5: the nearest-depth plane smoothed by a bilateral filter along
-// rows (into the kAcross plane), then columns (into kSmoothed), twice (a separable
-// approximation), about a sphere radius or two wide: neighbours across a depth step of more than
-// a few radii do not blend, so the spheres' bumps merge into one surface and separate sheets stay
-// apart. Writes a plane, no colour.
+// Fluid surface, passes 2 and 3: the nearest-depth plane smoothed by a 2D bilateral filter about
+// a sphere radius or two wide, twice (kNearest into kAcross, then into kSmoothed). Round, not
+// separable: a rows-then-columns filter leaves the last direction's streaks wherever a drop sits
+// in front of the body. Neighbours more than a few radii nearer or farther take no part (a
+// narrow depth range), so the spheres' bumps merge into one surface while drops in front and
+// sheets behind stay apart. Writes a plane, no colour.
 #include "fluid_common.glsl"
 
 layout(std430, set = 0, binding = 0) buffer Fluid { uint fluid[]; };
@@ -16,8 +17,12 @@ layout(push_constant) uniform Push {
 
 layout(location = 0) out vec4 out_color;
 
-// The filter's reach: at most this many taps on each side (wider filters take strides).
-const int kTaps = 24;
+// The filter's reach: this many pixels on each side per axis. Every pixel within it is read
+// (a strided filter aliases into dotted patterns on the spheres); a filter wanted wider is
+// capped at a standard deviation of kTaps / 2 pixels.
+const int kTaps = 8;
+// Beyond this many depth ranges a neighbour is another sheet, not this one's bump.
+const float kDepthCut = 2.0;
 
 float read_depth(ivec2 p) {
   if (any(lessThan(p, ivec2(0))) || any(greaterThanEqual(p, ivec2(pc.shape.xy)))) return kEmpty;
@@ -35,20 +40,25 @@ void main() {
     return;
   }
   // The filter's standard deviation: pc.sphere.z sphere radii, in pixels at this depth.
-  const float sigma_px = max(pc.sphere.z * pc.sphere.x * pc.sphere.y / max(z, 1e-6), 1.0);
-  const int stride = max(1, int(ceil(2.0 * sigma_px / float(kTaps))));
+  const float sigma_px =
+      clamp(pc.sphere.z * pc.sphere.x * pc.sphere.y / max(z, 1e-6), 1.0, 0.5 * float(kTaps));
+  const int reach = min(kTaps, int(2.0 * sigma_px + 0.5));
   const float sigma_z = pc.sphere.w * pc.sphere.x;
-  const ivec2 dir = pc.shape.w == kAcross ? ivec2(1, 0) : ivec2(0, 1);
   float sum = 0.0, weights = 0.0;
-  for (int k = -kTaps; k <= kTaps; ++k) {
-    const float off = float(k * stride);
-    if (abs(off) > 2.0 * sigma_px + 0.5) continue;
-    const float zk = read_depth(p + dir * (k * stride));
-    if (zk >= kEmpty) continue;
-    const float dz = (zk - z) / sigma_z;
-    const float w = exp(-0.5 * off * off / (sigma_px * sigma_px) - 0.5 * dz * dz);
-    sum += w * zk;
-    weights += w;
+  const float reach2 = (2.0 * sigma_px + 0.5) * (2.0 * sigma_px + 0.5);
+  for (int ky = -reach; ky <= reach; ++ky) {
+    for (int kx = -reach; kx <= reach; ++kx) {
+      const vec2 off = vec2(kx, ky);
+      const float d2 = dot(off, off);
+      if (d2 > reach2) continue;
+      const float zk = read_depth(p + ivec2(kx, ky));
+      if (zk >= kEmpty) continue;
+      const float dz = (zk - z) / sigma_z;
+      if (abs(dz) > kDepthCut) continue;
+      const float w = exp(-0.5 * d2 / (sigma_px * sigma_px) - 0.5 * dz * dz);
+      sum += w * zk;
+      weights += w;
+    }
   }
   fluid[i] = floatBitsToUint(sum / weights);
 }
