@@ -3,7 +3,8 @@
 # Opening volume files in the demo (ctest cli.demo_open_volume): writes an 8x8x8 raw volume and an
 # NRRD of the same data, then drives the demo under Xvfb (demo_xvfb.sh) to open the raw file, a
 # raw file shorter than its dims, the NRRD with a raw-only option, a file that does not exist, and
-# the NRRD. Each refusal must read word for word as `masav volume` words it for the same file and
+# the NRRD, then drops two files as GLFW's drop callback would (the last, a copy of the NRRD,
+# opens). Each refusal must read word for word as `masav volume` words it for the same file and
 # options; the demo must keep running and quit with status 0. Skips (77) without xvfb-run.
 set -u
 masav=$1 out=$2
@@ -23,6 +24,7 @@ head -c 100 "$data/ramp.raw" >"$data/short.raw"
   printf 'NRRD0004\ntype: uint8\ndimension: 3\nsizes: 8 8 8\nencoding: raw\n\n'
   cat "$data/ramp.raw"
 } >"$data/ramp.nrrd"
+cp "$data/ramp.nrrd" "$data/dropped.nrrd"
 cat >"$data/script.txt" <<SCRIPT
 wait 2
 open $data/ramp.raw dims=8,8,8 type=uint8
@@ -36,6 +38,9 @@ open $data/missing.nrrd
 open $data/ramp.nrrd
 wait 2
 screenshot nrrd.png
+drop $data/missing.nrrd $data/dropped.nrrd
+wait 2
+screenshot dropped.png
 quit
 SCRIPT
 demo_out=$("$here/demo_xvfb.sh" "$masav" "$data/script.txt" "$out" "$@" 2>&1)

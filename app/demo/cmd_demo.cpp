@@ -309,10 +309,12 @@ class Demo {
   // A file dropped on the window opens as the panel's "Open" would, with the panel's raw and
   // .vti options; of several dropped at once, the last is opened.
   void take_dropped_files() {
-    for (const std::string& path : window_.take_dropped_files()) {
-      state_.open_fields.path = path;
-      state_.requests.open_volume = state_.open_fields;
-    }
+    const std::vector<std::string> dropped = window_.take_dropped_files();
+    if (dropped.empty()) return;
+    fmt::print("demo: {} file{} dropped, opening {}\n", dropped.size(),
+               dropped.size() == 1 ? "" : "s", dropped.back());
+    state_.open_fields.path = dropped.back();
+    state_.requests.open_volume = state_.open_fields;
   }
 
   // A volume file that is refused (the checks of `masav volume`) leaves the current scene and
@@ -418,6 +420,11 @@ class Demo {
         state_.open_fields =
             open_fields_from_words(c.args, fmt::format("{}:{}", options_.script, c.line));
         state_.requests.open_volume = state_.open_fields;
+      } else if (c.verb == "drop") {
+        std::vector<const char*> paths;
+        for (const std::string& a : c.args) paths.push_back(a.c_str());
+        window_.receive_drop(int(paths.size()), paths.data());
+        take_dropped_files();
       } else if (c.verb == "rate") {
         state_.sim_rate = a0 == "off" ? 0.0 : std::stod(a0);
       }

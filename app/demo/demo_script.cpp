@@ -41,6 +41,7 @@ const std::map<std::string, Form>& forms() {
       {"rate", {1, "rate SIMULATED_SECONDS_PER_SECOND|off"}},
       {"open",
        {1, "open PATH [dims=X,Y,Z] [type=T] [spacing=X,Y,Z] [big_endian] [array=NAME]", true}},
+      {"drop", {1, "drop PATH [PATH...] (as files dropped on the window)", true}},
       {"quit", {0, "quit"}},
   };
   return f;

@@ -58,9 +58,12 @@ DemoWindow::DemoWindow(uint32_t width, uint32_t height, const std::string& title
   // Files dropped on the window wait here until the demo's loop takes them.
   glfwSetWindowUserPointer(window_, this);
   glfwSetDropCallback(window_, [](GLFWwindow* w, int count, const char** paths) {
-    auto* self = static_cast<DemoWindow*>(glfwGetWindowUserPointer(w));
-    for (int i = 0; i < count; ++i) self->dropped_.emplace_back(paths[i]);
+    static_cast<DemoWindow*>(glfwGetWindowUserPointer(w))->receive_drop(count, paths);
   });
+}
+
+void DemoWindow::receive_drop(int count, const char* const* paths) {
+  for (int i = 0; i < count; ++i) dropped_.emplace_back(paths[i]);
 }
 
 std::vector<std::string> DemoWindow::take_dropped_files() {

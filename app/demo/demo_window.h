@@ -30,7 +30,10 @@ class DemoWindow {
   // The primary monitor's work area (the screen less task bars) when the window was opened.
   uint32_t work_width() const { return work_w_; }
   uint32_t work_height() const { return work_h_; }
-  // The files dropped on the window since the last call (GLFW's drop callback), oldest first.
+  // Files dropped on the window: GLFW's drop callback calls this, and so does the script's
+  // `drop` (Xvfb cannot drop), so both take the same way in.
+  void receive_drop(int count, const char* const* paths);
+  // The files dropped on the window since the last call, oldest first.
   std::vector<std::string> take_dropped_files();
 
  private:
