@@ -62,14 +62,24 @@ static_assert(sizeof(ImDrawVert) == 20, "the UI shader reads five words per vert
 
 }  // namespace
 
-float additive_weight(uint32_t count, uint32_t frame_height, float point_size_px) {
+float additive_weight(uint32_t count, uint32_t frame_height, float point_size_px, double zoom) {
   // Glows add up where the sprites overlap, about count x sprite area / the cloud's area in
-  // pixels (which grows as the frame height squared) of them per pixel.
+  // pixels (which grows as the frame height squared and the zoom squared) of them per pixel.
   const double overlap = double(count) / kAdditiveReferenceCount *
                          std::pow(double(point_size_px) / kAdditiveReferenceSizePx, 2.0) /
-                         std::pow(double(frame_height) / kAdditiveReferenceHeightPx, 2.0);
+                         std::pow(double(frame_height) / kAdditiveReferenceHeightPx * zoom, 2.0);
   // A few sprites in a large frame glow no brighter than opaque ones.
   return float(std::min(1.0, kAdditiveGlow / std::max(overlap, 1e-12)));
+}
+
+double additive_zoom(double distance_diagonals, double fov_y_deg) {
+  constexpr double kDegToRad = 3.14159265358979323846 / 180.0;
+  const double zoom = kAdditiveReferenceDistance / std::max(distance_diagonals, 1e-6) *
+                      std::tan(0.5 * kAdditiveReferenceFovDeg * kDegToRad) /
+                      std::tan(0.5 * std::clamp(fov_y_deg, 1.0, 179.0) * kDegToRad);
+  // Views from farther away keep the reference framing's weight: their clouds are small on
+  // screen, and a dimmer glow would lose them.
+  return std::max(zoom, 1.0);
 }
 
 Renderer::Renderer(RenderDevice& dev, const UiContext& ui, uint32_t width, uint32_t height)
@@ -274,7 +284,10 @@ void Renderer::draw_points(const ::vk::raii::CommandBuffer& cmd, const scene::Po
   const bool additive = p.get_text("render.blend") == "additive";
   const float size_px = float(p.get_real("render.point_size"));
   const float brightness = float(p.get_real("render.brightness")) *
-                           (additive ? additive_weight(pts.count, height(), size_px) : 1.0f);
+                           (additive ? additive_weight(pts.count, height(), size_px,
+                                                       additive_zoom(p.get_real("camera.distance"),
+                                                                     p.get_real("camera.fov_deg")))
+                                     : 1.0f);
   const std::string& style = p.get_text("render.point_style");
   const GraphicsPipeline& pipe = additive             ? *points_additive_
                                  : style == "sprites" ? *points_opaque_

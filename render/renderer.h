@@ -41,13 +41,21 @@ struct FrameRequest {
 };
 
 // Additive sprites: render.brightness = 1 is a glow that shows the structure of 200K particles
-// drawn 2 px wide in a frame 540 px high (the atom scenes' defaults; measured: state 8's lobes,
-// torus and nodal cones stay unsaturated). Each sprite gets brightness x this weight, so that the
-// count, the frame size and the sprite size leave the picture's exposure as it is.
+// drawn 2 px wide in a frame 540 px high, seen from 0.9 box diagonals with a 40 degree field of
+// view (the atom scenes' defaults; measured: state 8's lobes, torus and nodal cones stay
+// unsaturated). Each sprite gets brightness x this weight, so that the count, the frame size,
+// the sprite size and the zoom leave the picture's exposure as it is. `zoom` is the cloud's size
+// on screen against that framing: (0.9 / camera.distance) x (tan 20 deg / tan(fov / 2)). A
+// sprite keeps its pixel size at the camera's distance, so a closer camera spreads the same
+// sprites over zoom^2 more pixels.
 constexpr double kAdditiveGlow = 0.15;
 constexpr double kAdditiveReferenceCount = 200000, kAdditiveReferenceHeightPx = 540,
-                 kAdditiveReferenceSizePx = 2;
-float additive_weight(uint32_t count, uint32_t frame_height, float point_size_px);
+                 kAdditiveReferenceSizePx = 2, kAdditiveReferenceDistance = 0.9,
+                 kAdditiveReferenceFovDeg = 40;
+float additive_weight(uint32_t count, uint32_t frame_height, float point_size_px, double zoom = 1);
+// additive_weight's zoom for camera.distance (box diagonals) and a vertical field of view; at
+// least 1 (a view from farther away keeps the reference framing's weight).
+double additive_zoom(double distance_diagonals, double fov_y_deg);
 
 class Renderer {
  public:

@@ -10,6 +10,9 @@
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
+#include <sstream>
+#include <iterator>
+#include <fstream>
 #include <glm/glm.hpp>
 
 #include "registry/scene_file.h"
@@ -239,6 +242,60 @@ TEST_CASE("atom exposure: state 8 is not saturated by default, one colour range 
   // In cd/a0^2 at the current power: more power, the same colour range (brighter particles).
   player.scene().set("nebula.power_lm", 500000.0);
   CHECK(range(player) == vk_range);
+}
+
+namespace {
+
+// The --set flags tools/run (the main job) gives `masav run` and `masav demo`, read from the
+// script itself so the test follows it.
+std::vector<std::string> main_job_sets() {
+  std::ifstream in(std::string(MASAV_SOURCE_DIR) + "/tools/run");
+  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const size_t a = text.find("turn=(");
+  REQUIRE(a != std::string::npos);
+  const size_t b = text.find(')', a);
+  std::istringstream words(text.substr(a + 6, b - a - 6));
+  std::vector<std::string> sets;
+  for (std::string w; words >> w;)
+    if (w != "--set") sets.push_back(w);
+  return sets;
+}
+
+}  // namespace
+
+// The main job's framing (issue: the camera sat inside the grid's cube, its edges cut the frame
+// and the cloud was small): the turning cloud fills a good part of the frame at every angle and
+// is never cut by the frame's edge.
+TEST_CASE("the main job frames the turning state-8 cloud") {
+  CacheDir cache;
+  scene::SceneFile f = atom_file("atom_state8.toml", 40000);
+  f.params.set("render.width", int64_t(256));
+  f.params.set("render.height", int64_t(144));
+  const std::vector<std::string> sets = main_job_sets();
+  REQUIRE(sets.size() >= 2);
+  for (const std::string& s : sets) {
+    const size_t eq = s.find('=');
+    REQUIRE(eq != std::string::npos);
+    f.params.set_from_string(s.substr(0, eq), s.substr(eq + 1));
+  }
+  render::ScenePlayer player(f, vulkan());
+  for (const double yaw : {0.0, 50.0, 100.0}) {
+    player.scene().set("camera.yaw_deg", yaw);
+    player.scene().set("camera.orbit_speed_deg", 0.0);
+    const Image a = draw(player);
+    // Lit pixels within 2 px of the frame's edge: the cloud's outskirts may reach it faintly.
+    size_t edge = 0, edge_lit = 0;
+    for (uint32_t y = 0; y < a.h; ++y)
+      for (uint32_t x = 0; x < a.w; ++x) {
+        if (x >= 2 && y >= 2 && x + 2 < a.w && y + 2 < a.h) continue;
+        ++edge;
+        edge_lit += a.luma(x, y) > 60;
+      }
+    MESSAGE("yaw " << yaw << ": lit " << a.lit_fraction() << " of the frame, edge lit "
+                   << double(edge_lit) / double(edge));
+    CHECK(a.lit_fraction() > 0.08);  // 0.03 before the glow followed the zoom
+    CHECK(double(edge_lit) < 0.02 * double(edge));
+  }
 }
 
 TEST_CASE("the atom-volume scene raymarches the lit cloud behind the box") {
