@@ -44,7 +44,7 @@ struct FluidShadePush {
 constexpr uint32_t kFluidPlanes = 8, kFluidNearest = 0, kFluidSmoothed = 1, kFluidAcross = 7;
 // The smoothing filter's standard deviation and depth range, in sphere radii: a lattice's
 // bumps (within a radius of each other) merge, a drop three radii in front does not.
-constexpr float kFluidFilterRadii = 1.5f, kFluidDepthRadii = 1.0f;
+constexpr float kFluidFilterRadii = 1.5f, kFluidDepthRadii = 2.0f;
 constexpr uint32_t kFluidEmptyBits = 0x7F61B1E6u;  // 3.0e38f, the shaders' kEmpty
 
 struct UiPush {

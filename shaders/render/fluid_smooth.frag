@@ -20,9 +20,9 @@ layout(location = 0) out vec4 out_color;
 // The filter's reach: this many pixels on each side per axis. Every pixel within it is read
 // (a strided filter aliases into dotted patterns on the spheres); a filter wanted wider is
 // capped at a standard deviation of kTaps / 2 pixels.
-const int kTaps = 12;
+const int kTaps = 8;
 // Beyond this many depth ranges a neighbour is another sheet, not this one's bump.
-const float kDepthCut = 2.0;
+const float kDepthCut = 1.0;
 
 float read_depth(ivec2 p) {
   if (any(lessThan(p, ivec2(0))) || any(greaterThanEqual(p, ivec2(pc.shape.xy)))) return kEmpty;
