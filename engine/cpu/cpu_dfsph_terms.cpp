@@ -23,7 +23,8 @@ V image_offset(V xi, V xj, const sph::WallMirrors<double>& m, uint32_t set) {
 }
 
 // m grad W of term t: away from the walls (m.axes = 0) every term is a pair with a neighbour.
-V term_gradient(const DfsphTerm& t, V xi, const sph::WallMirrors<double>& m, const double* pos) {
+// Inlined: it is the inner loop of every iteration near a wall.
+[[gnu::always_inline]] inline V term_gradient(const DfsphTerm& t, V xi, const sph::WallMirrors<double>& m, const double* pos) {
   const V xj = load3(pos, t.j);
   return t.scale * (t.set == 0 ? xi - xj : image_offset(xi, xj, m, t.set));
 }
