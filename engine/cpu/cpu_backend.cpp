@@ -4,6 +4,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <cstdlib>
 #include <cstring>
 #include <fstream>
 #include <string>
@@ -52,6 +53,11 @@ CpuBackend::CpuBackend(unsigned threads, CpuRenderPrecision render)
   caps_.device_memory_bytes = uint64_t(sysconf(_SC_PHYS_PAGES)) * uint64_t(sysconf(_SC_PAGE_SIZE));
   caps_.real_is_double = true;
   caps_.threads = pool_.size();
+  if (const char* env = std::getenv("MASAV_CPU_DFSPH_TERMS")) {
+    if (std::strcmp(env, "0") != 0 && std::strcmp(env, "1") != 0)
+      throw_invalid("cpu backend", "MASAV_CPU_DFSPH_TERMS", env, "0 or 1");
+    dfsph_terms_on_ = env[0] == '1';
+  }
 }
 
 CpuBuffer& CpuBackend::own(BufferImpl& b, std::string_view kernel) {

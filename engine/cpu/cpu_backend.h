@@ -6,6 +6,7 @@
 #include <memory>
 #include <vector>
 
+#include "engine/cpu/cpu_dfsph_terms.h"
 #include "engine/cpu/cpu_sph_lists.h"
 #include "engine/cpu/thread_pool.h"
 #include "engine/kernels/backend.h"
@@ -49,6 +50,10 @@ class CpuBackend final : public Backend {
   void reset_timestamps() override { stamps_.clear(); }
 
   ThreadPool& pool() { return pool_; }
+  // Whether the DFSPH solves read each pair's gradient back from DfsphTerms (the default) or
+  // recompute it on every call through the shared bodies; the results are the same bits.
+  // MASAV_CPU_DFSPH_TERMS=0 starts a backend without them.
+  void set_dfsph_terms(bool on) { dfsph_terms_on_ = on; }
 
  protected:
 #include "engine/kernels/backend_overrides.inc"
@@ -70,6 +75,12 @@ class CpuBackend final : public Backend {
   // The lists for `in` in sph_chunks(in.n) chunks: sph_density's where they match, else new.
   void ensure_sph_lists(const SphListInputs& in);
   size_t sph_chunks(uint32_t n) const;
+  // The DFSPH pair terms of the current lists at `pos` (cpu_dfsph.cpp): kept where they match.
+  // True if built anew, then with each particle's factor in `factor` where given.
+  bool ensure_dfsph_terms(const double* pos, const DfsphLayout<double>& c,
+                          double* factor = nullptr);
+  double factor_of_terms(size_t chunk, uint32_t self, sph::V3<double> xi,
+                         const sph::WallMirrors<double>& m, const double* pos) const;
   // raymarch in fp32 from fp32 copies of its inputs, a row of 8x8 tiles per task (cpu_volume.cpp).
   void raymarch_fp32(const RaymarchParams& p, const Buffer<Real>& volume, const Buffer<Real4>& tf,
                      const Buffer<Real4>& bricks, Buffer<Real4>& image,
@@ -79,6 +90,8 @@ class CpuBackend final : public Backend {
   ThreadPool pool_;
   CpuRenderPrecision render_;
   SphNeighborLists sph_lists_;
+  DfsphTerms dfsph_terms_;
+  bool dfsph_terms_on_ = true;
   std::vector<double> sph_p_rho2_;  // sph_forces' p / rho^2 per particle, kept between calls
   std::vector<std::chrono::steady_clock::time_point> stamps_;
   std::chrono::steady_clock::time_point epoch_ = std::chrono::steady_clock::now();

@@ -1,7 +1,10 @@
 // DFSPH kernels of the CPU reference: the shared per-particle bodies of
 // engine/kernels/dfsph_kernels.h in double precision over the neighbour lists sph_density left
 // (cpu_sph_lists.h; rebuilt where they do not match), one contiguous chunk of sorted particles
-// per task. Statistics and residual sums are gathered per chunk and merged once.
+// per task. Statistics and residual sums are gathered per chunk and merged once. By default the
+// solves' pair gradients are found once per list (cpu_dfsph_terms.h) and each call sums them in
+// the shared bodies' order, ending in the bodies' own tails (dfsph_*_from): the same bits as
+// the bodies, without a square root and a division per pair and iteration.
 #include <algorithm>
 #include <bit>
 #include <cmath>
@@ -32,6 +35,11 @@ struct ListWalk {
   }
 };
 
+// The gradient factor of a term (sph::dfsph_gradient's, 0 at r = 0).
+double term_scale(double r2, const DfsphLayout<double>& c) {
+  return r2 > 0 ? sph::dfsph_gradient_scale(r2, c) : 0.0;
+}
+
 // Per chunk: the smallest sorted index with a non-finite result or an overflowed walk, the
 // largest |v|^2, the residual units.
 struct ChunkStats {
@@ -53,6 +61,50 @@ void merge(uint32_t* words, const std::vector<ChunkStats>& chunks) {
 
 }  // namespace
 
+// The terms of each particle: the candidates of ListWalk within h, each pair then its wall
+// images -- the walk of sph::dfsph_rate_of, whose gradient factors it keeps.
+bool CpuBackend::ensure_dfsph_terms(const double* pos, const DfsphLayout<double>& c,
+                                    double* factor) {
+  const uint64_t generation = sph_lists_.generation();
+  if (dfsph_terms_.matches(generation, c)) return false;
+  const size_t chunks = sph_chunks(c.n);
+  dfsph_terms_.reset(c.n, chunks);
+  pool_.run_chunks(c.n, chunks, [&](size_t chunk, size_t b, size_t e) {
+    for (size_t i = b; i < e; ++i) {
+      const uint32_t self = uint32_t(i);
+      const V xi = load3(pos, i);
+      const sph::WallMirrors<double> m = sph::dfsph_mirrors(xi, c);
+      uint32_t neighbors = 0;
+      dfsph_terms_.begin(chunk, self);
+      ListWalk{sph_lists_, chunk, self}([&](uint32_t j) {
+        const V xj = load3(pos, j);
+        const V d = xi - xj;
+        const double r2 = sph::dot(d, d);
+        if (!(r2 < c.h2)) return;
+        ++neighbors;
+        if (j != self) dfsph_terms_.add(chunk, {term_scale(r2, c), j, 0u});
+        if (m.axes)
+          sph::for_each_wall_image_set(xi, xj, m, c.h2, [&](V, double ri2, uint32_t set) {
+            dfsph_terms_.add(chunk, {term_scale(ri2, c), j, set});
+          });
+      });
+      dfsph_terms_.end(chunk, self, neighbors);
+      if (factor) factor[i] = factor_of_terms(chunk, self, xi, m, pos);
+    }
+  });
+  dfsph_terms_.remember(generation, c);
+  return true;
+}
+
+double CpuBackend::factor_of_terms(size_t chunk, uint32_t self, sph::V3<double> xi,
+                                   const sph::WallMirrors<double>& m, const double* pos) const {
+  V sum;
+  double sum2;
+  dfsph_gradient_sums(dfsph_terms_.terms(chunk, self), dfsph_terms_.count(self), self, xi, m, pos,
+                      sum, sum2);
+  return sph::dfsph_factor_from(sum, sum2);
+}
+
 void CpuBackend::run_own(const KernelArgs<KernelId::dfsph_factor>& a) {
   auto& [p, items_, positions, cells, cell_start, cell_end, factor, stats, neighbor_rows] = a;
   const char* k = "dfsph_factor";
@@ -65,12 +117,19 @@ void CpuBackend::run_own(const KernelArgs<KernelId::dfsph_factor>& a) {
   const size_t chunks = sph_chunks(p.step.n);
   std::vector<ChunkStats> st(chunks);
   auto pos_at = [pos](uint32_t j) { return load3(pos, j); };
+  // A new build of the terms finds the factors on the way (dfsph_factor_of's sums).
+  const bool found = dfsph_terms_on_ && ensure_dfsph_terms(pos, c, f);
   pool_.run_chunks(p.step.n, chunks, [&](size_t chunk, size_t b, size_t e) {
     ChunkStats& s = st[chunk];
     for (size_t i = b; i < e; ++i) {
       const uint32_t self = uint32_t(i);
-      f[i] =
-          sph::dfsph_factor_of(self, load3(pos, i), c, ListWalk{sph_lists_, chunk, self}, pos_at);
+      if (!dfsph_terms_on_) {
+        f[i] =
+            sph::dfsph_factor_of(self, load3(pos, i), c, ListWalk{sph_lists_, chunk, self}, pos_at);
+      } else if (!found) {
+        const V xi = load3(pos, i);
+        f[i] = factor_of_terms(chunk, self, xi, sph::dfsph_mirrors(xi, c), pos);
+      }
       if (!std::isfinite(f[i])) s.non_finite = std::min(s.non_finite, self);
       if (sph_lists_.overflow(self)) s.overflow = std::min(s.overflow, self);
     }
@@ -96,12 +155,22 @@ void CpuBackend::run_own(const KernelArgs<KernelId::dfsph_rate>& a) {
   std::vector<ChunkStats> st(chunks);
   auto pos_at = [pos](uint32_t j) { return load3(pos, j); };
   auto vel_at = [vel](uint32_t j) { return load3(vel, j); };
+  if (dfsph_terms_on_) ensure_dfsph_terms(pos, c);
+  auto rate_of_terms = [&](size_t chunk, uint32_t self) {
+    const V xi = load3(pos, self);
+    const double div =
+        dfsph_divergence(dfsph_terms_.terms(chunk, self), dfsph_terms_.count(self), self, xi,
+                         load3(vel, self), sph::dfsph_mirrors(xi, c), pos, vel);
+    return sph::dfsph_rate_from(div, dfsph_terms_.neighbors(self), rho[self], f[self], c);
+  };
   pool_.run_chunks(p.step.n, chunks, [&](size_t chunk, size_t b, size_t e) {
     ChunkStats& s = st[chunk];
     for (size_t i = b; i < e; ++i) {
       const uint32_t self = uint32_t(i);
-      const auto r = sph::dfsph_rate_of(self, load3(pos, i), load3(vel, i), rho[i], f[i], c,
-                                        ListWalk{sph_lists_, chunk, self}, pos_at, vel_at);
+      const auto r = dfsph_terms_on_
+                         ? rate_of_terms(chunk, self)
+                         : sph::dfsph_rate_of(self, load3(pos, i), load3(vel, i), rho[i], f[i], c,
+                                              ListWalk{sph_lists_, chunk, self}, pos_at, vel_at);
       kap[i] = r.kappa;
       sum[i] = sph::dfsph_kappa_sum(sum[i], r.kappa, c);
       if (pos[4 * i + 3] > 0) s.residual += sph::dfsph_residual_units(r.residual);
@@ -130,14 +199,24 @@ void CpuBackend::run_own(const KernelArgs<KernelId::dfsph_correct>& a) {
   std::vector<ChunkStats> st(chunks);
   auto pos_at = [pos](uint32_t j) { return load3(pos, j); };
   auto kappa_at = [kap](uint32_t j) { return kap[j]; };
+  if (dfsph_terms_on_) ensure_dfsph_terms(pos, c);
+  auto correction_of_terms = [&](size_t chunk, uint32_t self) {
+    const V xi = load3(pos, self);
+    return sph::dfsph_correction_from(
+        dfsph_kappa_gradient_sum(dfsph_terms_.terms(chunk, self), dfsph_terms_.count(self), self,
+                                 xi, kap[self], sph::dfsph_mirrors(xi, c), pos, kap),
+        c);
+  };
   pool_.run_chunks(p.step.n, chunks, [&](size_t chunk, size_t b, size_t e) {
     ChunkStats& s = st[chunk];
     for (size_t i = b; i < e; ++i) {
       const uint32_t self = uint32_t(i);
       const double w = pos[4 * i + 3];
       if (!(w > 0)) continue;  // pinned: never moves
-      const V dv = sph::dfsph_correction_of(self, load3(pos, i), kap[i], c,
-                                            ListWalk{sph_lists_, chunk, self}, pos_at, kappa_at);
+      const V dv = dfsph_terms_on_ ? correction_of_terms(chunk, self)
+                                   : sph::dfsph_correction_of(self, load3(pos, i), kap[i], c,
+                                                              ListWalk{sph_lists_, chunk, self},
+                                                              pos_at, kappa_at);
       const V v = load3(vel, i) + w * dv;
       vel[4 * i] = v.x;
       vel[4 * i + 1] = v.y;

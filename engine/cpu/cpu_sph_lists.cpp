@@ -8,13 +8,15 @@ namespace {
 
 template <class T>
 bool same(const std::vector<T>& kept, const T* now, size_t count) {
-  return kept.size() == count && (count == 0 || std::memcmp(kept.data(), now, count * sizeof(T)) == 0);
+  return kept.size() == count &&
+         (count == 0 || std::memcmp(kept.data(), now, count * sizeof(T)) == 0);
 }
 
 }  // namespace
 
 void SphNeighborLists::reset(uint32_t n, size_t chunks) {
   valid_ = false;
+  ++generation_;
   chunks_ = chunks;
   index_.resize(chunks);
   for (auto& l : index_) l.clear();

@@ -33,6 +33,8 @@ class SphNeighborLists {
   void remember(const SphListInputs& in);
   // True if the lists were built from inputs equal to `in`, split into `chunks` chunks.
   bool matches(const SphListInputs& in, size_t chunks) const;
+  // Counts the builds (reset): what is derived from the lists names the build it came from.
+  uint64_t generation() const { return generation_; }
 
   // Chunk `chunk` appends particle i's list (called for i in increasing order).
   void append(size_t chunk, uint32_t i, const uint32_t* neighbors, uint32_t count,
@@ -45,6 +47,7 @@ class SphNeighborLists {
 
  private:
   bool valid_ = false;
+  uint64_t generation_ = 0;
   uint32_t n_ = 0, max_candidates_ = 0, dims_[3] = {0, 0, 0};
   double h2_ = 0;
   size_t chunks_ = 0;

@@ -30,13 +30,19 @@
 
 namespace masav::sph {
 
+// The factor s of m grad_i W_spiky(x_i - x_j) = s d, d = x_i - x_j, for 0 < r^2 < h^2.
+template <class T>
+MASAV_HD inline T dfsph_gradient_scale(T r2, const DfsphLayout<T>& c) {
+  const T r = sqrt(r2);
+  const T u = T(1) - r * c.inv_h;
+  return -(c.grad * u * u) / r;
+}
+
 // m grad_i W_spiky(x_i - x_j), d = x_i - x_j, for r^2 < h^2; 0 at r = 0 (no direction).
 template <class T>
 MASAV_HD inline V3<T> dfsph_gradient(V3<T> d, T r2, const DfsphLayout<T>& c) {
   if (!(r2 > T(0))) return V3<T>{T(0), T(0), T(0)};
-  const T r = sqrt(r2);
-  const T u = T(1) - r * c.inv_h;
-  return (-(c.grad * u * u) / r) * d;
+  return dfsph_gradient_scale(r2, c) * d;
 }
 
 // The velocity of an image in mirror set s: the components across the reflecting walls reversed.
@@ -62,6 +68,48 @@ MASAV_HD inline uint32_t dfsph_residual_units(T r) {
 // particle (itself included; the visitor tests the distance), and pos_at(j) etc. that read
 // sorted particle j: the GPU walks the 27 cells (sph::walk_candidates), the CPU reference its
 // neighbour lists.
+
+// The tails of the bodies below, from their sums over the neighbours and images (the CPU
+// reference also forms those sums from gradients it keeps, engine/cpu/cpu_dfsph_terms.h).
+
+// f_i from sum = sum_j m grad W_ij (own images twice) and sum2 = sum_j |m grad W_ij|^2.
+template <class T>
+MASAV_HD inline T dfsph_factor_from(V3<T> sum, T sum2) {
+  const T den = dot(sum, sum) + sum2;
+  return den > T(0) ? T(1) / den : T(0);
+}
+
+template <class T>
+struct DfsphRate {
+  T kappa;     // k_i of this iteration
+  T residual;  // relative: (rho* - rho0)^+ / rho0, or dt (drho/dt)^+ / rho0
+};
+
+// Kappa and residual from div = drho_i/dt and the candidates within h (itself included).
+template <class T>
+MASAV_HD inline DfsphRate<T> dfsph_rate_from(T div, uint32_t neighbors, T rho, T factor,
+                                             const DfsphLayout<T>& c) {
+  DfsphRate<T> r{T(0), T(0)};
+  if (c.solve == DfsphSolve::density) {
+    T excess = rho + c.dt * div - c.rest_density;
+    excess = excess > T(0) ? excess : T(0);
+    r.kappa = excess * factor / (c.dt * c.dt);
+    r.residual = excess * c.inv_rest_density;
+  } else {
+    T rate = neighbors >= c.min_neighbors ? div : T(0);
+    rate = rate > T(0) ? rate : T(0);
+    r.kappa = rate * factor / c.dt;
+    r.residual = c.dt * rate * c.inv_rest_density;
+  }
+  return r;
+}
+
+// The velocity change (before the inverse mass scale) from acc = sum_j (k_i + k_j) m grad W_ij.
+// The warm start (first = 1) applies warm_scale of the last solve's kappa sum.
+template <class T>
+MASAV_HD inline V3<T> dfsph_correction_from(V3<T> acc, const DfsphLayout<T>& c) {
+  return (c.first ? -c.dt * c.warm_scale : -c.dt) * acc;
+}
 
 // dfsph_factor: f_i of particle `self` at xi.
 template <class T, class Walk, class PosAt>
@@ -92,15 +140,8 @@ MASAV_HD inline T dfsph_factor_of(uint32_t self, V3<T> xi, const DfsphLayout<T>&
         for_each_wall_image(xi, xj, m, c.h2, add);
     }
   });
-  const T den = dot(sum, sum) + sum2;
-  return den > T(0) ? T(1) / den : T(0);
+  return dfsph_factor_from(sum, sum2);
 }
-
-template <class T>
-struct DfsphRate {
-  T kappa;     // k_i of this iteration
-  T residual;  // relative: (rho* - rho0)^+ / rho0, or dt (drho/dt)^+ / rho0
-};
 
 // dfsph_rate: particle `self`'s residual and kappa from the velocities vel_at(j).
 template <class T, class Walk, class PosAt, class VelAt>
@@ -123,19 +164,7 @@ MASAV_HD inline DfsphRate<T> dfsph_rate_of(uint32_t self, V3<T> xi, V3<T> vi, T 
         div += dot(dfsph_gradient(di, ri2, c), vi - mirror_velocity(vj, s));
       });
   });
-  DfsphRate<T> r{T(0), T(0)};
-  if (c.solve == DfsphSolve::density) {
-    T excess = rho + c.dt * div - c.rest_density;
-    excess = excess > T(0) ? excess : T(0);
-    r.kappa = excess * factor / (c.dt * c.dt);
-    r.residual = excess * c.inv_rest_density;
-  } else {
-    T rate = neighbors >= c.min_neighbors ? div : T(0);
-    rate = rate > T(0) ? rate : T(0);
-    r.kappa = rate * factor / c.dt;
-    r.residual = c.dt * rate * c.inv_rest_density;
-  }
-  return r;
+  return dfsph_rate_from(div, neighbors, rho, factor, c);
 }
 
 // The kappa sum dfsph_rate keeps: a solve's first iteration starts from warm_scale of the last
@@ -164,8 +193,7 @@ MASAV_HD inline V3<T> dfsph_correction_of(uint32_t self, V3<T> xi, T kappa_i,
       for_each_wall_image(xi, xj, m, c.h2,
                           [&](V3<T> di, T ri2) { acc = acc + k * dfsph_gradient(di, ri2, c); });
   });
-  // The warm start (first = 1) applies warm_scale of the last solve's kappa sum.
-  return (c.first ? -c.dt * c.warm_scale : -c.dt) * acc;
+  return dfsph_correction_from(acc, c);
 }
 
 }  // namespace masav::sph

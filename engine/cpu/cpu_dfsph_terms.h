@@ -1,0 +1,77 @@
+#pragma once
+// The pair terms of the CPU reference's DFSPH kernels, kept between calls. Every dfsph_rate and
+// dfsph_correct of a solve walks the same neighbours at the same positions, and each pair's
+// spiky gradient m grad W_ij = s d_ij has a factor s (a square root and a division,
+// sph::dfsph_gradient_scale) that depends on the distance alone; so the factors are found once
+// per neighbour list and each iteration multiplies them by the offsets d again (from the
+// positions; a product, hence the same bits). A particle's terms are the ones the shared bodies
+// (engine/kernels/dfsph_kernels.h) visit, in the order they visit them -- itself, then its list;
+// for each candidate within h the pair, then its wall images by mirror set -- so the sums over
+// them are the same sums, bit for bit.
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+#include "engine/kernels/dfsph_params.h"
+#include "engine/kernels/sph_kernels.h"
+
+namespace masav::cpu {
+
+struct DfsphTerm {
+  double scale;  // m grad_i W = scale d, d = x_i - x_j (or its image); 0 where r = 0
+  uint32_t j;    // sorted neighbour; j == i: one of the particle's own images
+  uint32_t set;  // 0: the pair; else the image's mirror set (sph::for_each_wall_image_set)
+};
+
+class DfsphTerms {
+ public:
+  // Forgets the old terms and sizes for `chunks` chunks of `n` particles.
+  void reset(uint32_t n, size_t chunks);
+  // Records what the terms now being built belong to: the neighbour lists' build (their
+  // generation) and the layout's gradient and walls.
+  void remember(uint64_t lists_generation, const DfsphLayout<double>& c);
+  // True if the terms were built for lists `lists_generation` with the same gradient and walls.
+  bool matches(uint64_t lists_generation, const DfsphLayout<double>& c) const;
+
+  // Chunk `chunk` starts particle i's terms (called for i in increasing order), then adds them.
+  void begin(size_t chunk, uint32_t i) { begin_[i] = terms_[chunk].size(); }
+  void add(size_t chunk, const DfsphTerm& t) { terms_[chunk].push_back(t); }
+  // Ends particle i's terms; `neighbors` counts the candidates within h, itself included.
+  void end(size_t chunk, uint32_t i, uint32_t neighbors) {
+    count_[i] = uint32_t(terms_[chunk].size() - begin_[i]);
+    neighbors_[i] = neighbors;
+  }
+
+  const DfsphTerm* terms(size_t chunk, uint32_t i) const {
+    return terms_[chunk].data() + begin_[i];
+  }
+  uint32_t count(uint32_t i) const { return count_[i]; }
+  uint32_t neighbors(uint32_t i) const { return neighbors_[i]; }
+
+ private:
+  bool valid_ = false;
+  uint64_t generation_ = 0;
+  double h2_ = 0, inv_h_ = 0, grad_ = 0, lo_[3] = {0, 0, 0}, hi_[3] = {0, 0, 0};
+  uint32_t walls_ = 0;
+  std::vector<std::vector<DfsphTerm>> terms_;  // per chunk: its particles' terms, concatenated
+  std::vector<size_t> begin_;
+  std::vector<uint32_t> count_, neighbors_;
+};
+
+// The sums of the shared bodies over particle `self`'s `count` terms `t`, at x_i = xi with
+// walls m (sph::dfsph_mirrors), from sorted positions, velocities and kappas (x, y, z, w rows):
+// dfsph_factor_of's gradient sum (own images twice) and sum of squares ...
+void dfsph_gradient_sums(const DfsphTerm* t, uint32_t count, uint32_t self, sph::V3<double> xi,
+                         const sph::WallMirrors<double>& m, const double* pos, sph::V3<double>& sum,
+                         double& sum2);
+// ... dfsph_rate_of's density change rate (an image moves with the mirrored velocity) ...
+double dfsph_divergence(const DfsphTerm* t, uint32_t count, uint32_t self, sph::V3<double> xi,
+                        sph::V3<double> vi, const sph::WallMirrors<double>& m, const double* pos,
+                        const double* vel);
+// ... and dfsph_correction_of's sum of (k_i + k_j) m grad W_ij (k_i + k_i for an own image).
+sph::V3<double> dfsph_kappa_gradient_sum(const DfsphTerm* t, uint32_t count, uint32_t self,
+                                         sph::V3<double> xi, double kappa_i,
+                                         const sph::WallMirrors<double>& m, const double* pos,
+                                         const double* kappa);
+
+}  // namespace masav::cpu
