@@ -61,11 +61,29 @@ float pow_step(float x, float e) {
   return pow(x, e);
 }
 
-uint first_segment_after(float t, float tn, float step_len, uint i, uint n) {
+// The twin of volume::first_segment_after (inv_step = 1 / step).
+uint first_segment_after(float t, float tn, float inv_step, uint i, uint n) {
   uint next = i + 1u;
-  const float first = ceil((t - tn) / step_len - 0.5);
-  if (first > float(next)) next = first >= float(n) ? n : uint(first);
+  const float x = (t - tn) * inv_step - 0.5;  // the ceiling of x is the segment
+  if (x > float(next)) {
+    const uint k = uint(x);
+    next = x >= float(n) ? n : (float(k) < x ? k + 1u : k);
+  }
   return next;
+}
+
+// The twin of volume::skip_span's brick index: floor(u / brick) as floor(u) / brick, a shift
+// (brick_shift != 0) for a power of two.
+uvec3 brick_of(vec3 u, uint brick_shift, uvec3 nb) {
+  const uvec3 v = uvec3(max(u, vec3(0.0)));
+  return min(brick_shift != 0u ? v >> brick_shift : v / ray_brick(), nb - 1u);
+}
+
+// The twin of volume::voxel_ray's brick_shift: log2 of the brick where that is a power of two,
+// else 0.
+uint brick_shift() {
+  const uint b = ray_brick();
+  return (b & (b - 1u)) == 0u ? uint(findLSB(b)) : 0u;
 }
 
 vec4 march(uint px, uint py) {
@@ -94,6 +112,8 @@ vec4 march(uint px, uint py) {
   Lighting light;
   if (shade) light = ray_lighting(dir);
   const uvec3 blocks = (nb + 1u) / 2u;
+  const uint shift = brick_shift();
+  const float inv_step = 1.0 / step_len;
   const float exponent = step_len / p.reference_step;
   float occupied_until = -1.0;  // the ray is in an occupied brick for t < occupied_until
   // No loop may nest in this one (see slab.glsl): lavapipe would count each sample twice.
@@ -109,20 +129,18 @@ vec4 march(uint px, uint py) {
     const vec3 u = u0 + du * tm;
     bool skipped = false;
     if (skip && tm >= occupied_until) {
-      const uvec3 bi = uvec3(clamp(floor(u / brick), vec3(0.0), vec3(nb - 1u)));
+      const uvec3 bi = brick_of(u, shift, nb);
       const vec4 b = bricks[(bi.z * nb.y + bi.y) * nb.x + bi.x];
-      if (b.w <= 0.0) {  // the whole 2x2x2 block of bricks is empty
-        i = first_segment_after(cell_exit(u0, du, inv_du, bi / 2u, blocks, 2.0 * brick), tn,
-                                step_len, i, n);
+      // The whole 2x2x2 block of bricks is empty, or else the brick is: one cell_exit either way
+      // (lanes that disagree run one, not both).
+      const bool block = b.w <= 0.0;
+      const float exit = cell_exit(u0, du, inv_du, block ? bi / 2u : bi, block ? blocks : nb,
+                                   block ? 2.0 * brick : brick);
+      if (block || b.z <= 0.0) {
+        i = first_segment_after(exit, tn, inv_step, i, n);
         skipped = true;
       } else {
-        const float exit = cell_exit(u0, du, inv_du, bi, nb, brick);
-        if (b.z <= 0.0) {
-          i = first_segment_after(exit, tn, step_len, i, n);
-          skipped = true;
-        } else {
-          occupied_until = exit;
-        }
+        occupied_until = exit;
       }
     }
     if (!skipped) {
@@ -146,8 +164,8 @@ vec4 march(uint px, uint py) {
   return acc;
 }
 
-uint last_boundary_before(float t, float tn, float step_len, uint n) {
-  const float q = (t - tn) / step_len;
+uint last_boundary_before(float t, float tn, float inv_step, uint n) {
+  const float q = (t - tn) * inv_step;
   return q >= float(n) ? n : (q > 0.0 ? uint(q) : 0u);
 }
 
@@ -182,6 +200,8 @@ vec4 march_preintegrated(uint px, uint py) {
   Lighting light;
   if (shade) light = ray_lighting(dir);
   const uvec3 blocks = (nb + 1u) / 2u;
+  const uint shift = brick_shift();
+  const float inv_step = 1.0 / step_len;
   const float inv_ref = 1.0 / p.reference_step;
   float occupied_until = -1.0;  // the ray is in an occupied brick for t < occupied_until
   TfPos front = TfPos(0u, 0.0);
@@ -197,20 +217,18 @@ vec4 march_preintegrated(uint px, uint py) {
     bool skipped = false;
     if (skip && s0 >= occupied_until) {
       const vec3 u = u0 + du * s0;
-      const uvec3 bi = uvec3(clamp(floor(u / brick), vec3(0.0), vec3(nb - 1u)));
+      const uvec3 bi = brick_of(u, shift, nb);
       const vec4 b = bricks[(bi.z * nb.y + bi.y) * nb.x + bi.x];
+      const bool block = b.w <= 0.0;  // the whole 2x2x2 block of bricks is empty
+      const float exit = cell_exit(u0, du, inv_du, block ? bi / 2u : bi, block ? blocks : nb,
+                                   block ? 2.0 * brick : brick);
       float empty_until = -1.0;
-      if (b.w <= 0.0) {  // the whole 2x2x2 block of bricks is empty
-        empty_until = cell_exit(u0, du, inv_du, bi / 2u, blocks, 2.0 * brick);
+      if (block || b.z <= 0.0) {
+        empty_until = exit;
       } else {
-        const float exit = cell_exit(u0, du, inv_du, bi, nb, brick);
-        if (b.z <= 0.0) {
-          empty_until = exit;
-        } else {
-          occupied_until = exit;
-        }
+        occupied_until = exit;
       }
-      const uint j = empty_until >= 0.0 ? last_boundary_before(empty_until, tn, step_len, n) : 0u;
+      const uint j = empty_until >= 0.0 ? last_boundary_before(empty_until, tn, inv_step, n) : 0u;
       if (j > i) {  // segments i .. j-1 end inside the empty cell
         i = j;
         have_front = false;

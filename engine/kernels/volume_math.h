@@ -391,12 +391,18 @@ MASAV_HD inline T cell_exit(hd::V3<T> u0, hd::V3<T> du, hd::V3<T> inv_du, const 
   return exit;
 }
 
-// The first segment at or after `i + 1` whose midpoint tn + (k + 1/2) step lies at or beyond t.
+// The first segment at or after `i + 1` whose midpoint tn + (k + 1/2) step lies at or beyond t
+// (inv_step = 1 / step). A skip's latency is a chain from the sample's position to the next
+// one's, so this multiplies rather than divides, and takes the ceiling by truncation (x > 1
+// there) rather than the libm call that ceil is without SSE4.1.
 template <class T>
-MASAV_HD inline uint32_t first_segment_after(T t, T tn, T step, uint32_t i, uint32_t n) {
+MASAV_HD inline uint32_t first_segment_after(T t, T tn, T inv_step, uint32_t i, uint32_t n) {
   uint32_t next = i + 1u;
-  const T first = hd::ceil_t((t - tn) / step - T(0.5));
-  if (first > T(next)) next = first >= T(n) ? n : uint32_t(first);
+  const T x = (t - tn) * inv_step - T(0.5);  // the ceiling of x is the segment
+  if (x > T(next)) {
+    const uint32_t k = uint32_t(x);
+    next = x >= T(n) ? n : (T(k) < x ? k + 1u : k);
+  }
   return next;
 }
 
@@ -425,7 +431,9 @@ struct VoxelRay {
   hd::V3<T> dir;             // the ray's unit direction in the world
   hd::V3<T> u0, du, inv_du;  // voxel position u0 + du t; 1 / du (0 where du is)
   T brick;                   // voxels per brick
+  uint32_t brick_shift;      // log2 of voxels per brick where that is a power of two, else 0
   uint32_t blocks[3];        // 2x2x2 blocks of bricks per axis
+  T inv_step;                // 1 / c.step
 };
 
 // False when the ray misses the box.
@@ -452,7 +460,11 @@ MASAV_HD inline bool voxel_ray(const RaymarchLayout& c, uint32_t px, uint32_t py
   r.inv_du = hd::V3<T>{r.du.x != T(0) ? T(1) / r.du.x : T(0), r.du.y != T(0) ? T(1) / r.du.y : T(0),
                        r.du.z != T(0) ? T(1) / r.du.z : T(0)};
   r.brick = T(ray_brick(c));
+  r.brick_shift = 0u;
+  for (uint32_t s = 1u; s < 5u; ++s)
+    if ((1u << s) == ray_brick(c)) r.brick_shift = s;
   for (int a = 0; a < 3; ++a) r.blocks[a] = (r.g.bricks[a] + 1u) / 2u;
+  r.inv_step = T(1) / T(c.step);
   return true;
 }
 
@@ -465,22 +477,30 @@ struct SkipSpan {
 };
 template <class T, class Occ>
 MASAV_HD inline SkipSpan<T> skip_span(const VoxelRay<T>& r, hd::V3<T> u, Occ&& occupancy) {
+  // floor(u / brick) as floor(u) / brick in integers (the same brick: a rounded u / brick never
+  // reaches the next integer for bricks of 2-16), and as a shift for a power of two, the usual
+  // brick, since a skip's cost is a chain of dependent operations.
+  const uint32_t brick = uint32_t(r.brick);
   uint32_t bi[3];
   for (int a = 0; a < 3; ++a) {  // clamped to >= 0 first: truncation is the floor
-    const uint32_t b = uint32_t(hd::max_t(hd::comp(u, a) / r.brick, T(0)));
+    const uint32_t v = uint32_t(hd::max_t(hd::comp(u, a), T(0)));
+    const uint32_t b = r.brick_shift != 0u ? v >> r.brick_shift : v / brick;
     bi[a] = hd::min_t(b, r.g.bricks[a] - 1u);
   }
   const Occupancy<T> o = occupancy(bi[0], bi[1], bi[2]);
-  if (o.block <= T(0)) {
-    const uint32_t bl[3] = {bi[0] / 2u, bi[1] / 2u, bi[2] / 2u};
-    return {true, cell_exit(r.u0, r.du, r.inv_du, bl, r.blocks, T(2) * r.brick)};
-  }
-  return {o.brick <= T(0), cell_exit(r.u0, r.du, r.inv_du, bi, r.g.bricks, r.brick)};
+  // One exit either way, of the block or of the brick: a SIMD backend whose lanes disagree pays
+  // for one cell_exit, not both.
+  const bool block = o.block <= T(0);
+  uint32_t ci[3];
+  for (int a = 0; a < 3; ++a) ci[a] = block ? bi[a] / 2u : bi[a];
+  const T until = cell_exit(r.u0, r.du, r.inv_du, ci, block ? r.blocks : r.g.bricks,
+                            block ? T(2) * r.brick : r.brick);
+  return {block || o.brick <= T(0), until};
 }
 
 template <class T>
-MASAV_HD inline uint32_t last_boundary_before(T t, T tn, T step, uint32_t n) {
-  const T q = (t - tn) / step;
+MASAV_HD inline uint32_t last_boundary_before(T t, T tn, T inv_step, uint32_t n) {
+  const T q = (t - tn) * inv_step;
   return q >= T(n) ? n : (q > T(0) ? uint32_t(q) : 0u);
 }
 
@@ -519,8 +539,9 @@ MASAV_HD inline V4<T> raymarch_pixel_preintegrated(const RaymarchLayout& c, uint
     if (skip && s0 >= occupied_until) {
       const SkipSpan<T> span = skip_span(r, r.u0 + r.du * s0, occupancy);
       if (!span.empty) occupied_until = span.until;
-      const uint32_t j =
-          span.empty && span.until >= T(0) ? last_boundary_before(span.until, tn, step, n) : 0u;
+      const uint32_t j = span.empty && span.until >= T(0)
+                             ? last_boundary_before(span.until, tn, r.inv_step, n)
+                             : 0u;
       if (j > i) {  // segments i .. j-1 end inside the empty cell
         i = j;
         have_front = false;
@@ -591,7 +612,7 @@ MASAV_HD inline V4<T> raymarch_pixel(const RaymarchLayout& c, uint32_t px, uint3
     if (skip && tm >= occupied_until) {
       const SkipSpan<T> span = skip_span(r, u, occupancy);
       if (span.empty) {
-        i = first_segment_after(span.until, tn, step, i, n);
+        i = first_segment_after(span.until, tn, r.inv_step, i, n);
         continue;
       }
       occupied_until = span.until;
