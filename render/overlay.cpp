@@ -18,6 +18,7 @@ std::vector<std::string> overlay_lines(const OverlayInfo& info) {
   lines.push_back(
       clock_line(info.frame, info.time_s, info.simulated_time_s) +
       (info.fps > 0 ? fmt::format("  {:.1f} fps ({:.1f} ms)", info.fps, info.frame_ms) : ""));
+  if (!info.progress.empty()) lines.push_back(info.progress);
   lines.push_back(fmt::format("compute: {} ({})", info.backend, info.device));
   lines.push_back(info.render_device.empty()
                       ? "render: same device, no copies"

@@ -19,10 +19,11 @@ struct OverlayInfo {
   double time_s = 0;  // the frame clock
   // A stepped scene's own time (SPH): shown as "t", the frame clock then labelled as such.
   std::optional<double> simulated_time_s;
-  double fps = 0;       // frames per wall-clock second (0: not measured, e.g. headless)
-  double frame_ms = 0;  // wall time of the last frame
-  std::string verify;   // cross-check status line
-  std::string legend;   // colour-map legend: scalar name and range
+  double fps = 0;        // frames per wall-clock second (0: not measured, e.g. headless)
+  double frame_ms = 0;   // wall time of the last frame
+  std::string progress;  // the demo's progressive rendering: the level drawn ("" = none)
+  std::string verify;    // cross-check status line
+  std::string legend;    // colour-map legend: scalar name and range
   std::optional<ColourBar> colour_bar;  // drawn at the right edge
   std::vector<scene::StageCounters> stages;
 };

@@ -60,6 +60,7 @@ void ScenePlayer::load_scene(scene::SceneFile file) {
   if (backend_) backend_->finish();
   make_scene(std::move(file));
   verify_status_.clear();
+  progress_note_.clear();
   if (renderer_) renderer_->resize(frame_width(file_.params), frame_height(file_.params));
 }
 
@@ -93,6 +94,7 @@ OverlayInfo ScenePlayer::overlay(double fps, double frame_ms) const {
   o.simulated_time_s = scene_->simulated_time_s();
   o.fps = fps;
   o.frame_ms = frame_ms;
+  o.progress = progress_note_;
   o.verify = verify_status_;
   const scene::SceneView v = scene_->view();
   if (v.points && !v.points->scalar_name.empty()) {

@@ -46,6 +46,8 @@ class ScenePlayer {
   // ImGui frame; without one, the frame's display size and time step are set here.
   void set_platform_frame(std::function<void()> fn) { platform_frame_ = std::move(fn); }
   void set_verify_status(std::string s) { verify_status_ = std::move(s); }
+  // A line the overlay shows under the clock (the demo's progressive level); "" = none.
+  void set_progress_note(std::string s) { progress_note_ = std::move(s); }
 
   // Brings the stages up to date for the clock's time (with per-stage device times).
   scene::UpdateReport update();
@@ -68,6 +70,7 @@ class ScenePlayer {
   std::unique_ptr<Renderer> renderer_;
   scene::FrameClock clock_;
   std::string verify_status_;
+  std::string progress_note_;
   std::function<void()> platform_frame_;
 };
 

@@ -152,6 +152,48 @@ TEST_CASE("atom-volume scene: the raymarch follows the view, power and frame siz
   CHECK(s->graph().counters("cloud").runs == 1);
 }
 
+TEST_CASE(
+    "atom-volume scene: preview levels raymarch a smaller image, the light held; the full "
+    "level is the one-shot image") {
+  TempCache cache("masav_atom_volume_preview_test");
+  cpu::CpuBackend cpu(2);
+  ParamSet p = small_atom("atom-volume");
+  p.set("camera.view", std::string("orbit"));
+  p.set("camera.orbit_speed_deg", 20.0);
+  auto s = find_scene_type("atom-volume").create(cpu, p);
+  FrameClock clock;
+  s->update(clock);
+  CHECK(s->max_preview_level() == kMaxPreviewLevel);
+  // A preview of the same view: the raymarch only, at a quarter of the 48x36 frame per axis.
+  s->set_preview_level(2);
+  CHECK_FALSE(s->changes_pending(clock));  // the preview level is not a change of the scene
+  CHECK(s->update(clock).ran == Names{"raymarch"});
+  CHECK(s->view().background->width == 12);
+  CHECK(s->view().background->height == 9);
+  // The orbit turns: a change; the preview raymarches the new view with the light it had.
+  clock.time_s = 0.5;
+  CHECK(s->changes_pending(clock));
+  CHECK(s->update(clock).ran == Names{"raymarch"});
+  // The full level relights for the current view and raymarches the whole frame...
+  s->set_preview_level(0);
+  CHECK(s->update(clock).ran == Names{"viewer", "light", "voxelize", "bricks", "raymarch"});
+  CHECK(s->view().background->width == 48);
+  CHECK_FALSE(s->changes_pending(clock));
+  CHECK(s->update(clock).ran.empty());  // ...and then nothing runs while nothing changes
+  // The same image as a scene rendered once at this time.
+  auto once = find_scene_type("atom-volume").create(cpu, p);
+  once->update(clock);
+  auto image = [&](const SceneInstance& scene) {
+    const auto& bg = *scene.view().background;
+    std::vector<uint8_t> bytes(size_t(bg.width) * bg.height * 4 * cpu.real_bytes());
+    cpu.download_bytes(*bg.pixels, bytes.data(), bytes.size(), 0);
+    return bytes;
+  };
+  CHECK(image(*s) == image(*once));
+  s->set_preview_level(9);
+  CHECK(s->preview_level() == kMaxPreviewLevel);  // clamped to the scene's coarsest
+}
+
 TEST_CASE("every atom scene file parses, and atom parameters are checked") {
   for (int i = 1; i <= 10; ++i) {
     const SceneFile f =

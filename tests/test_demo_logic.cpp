@@ -1,8 +1,10 @@
 // The desktop demo's arithmetic, without a window: the layout of the scene viewport beside the
-// panel, the window fitted to a screen, and the steps per frame for a simulated-time rate.
+// panel, the window fitted to a screen, the steps per frame for a simulated-time rate, and the
+// preview level of progressive volume rendering.
 #include <doctest/doctest.h>
 
 #include "app/demo/demo_layout.h"
+#include "app/demo/progressive.h"
 #include "app/demo/sim_rate.h"
 
 using namespace masav::app;
@@ -78,4 +80,58 @@ TEST_CASE("demo pacing: defaults per device class and the achieved rate") {
   CHECK(m.rate() == doctest::Approx(0.5).epsilon(0.01));
   m.reset();
   CHECK(m.rate() == 0);
+}
+
+TEST_CASE("progressive rendering: full resolution when still, the level from the frame time") {
+  LevelInputs in;
+  in.max_level = 3;
+  in.budget_ms = 50;
+  in.first_level = 2;
+  // Still: the full image, whatever was measured.
+  in.level = 3, in.frame_ms = 30, in.raymarch_ms = 20;
+  CHECK(next_preview_level(in) == 0);
+  in.moving = true;
+  // Nothing measured yet (a first moving frame): the level given for it.
+  in.frame_ms = 0;
+  CHECK(next_preview_level(in) == 2);
+  in.frame_ms = 30, in.raymarch_ms = 0;  // no raymarch ran in the last frame
+  CHECK(next_preview_level(in) == 2);
+  // A full frame of 1000 ms, 960 of them raymarching: 40 + 960/4^L ms at level L, so level 2
+  // (100 ms) is over the budget and level 3 (55 ms) too: the coarsest.
+  in.level = 0, in.frame_ms = 1000, in.raymarch_ms = 960;
+  CHECK(next_preview_level(in) == 3);
+  // 10 ms besides a 160 ms full raymarch: level 1 takes 50 ms (at the budget), level 2 20 ms.
+  in.frame_ms = 170, in.raymarch_ms = 160;
+  CHECK(next_preview_level(in) == 1);
+  // From level 2, a finer level needs a quarter of the budget to spare (37.5 ms): at 20 ms of
+  // raymarch level 1 would take 10 + 80 ms; at 8 ms, 10 + 32 = 42 ms (within the budget but not
+  // under the bar), so the level stays; at 6 ms, 10 + 24 = 34 ms, so it drops to 1.
+  in.level = 2, in.frame_ms = 30, in.raymarch_ms = 20;
+  CHECK(next_preview_level(in) == 2);
+  in.frame_ms = 18, in.raymarch_ms = 8;
+  CHECK(next_preview_level(in) == 2);
+  in.frame_ms = 16, in.raymarch_ms = 6;
+  CHECK(next_preview_level(in) == 1);
+  // A level over the budget goes coarser at once.
+  in.level = 1, in.frame_ms = 90, in.raymarch_ms = 80;  // 10 + 20 at level 2
+  CHECK(next_preview_level(in) == 2);
+  // A fast device stays at full resolution while moving.
+  in.level = 0, in.frame_ms = 12, in.raymarch_ms = 5;
+  CHECK(next_preview_level(in) == 0);
+  // A scene without levels.
+  in.max_level = 0;
+  CHECK(next_preview_level(in) == 0);
+  // The first moving level by device class, the script's words, the overlay's words.
+  CHECK(first_preview_level("CPU device", 3) == 3);
+  CHECK(first_preview_level("GPU", 3) == 0);
+  CHECK(progressive_mode_from_word("auto")->enabled);
+  CHECK(progressive_mode_from_word("auto")->fixed_level == 0);
+  CHECK_FALSE(progressive_mode_from_word("off")->enabled);
+  CHECK(progressive_mode_from_word("2")->fixed_level == 2);
+  CHECK_FALSE(progressive_mode_from_word("0"));
+  CHECK(progressive_mode_from_word("4")->fixed_level == 4);
+  CHECK_FALSE(progressive_mode_from_word("5"));
+  CHECK_FALSE(progressive_mode_from_word("fast"));
+  CHECK(preview_label(0) == "volume: full resolution");
+  CHECK(preview_label(2) == "volume: 1/4 resolution (moving)");
 }

@@ -182,6 +182,32 @@ TEST_CASE("the stage graph runs a stage only when an input changed") {
   CHECK(error_of([&] { g.update(loop); }).find("depends on itself") != std::string::npos);
 }
 
+TEST_CASE("the stage graph tells a pending change from one input it is told to ignore") {
+  StageGraph g;
+  g.add_input("view");
+  g.add_input("preview");
+  int runs = 0;
+  auto stage = [&runs] { return std::make_unique<LambdaStage>([&runs] { ++runs; }); };
+  g.add_stage("light", {"view"}, stage);
+  g.add_stage("raymarch", {"light", "preview"}, stage);
+  const std::vector<std::string> targets = {"raymarch"};
+  CHECK(g.pending("raymarch", "preview"));  // never ran
+  g.update(targets);
+  CHECK_FALSE(g.pending("raymarch"));
+  CHECK_FALSE(g.pending("raymarch", "preview"));
+  g.touch("preview");  // a refinement the caller asked for itself
+  CHECK(g.pending("raymarch"));
+  CHECK_FALSE(g.pending("raymarch", "preview"));
+  g.update(targets);
+  g.touch("view");  // reaches the raymarch through the stage it reads
+  CHECK(g.pending("raymarch", "preview"));
+  CHECK(g.pending("light", "preview"));
+  g.update(targets);
+  CHECK_FALSE(g.pending("raymarch", "preview"));
+  CHECK(runs == 5);
+  CHECK_FALSE(g.pending("view"));  // an input is never pending
+}
+
 TEST_CASE("a cached stage computes once, then loads from disk until its parameters change") {
   namespace fs = std::filesystem;
   const fs::path dir = fs::temp_directory_path() / "masav_stage_cache_test";

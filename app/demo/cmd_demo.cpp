@@ -20,6 +20,7 @@
 #include "app/demo/demo_panel.h"
 #include "app/demo/demo_script.h"
 #include "app/demo/demo_window.h"
+#include "app/demo/progressive.h"
 #include "app/demo/sim_rate.h"
 #include "app/demo/volume_open.h"
 #include "app/interrupt.h"
@@ -112,6 +113,7 @@ class Demo {
         restart_timing_ = false;
         state_.fps = state_.frame_ms = 0;
         rate_.reset();
+        moving_level_ = first_preview_level(state_.device_class, scene::kMaxPreviewLevel);
         last = now;
         last_sim_t_ = sim_t;
         continue;
@@ -163,6 +165,7 @@ class Demo {
     const SimRateDefaults d = sim_rate_defaults(player_->backend().caps().device_type);
     state_.sim_rate = d.seconds_per_second;
     state_.device_class = d.device_class;
+    moving_level_ = first_preview_level(state_.device_class, scene::kMaxPreviewLevel);
     device_defaults();
     if (!options_.no_verify && player_->scene().params().get_flag("verify.enabled"))
       verify(true);
@@ -427,6 +430,8 @@ class Demo {
         take_dropped_files();
       } else if (c.verb == "rate") {
         state_.sim_rate = a0 == "off" ? 0.0 : std::stod(a0);
+      } else if (c.verb == "progressive") {
+        progressive_ = *progressive_mode_from_word(a0);
       }
       apply_actions();
       apply_requests();
@@ -465,6 +470,7 @@ class Demo {
       ++clock.frame;
       state_.step = false;
     }
+    choose_preview_level();
     try {
       player_->update();
     } catch (const Error& e) {
@@ -506,6 +512,19 @@ class Demo {
       if (!state_.message.empty())
         fmt::print("demo: the panel shows at {}: {}\n", screenshot_, state_.message);
       write_layout(screenshot_ + ".layout");
+      if (player_->scene().max_preview_level() > 0) {
+        // The level and the times of the frame, and whether a still scene raymarched at all.
+        const scene::StageCounters& rm = player_->scene().graph().counters("raymarch");
+        std::string stages;
+        for (const scene::StageCounters& c : player_->scene().graph().counters())
+          if (c.created) stages += fmt::format(" {} {:.1f}", c.name, c.last_ms);
+        fmt::print(
+            "demo: {} at {}: {:.1f} fps, last frame {:.1f} ms, raymarch {:.1f} ms, {} "
+            "raymarch runs since the last screenshot; stages' last runs (ms):{}\n",
+            preview_label(player_->scene().preview_level()), screenshot_, state_.fps,
+            state_.frame_ms, rm.last_ms, rm.runs - std::min(rm.runs, shot_raymarch_runs_), stages);
+        shot_raymarch_runs_ = rm.runs;
+      }
       if (sph::simulation_of(player_->scene()))
         fmt::print("demo: rate at {}: asked {} s/s, achieved {:.3g} s/s, {} steps per frame\n",
                    screenshot_, state_.sim_rate > 0 ? fmt::format("{}", state_.sim_rate) : "off",
@@ -516,6 +535,30 @@ class Demo {
       render::write_png(capture_.next_frame(), player_->renderer().width(),
                         player_->renderer().height(), player_->renderer().pixels());
     return true;
+  }
+
+  // Progressive rendering: the preview level of this frame's raymarch, from whether anything
+  // changes and from the last frame's times; the overlay names it.
+  void choose_preview_level() {
+    scene::SceneInstance& s = player_->scene();
+    if (s.max_preview_level() == 0) {
+      player_->set_progress_note("");
+      return;
+    }
+    const scene::StageCounters& rm = s.graph().counters("raymarch");
+    LevelInputs in;
+    in.moving = progressive_.enabled && s.changes_pending(player_->clock());
+    in.level = s.preview_level();
+    in.frame_ms = state_.frame_ms;
+    in.raymarch_ms = rm.runs != raymarch_runs_ ? rm.last_ms : 0;  // 0: none ran last frame
+    in.max_level = s.max_preview_level();
+    in.first_level = moving_level_;
+    uint32_t level = next_preview_level(in);
+    if (in.moving && progressive_.fixed_level > 0) level = progressive_.fixed_level;
+    if (in.moving) moving_level_ = level;
+    s.set_preview_level(level);
+    raymarch_runs_ = rm.runs;
+    player_->set_progress_note(preview_label(s.preview_level()));
   }
 
   // The rectangles of the frame just written (x y width height), for the tests.
@@ -545,6 +588,10 @@ class Demo {
   bool failed_ = false;
   bool restart_timing_ = false;  // the next frame's time includes loading a scene: not counted
   std::string screenshot_;
+  ProgressiveMode progressive_;
+  uint32_t moving_level_ = 0;   // the level of the last moving frame: where the next motion starts
+  uint64_t raymarch_runs_ = 0;  // the raymarch stage's runs as of the last level choice
+  uint64_t shot_raymarch_runs_ = 0;  // and as of the last screenshot
 };
 
 int run_demo(const DemoOptions& o) {
@@ -568,6 +615,7 @@ void add_demo_command(CLI::App& app) {
   cmd->add_option("--script", o.script,
                   "drive the demo from a script (wait N, set K V, view V, scene F, backend B, "
                   "pause, step, reset, verify, panel on|off, key K, button B, rate R, "
+                  "progressive auto|off|LEVEL, "
                   "open FILE [dims=X,Y,Z type=T ...], screenshot F, quit)");
   cmd->add_option("--window", o.window, "window size WIDTHxHEIGHT (default: 90% of the screen)");
   cmd->add_option("--out,-o", o.out, "output directory of screenshots, recordings, saved scenes")

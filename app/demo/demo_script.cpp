@@ -8,8 +8,10 @@
 #include <sstream>
 
 #include "app/demo/demo_actions.h"
+#include "app/demo/progressive.h"
 #include "app/demo/volume_open.h"
 #include "engine/core/error.h"
+#include "engine/scene/scene.h"
 #include "engine/util/bounded_file.h"
 
 namespace masav::app {
@@ -39,6 +41,7 @@ const std::map<std::string, Form>& forms() {
       {"key", {1, "key " + shortcut_names()}},
       {"button", {1, "button pause|step|reset|screenshot|record|save|panel"}},
       {"rate", {1, "rate SIMULATED_SECONDS_PER_SECOND|off"}},
+      {"progressive", {1, "progressive auto|off|LEVEL"}},
       {"open",
        {1, "open PATH [dims=X,Y,Z] [type=T] [spacing=X,Y,Z] [big_endian] [array=NAME]", true}},
       {"drop", {1, "drop PATH [PATH...] (as files dropped on the window)", true}},
@@ -96,6 +99,10 @@ std::vector<ScriptCommand> load_script(const std::string& path) {
       if (end != c.args[0].c_str() + c.args[0].size() || !(r >= 0.001 && r <= 10))
         throw_invalid(at, "rate", c.args[0], "simulated seconds per second in [0.001, 10], or off");
     }
+    if (c.verb == "progressive" && !progressive_mode_from_word(c.args[0]))
+      throw_invalid(
+          at, "progressive", c.args[0],
+          fmt::format("auto, off, or a preview level in [1, {}]", scene::kMaxPreviewLevel));
     out.push_back(std::move(c));
   }
   return out;

@@ -41,6 +41,8 @@ class AtomCloudScene final : public scene::SceneInstance {
     exposure_set_ = params_.get_real("nebula.exposure");
     exposure_subject_ = file_subject_;
     add_parameter_inputs();
+    // The view the volume is lit for (see follow_lit_view).
+    graph_.add_input("lit_view");
     auto stage = [](auto fn) { return std::make_unique<scene::LambdaStage>(fn); };
     auto add = [&](const char* name, std::vector<std::string> in, std::function<void()> fn) {
       graph_.add_stage(name, std::move(in), [this, fn, stage] {
@@ -70,7 +72,7 @@ class AtomCloudScene final : public scene::SceneInstance {
     add("illuminate",
         {"density", "nebula.tau_peak", "nebula.path", "nebula.step_a0", "scatter.albedo"},
         [this] { core_.illuminate(); });
-    add("viewer", {"illuminate", "scatter_table", "view"}, [this] {
+    add("viewer", {"illuminate", "scatter_table", volume_ ? "lit_view" : "view"}, [this] {
       core_.set_viewer(pose().eye);
       core_.view();
     });
@@ -83,11 +85,16 @@ class AtomCloudScene final : public scene::SceneInstance {
     add("bricks", {"voxelize", "transfer"},
         [this] { render_.build_bricks(core_.volume(), core_.sample); });
     add("raymarch",
-        {"bricks", "view", "render.width", "render.height", "volume.step_voxels",
+        {"bricks", "view", "preview", "render.width", "render.height", "volume.step_voxels",
          "volume.compositing", "volume.preintegrate", "volume.clip", "volume.clip_position",
          "volume.clip_keep", "volume.shade", "volume.shade_specular"},
-        [this] { render_.raymarch(params_, "volume", core_.volume(), core_.sample, pose()); });
+        [this] {
+          render_.raymarch(params_, "volume", core_.volume(), core_.sample, pose(),
+                           preview_level());
+        });
   }
+
+  uint32_t max_preview_level() const override { return volume_ ? scene::kMaxPreviewLevel : 0; }
 
   std::vector<std::string> targets() const override {
     if (!volume_) return {"light"};
@@ -132,7 +139,10 @@ class AtomCloudScene final : public scene::SceneInstance {
   }
 
  protected:
-  void on_clock(const scene::FrameClock& clock) override { time_s_ = clock.time_s; }
+  void on_clock(const scene::FrameClock& clock) override {
+    time_s_ = clock.time_s;
+    follow_lit_view();
+  }
 
   void validate(const ParamSet& p) const override {
     (void)state_of(p);  // a custom state must be a hydrogen state
@@ -166,6 +176,18 @@ class AtomCloudScene final : public scene::SceneInstance {
     if (synced_ == v) return;
     core_.reconfigure(scene_options_of(params_));
     synced_ = v;
+  }
+
+  // The volume's light depends on the view (the phase function towards the viewer), and
+  // relighting and voxelizing the cloud costs as much as a preview's raymarch: while the demo
+  // previews a moving view, the volume keeps the light of the last view it was lit for; the full
+  // level relights it for the current view, so a still frame is the one-shot frame.
+  void follow_lit_view() {
+    if (!volume_ || preview_level() > 0) return;
+    const uint64_t view = graph_.version("view");
+    if (view == lit_view_) return;
+    graph_.touch("lit_view");
+    lit_view_ = view;
   }
 
   // The state shown, as the overlay's title names it.
@@ -213,6 +235,7 @@ class AtomCloudScene final : public scene::SceneInstance {
   double exposure_set_ = 0;       // nebula.exposure as rescale() last saw it
   std::string exposure_subject_;  // subject() when nebula.exposure was set
   double time_s_ = 0;
+  uint64_t lit_view_ = 0;  // the version of "view" the volume was last lit for
   float light_to_unit_ = 1;
   VolumeRender render_;
 };

@@ -5,6 +5,7 @@
 #include "engine/atom/preintegration.h"
 #include "engine/atom/transfer_function.h"
 #include "engine/kernels/atom_checks.h"
+#include "engine/scene/scene.h"
 
 namespace masav::atom {
 
@@ -40,12 +41,14 @@ void add_clip_shade_keys(scene::TableSchema& s) {
 }
 
 void VolumeRender::raymarch(const scene::ParamSet& p, const std::string& table, const VolumeDesc& d,
-                            const Buffer<Real>& volume, const scene::CameraPose& c) {
+                            const Buffer<Real>& volume, const scene::CameraPose& c,
+                            uint32_t level) {
   RaymarchParams rp;
   rp.volume = d;
   rp.tf_size = uint32_t(tf_.size());
-  rp.width = uint32_t(p.get_int("render.width"));
-  rp.height = uint32_t(p.get_int("render.height"));
+  const uint32_t shrink = 1u << std::min(level, scene::kMaxPreviewLevel);
+  rp.width = (uint32_t(p.get_int("render.width")) + shrink - 1) / shrink;
+  rp.height = (uint32_t(p.get_int("render.height")) + shrink - 1) / shrink;
   rp.eye = c.eye;
   rp.target = c.target;
   rp.up = c.up;
@@ -65,8 +68,9 @@ void VolumeRender::raymarch(const scene::ParamSet& p, const std::string& table, 
   rp.clip.keep_above = p.get_text(table + ".clip_keep") == "above";
   rp.shading.enabled = p.get_flag(table + ".shade");
   rp.shading.specular = float(p.get_real(table + ".shade_specular"));
+  // The buffer of the full image holds every level's: a preview does not reallocate it.
   const size_t pixels = size_t(rp.width) * rp.height;
-  if (image_.size() != pixels) image_ = backend_.create<Real4>(pixels, "raymarched image");
+  if (image_.size() < pixels) image_ = backend_.create<Real4>(pixels, "raymarched image");
   backend_.raymarch(rp, volume, tf_, bricks_, image_, &tf_integral_);
   image_w_ = rp.width;
   image_h_ = rp.height;

@@ -27,9 +27,10 @@ class VolumeRender {
   // The bricks' value ranges for empty-space skipping (after load_transfer).
   void build_bricks(const VolumeDesc& d, const Buffer<Real>& volume);
   // Raymarches at render.width x render.height from the camera pose, with `table`.step_voxels,
-  // .compositing, .preintegrate and the clip and shade keys (after build_bricks).
+  // .compositing, .preintegrate and the clip and shade keys (after build_bricks). At preview
+  // level L the image is 1/2^L of that size per axis (rounded up), the same rays otherwise.
   void raymarch(const scene::ParamSet& p, const std::string& table, const VolumeDesc& d,
-                const Buffer<Real>& volume, const scene::CameraPose& c);
+                const Buffer<Real>& volume, const scene::CameraPose& c, uint32_t level = 0);
 
   // The last image, as the scene's background with a colour bar of the transfer function from
   // key_lo to key_hi; none before the first raymarch.

@@ -95,13 +95,14 @@ class VolumeFileScene final : public scene::SceneInstance {
     stage("bricks", {"load", "transfer"}, [this] { render_.build_bricks(desc_, volume_); });
     stage(
         "raymarch",
-        {"bricks", "view", "render.width", "render.height", "raymarch.step_voxels",
+        {"bricks", "view", "preview", "render.width", "render.height", "raymarch.step_voxels",
          "raymarch.compositing", "raymarch.preintegrate", "raymarch.clip", "raymarch.clip_position",
          "raymarch.clip_keep", "raymarch.shade", "raymarch.shade_specular"},
-        [this] { render_.raymarch(params_, "raymarch", desc_, volume_, pose()); });
+        [this] { render_.raymarch(params_, "raymarch", desc_, volume_, pose(), preview_level()); });
   }
 
   std::vector<std::string> targets() const override { return {"raymarch"}; }
+  uint32_t max_preview_level() const override { return scene::kMaxPreviewLevel; }
 
   std::string title() const override {
     const std::string& file_title = params_.get_text("scene.title");

@@ -25,6 +25,11 @@ struct FrameClock {
   bool step_once = false;
 };
 
+// The coarsest preview level a scene offers (1/16 of the width and height; see
+// SceneInstance::set_preview_level): on lavapipe (a 2-core VM) a full 800x720 raymarch of the
+// atom volume takes seconds, 1/8 of it still about 70 ms.
+constexpr uint32_t kMaxPreviewLevel = 4;
+
 class SceneInstance {
  public:
   SceneInstance(Backend& backend, ParamSet params);
@@ -53,6 +58,17 @@ class SceneInstance {
   // from the parameters once one that names the subject (a state, a preset) has changed.
   virtual std::string title() const;
 
+  // Progressive rendering (the demo): at preview level L the scene's raymarched image is drawn
+  // at 1/2^L of render.width and render.height and upsampled when shown; level 0 is the full
+  // image. Scenes without such an image have no levels (max_preview_level() = 0).
+  virtual uint32_t max_preview_level() const { return 0; }
+  // Clamped to max_preview_level(); a change marks the input "preview" changed.
+  void set_preview_level(uint32_t level);
+  uint32_t preview_level() const { return preview_level_; }
+  // Whether update() at `clock` would rerun a target stage for anything but the preview level:
+  // the orbit camera turning with the clock, a parameter set, a stage never run.
+  bool changes_pending(const FrameClock& clock) const;
+
  protected:
   // Called before update(): advance stepped state, touch "time" inputs, ...
   virtual void on_clock(const FrameClock& clock) = 0;
@@ -61,7 +77,8 @@ class SceneInstance {
   // Adds every parameter of the scene's tables as a graph input, and the input "view", which
   // changes whenever the camera does (a camera.* parameter, or the time while the orbit camera
   // turns): the stages that depend on the viewpoint (viewer attenuation, the raymarch) read
-  // "view" and nothing else reruns when the user looks around.
+  // "view" and nothing else reruns when the user looks around. Also the input "preview" (the
+  // preview level), read by the stage that draws at that level.
   void add_parameter_inputs();
 
   Backend& backend_;
@@ -69,7 +86,11 @@ class SceneInstance {
   StageGraph graph_;
 
  private:
+  // Whether the orbit camera's view changes when the clock moves to time_s.
+  bool view_moves_at(double time_s) const;
+
   double view_time_s_ = 0;
+  uint32_t preview_level_ = 0;
 };
 
 // What `masav verify` and the pre-render check need from a scene (see cross_check.h).

@@ -130,6 +130,19 @@ UpdateReport StageGraph::update(std::span<const std::string> targets, Backend* t
   return report;
 }
 
+bool StageGraph::pending(std::string_view stage, std::string_view ignored_input) const {
+  const Node& n = node(stage);
+  if (n.is_input) return false;
+  if (n.version == 0) return true;
+  for (const auto& in : n.inputs) {
+    if (in == ignored_input) continue;
+    const auto it = n.seen.find(in);
+    if (it == n.seen.end() || it->second != node(in).version || pending(in, ignored_input))
+      return true;
+  }
+  return false;
+}
+
 uint64_t StageGraph::version(std::string_view name) const {
   return node(name).version;
 }

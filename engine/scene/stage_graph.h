@@ -76,6 +76,9 @@ class StageGraph {
   // in dependency order, each reached stage that never ran or whose inputs changed since its
   // last run. With a backend, each run is bracketed by device timestamps (per-stage times).
   UpdateReport update(std::span<const std::string> targets, Backend* timing = nullptr);
+  // Whether update() would run `stage` (or a stage it reads) for a change of any input other
+  // than `ignored_input`: the demo tells a moving view from a refinement it asked for itself.
+  bool pending(std::string_view stage, std::string_view ignored_input = {}) const;
 
   // The stage's version: changes whenever it runs (0 = never ran). Consumers outside the graph
   // (the renderer's copy of a CPU buffer) use it to tell whether an output changed.
