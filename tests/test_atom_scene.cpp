@@ -184,7 +184,9 @@ TEST_CASE(
   auto once = find_scene_type("atom-volume").create(cpu, p);
   once->update(clock);
   auto image = [&](const SceneInstance& scene) {
-    const auto& bg = *scene.view().background;
+    const SceneView v = scene.view();  // a value: the layer must outlive this call's temporary
+    REQUIRE(v.background.has_value());
+    const auto& bg = *v.background;
     std::vector<uint8_t> bytes(size_t(bg.width) * bg.height * 4 * cpu.real_bytes());
     cpu.download_bytes(*bg.pixels, bytes.data(), bytes.size(), 0);
     return bytes;
