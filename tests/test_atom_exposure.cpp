@@ -1,8 +1,8 @@
 // The atom scenes' colour scale where no scene file fixes it (nebula.exposure = 0: a custom
 // state, or a state picked in the demo): the state's own full-colour light, measured from the
 // front. It must land where the shipped scene files' exposures put each state (they were set
-// from the same 90th percentile; a scale from the mean radius alone was 3.5x too dark for
-// state 1 and 7.7x too bright for state 10), and it must not move with the view or the backend.
+// from the same 90th percentile; a scale from the mean radius alone drew state 1 3.5x over full
+// colour and state 10 at an eighth of it), and it must not move with the view or the backend.
 #include <doctest/doctest.h>
 #include <fmt/format.h>
 
