@@ -4,6 +4,7 @@
 #include <doctest/doctest.h>
 
 #include "app/demo/demo_layout.h"
+#include "app/demo/idle_wait.h"
 #include "app/demo/progressive.h"
 #include "app/demo/sim_rate.h"
 
@@ -134,4 +135,20 @@ TEST_CASE("progressive rendering: full resolution when still, the level from the
   CHECK_FALSE(progressive_mode_from_word("fast"));
   CHECK(preview_label(0) == "volume: full resolution");
   CHECK(preview_label(2) == "volume: 1/4 resolution (moving)");
+}
+
+TEST_CASE("the demo waits for input only when nothing has changed for a few frames") {
+  IdleInputs in;
+  CHECK(idle_wait_seconds(in) == 0);  // just started
+  in.quiet_frames = kIdleFramesBeforeWait - 1;
+  CHECK(idle_wait_seconds(in) == 0);
+  in.quiet_frames = kIdleFramesBeforeWait;
+  CHECK(idle_wait_seconds(in) == kIdleWaitSeconds);
+  CHECK(kIdleWaitSeconds <= 0.25);  // a tooltip or a blinking cursor still moves
+  // What must keep drawing every frame.
+  for (int what = 0; what < 3; ++what) {
+    IdleInputs busy = in;
+    (what == 0 ? busy.scripted : what == 1 ? busy.recording : busy.actions_queued) = true;
+    CHECK(idle_wait_seconds(busy) == 0);
+  }
 }

@@ -20,6 +20,7 @@
 #include "app/demo/demo_panel.h"
 #include "app/demo/demo_script.h"
 #include "app/demo/demo_window.h"
+#include "app/demo/idle_wait.h"
 #include "app/demo/progressive.h"
 #include "app/demo/sim_rate.h"
 #include "app/demo/volume_open.h"
@@ -100,7 +101,19 @@ class Demo {
   int loop() {
     auto last = std::chrono::steady_clock::now();
     while (!window_.should_close() && !state_.requests.quit && !interrupted()) {
-      glfwPollEvents();
+      IdleInputs idle;
+      idle.quiet_frames = quiet_frames_;
+      idle.scripted = !script_.empty() || scripted_;
+      idle.recording = capture_.recording();
+      idle.actions_queued = !state_.actions.empty();
+      const double wait_s = idle_wait_seconds(idle);
+      const auto wait_start = std::chrono::steady_clock::now();
+      if (wait_s > 0)
+        glfwWaitEventsTimeout(wait_s);
+      else
+        glfwPollEvents();
+      // The frame time counts the work, not the wait for input.
+      last += std::chrono::steady_clock::now() - wait_start;
       take_dropped_files();
       if (!script_.empty() || scripted_) run_script();
       if (state_.requests.quit) break;
@@ -472,8 +485,9 @@ class Demo {
     }
     choose_preview_level();
     try {
-      player_->update();
+      quiet_frames_ = player_->update().ran.empty() ? quiet_frames_ + 1 : 0;
     } catch (const Error& e) {
+      quiet_frames_ = 0;
       // A simulation that stops (the SPH watchdog, a NaN) keeps its last good state on screen:
       // the demo pauses there and shows why, in the panel and on stderr.
       state_.message = e.what();
@@ -574,6 +588,7 @@ class Demo {
   }
 
   DemoOptions options_;
+  uint32_t quiet_frames_ = 0;  // consecutive frames whose update ran no stage
   DemoWindow window_;
   std::unique_ptr<render::ScenePlayer> player_;
   std::unique_ptr<render::Swapchain> swapchain_;
