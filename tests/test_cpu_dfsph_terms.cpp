@@ -9,6 +9,7 @@
 
 #include "engine/cpu/cpu_backend.h"
 #include "engine/kernels/dfsph_params.h"
+#include "engine/sph/dfsph_case_buffers.h"
 #include "engine/sph/sph_kernel_calls.h"
 #include "engine/sph/sph_particles.h"
 #include "tests/backend_fixture.h"
@@ -37,22 +38,8 @@ Record run_solves(bool terms, const test::SphCase& c, Change change) {
   cpu::CpuBackend b(2);
   b.set_dfsph_terms(terms);
   test::SphBuffers s = test::upload_sph_case(b, c);
-  const uint32_t n = c.params.n;
-  Buffer<Real> factor = b.create<Real>(n, "factor"), kappa = b.create<Real>(n, "kappa");
-  Buffer<Real> kappa_sum = b.create<Real>(n, "kappa sum");
-  Buffer<uint32_t> residual = b.create<uint32_t>(kDfsphResidualWords, "residual");
-  b.fill(kappa_sum, 0u);
-  b.fill(residual, 0u);
-  DfsphIO io;
-  io.positions = &s.sorted_pos;
-  io.velocities = &s.sorted_vel;
-  io.density = &s.density;
-  io.factor = &factor;
-  io.grid = s.view();
-  io.kappa = &kappa;
-  io.kappa_sum = &kappa_sum;
-  io.residual = &residual;
-  io.stats = &s.stats;
+  DfsphCaseBuffers d = make_dfsph_buffers(b, c.params.n, "test dfsph");
+  DfsphIO io = dfsph_io(s, d);
   Record r;
   auto keep = [&](const Buffer<Real>& buf) {
     for (double v : b.download(buf)) r.reals.push_back(v);
@@ -67,15 +54,15 @@ Record run_solves(bool terms, const test::SphCase& c, Change change) {
       dfsph_rate(b, p, io);
       p.first = false;
       dfsph_correct(b, p, io);
-      keep(kappa);
-      keep(kappa_sum);
+      keep(d.kappa);
+      keep(d.kappa_sum);
       keep4(s.sorted_vel);
     }
   };
 
   sph_density(b, c.params, {&s.sorted_pos, s.view(), &s.density, &s.pressure, &s.stats});
   dfsph_factor(b, DfsphParams{c.params}, io);
-  keep(factor);
+  keep(d.factor);
   DfsphParams p{c.params, DfsphSolve::density, 2e-3};
   iterate(p, 4);
   // The divergence solve's warm start, then its iterations; some particles have too few
@@ -83,9 +70,9 @@ Record run_solves(bool terms, const test::SphCase& c, Change change) {
   p.solve = DfsphSolve::divergence;
   p.min_neighbors = 20;
   p.first = true;
-  io.kappa = &kappa_sum;
+  io.kappa = &d.kappa_sum;
   dfsph_correct(b, p, io);
-  io.kappa = &kappa;
+  io.kappa = &d.kappa;
   keep4(s.sorted_vel);
   iterate(p, 3);
   if (change == Change::move) {  // a third of the particles 0.1 dx along x
@@ -95,7 +82,7 @@ Record run_solves(bool terms, const test::SphCase& c, Change change) {
   }
   if (change == Change::box) p.step.box_min.x -= 0.5 * c.dx;  // the walls further out on x
   iterate(p, 2);
-  r.words = b.download(residual);
+  r.words = b.download(d.residual);
   return r;
 }
 

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "engine/kernels/dfsph_params.h"
+#include "engine/sph/dfsph_case_buffers.h"
 #include "engine/sph/sph_kernel_calls.h"
 #include "engine/sph/sph_particles.h"
 #include "tests/backend_fixture.h"
@@ -32,32 +33,12 @@ test::SphCase dfsph_case(uint32_t side, uint64_t seed, bool walls) {
 
 struct DfsphBuffers {
   test::SphBuffers s;
-  Buffer<Real> factor, kappa, kappa_sum;
-  Buffer<uint32_t> residual;
-  DfsphIO io() {
-    DfsphIO io;
-    io.positions = &s.sorted_pos;
-    io.velocities = &s.sorted_vel;
-    io.density = &s.density;
-    io.factor = &factor;
-    io.grid = s.view();
-    io.kappa = &kappa;
-    io.kappa_sum = &kappa_sum;
-    io.residual = &residual;
-    io.stats = &s.stats;
-    return io;
-  }
+  DfsphCaseBuffers k;
+  DfsphIO io() { return dfsph_io(s, k); }
 };
 
 DfsphBuffers upload(Backend& b, const test::SphCase& c) {
-  DfsphBuffers d{test::upload_sph_case(b, c)};
-  const uint32_t n = c.params.n;
-  d.factor = b.create<Real>(n, "factor");
-  d.kappa = b.create<Real>(n, "kappa");
-  d.kappa_sum = b.create<Real>(n, "kappa sum");
-  d.residual = b.create<uint32_t>(kDfsphResidualWords, "residual");
-  b.fill(d.kappa_sum, 0u);
-  b.fill(d.residual, 0u);
+  DfsphBuffers d{test::upload_sph_case(b, c), make_dfsph_buffers(b, c.params.n, "test dfsph")};
   sph_density(b, c.params, {&d.s.sorted_pos, d.s.view(), &d.s.density, &d.s.pressure, &d.s.stats});
   dfsph_factor(b, DfsphParams{c.params}, d.io());
   return d;
@@ -133,7 +114,7 @@ TEST_CASE("dfsph_factor equals a brute-force sum over neighbours and wall images
     const test::SphCase c = dfsph_case(11, 3, walls);
     DfsphBuffers d = upload(b, c);
     const auto x = b.download(d.s.sorted_pos);
-    const auto f = b.download(d.factor);
+    const auto f = b.download(d.k.factor);
     double worst = 0;
     for (size_t i = 0; i < x.size(); i += 5) {
       double sum[3] = {0, 0, 0}, sum2 = 0;
@@ -164,7 +145,7 @@ TEST_CASE("dfsph_rate's density prediction is the density the particles reach") 
     DfsphParams p{c.params, DfsphSolve::density, dt};
     dfsph_rate(b, p, d.io());
     const auto x = b.download(d.s.sorted_pos), v = b.download(d.s.sorted_vel);
-    const auto kappa = b.download(d.kappa), f = b.download(d.factor);
+    const auto kappa = b.download(d.k.kappa), f = b.download(d.k.factor);
     // Where the particles (and with them their images) are after dt.
     std::vector<Vec4d> moved = x;
     for (size_t i = 0; i < x.size(); ++i)
@@ -202,7 +183,7 @@ TEST_CASE("dfsph_correct conserves momentum; iterating the solve shrinks the res
   const auto v0 = b.download(d.s.sorted_vel);
   std::vector<double> kappa(c.params.n);
   for (size_t i = 0; i < kappa.size(); ++i) kappa[i] = 1e-4 * (1.0 + std::sin(0.37 * double(i)));
-  b.upload(d.kappa, kappa);
+  b.upload(d.k.kappa, kappa);
   dfsph_correct(b, DfsphParams{c.params, DfsphSolve::density, 1e-3}, d.io());
   const auto v1 = b.download(d.s.sorted_vel);
   double sum[3] = {0, 0, 0}, scale = 0;
@@ -230,7 +211,7 @@ TEST_CASE("dfsph_correct conserves momentum; iterating the solve shrinks the res
     dfsph_rate(b, p, e.io());
     p.first = false;
     dfsph_correct(b, p, e.io());
-    const auto w = b.download(e.residual);
+    const auto w = b.download(e.k.residual);
     residual.push_back(double(uint64_t(w[2 * k + 1]) << 32 | w[2 * k]));
   }
   INFO("residual units per iteration: " << residual.front() << " ... " << residual.back());

@@ -9,7 +9,7 @@
 #include <cmath>
 #include <string>
 
-#include "engine/sph/sph_case_buffers.h"
+#include "engine/sph/dfsph_case_buffers.h"
 #include "engine/sph/sph_check_case.h"
 #include "engine/sph/sph_cross_checks.h"
 #include "engine/sph/sph_kernel_calls.h"
@@ -22,20 +22,14 @@ namespace {
 struct DfsphCase {
   SphCheckCase cs;
   SphCaseBuffers s;
-  Buffer<Real> factor, kappa, kappa_sum;
-  Buffer<uint32_t> residual;
+  DfsphCaseBuffers dfsph;
   std::vector<Vec4f> sorted_pos;  // fp32, as the backend holds them
 };
 
 DfsphCase make_dfsph_case(Backend& b, const CheckInputs& in) {
   DfsphCase d{make_sph_check_case(in, SphPressureModel::dfsph)};
   d.s = upload_sph_case(b, d.cs.params, d.cs.positions, d.cs.velocities, "check dfsph");
-  const uint32_t n = d.cs.params.n;
-  d.factor = b.create<Real>(n, "check dfsph factor");
-  d.kappa = b.create<Real>(n, "check dfsph kappa");
-  d.kappa_sum = b.create<Real>(n, "check dfsph kappa sum");
-  d.residual = b.create<uint32_t>(kDfsphResidualWords, "check dfsph residual");
-  b.fill(d.residual, 0u);
+  d.dfsph = make_dfsph_buffers(b, d.cs.params.n, "check dfsph");
   sph_density(
       b, d.cs.params,
       {&d.s.sorted_pos, d.s.view(), &d.s.density, &d.s.pressure, &d.s.stats, &d.s.neighbor_rows});
@@ -44,18 +38,7 @@ DfsphCase make_dfsph_case(Backend& b, const CheckInputs& in) {
 }
 
 DfsphIO io_of(DfsphCase& d, bool masked) {
-  DfsphIO io;
-  io.positions = &d.s.sorted_pos;
-  io.velocities = &d.s.sorted_vel;
-  io.density = &d.s.density;
-  io.factor = &d.factor;
-  io.grid = d.s.view();
-  io.kappa = &d.kappa;
-  io.kappa_sum = &d.kappa_sum;
-  io.residual = &d.residual;
-  io.stats = &d.s.stats;
-  io.neighbor_rows = masked ? &d.s.neighbor_rows : nullptr;
-  return io;
+  return dfsph_io(d.s, d.dfsph, masked);
 }
 
 // A smooth field over the sorted particles: scale (1 + amplitude sin(97 x + 61 y + 83 z)).
@@ -88,7 +71,8 @@ std::vector<KernelCheck> dfsph_checks() {
         CheckOutputs out;
         for (const bool masked : {false, true}) {
           dfsph_factor(b, DfsphParams{d.cs.params}, io_of(d, masked));
-          out.push_back({masked ? "factor over row masks" : "factor", {}, b.download(d.factor)});
+          out.push_back(
+              {masked ? "factor over row masks" : "factor", {}, b.download(d.dfsph.factor)});
         }
         return out;
       }));
@@ -105,17 +89,17 @@ std::vector<KernelCheck> dfsph_checks() {
         for (const DfsphSolve solve : {DfsphSolve::density, DfsphSolve::divergence})
           for (const bool masked : {false, true}) {
             b.upload(d.s.density, field(d.sorted_pos, 1000.0, 0.02, 0.0));
-            b.upload(d.factor, field(d.sorted_pos, f0, 0.2, 1.0));
-            b.upload(d.kappa_sum, field(d.sorted_pos, 1e-4, 0.5, 2.0));
-            b.fill(d.residual, 0u);
+            b.upload(d.dfsph.factor, field(d.sorted_pos, f0, 0.2, 1.0));
+            b.upload(d.dfsph.kappa_sum, field(d.sorted_pos, 1e-4, 0.5, 2.0));
+            b.fill(d.dfsph.residual, 0u);
             DfsphParams p{d.cs.params, solve, 1e-3, 3, true, 0.5, 20};
             dfsph_rate(b, p, io_of(d, masked));
             const std::string v =
                 fmt::format("{}{}", solve == DfsphSolve::density ? "density" : "divergence",
                             masked ? " over row masks" : "");
-            out.push_back({"kappa " + v, {}, b.download(d.kappa)});
-            out.push_back({"kappa sum " + v, {}, b.download(d.kappa_sum)});
-            const auto w = b.download(d.residual);
+            out.push_back({"kappa " + v, {}, b.download(d.dfsph.kappa)});
+            out.push_back({"kappa sum " + v, {}, b.download(d.dfsph.kappa_sum)});
+            const auto w = b.download(d.dfsph.residual);
             out.push_back({"residual " + v, {}, {double(uint64_t(w[7]) << 32 | w[6])}});
           }
         return out;
@@ -131,7 +115,7 @@ std::vector<KernelCheck> dfsph_checks() {
         for (const bool first : {false, true})
           for (const bool masked : {false, true}) {
             b.upload(d.s.sorted_vel, v0);
-            b.upload(d.kappa, field(d.sorted_pos, 1e-4, 0.5, 0.5));
+            b.upload(d.dfsph.kappa, field(d.sorted_pos, 1e-4, 0.5, 0.5));
             DfsphParams p{d.cs.params, DfsphSolve::density, 1e-3, 0, first, 0.5, 0};
             dfsph_correct(b, p, io_of(d, masked));
             const auto v1 = b.download(d.s.sorted_vel);
