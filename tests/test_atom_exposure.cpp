@@ -90,8 +90,11 @@ TEST_CASE("atom exposure: a scene file's exposure stays with its state") {
                       state1_scale));
   CHECK(state1_scale > 10 * file_scale);
   CHECK(full_colour(*s) == state1_scale);
+  // Saved (the demo's "Save scene"), it is state 1 at its own scale, not at state 8's exposure.
+  CHECK(s->saved_params().get_real("nebula.exposure") == 0.0);
   s->set("nebula.exposure", 0.5);  // set for state 1: it applies
   CHECK(full_colour(*s) == doctest::Approx(2.0).epsilon(1e-6));
+  CHECK(s->saved_params().get_real("nebula.exposure") == 0.5);
   s->set("atom.state", std::string("state8"));  // and not to state 8 again
   CHECK(full_colour(*s) != doctest::Approx(2.0).epsilon(1e-3));
   unsetenv("MASAV_CACHE_DIR");

@@ -240,7 +240,7 @@ class Demo {
         }
         break;
       case Action::save_scene: {
-        const std::string path = capture_.save_scene(player_->scene().params());
+        const std::string path = capture_.save_scene(player_->scene().saved_params());
         state_.saved = "saved " + path;
         fmt::print("demo: saved the scene to {}\n", path);
         break;

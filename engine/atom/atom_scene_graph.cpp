@@ -103,6 +103,12 @@ class AtomCloudScene final : public scene::SceneInstance {
     return t;
   }
 
+  scene::ParamSet saved_params() const override {
+    scene::ParamSet p = params_;
+    if (!exposure_applies()) p.set("nebula.exposure", 0.0);
+    return p;
+  }
+
   std::string title() const override {
     const std::string& file_title = params_.get_text("scene.title");
     if (!file_title.empty() && subject() == file_subject_) return file_title;
@@ -190,6 +196,13 @@ class AtomCloudScene final : public scene::SceneInstance {
     lit_view_ = view;
   }
 
+  // Whether nebula.exposure sets the scale: it is set, and for the state shown -- set since
+  // rescale() last looked, or while this state showed.
+  bool exposure_applies() const {
+    const double set = params_.get_real("nebula.exposure");
+    return set > 0 && (set != exposure_set_ || subject() == exposure_subject_);
+  }
+
   // The state shown, as the overlay's title names it.
   std::string subject() const {
     return params_.get_text("atom.state") + " " + atom::describe(state_of(params_));
@@ -223,8 +236,7 @@ class AtomCloudScene final : public scene::SceneInstance {
       exposure_set_ = set;
       exposure_subject_ = subject();
     }
-    const double exposure =
-        set > 0 && subject() == exposure_subject_ ? set : 1.0 / core_.full_colour_light();
+    const double exposure = exposure_applies() ? set : 1.0 / core_.full_colour_light();
     light_to_unit_ = float(exposure * params_.get_real("nebula.power_lm") / kReferencePowerLm);
   }
 

@@ -57,6 +57,10 @@ class SceneInstance {
   // The overlay's title: scene.title while the scene shows what its file set up; a title made
   // from the parameters once one that names the subject (a state, a preset) has changed.
   virtual std::string title() const;
+  // The parameters that reproduce what the scene shows, for saving it as a scene file: params()
+  // unless a scene resolves one of them otherwise (the atom scenes: an exposure that belonged to
+  // another state is written as 0, the shown state's own scale).
+  virtual ParamSet saved_params() const { return params_; }
 
   // Progressive rendering (the demo): at preview level L the scene's raymarched image is drawn
   // at 1/2^L of render.width and render.height and upsampled when shown; level 0 is the full
