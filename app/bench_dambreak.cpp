@@ -33,7 +33,7 @@ struct DamBreakOptions {
   double t_end = 3.5;      // in T = t sqrt(2 g / a)
   std::string integrator;  // empty: leapfrog, or symplectic-euler for dfsph
   std::string pressure = "wcsph";
-  std::optional<double> viscosity;
+  std::optional<double> viscosity, max_compression;
   std::string data = std::string(MASAV_SOURCE_DIR) + "/bench/data/dam_break_surge_front.csv";
   std::string json, csv;
 };
@@ -91,6 +91,15 @@ int run_dambreak(const DamBreakOptions& o) {
   else if (s.model == SphPressureModel::dfsph)
     s.integrator = SphIntegrator::symplectic_euler;
   if (o.viscosity) s.viscosity = *o.viscosity;
+  if (o.max_compression) {
+    if (s.model != SphPressureModel::wcsph)
+      throw Error("", "--max-compression",
+                  fmt::format("--max-compression sets the wcsph speed of sound; the {} pressure "
+                              "model does not read it",
+                              to_string(s.model)),
+                  "drop it, or use --pressure wcsph");
+    set_max_compression(s, *o.max_compression, "--max-compression");
+  }
   auto backend = create_backend(o.choice.backend, o.choice.device);
   SphSimulation sim(*backend, s);
   const SphParticles& lay = sim.layout();
@@ -212,6 +221,9 @@ void add_dambreak_bench(CLI::App& bench) {
                   "symplectic-euler)");
   cmd->add_option("--pressure", o.pressure, "wcsph, thesis or dfsph")->capture_default_str();
   cmd->add_option("--viscosity", o.viscosity, "kinematic viscosity (m^2/s); default: preset's");
+  cmd->add_option("--max-compression", o.max_compression,
+                  "wcsph: c0 for this largest compression at the impacts (default 0.1: c0 = 10 x "
+                  "the fall speed)");
   cmd->add_option("--data", o.data, "measurements (CSV: source,T,Z)")->capture_default_str();
   cmd->add_option("--json", o.json, "write the simulated front and the comparison as JSON");
   cmd->add_option("--csv", o.csv, "write the comparison table as CSV");

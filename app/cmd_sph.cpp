@@ -32,7 +32,8 @@ struct SphOptions {
   uint64_t steps = 100;
   double time = 0;  // s; > 0: run until this time instead of a step count
   std::string integrator, pressure, cfl_guard;
-  std::optional<double> dt, viscosity, sound_speed, kp, smoothing_radius, restitution;
+  std::optional<double> dt, viscosity, sound_speed, max_compression, kp, smoothing_radius,
+      restitution;
   uint64_t vtp_every = 0, diag_every = 1;
   std::string csv, out;
   uint64_t seed = 1;
@@ -55,26 +56,31 @@ SphScene scene_from(const SphOptions& o) {
   // Each pressure model reads one constant (dfsph neither); another one given would be silently
   // ignored.
   const bool dfsph = s.model == SphPressureModel::dfsph;
-  if (dfsph && (o.kp || o.sound_speed))
-    throw Error("", o.kp ? "--kp" : "--sound-speed",
+  // --max-compression sets c0, so it goes where --sound-speed goes.
+  const bool c0_given = o.sound_speed || o.max_compression;
+  const char* c0_flag = o.sound_speed ? "--sound-speed" : "--max-compression";
+  if (dfsph && (o.kp || c0_given))
+    throw Error("", o.kp ? "--kp" : c0_flag,
                 fmt::format("{} conflicts with the dfsph pressure model, which solves for its "
                             "pressure instead",
-                            o.kp ? "--kp" : "--sound-speed"),
-                "drop it, or use --pressure wcsph (--sound-speed) or thesis (--kp)");
+                            o.kp ? "--kp" : c0_flag),
+                "drop it, or use --pressure wcsph (--sound-speed, --max-compression) or thesis "
+                "(--kp)");
   const bool wcsph = s.model == SphPressureModel::wcsph;
-  if (wcsph ? bool(o.kp) : bool(o.sound_speed))
-    throw Error("", wcsph ? "--kp" : "--sound-speed",
+  if (wcsph ? bool(o.kp) : c0_given)
+    throw Error("", wcsph ? "--kp" : c0_flag,
                 fmt::format("{} conflicts with the {} pressure model (--pressure{}), which does "
                             "not read it",
-                            wcsph ? "--kp" : "--sound-speed", to_string(s.model),
+                            wcsph ? "--kp" : c0_flag, to_string(s.model),
                             o.pressure.empty() ? fmt::format(" of the preset {}", o.preset)
                                                : " " + o.pressure),
                 wcsph ? "drop --kp, or use --pressure thesis"
-                      : "drop --sound-speed, or use --pressure wcsph");
+                      : fmt::format("drop {}, or use --pressure wcsph", c0_flag));
   if (!o.cfl_guard.empty()) s.cfl_guard = parse_cfl_guard(o.cfl_guard, "--cfl-guard");
   if (o.dt) s.dt = *o.dt;
   if (o.viscosity) s.viscosity = *o.viscosity;
   if (o.sound_speed) s.sound_speed = *o.sound_speed;
+  if (o.max_compression) set_max_compression(s, *o.max_compression, "--max-compression");
   if (o.kp) s.kp = *o.kp;
   if (o.smoothing_radius) s.smoothing_radius = *o.smoothing_radius;
   if (o.restitution) s.restitution = *o.restitution;
@@ -206,7 +212,12 @@ void add_sph_command(CLI::App& app) {
   cmd->add_option("--dt", o.dt, "fixed time step (s); default: CFL-adaptive");
   cmd->add_option("--cfl-guard", o.cfl_guard, "reduce (split unstable steps), stop, or off");
   cmd->add_option("--viscosity", o.viscosity, "kinematic viscosity nu (m^2/s)");
-  cmd->add_option("--sound-speed", o.sound_speed, "wcsph speed of sound c0 (m/s)");
+  auto* c0 = cmd->add_option("--sound-speed", o.sound_speed, "wcsph speed of sound c0 (m/s)");
+  cmd->add_option("--max-compression", o.max_compression,
+                  "wcsph: c0 for this largest compression at impacts, c0 = fall speed / it "
+                  "(water, mud, dam break, obstacle; the presets' 0.1 is 10 x the fall speed, "
+                  "0.03 takes 3.3x the steps)")
+      ->excludes(c0);
   cmd->add_option("--kp", o.kp, "thesis pressure constant");
   cmd->add_option("--smoothing-radius", o.smoothing_radius, "support radius h (m)");
   cmd->add_option("--restitution", o.restitution, "wall restitution in [0, 1]");

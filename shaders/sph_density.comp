@@ -2,7 +2,8 @@
 #extension GL_GOOGLE_include_directive : require
 #extension GL_KHR_shader_subgroup_arithmetic : require
 #extension GL_KHR_shader_subgroup_shuffle : require
-// Density (poly6, thesis Eq. 4.4) and pressure of each sorted particle over the neighbours
+// Density (sph_density_term's kernel: spiky, or poly6 for the thesis model, Eq. 4.4) and
+// pressure of each sorted particle over the neighbours
 // within h in the 27 cells around cells[i], walked as 9 rows of 3 consecutive cells, and of
 // their wall images (sph_wall_mirrors) when the particle is within h of a wall. The
 // candidates per invocation are capped (max_candidates) and an overflow is reported, never

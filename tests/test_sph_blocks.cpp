@@ -72,9 +72,9 @@ TEST_CASE("[sph-physics] run() in blocks gives the step-by-step state bit for bi
 
 TEST_CASE("[sph-physics] a block the guard rejects is replayed and stops at the very step") {
   // A fixed dt just below the explosion's initial CFL limit: the expanding gas speeds up until
-  // the guard (stop) refuses step 37, inside the block of steps 33..40.
+  // the guard (stop) refuses step 7 (limit 0.7% under dt), inside the block of steps 1..8.
   SphScene s = make_preset("explosion", 1000);
-  s.dt = 4e-4;
+  s.dt = 4.35e-4;
   s.cfl_guard = SphCflGuard::stop;
   const Outcome single = run_in_blocks(s, 1, 200), blocks = run_in_blocks(s, 8, 200);
   REQUIRE_FALSE(single.error.empty());

@@ -21,7 +21,7 @@
 
 using namespace masav;
 
-TEST_CASE("sph_density equals the CPU reference and a brute-force poly6 sum") {
+TEST_CASE("sph_density equals the CPU reference and a brute-force kernel sum") {
   Backend& b = test::backend();
   Backend& r = test::reference();
   test::for_each_model_and_walls(14, 7, [&](test::SphCase& c) {
@@ -42,7 +42,8 @@ TEST_CASE("sph_density equals the CPU reference and a brute-force poly6 sum") {
 
     // Brute force over all pairs in double, at the fp32 positions both backends hold, with the
     // walls as images: every particle reflected across each combination of the walls within h
-    // of particle i (the nearer wall of each axis); i's own images use the spiky kernel.
+    // of particle i (the nearer wall of each axis), i's own images like any other. The kernel:
+    // spiky, or poly6 for the thesis model.
     const auto sp = r.download_f32(sr.sorted_pos);
     const double h = c.params.h, h2 = h * h;
     const auto coef = device_params<double>(c.params);
@@ -58,7 +59,8 @@ TEST_CASE("sph_density equals the CPU reference and a brute-force poly6 sum") {
         plane[a] = low ? lo3[a] : hi3[a];
         near[a] = coef.walls && std::abs(xi[a] - plane[a]) < h;
       }
-      double sum = 0, own = 0;  // poly6 terms; the own images' spiky / kappa terms (kg/m^3)
+      const bool spiky = c.params.model != SphPressureModel::thesis;
+      double sum = 0;  // kernel terms (1 - q)^3 or (1 - q^2)^3
       for (size_t j = 0; j < sp.size(); ++j) {
         const double xj[3] = {sp[j].x, sp[j].y, sp[j].z};
         for (int mirror = 0; mirror < 8; ++mirror) {
@@ -71,13 +73,10 @@ TEST_CASE("sph_density equals the CPU reference and a brute-force poly6 sum") {
             r2 += d * d;
           }
           if (!usable || !(r2 < h2)) continue;
-          if (j == i && mirror != 0)
-            own += coef.pressure * h / 3.0 * std::pow(1.0 - std::sqrt(r2) / h, 3);
-          else
-            sum += std::pow(1.0 - r2 / h2, 3);
+          sum += std::pow(spiky ? 1.0 - std::sqrt(r2) / h : 1.0 - r2 / h2, 3);
         }
       }
-      worst = std::max(worst, std::abs(coef.density * sum + own - rho_ref[i]) / rho_ref[i]);
+      worst = std::max(worst, std::abs(coef.density * sum - rho_ref[i]) / rho_ref[i]);
     }
     CHECK(worst < 1e-12);
     // A particle deep inside the jittered lattice sits near rest density.

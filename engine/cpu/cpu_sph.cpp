@@ -77,7 +77,8 @@ bool finite3(V v) {
   return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
 }
 
-// The dfsph density's spiky terms (sph::density_term) over a neighbour list's squared distances.
+// The spiky density terms (sph::density_term: wcsph, dfsph) over a neighbour list's squared
+// distances.
 double spiky_density_sum(const double* r2, uint32_t count, const SphStepLayout<double>& c) {
   double sum = 0.0;
   for (uint32_t k = 0; k < count; ++k) sum += sph::density_term(r2[k], c);
@@ -201,8 +202,8 @@ void CpuBackend::run_own(const KernelArgs<KernelId::sph_density>& a) {
   // then its neighbours; candidates beyond h add exactly nothing there.
   build_sph_lists(in, chunks, [&](size_t chunk, uint32_t i, uint32_t count, const double* r2) {
     ChunkStats& s = st[chunk];
-    const double sum = c.model == SphPressureModel::dfsph ? spiky_density_sum(r2, count, c)
-                                                          : density_sum(r2, count, c.inv_h2);
+    const double sum = c.model != SphPressureModel::thesis ? spiky_density_sum(r2, count, c)
+                                                           : density_sum(r2, count, c.inv_h2);
     rho[i] = c.density * (1.0 + sum) +
              wall_images_density(c, in.positions, i, sph_lists_.list(chunk, i), count);
     pr[i] = sph::pressure_of(rho[i], c);

@@ -69,7 +69,7 @@ MASAV_REAL_LAYOUT(SphStepLayout) {
   real_t h2;
   real_t inv_h;
   real_t inv_h2;
-  real_t density;  // m * 315 / (64 pi h^3); dfsph: m * 15 / (pi h^3) (spiky)
+  real_t density;  // m * 15 / (pi h^3) (spiky); thesis: m * 315 / (64 pi h^3) (poly6)
   // wcsph: m * 45 / (pi h^4) / kappa; thesis: kp * m * 45 / (pi h^3) / 2; dfsph: m * 45 / (pi h^4)
   real_t pressure;
   real_t viscosity;  // nu * m * 45 / (pi h^5)
@@ -241,7 +241,7 @@ SphStepLayout<F> device_params(const SphStepParams& p, const Buffers&... buffers
   c.inv_h2 = F(1.0 / (h * h));
   const bool dfsph = p.model == SphPressureModel::dfsph;
   c.density =
-      F(dfsph ? p.mass * 15.0 / (pi * h * h * h) : p.mass * 315.0 / (64.0 * pi * h * h * h));
+      F(!thesis ? p.mass * 15.0 / (pi * h * h * h) : p.mass * 315.0 / (64.0 * pi * h * h * h));
   c.pressure = F(thesis  ? p.kp * p.mass * 45.0 / (pi * h * h * h) / 2.0
                  : dfsph ? p.mass * 45.0 / (pi * h * h * h * h)
                          : p.gradient_correction * p.mass * 45.0 / (pi * h * h * h * h));

@@ -46,7 +46,7 @@ SphCheckCase make_sph_check_case(const CheckInputs& in, SphPressureModel model) 
   p.n = n;
   p.model = model;
   p.h = h;
-  p.mass = lattice_mass(1000.0, dx, h, model == SphPressureModel::dfsph);
+  p.mass = lattice_mass(1000.0, dx, h, model != SphPressureModel::thesis);
   p.rest_density = 1000.0;
   p.sound_speed = 15.0;
   p.kp = 5.0;

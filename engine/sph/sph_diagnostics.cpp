@@ -32,7 +32,9 @@ SphDiagnostics compute_diagnostics(const SphState& s, const SphSimulation& sim) 
     if (x.x < lo.x || x.y < lo.y || x.z < lo.z || x.x > hi.x || x.y > hi.y || x.z > hi.z)
       ++d.outside;
     if (sc.model == SphPressureModel::wcsph) {
-      d.internal += m * tait_internal_energy(s.density[i], sp);
+      // The force scales every pressure by the lattice's gradient correction (the wcsph
+      // c.pressure), so the energy it stores is that much larger too.
+      d.internal += m * sp.gradient_correction * tait_internal_energy(s.density[i], sp);
     } else if (sc.model == SphPressureModel::thesis && s.density[i] > 0) {
       // The thesis force is an isothermal gas's (signal_speed): e = c^2 ln(rho / rho0).
       d.internal += m * thesis_c2 * std::log(s.density[i] / sc.rest_density);

@@ -84,9 +84,9 @@ SphParticles build_particles(const SphScene& s) {
   out.dx = sp * std::cbrt(s.block.density_ratio);
   out.h = s.smoothing_radius ? *s.smoothing_radius : s.h_over_dx * out.dx;
   check_support(s, out.dx, out.h);
-  out.mass = lattice_mass(s.rest_density, out.dx, out.h, s.model == SphPressureModel::dfsph);
+  out.mass = lattice_mass(s.rest_density, out.dx, out.h, s.model != SphPressureModel::thesis);
   out.gradient_correction =
-      1.0 / spiky_gradient_moment(out.dx, out.h, s.model == SphPressureModel::dfsph);
+      1.0 / spiky_gradient_moment(out.dx, out.h, s.model != SphPressureModel::thesis);
 
   // Layer heights: uniform, or (hydrostatic) each layer's spacing shrunk by the Tait density
   // under the weight of the layers above it (spacing ~ 1 / density in a box whose walls hold the

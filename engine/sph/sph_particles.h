@@ -25,8 +25,8 @@ struct SphParticles {
 SphParticles build_particles(const SphScene& s);
 
 // The particle mass for which a particle inside a full cubic lattice of spacing dx has
-// density rho0 with the poly6 kernel of support h (so a block at rest starts at rest density),
-// or with the spiky kernel (the dfsph model's density).
+// density rho0 with the poly6 kernel of support h (the thesis model's density), or with the
+// spiky kernel (the wcsph and dfsph density), so a block at rest starts at rest density.
 double lattice_mass(double rho0, double dx, double h, bool spiky = false);
 // kappa = -1/3 sum_j (m/rho0) r_j W_spiky'(r_j) over the lattice of spacing dx (see
 // SphStepParams::gradient_correction), m the lattice mass of the poly6 or (spiky) the spiky

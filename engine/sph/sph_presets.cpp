@@ -9,16 +9,21 @@
 namespace masav {
 namespace {
 
-// The speed of sound of a preset whose speeds come from gravity: 10 x the fastest speed its
-// fluid can reach, falling from the block's top to the floor with its initial speed,
-// sqrt(v0^2 + 2 g H). At Mach 0.1 a weakly compressible fluid's density varies by about 1%
-// (as M^2) in the flow; the impacts reach a few percent.
-double sound_speed_for_fall(const SphScene& s) {
+// The fastest speed a preset's fluid can reach from gravity: falling from the block's top to
+// the floor with its initial speed, sqrt(v0^2 + 2 g H).
+double fall_speed(const SphScene& s) {
   const double g =
       std::sqrt(s.gravity.x * s.gravity.x + s.gravity.y * s.gravity.y + s.gravity.z * s.gravity.z);
   const Vec3d v = s.block.velocity;
   const double fall = s.block.max.y - s.box_min.y;
-  return 10.0 * std::sqrt(v.x * v.x + v.y * v.y + v.z * v.z + 2.0 * g * fall);
+  return std::sqrt(v.x * v.x + v.y * v.y + v.z * v.z + 2.0 * g * fall);
+}
+
+// The speed of sound of a preset whose speeds come from gravity, for the default compression:
+// 10 x its fall speed. At Mach 0.1 a weakly compressible fluid's density varies by about 1%
+// (as M^2) in the flow and by up to about 10% (as M) at the impacts.
+double sound_speed_for_fall(const SphScene& s) {
+  return fall_speed(s) / kPresetMaxCompression;
 }
 
 void apply_thesis(SphScene& s, ThesisConstants t) {
@@ -115,6 +120,19 @@ SphScene make_preset(std::string_view name, uint32_t n) {
   std::string known;
   for (const auto& p : sph_presets()) known += (known.empty() ? "" : ", ") + p.name;
   throw_invalid("sph", "preset", std::string(name), fmt::format("one of {}", known));
+}
+
+void set_max_compression(SphScene& s, double max_compression, const std::string& field) {
+  if (!(max_compression >= kMinMaxCompression && max_compression <= kMaxMaxCompression))
+    throw_invalid(
+        "sph", field, fmt::format("{}", max_compression),
+        fmt::format("a fraction in [{}, {}] (0.03: 3%)", kMinMaxCompression, kMaxMaxCompression));
+  if (s.preset == "explosion")
+    throw Error("", field,
+                "the explosion's speeds come from its own compressed gas and grow with c0, so no "
+                "speed of sound bounds its compression",
+                "set its speed of sound (--sound-speed) instead");
+  s.sound_speed = fall_speed(s) / max_compression;
 }
 
 }  // namespace masav

@@ -47,4 +47,18 @@ const std::vector<SphPresetInfo>& sph_presets();
 // Throws masav::Error naming `preset` and the known names for an unknown one.
 SphScene make_preset(std::string_view name, uint32_t particles = 32768);
 
+// The largest compression the gravity-driven presets (water, mud, dam-break, obstacle) set their
+// speed of sound for. A weakly compressible fluid that hits a wall at speed v compresses by about
+// v / c0 there (the water hammer), so c0 = v_fall / this, v_fall being the fastest speed the
+// fluid can reach by falling. 0.1 is Mach 0.1: well under 1% in the flow, up to ~8% in single
+// particles at the impacts (measured: README, "Compression you choose").
+constexpr double kPresetMaxCompression = 0.1;
+constexpr double kMinMaxCompression = 0.001;
+constexpr double kMaxMaxCompression = 0.5;
+
+// Sets a gravity-driven preset's c0 for `max_compression` (in [0.001, 0.5]) at its impacts.
+// Throws masav::Error naming `field` for a value out of range or for the explosion, whose speeds
+// come from its own compressed gas and scale with c0.
+void set_max_compression(SphScene& s, double max_compression, const std::string& field);
+
 }  // namespace masav

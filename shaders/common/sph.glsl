@@ -20,8 +20,8 @@ ivec3 sph_cell_coords(uint id, uvec3 dims) {
 }
 
 float sph_density_term(float r2, SphStepLayout c) {
-  const float u = max(c.model == SphPressureModel_dfsph ? 1.0 - sqrt(r2) * c.inv_h
-                                                        : 1.0 - r2 * c.inv_h2,
+  const float u = max(c.model != SphPressureModel_thesis ? 1.0 - sqrt(r2) * c.inv_h
+                                                         : 1.0 - r2 * c.inv_h2,
                       0.0);
   return u * u * u;
 }
@@ -81,20 +81,19 @@ float sph_wall_image_density(vec3 xi, vec3 xj, SphMirrors m, SphStepLayout c) {
          sph_image_density_term(xi, xj, m, 5u, c) + sph_image_density_term(xi, xj, m, 6u, c) +
          sph_image_density_term(xi, xj, m, 7u, c);
 }
-// The density the particle's own images add (sph::own_image_density: the spiky kernel scaled
-// like the pressure force, whose gradient is exactly the own image's pair force).
+// The density the particle's own images add (sph::own_image_density: the density kernel's
+// terms, whose gradient is exactly the own image's pair force).
 float sph_own_image_term(vec3 xi, SphMirrors m, uint s, SphStepLayout c) {
   if ((s & ~m.axes) != 0u) return 0.0;
   const vec3 d = sph_image_offset(xi, xi, m, s);
-  const float u = max(1.0 - sqrt(dot(d, d)) * c.inv_h, 0.0);
-  return u * u * u;
+  return sph_density_term(dot(d, d), c);
 }
 float sph_own_image_density(vec3 xi, SphMirrors m, SphStepLayout c) {
   const float sum = sph_own_image_term(xi, m, 1u, c) + sph_own_image_term(xi, m, 2u, c) +
                     sph_own_image_term(xi, m, 3u, c) + sph_own_image_term(xi, m, 4u, c) +
                     sph_own_image_term(xi, m, 5u, c) + sph_own_image_term(xi, m, 6u, c) +
                     sph_own_image_term(xi, m, 7u, c);
-  return c.pressure / (3.0 * c.inv_h) * sum;
+  return c.density * sum;
 }
 // Image of (xj, vj, rho_j, q_j = p_j / rho_j^2) in set s on (xi, vi, rho_i, q_i): the pair term
 // with the opposite velocity (no-slip).
