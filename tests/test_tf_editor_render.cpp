@@ -45,7 +45,8 @@ int max_channel_difference(const render::Rgba8Image& a, const render::Rgba8Image
   return d;
 }
 
-// The panel's left edge from the layout written beside a screenshot ("panel x y w h").
+// The panel's left edge (the scene viewport's width) from the layout written beside a
+// screenshot ("panel x y w h").
 uint32_t panel_x(const std::string& layout_file) {
   std::ifstream f(layout_file);
   std::string key;
@@ -87,6 +88,20 @@ TEST_CASE("tf editor demo screenshots" *
   CHECK(r.blue_green == 0);
   // The points edited in (the inline key) render as the same points from a `--tf` file do.
   CHECK(max_channel_difference(red, file) <= 1);
+  // ...and as `masav run` renders them once, in the scene's viewport (left of the panel's strip).
+  if (const char* run_png = std::getenv("MASAV_TF_EDITOR_RUN")) {
+    const render::Rgba8Image run = render::read_png(run_png);
+    const uint32_t scene_w = panel_x(dir + "/red.png.layout");
+    REQUIRE(run.width == scene_w);
+    REQUIRE(run.height == red.height);
+    int d = 0;
+    for (uint32_t y = 0; y < run.height; ++y)
+      for (uint32_t x = 0; x < run.width; ++x)
+        for (int k = 0; k < 3; ++k)
+          d = std::max(d, std::abs(int(run.pixels[4 * (size_t(y) * run.width + x) + k]) -
+                                   int(red.pixels[4 * (size_t(y) * red.width + x) + k])));
+    CHECK(d <= 1);
+  }
   // The panel holds the editor: its preview strip of the red ramp is the only pure red there.
   const uint32_t x0 = panel_x(dir + "/panel.png.layout");
   REQUIRE(x0 > 0);
