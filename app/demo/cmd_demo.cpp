@@ -155,6 +155,7 @@ class Demo {
     po.device = options_.choice.device;
     po.graphics = window_.graphics_options(backend == "vulkan" ? options_.choice.device : "");
     player_ = std::make_unique<render::ScenePlayer>(std::move(file), po);
+    forget_tf_scene(state_.tf);
     uint32_t w = 0, h = 0;
     window_.framebuffer_size(w, h);
     swapchain_ = std::make_unique<render::Swapchain>(
@@ -316,6 +317,7 @@ class Demo {
   void show_scene(scene::SceneFile next) {
     fit_to_viewport(next.params);
     player_->load_scene(std::move(next));
+    forget_tf_scene(state_.tf);
     state_.scene_files = find_scene_files(player_->file().source);
     player_->renderer().resize(swapchain_->width(), swapchain_->height());
     device_defaults();
@@ -364,6 +366,7 @@ class Demo {
       }
       if (r.reset) {
         player_->reset();
+        forget_tf_scene(state_.tf);
         player_->renderer().resize(swapchain_->width(), swapchain_->height());
         device_defaults();
       }
@@ -445,6 +448,10 @@ class Demo {
         state_.sim_rate = a0 == "off" ? 0.0 : std::stod(a0);
       } else if (c.verb == "progressive") {
         progressive_ = *progressive_mode_from_word(a0);
+      } else if (c.verb == "tf") {
+        const std::string said = run_tf_words(state_.tf, player_->scene(), c.args,
+                                              fmt::format("{}:{}", options_.script, c.line));
+        fmt::print("demo: tf {}: {}\n", a0, said);
       }
       apply_actions();
       apply_requests();

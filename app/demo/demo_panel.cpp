@@ -11,6 +11,7 @@
 #include "app/demo/atom_controls.h"
 #include "app/demo/param_widgets.h"
 #include "app/demo/sph_panel.h"
+#include "app/demo/tf_editor.h"
 #include "app/demo/tooltip.h"
 #include "app/demo/volume_open.h"
 #include "engine/atom/orbital.h"
@@ -237,6 +238,7 @@ void draw_panel(render::ScenePlayer& player, DemoState& st) {
   // Every parameter of the scene's own tables, then rendering and camera.
   const scene::SceneType& type = scene::find_scene_type(player.file().type);
   scene_shortcuts(player, st);
+  tf_editor(player, st);  // atom-volume and volume scenes (app/demo/tf_editor.cpp)
   for (const scene::TableSchema* t : type.tables)
     if (ImGui::CollapsingHeader(t->name().c_str(), ImGuiTreeNodeFlags_DefaultOpen))
       table_controls(player, st, *t);

@@ -11,6 +11,7 @@
 
 #include "app/demo/demo_actions.h"
 #include "app/demo/demo_layout.h"
+#include "app/demo/tf_points.h"
 #include "app/demo/volume_open.h"
 #include "render/scene_player.h"
 
@@ -33,6 +34,7 @@ struct DemoState {
   std::vector<std::string> scene_files;  // offered in the scene selector
   std::vector<std::string> backends;     // available compute backends
   OpenFields open_fields;                // the panel's "open a volume file" fields
+  TfEditorState tf;                      // the transfer function editor (tf_editor.h)
   std::string message;                   // the last error, shown until the next change
   std::string saved;                     // the last file the demo wrote, shown until the next
   std::string recording;                 // "" or what is being recorded, where

@@ -9,6 +9,7 @@
 
 #include "app/demo/demo_actions.h"
 #include "app/demo/progressive.h"
+#include "app/demo/tf_points.h"
 #include "app/demo/volume_open.h"
 #include "engine/core/error.h"
 #include "engine/scene/scene.h"
@@ -44,6 +45,7 @@ const std::map<std::string, Form>& forms() {
       {"progressive", {1, "progressive auto|off|LEVEL"}},
       {"open",
        {1, "open PATH [dims=X,Y,Z] [type=T] [spacing=X,Y,Z] [big_endian] [array=NAME]", true}},
+      {"tf", {1, "tf load FILE|save FILE|reset|point V R G B A|delete V", true}},
       {"drop", {1, "drop PATH [PATH...] (as files dropped on the window)", true}},
       {"quit", {0, "quit"}},
   };
@@ -93,6 +95,7 @@ std::vector<ScriptCommand> load_script(const std::string& path) {
     if (c.verb == "button" && !button_by_name(c.args[0]))
       throw_invalid(at, "button", c.args[0], "one of " + button_names());
     if (c.verb == "open") (void)open_fields_from_words(c.args, at);
+    if (c.verb == "tf") check_tf_words(c.args, at);
     if (c.verb == "rate" && c.args[0] != "off") {
       char* end = nullptr;
       const double r = std::strtod(c.args[0].c_str(), &end);

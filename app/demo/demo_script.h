@@ -18,6 +18,10 @@
 //   open PATH [dims=X,Y,Z] [type=T] [spacing=X,Y,Z] [big_endian] [array=NAME]
 //                          open a volume file, as the panel's "Open" does (the options of
 //                          `masav volume` for raw and .vti files)
+//   tf load FILE | tf save FILE | tf reset | tf point V R G B A | tf delete V
+//                          the transfer function editor (atom-volume and volume scenes): load or
+//                          save a `--tf` file, the default back, set (or add) the point at value
+//                          V, delete the point at V; as the panel's editor does (tf_points.h)
 //   quit                   close the demo (also at the end of the script)
 #include <string>
 #include <vector>

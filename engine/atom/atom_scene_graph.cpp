@@ -8,6 +8,7 @@
 #include "engine/atom/atom_scene.h"
 #include "engine/atom/atom_schema.h"
 #include "engine/atom/orbital.h"
+#include "engine/atom/value_histogram.h"
 #include "engine/atom/volume_render.h"
 #include "engine/core/error.h"
 #include "engine/scene/camera_pose.h"
@@ -80,8 +81,8 @@ class AtomCloudScene final : public scene::SceneInstance {
     if (!volume_) return;
     add("voxelize", {"light", "volume.dims", "volume.s", "volume.t"},
         [this] { core_.voxelize(light_to_unit_); });
-    add("transfer", {"volume.transfer_file"},
-        [this] { render_.load_transfer(params_.get_text("volume.transfer_file")); });
+    add("transfer", {"volume.transfer_file", "volume.transfer"},
+        [this] { render_.load_transfer(transfer_points_of(params_, "volume")); });
     add("bricks", {"voxelize", "transfer"},
         [this] { render_.build_bricks(core_.volume(), core_.sample); });
     add("raymarch",
@@ -93,6 +94,13 @@ class AtomCloudScene final : public scene::SceneInstance {
                            preview_level());
         });
   }
+
+  std::vector<uint32_t> value_histogram(uint32_t bins) const override {
+    if (!volume_ || graph_.version("voxelize") == 0) return {};
+    const VolumeDesc d = core_.volume();
+    return atom::value_histogram(backend_.download(core_.sample), d.value_min, d.value_max, bins);
+  }
+  uint64_t volume_version() const override { return volume_ ? graph_.version("voxelize") : 0; }
 
   uint32_t max_preview_level() const override { return volume_ ? scene::kMaxPreviewLevel : 0; }
 
@@ -160,6 +168,7 @@ class AtomCloudScene final : public scene::SceneInstance {
                                 limit / (4 * backend_.real_bytes()), backend_.caps().device_name,
                                 limit >> 20));
     if (p.has_table("volume")) {
+      check_transfer_keys(p, "volume");
       const double s = p.get_real("volume.s"), t = p.get_real("volume.t");
       if (s + t <= 0)
         throw Error("", "atom-volume",
@@ -243,7 +252,7 @@ class AtomCloudScene final : public scene::SceneInstance {
   bool volume_;
   AtomScene core_;
   uint64_t synced_ = 0;
-  std::string file_subject_;  // subject() as the scene was created
+  std::string file_subject_;      // subject() as the scene was created
   double exposure_set_ = 0;       // nebula.exposure as rescale() last saw it
   std::string exposure_subject_;  // subject() when nebula.exposure was set
   double time_s_ = 0;

@@ -11,10 +11,11 @@
 //   light          host: exposure * Phi / 250K lm  [viewer, nebula.power_lm, nebula.exposure]
 // atom-volume adds:
 //   voxelize       voxelize (light scaled by the light stage)  [light, volume.dims/s/t]
-//   transfer       the transfer function's table  [volume.transfer_file]
+//   transfer       the transfer function's table  [volume.transfer_file, volume.transfer]
 //   bricks         volume_bricks           [voxelize, transfer]
 //   raymarch       raymarch with the camera  [bricks, view, render.width/height,
 //                                            volume.step_voxels/compositing]
+// An edited transfer function (volume.transfer) reruns transfer, bricks and raymarch only.
 // Light is linear in Phi, so a power change reruns only `light` (and, in atom-volume, the
 // volume that shows it); a camera change reruns the viewer attenuation and what reads it; the
 // scattering table comes from the disk cache once computed. The `atom` scene never reaches the

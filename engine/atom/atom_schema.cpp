@@ -84,6 +84,7 @@ const scene::TableSchema& volume_table() {
     s.steps(0.05);
     s.text("transfer_file", "",
            "transfer function: lines 'value r g b a' ('' = the thesis's blue -> green -> red)");
+    add_inline_transfer_key(s);
     s.real("step_voxels", 0.5, 0.05, 4.0, "raymarch step", "voxels");
     s.choice("compositing", "front_to_back", {"front_to_back", "lerp"},
              "emission-absorption front to back, or the thesis's lerp");

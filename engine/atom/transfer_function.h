@@ -21,6 +21,13 @@ std::vector<TransferPoint> default_transfer_points();
 // the file, the line and the field; a file with no entries is an error.
 std::vector<TransferPoint> load_transfer_points(const std::string& path);
 std::vector<TransferPoint> parse_transfer_points(const std::string& text, const std::string& where);
+// The same points inline, as the scene key `key` holds them: "value r g b a; value r g b a;
+// ...". The same checks; errors name the key, the point (1-based) and the field.
+std::vector<TransferPoint> parse_inline_transfer(const std::string& text, const std::string& key);
+std::string format_inline_transfer(const std::vector<TransferPoint>& points);
+// The text of a transfer function file (a comment line, then "value r g b a" per line) that
+// load_transfer_points reads back as the same points.
+std::string format_transfer_file(const std::vector<TransferPoint>& points);
 // Piecewise-linear resampling to `size` entries (constant beyond the first and last points).
 std::vector<Vec4d> resample_transfer(const std::vector<TransferPoint>& points, uint32_t size = 256);
 

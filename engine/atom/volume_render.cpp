@@ -1,17 +1,46 @@
 #include "engine/atom/volume_render.h"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 
 #include "engine/atom/preintegration.h"
-#include "engine/atom/transfer_function.h"
+#include "engine/core/error.h"
 #include "engine/kernels/atom_checks.h"
 #include "engine/scene/scene.h"
 
 namespace masav::atom {
 
-void VolumeRender::load_transfer(const std::string& file) {
-  const std::vector<Vec4d> tf =
-      resample_transfer(file.empty() ? default_transfer_points() : load_transfer_points(file));
+void add_inline_transfer_key(scene::TableSchema& s) {
+  s.text("transfer", "",
+         "transfer function inline: points 'value r g b a' separated by ';', each number in [0, "
+         "1], values ascending (what the demo's editor saves; '' = transfer_file)");
+}
+
+void check_transfer_keys(const scene::ParamSet& p, const std::string& table) {
+  const std::string key = table + ".transfer";
+  const std::string& inline_points = p.get_text(key);
+  if (inline_points.empty()) return;
+  (void)parse_inline_transfer(inline_points, key);
+  const std::string& file = p.get_text(table + ".transfer_file");
+  if (!file.empty())
+    throw Error("", "scene",
+                fmt::format("{} and {}.transfer_file = {} are both set", key, table, file),
+                fmt::format("set one of them: clear {}.transfer_file (\"\") to use the inline "
+                            "points, or {} to use the file",
+                            table, key));
+}
+
+std::vector<TransferPoint> transfer_points_of(const scene::ParamSet& p, const std::string& table) {
+  check_transfer_keys(p, table);
+  const std::string& inline_points = p.get_text(table + ".transfer");
+  if (!inline_points.empty()) return parse_inline_transfer(inline_points, table + ".transfer");
+  const std::string& file = p.get_text(table + ".transfer_file");
+  return file.empty() ? default_transfer_points() : load_transfer_points(file);
+}
+
+void VolumeRender::load_transfer(const std::vector<TransferPoint>& points) {
+  const std::vector<Vec4d> tf = resample_transfer(points);
   if (tf_.size() != tf.size()) tf_ = backend_.create<Real4>(tf.size(), "transfer function");
   backend_.upload(tf_, tf);
   tf_integral_ = upload_preintegrated(backend_, tf);

@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "engine/atom/transfer_function.h"
 #include "engine/kernels/backend.h"
 #include "engine/scene/camera_pose.h"
 #include "engine/scene/param_schema.h"
@@ -17,13 +18,23 @@ namespace masav::atom {
 // shade_specular) of a table raymarch() reads.
 void add_clip_shade_keys(scene::TableSchema& s);
 
+// The key `transfer` of a raymarch table, beside its `transfer_file`: the points inline
+// ("value r g b a; ..."), as the demo's transfer function editor keeps them, so a saved scene is
+// one file that needs no other. At most one of the two is set.
+void add_inline_transfer_key(scene::TableSchema& s);
+// The checks of `table`.transfer (the points, read as a file's lines are) and that
+// `table`.transfer_file is not set as well; reads no file (for a scene's validate()).
+void check_transfer_keys(const scene::ParamSet& p, const std::string& table);
+// The points `table`'s keys give: the inline ones, the file's, or the default.
+std::vector<TransferPoint> transfer_points_of(const scene::ParamSet& p, const std::string& table);
+
 class VolumeRender {
  public:
   explicit VolumeRender(Backend& b) : backend_(b) {}
 
-  // The transfer function of `file` ("" = the thesis's blue -> green -> red), its pre-integrated
-  // table, and the colours of its colour bar.
-  void load_transfer(const std::string& file);
+  // The transfer function's table (resampled from `points`), its pre-integrated table, and the
+  // colours of its colour bar.
+  void load_transfer(const std::vector<TransferPoint>& points);
   // The bricks' value ranges for empty-space skipping (after load_transfer).
   void build_bricks(const VolumeDesc& d, const Buffer<Real>& volume);
   // Raymarches at render.width x render.height from the camera pose, with `table`.step_voxels,

@@ -8,6 +8,7 @@
 #include <span>
 #include <sstream>
 
+#include "engine/atom/value_histogram.h"
 #include "engine/atom/volume_render.h"
 #include "engine/core/error.h"
 #include "engine/scene/camera_pose.h"
@@ -39,6 +40,7 @@ const scene::TableSchema& raymarch_table() {
     s.text("transfer_file", "",
            "transfer function: lines 'value r g b a' over the volume's value range ('' = blue -> "
            "green -> red)");
+    add_inline_transfer_key(s);
     s.real("step_voxels", 0.5, 0.05, 4.0, "raymarch step", "voxels");
     s.choice("compositing", "front_to_back", {"front_to_back", "lerp"},
              "emission-absorption front to back, or the thesis's lerp");
@@ -90,8 +92,8 @@ class VolumeFileScene final : public scene::SceneInstance {
             if (!loaded_fresh_) load();
             loaded_fresh_ = false;
           });
-    stage("transfer", {"raymarch.transfer_file"},
-          [this] { render_.load_transfer(params_.get_text("raymarch.transfer_file")); });
+    stage("transfer", {"raymarch.transfer_file", "raymarch.transfer"},
+          [this] { render_.load_transfer(transfer_points_of(params_, "raymarch")); });
     stage("bricks", {"load", "transfer"}, [this] { render_.build_bricks(desc_, volume_); });
     stage(
         "raymarch",
@@ -111,6 +113,12 @@ class VolumeFileScene final : public scene::SceneInstance {
                        desc_.dims.y, desc_.dims.z, min_, max_);
   }
 
+  std::vector<uint32_t> value_histogram(uint32_t bins) const override {
+    return atom::value_histogram(backend_.download(volume_), desc_.value_min, desc_.value_max,
+                                 bins);
+  }
+  uint64_t volume_version() const override { return graph_.version("load"); }
+
   scene::SceneView view() const override {
     scene::SceneView v;
     v.box = box();
@@ -128,6 +136,7 @@ class VolumeFileScene final : public scene::SceneInstance {
     if (o.file.empty())
       throw_invalid("scene", "source.path", "''", "a volume file (.nrrd, .nhdr, .vti or raw)");
     check_volume_file_options(o);
+    check_transfer_keys(p, "raymarch");
     if (p.get_flag("raymarch.preintegrate") &&
         p.get_text("raymarch.compositing") != "front_to_back")
       throw Error("", "volume",

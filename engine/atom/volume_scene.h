@@ -6,7 +6,7 @@
 //
 // Stages (inputs in brackets):
 //   load      the file, uploaded   [source.*]
-//   transfer  the transfer function's tables  [raymarch.transfer_file]
+//   transfer  the transfer function's tables  [raymarch.transfer_file, raymarch.transfer]
 //   bricks    volume_bricks        [load, transfer]
 //   raymarch  raymarch with the camera  [bricks, view, render.width/height,
 //                                        raymarch.step_voxels/compositing/preintegrate]

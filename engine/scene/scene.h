@@ -62,6 +62,16 @@ class SceneInstance {
   // another state is written as 0, the shown state's own scale).
   virtual ParamSet saved_params() const { return params_; }
 
+  // Scenes that raymarch a scalar volume (the demo's transfer function editor): the histogram
+  // of its values over the range raymarch maps to [0, 1], in `bins` counts (empty: no volume),
+  // and a number that changes whenever the volume does (0: none yet), so that a caller
+  // recomputes the histogram only then.
+  virtual std::vector<uint32_t> value_histogram(uint32_t bins) const {
+    (void)bins;
+    return {};
+  }
+  virtual uint64_t volume_version() const { return 0; }
+
   // Progressive rendering (the demo): at preview level L the scene's raymarched image is drawn
   // at 1/2^L of render.width and render.height and upsampled when shown; level 0 is the full
   // image. Scenes without such an image have no levels (max_preview_level() = 0).
