@@ -2,6 +2,7 @@
 // The Vulkan compute backend: the kernel set as GLSL compute shaders, on any Vulkan 1.1 device.
 #include <map>
 #include <memory>
+#include <span>
 #include <string>
 #include <string_view>
 
@@ -76,9 +77,11 @@ class VulkanBackend final : public Backend, public VulkanInterop {
            const void* push, uint64_t groups, uint32_t written = ~0u);
   // One dispatch of shaders/<kernel>.comp over `items` invocations: `buffers` bound at 1..n in
   // the order of kernels.inc (a null one, unused by the call, gets the first non-null one's
-  // memory), `push` the kernel's layout, `written` the buffers it writes (bit i: buffers[i]).
+  // memory), `push` the kernel's layout, `written` the buffers it writes (bit i: buffers[i]),
+  // `constants` its specialization constants from 3 on.
   void dispatch_kernel(KernelId kernel, std::span<const BufferImpl* const> buffers,
-                       const void* push, uint32_t push_bytes, uint64_t items, uint32_t written);
+                       const void* push, uint32_t push_bytes, uint64_t items, uint32_t written,
+                       std::span<const uint32_t> constants = {});
   // In-place exclusive prefix sum of data[0..count) for `kernel` (its scratch and its errors).
   void exclusive_scan(const std::shared_ptr<Allocation>& data, uint32_t count,
                       std::string_view kernel, uint32_t level = 0);
@@ -92,7 +95,7 @@ class VulkanBackend final : public Backend, public VulkanInterop {
   std::shared_ptr<Allocation> diag_;
   std::map<std::string, std::shared_ptr<Allocation>> scratch_;
   std::shared_ptr<Allocation> readback_;  // staging of downloads from device-only memory
-  uint32_t pending_diag_limit_ = 0;  // the limit a pending diagnostic's message names
+  uint32_t pending_diag_limit_ = 0;       // the limit a pending diagnostic's message names
   SortScatter scatter_ = SortScatter::tiled;
 };
 

@@ -1,6 +1,9 @@
 // Every kernel of engine/kernels/kernels.inc on Vulkan: one dispatch of shaders/<name>.comp with
 // the kernel's layout as its push constants, or the backend's own run_own for the kernels listed in
 // runs_own (vk_backend.h).
+#include <type_traits>
+#include <vector>
+
 #include "compute/vk_backend.h"
 #include "engine/kernels/kernel_body.h"
 
@@ -19,7 +22,11 @@ void VulkanBackend::run_kernel(const Params& p, uint64_t items, Buffers&... buff
     uint32_t written = 0;
     for (size_t i = 0; i < sizeof...(Buffers); ++i) written |= writes[i] ? 1u << i : 0u;
     if (const uint32_t limit = diag_limit(layout)) pending_diag_limit_ = limit;
-    dispatch_kernel(K, impls, &layout, sizeof(layout), items, written);
+    // sph_density and sph_forces are specialised on the pressure model (shaders/common/sph.glsl).
+    std::vector<uint32_t> constants;
+    if constexpr (std::is_same_v<std::decay_t<decltype(layout)>, SphStepLayout<float>>)
+      constants.push_back(uint32_t(layout.model));
+    dispatch_kernel(K, impls, &layout, sizeof(layout), items, written, constants);
   }
 }
 

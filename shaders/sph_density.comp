@@ -21,6 +21,7 @@ layout(std430, binding = 6) writeonly buffer Pressure { float pressure[]; };
 layout(std430, binding = 7) buffer Stats { uint stats[]; };
 layout(std430, binding = 8) writeonly buffer NeighborRows { uint neighbor_rows[]; };
 
+#define SPH_MODEL_SPECIALIZED
 #include "sph.glsl"
 #include "sph_walk.glsl"
 #include "sph_coop.glsl"

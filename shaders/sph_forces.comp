@@ -24,6 +24,7 @@ layout(std430, binding = 8) writeonly buffer Accel { vec4 accel[]; };
 layout(std430, binding = 9) buffer Stats { uint stats[]; };
 layout(std430, binding = 10) readonly buffer NeighborRows { uint neighbor_rows[]; };
 
+#define SPH_MODEL_SPECIALIZED
 #include "sph.glsl"
 #include "sph_walk.glsl"
 #include "sph_coop.glsl"

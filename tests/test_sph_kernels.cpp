@@ -144,6 +144,44 @@ TEST_CASE("sph_forces equals the CPU reference for both pressure models") {
   });
 }
 
+// The dfsph model's density (spiky kernel) and forces (viscosity and gravity only): each pressure
+// model has its own specialisation of both kernels on Vulkan (shaders/common/sph.glsl), so this
+// one is checked like the two above, in the same backend after them.
+TEST_CASE("sph_density and sph_forces with the dfsph model equal the CPU reference") {
+  Backend& b = test::backend();
+  Backend& r = test::reference();
+  for (const bool walls : {false, true}) {
+    CAPTURE(walls);
+    test::SphCase c = test::make_sph_case(12, SphPressureModel::dfsph, 31);
+    c.params.mass = lattice_mass(1000.0, c.dx, c.params.h, true);
+    test::with_walls(c, walls);
+    test::SphBuffers sb = test::upload_sph_case(b, c), sr = test::upload_sph_case(r, c);
+    sph_density(b, c.params, {&sb.sorted_pos, sb.view(), &sb.density, &sb.pressure, &sb.stats});
+    sph_density(r, c.params, {&sr.sorted_pos, sr.view(), &sr.density, &sr.pressure, &sr.stats});
+    const auto rho = b.download(sb.density), rho_ref = r.download(sr.density);
+    const ErrorStats e_rho = compare(rho, rho_ref, 1.0);
+    INFO("density: " << describe(e_rho));
+    CHECK(e_rho.rel_l2 < 1e-6);
+    CHECK(e_rho.max_rel < 5e-6);
+    for (const double pr : b.download(sb.pressure)) REQUIRE(pr == 0.0);  // dfsph solves for it
+
+    b.upload(sb.density, rho_ref);
+    sph_forces(b, c.params,
+               {&sb.sorted_pos, &sb.sorted_vel, &sb.density, &sb.pressure, sb.view(), &sb.accel,
+                &sb.stats});
+    sph_forces(r, c.params,
+               {&sr.sorted_pos, &sr.sorted_vel, &sr.density, &sr.pressure, sr.view(), &sr.accel,
+                &sr.stats});
+    const auto got = b.download(sb.accel), want = r.download(sr.accel);
+    const auto g3 = xyz_components(got), w3 = xyz_components(want);
+    const ErrorStats e = compare(g3, w3, rms(w3));
+    INFO("accel: " << describe(e) << ", rms " << rms(w3));
+    CHECK(e.rel_l2 < 2e-6);
+    CHECK(e.max_rel < 2e-5);
+    for (size_t i = 0; i < got.size(); ++i) REQUIRE(got[i].w == want[i].w);  // neighbour counts
+  }
+}
+
 // The CPU reference keeps sph_density's neighbour lists for sph_forces (engine/cpu/
 // cpu_sph_lists.h). Whatever a backend keeps, sph_forces must depend on its inputs only: the
 // same bits whether sph_density just ran on these positions, on other positions in the same

@@ -4,9 +4,21 @@
 
 #include "engine/kernels/sph_kernel_params.h"
 
+// The pressure model. A kernel that defines SPH_MODEL_SPECIALIZED before including this file
+// reads it from specialization constant 3, which the host sets from the layout's model
+// (compute/vk_kernels.cpp): the other models' arithmetic then folds away instead of running for
+// every lane (a CPU driver evaluates both sides of a select, so every density term took a square
+// root and every pair term divisions it did not use). Elsewhere the layout's field.
+#ifdef SPH_MODEL_SPECIALIZED
+layout(constant_id = 3) const uint SPH_MODEL = 0u;
+uint sph_model(SphStepLayout c) { return SPH_MODEL; }
+#else
+uint sph_model(SphStepLayout c) { return c.model; }
+#endif
+
 float sph_pressure_of(float rho, SphStepLayout c) {
-  if (c.model == SphPressureModel_dfsph) return 0.0;
-  if (c.model == SphPressureModel_thesis) return c.eos * (rho - c.rest_density);
+  if (sph_model(c) == SphPressureModel_dfsph) return 0.0;
+  if (sph_model(c) == SphPressureModel_thesis) return c.eos * (rho - c.rest_density);
   const float x = rho * c.inv_rest_density;
   const float x2 = x * x;
   float p = c.eos * (x2 * x2 * x2 * x - 1.0);
@@ -20,8 +32,8 @@ ivec3 sph_cell_coords(uint id, uvec3 dims) {
 }
 
 float sph_density_term(float r2, SphStepLayout c) {
-  const float u = max(c.model != SphPressureModel_thesis ? 1.0 - sqrt(r2) * c.inv_h
-                                                         : 1.0 - r2 * c.inv_h2,
+  const float u = max(sph_model(c) != SphPressureModel_thesis ? 1.0 - sqrt(r2) * c.inv_h
+                                                              : 1.0 - r2 * c.inv_h2,
                       0.0);
   return u * u * u;
 }
@@ -29,11 +41,11 @@ float sph_density_term(float r2, SphStepLayout c) {
 // Pair acceleration from neighbour (xo, vo, rho_o, p_o / rho_o^2) on (xi, vi, rho_i), d = xi - xo.
 vec3 sph_pair_accel(vec3 vi, float rho_i, float pi_over_rho2, vec3 vo, float rho_o,
                     float po_over_rho2, vec3 d, float r2, SphStepLayout c) {
-  const bool thesis = c.model == SphPressureModel_thesis;
+  const bool thesis = sph_model(c) == SphPressureModel_thesis;
   const float r = sqrt(r2);
   const float u = 1.0 - r * c.inv_h;
   vec3 a = vec3(0.0);
-  if (r2 > 0.0 && c.model != SphPressureModel_dfsph) {
+  if (r2 > 0.0 && sph_model(c) != SphPressureModel_dfsph) {
     float s;
     if (thesis) s = c.pressure * ((rho_o - rho_i) / rho_o) * (u * u * u);
     else s = c.pressure * (pi_over_rho2 + po_over_rho2) * (u * u);
