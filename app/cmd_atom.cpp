@@ -46,6 +46,9 @@ struct AtomCliOptions {
   float tau_peak = 0.5f;
   float s = 0.6f, t = 0.4f;
   std::string tf;
+  std::string clip;  // AXIS:POSITION[:above|below]
+  bool shade = false;
+  float shade_specular = 0.3f;
   bool no_cache = false;
 };
 
@@ -101,6 +104,42 @@ std::vector<Vec4d> splat_cloud(atom::AtomScene& scene, atom::ViewPreset view, ui
   return img;
 }
 
+// --clip AXIS:POSITION[:above|below], spelled as the scene keys volume.clip, clip_position and
+// clip_keep spell their values.
+RaymarchParams::Clip parse_clip(const std::string& text, const std::string& command) {
+  RaymarchParams::Clip c;
+  if (text.empty()) return c;
+  const std::string want =
+      "AXIS:POSITION[:SIDE] with AXIS x, y or z, POSITION in [0, 1] (a fraction of the box) and "
+      "SIDE above (the default) or below, e.g. z:0.5:below";
+  std::vector<std::string> parts;
+  for (size_t b = 0;;) {
+    const size_t e = text.find(':', b);
+    parts.push_back(text.substr(b, e == std::string::npos ? e : e - b));
+    if (e == std::string::npos) break;
+    b = e + 1;
+  }
+  if (parts.size() < 2 || parts.size() > 3) throw_invalid(command, "--clip", text, want);
+  if (parts[0] != "x" && parts[0] != "y" && parts[0] != "z")
+    throw_invalid(command, "--clip axis", parts[0], "x, y or z (" + want + ")");
+  c.axis = uint32_t(parts[0][0] - 'x');
+  size_t used = 0;
+  double pos = -1;
+  try {
+    pos = std::stod(parts[1], &used);
+  } catch (const std::exception&) {
+    used = 0;
+  }
+  if (used == 0 || used != parts[1].size() || !(pos >= 0 && pos <= 1))
+    throw_invalid(command, "--clip position", parts[1], "a number in [0, 1] (" + want + ")");
+  c.position = float(pos);
+  if (parts.size() == 3 && parts[2] != "above" && parts[2] != "below")
+    throw_invalid(command, "--clip side", parts[2], "above or below (" + want + ")");
+  c.keep_above = parts.size() < 3 || parts[2] == "above";
+  c.enabled = true;
+  return c;
+}
+
 int run_atom(const AtomCliOptions& o) {
   atom::AtomSceneOptions so;
   if (!o.preset.empty()) {
@@ -130,6 +169,7 @@ int run_atom(const AtomCliOptions& o) {
   so.use_cache = !o.no_cache;
   const atom::ViewPreset view = atom::parse_view(o.view);
   const std::vector<Vec4d> tf = transfer(o.tf);
+  const RaymarchParams::Clip clip = parse_clip(o.clip, "masav atom");
   // The output directory is proved writable and held before any work, so a bad --out fails in
   // a moment and a second run cannot mix its files into this one's.
   ensure_writable_dir(o.out, "--out");
@@ -170,6 +210,9 @@ int run_atom(const AtomCliOptions& o) {
   atom::write_volume_vti(scene, files.stage("volume.vti"));
   atom::write_scatter_csv(scene.table(), files.stage("scatter_table.csv"));
   RaymarchParams rp = atom::default_raymarch(scene.volume(), view, o.width, o.height);
+  rp.clip = clip;
+  rp.shading.enabled = o.shade;
+  rp.shading.specular = o.shade_specular;
   const auto img = atom::render_volume(*backend, scene.volume(), scene.sample, tf, rp);
   atom::write_image_png(img, o.width, o.height, files.stage("raymarch.png"));
   const auto splat = splat_cloud(scene, view, std::min(o.width, o.height));
@@ -183,42 +226,6 @@ int run_atom(const AtomCliOptions& o) {
   return 0;
 }
 
-// --clip AXIS:POSITION[:above|below], spelled as the scene keys volume.clip, clip_position and
-// clip_keep spell their values.
-RaymarchParams::Clip parse_clip(const std::string& text) {
-  RaymarchParams::Clip c;
-  if (text.empty()) return c;
-  const std::string want =
-      "AXIS:POSITION[:SIDE] with AXIS x, y or z, POSITION in [0, 1] (a fraction of the box) and "
-      "SIDE above (the default) or below, e.g. z:0.5:below";
-  std::vector<std::string> parts;
-  for (size_t b = 0;;) {
-    const size_t e = text.find(':', b);
-    parts.push_back(text.substr(b, e == std::string::npos ? e : e - b));
-    if (e == std::string::npos) break;
-    b = e + 1;
-  }
-  if (parts.size() < 2 || parts.size() > 3) throw_invalid("masav volume", "--clip", text, want);
-  if (parts[0] != "x" && parts[0] != "y" && parts[0] != "z")
-    throw_invalid("masav volume", "--clip axis", parts[0], "x, y or z (" + want + ")");
-  c.axis = uint32_t(parts[0][0] - 'x');
-  size_t used = 0;
-  double pos = -1;
-  try {
-    pos = std::stod(parts[1], &used);
-  } catch (const std::exception&) {
-    used = 0;
-  }
-  if (used == 0 || used != parts[1].size() || !(pos >= 0 && pos <= 1))
-    throw_invalid("masav volume", "--clip position", parts[1], "a number in [0, 1] (" + want + ")");
-  c.position = float(pos);
-  if (parts.size() == 3 && parts[2] != "above" && parts[2] != "below")
-    throw_invalid("masav volume", "--clip side", parts[2], "above or below (" + want + ")");
-  c.keep_above = parts.size() < 3 || parts[2] == "above";
-  c.enabled = true;
-  return c;
-}
-
 int run_volume(const VolumeCliOptions& o) {
   const std::vector<Vec4d> tf = transfer(o.tf);  // every input is checked before any work
   const atom::ViewPreset view = atom::parse_view(o.view);
@@ -230,7 +237,7 @@ int run_volume(const VolumeCliOptions& o) {
     throw_invalid("masav volume", "--preintegrate", "on with --mode " + o.mode,
                   "off, or on with --mode front_to_back (lerp has no step to integrate over)");
   atom::check_volume_file_options(o.source);
-  const RaymarchParams::Clip clip = parse_clip(o.clip);
+  const RaymarchParams::Clip clip = parse_clip(o.clip, "masav volume");
   // --out names a directory, as for every command; a .png name is the file it used to name.
   std::string png = o.out + "/volume.png";
   if (std::filesystem::path(o.out).extension() == ".png") {
@@ -330,6 +337,15 @@ void add_atom_command(CLI::App& app) {
   add_scene_ranged(*cmd, "--s", o.s, "volume mix: weight of the light g", "volume.s");
   add_scene_ranged(*cmd, "--t", o.t, "volume mix: weight of the density p", "volume.t");
   cmd->add_option("--tf", o.tf, "transfer function file (lines: value r g b a)");
+  cmd->add_option("--clip", o.clip,
+                  "AXIS:POSITION[:above|below]: raymarch only the volume above (or below) the "
+                  "plane across axis x, y or z at POSITION in [0, 1] of the box (scene keys "
+                  "volume.clip, clip_position, clip_keep)");
+  cmd->add_flag("--shade", o.shade,
+                "Blinn-Phong shading of the raymarch from the volume's gradient, lit from the "
+                "camera (scene key volume.shade)");
+  add_scene_ranged(*cmd, "--shade-specular", o.shade_specular, "specular weight of --shade",
+                   "volume.shade_specular");
   cmd->add_flag("--no-cache", o.no_cache, "recompute the scattering table");
 
   static VolumeCliOptions v;
