@@ -209,6 +209,21 @@ TEST_CASE("sph checkpoint: damaged, foreign and mismatched files are refused, na
     write_bytes(bad, b);
     CHECK(has(read_error(bad), "STAT.particles: 300000 particles need more than"));
   }
+  SUBCASE("a scene of more fluid particles than the file holds") {
+    std::vector<char> b = bytes;
+    const size_t payload = at[0] + 24;
+    uint32_t preset = 0;  // the preset's name comes first, then the fluid particle count
+    std::memcpy(&preset, b.data() + payload, 4);
+    const uint32_t more = 301;
+    std::memcpy(b.data() + payload + 4 + preset, &more, 4);
+    uint64_t scene_bytes = 0;
+    std::memcpy(&scene_bytes, b.data() + at[0] + 8, 8);
+    const uint64_t sum = fnv1a64(std::span<const uint8_t>(
+        reinterpret_cast<const uint8_t*>(b.data() + payload), size_t(scene_bytes)));
+    std::memcpy(b.data() + at[0] + 16, &sum, 8);
+    write_bytes(bad, b);
+    CHECK(has(read_error(bad), "SCEN.particles: 301 fluid particles where STAT holds 300"));
+  }
   SUBCASE("a missing file") {
     CHECK(has(read_error(dir.file("none.masav")), "cannot open"));
   }

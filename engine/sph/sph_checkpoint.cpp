@@ -513,6 +513,11 @@ SphCheckpoint read_sph_checkpoint(const std::string& path) {
     fail(path, "STAT.particles",
          fmt::format("{} particles need more than the {} bytes of the PART section", n,
                      payload[2].size()));
+  // The scene's fluid alone is part of that count: a simulation built from the scene then
+  // holds no more particles than the file has values for.
+  if (c.scene.particles > n)
+    fail(path, "SCEN.particles",
+         fmt::format("{} fluid particles where STAT holds {} in all", c.scene.particles, n));
   r.time = s.real("time");
   r.last_dt = s.real("last_dt");
   r.adaptive_dt = s.real("adaptive_dt");
