@@ -142,7 +142,9 @@ int run_sph(const SphOptions& given) {
   if (!o.restart.empty()) {
     restart_file = checkpoint_path(o.restart);
     resumed = read_sph_checkpoint(restart_file);
-    o.preset = resumed->scene.preset;
+    o.preset = resumed->scene.preset;  // the command line's name of it, where it has one
+    for (const std::string& name : sph_preset_names())
+      if (engine_sph_preset(name) == resumed->scene.preset) o.preset = name;
   }
   const SphScene scene = resumed ? resumed->scene : scene_from(o);
   if (!o.checkpoint_dir.empty()) ensure_writable_dir(o.checkpoint_dir, "--checkpoint-dir");
@@ -198,6 +200,8 @@ int run_sph(const SphOptions& given) {
   }
 
   const auto t0 = std::chrono::steady_clock::now();
+  // The rates count this run's steps (a restart's totals include the earlier runs').
+  const uint64_t steps0 = sim.steps(), substeps0 = sim.substeps();
   int rc = 0;
   try {
     const double t_end = o.time > 0 ? o.time : std::numeric_limits<double>::infinity();
@@ -239,8 +243,9 @@ int run_sph(const SphOptions& given) {
   fmt::print(
       "{} steps ({} integrator steps, {} retried) to t = {:.5g} s in {:.2f} s: {:.1f} "
       "steps/s, {:.3g} M particle-steps/s\n",
-      sim.steps(), sim.substeps(), sim.retries(), sim.time(), wall, double(sim.steps()) / wall,
-      double(sim.substeps()) * sim.particle_count() / wall * 1e-6);
+      sim.steps(), sim.substeps(), sim.retries(), sim.time(), wall,
+      double(sim.steps() - steps0) / wall,
+      double(sim.substeps() - substeps0) * sim.particle_count() / wall * 1e-6);
   if (const SphSolveStats& ss = sim.solve_stats(); ss.steps > 0)
     fmt::print(
         "dfsph: {:.2f} density and {:.2f} divergence iterations per step, last mean residuals "
