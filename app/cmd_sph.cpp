@@ -16,6 +16,7 @@
 #include "engine/core/error.h"
 #include "engine/io/csv_stream.h"
 #include "engine/io/output_lock.h"
+#include "engine/sph/sph_checkpoint.h"
 #include "engine/sph/sph_diagnostics.h"
 #include "engine/sph/sph_export.h"
 #include "engine/sph/sph_presets.h"
@@ -39,7 +40,21 @@ struct SphOptions {
   uint64_t seed = 1;
   uint32_t block_steps = 8;
   bool quiet = false;
+  uint64_t checkpoint_every = 0;  // 0: only on an interrupt and at the end (with a directory)
+  std::string checkpoint_dir, restart;
 };
+
+// The options that shape the trajectory: a restart takes them from its checkpoint.
+constexpr const char* kSceneFlags[] = {"--preset",          "--particles", "-n",
+                                       "--integrator",      "--pressure",  "--dt",
+                                       "--cfl-guard",       "--viscosity", "--sound-speed",
+                                       "--max-compression", "--kp",        "--smoothing-radius",
+                                       "--restitution",     "--seed",      "--block-steps"};
+CLI::App* g_sph_command = nullptr;
+
+std::string checkpoint_path(const std::string& dir) {
+  return (std::filesystem::path(dir) / "checkpoint.masav").string();
+}
 
 // --out, where the .vtp files go: out/sph unless given.
 std::string out_dir(const SphOptions& o) {
@@ -92,19 +107,47 @@ std::string snapshot_path(const SphOptions& o, const std::string& tag) {
   return (std::filesystem::path(out_dir(o)) / fmt::format("{}_{}.vtp", o.preset, tag)).string();
 }
 
-// Steps from step k to the next one that records diagnostics, writes a snapshot or prints
-// progress (or to the end of a step-count run), at most one block.
-uint64_t steps_to_next_event(const SphOptions& o, uint64_t k) {
+// Steps from step k (counted from the run's start, a restart's included) to the next one that
+// records diagnostics, writes a snapshot or a checkpoint or prints progress (or to `end` in a
+// step-count run), at most one block.
+uint64_t steps_to_next_event(const SphOptions& o, uint64_t k, uint64_t end) {
   auto to_multiple = [k](uint64_t every) { return every - k % every; };
-  uint64_t n = o.time > 0 ? std::numeric_limits<uint64_t>::max() : o.steps - k;
+  uint64_t n = o.time > 0 ? std::numeric_limits<uint64_t>::max() : end - k;
   if (!o.csv.empty()) n = std::min(n, to_multiple(o.diag_every));
   if (o.vtp_every) n = std::min(n, to_multiple(o.vtp_every));
+  if (o.checkpoint_every) n = std::min(n, to_multiple(o.checkpoint_every));
   if (!o.quiet) n = std::min(n, to_multiple(100));
   return std::min<uint64_t>(n, o.block_steps);
 }
 
-int run_sph(const SphOptions& o) {
-  const SphScene scene = scene_from(o);
+// --restart with an option that would change the trajectory: refused, naming it.
+void check_restart_flags(const SphOptions& o) {
+  if (o.restart.empty() || !g_sph_command) return;
+  for (const char* flag : kSceneFlags)
+    if (g_sph_command->count(flag) > 0)
+      throw Error("", "--restart",
+                  fmt::format("{} conflicts with --restart: the scene and its time stepping come "
+                              "from the checkpoint",
+                              flag),
+                  fmt::format("drop {}; with --restart give only --steps (further steps), --time "
+                              "(the end time), outputs and checkpoint options",
+                              flag));
+}
+
+int run_sph(const SphOptions& given) {
+  SphOptions o = given;  // a restart takes the preset's name (for file names) from its scene
+  check_restart_flags(o);
+  std::optional<SphCheckpoint> resumed;
+  std::string restart_file;
+  if (!o.restart.empty()) {
+    restart_file = checkpoint_path(o.restart);
+    resumed = read_sph_checkpoint(restart_file);
+    o.preset = resumed->scene.preset;  // the command line's name of it, where it has one
+    for (const std::string& name : sph_preset_names())
+      if (engine_sph_preset(name) == resumed->scene.preset) o.preset = name;
+  }
+  const SphScene scene = resumed ? resumed->scene : scene_from(o);
+  if (!o.checkpoint_dir.empty()) ensure_writable_dir(o.checkpoint_dir, "--checkpoint-dir");
   // Outputs are opened (and held) before any work: a bad path fails at once, and a CSV row is
   // in the file as soon as its step ran. The directory is only made when something goes there.
   std::optional<OutputLock> out_lock;
@@ -118,6 +161,20 @@ int run_sph(const SphOptions& o) {
   auto backend = create_backend(o.choice.backend, o.choice.device);
   SphSimulation sim(*backend, scene);
   sim.set_block_steps(o.block_steps);
+  if (resumed) {
+    restore_sph_checkpoint(sim, *resumed, restart_file);
+    fmt::print("resumed from {} (written by masav {}): step {}, t = {:.6g} s\n", restart_file,
+               resumed->writer, sim.steps(), sim.time());
+    resumed.reset();  // the state lives in the simulation now
+  }
+  uint64_t checkpointed = UINT64_MAX;  // the step of the last checkpoint written
+  // Writes one unless the last holds this step already; returns its path.
+  auto checkpoint = [&] {
+    const std::string path = checkpoint_path(o.checkpoint_dir);
+    if (checkpointed != sim.steps()) write_sph_checkpoint(path, sim);
+    checkpointed = sim.steps();
+    return path;
+  };
   const SphParticles& lay = sim.layout();
   fmt::print(
       "sph {}: {} particles ({} fluid, {} obstacle), dx {:.4g} m, h {:.4g} m, {} / {}, "
@@ -143,13 +200,19 @@ int run_sph(const SphOptions& o) {
   }
 
   const auto t0 = std::chrono::steady_clock::now();
+  // The rates count this run's steps (a restart's totals include the earlier runs').
+  const uint64_t steps0 = sim.steps(), substeps0 = sim.substeps();
   int rc = 0;
   try {
     const double t_end = o.time > 0 ? o.time : std::numeric_limits<double>::infinity();
-    for (uint64_t k = 0; (o.time > 0 ? sim.time() < o.time : k < o.steps) && !interrupted();) {
+    // Steps are counted from the run's start: a restart continues the count, and the events
+    // (and with them the blocks) fall on the same steps as in an uninterrupted run.
+    const uint64_t end = sim.steps() + o.steps;
+    for (uint64_t k = sim.steps();
+         (o.time > 0 ? sim.time() < o.time : k < end) && !interrupted();) {
       // Up to the next step that prints or writes something (at most one block, so that an
       // interrupt is seen): the simulation reads its stats back once per block.
-      k += sim.run(steps_to_next_event(o, k), t_end);
+      k += sim.run(steps_to_next_event(o, k, end), t_end);
       const bool diag = !o.csv.empty() && k % o.diag_every == 0;
       const bool vtp = o.vtp_every && k % o.vtp_every == 0;
       if (diag || vtp) {
@@ -160,7 +223,14 @@ int run_sph(const SphOptions& o) {
       if (!o.quiet && k % 100 == 0)
         fmt::print("  step {:>7}  t = {:.5f} s  dt = {:.3g} s  max speed {:.3g} m/s\n", k,
                    sim.time(), sim.last_dt(), sim.last_stats().max_speed);
+      if (o.checkpoint_every && k % o.checkpoint_every == 0) {
+        const std::string path = checkpoint();
+        if (!o.quiet) fmt::print("  wrote checkpoint {} (step {})\n", path, k);
+      }
     }
+    // At the step where the run ends or an interrupt stopped it (a failed run keeps the last).
+    if (!o.checkpoint_dir.empty())
+      fmt::print("checkpoint {}: step {}, t = {:.6g} s\n", checkpoint(), sim.steps(), sim.time());
   } catch (const Error& e) {
     fmt::print(stderr, "masav: error: {}\n", e.what());
     if (out_lock)
@@ -173,8 +243,9 @@ int run_sph(const SphOptions& o) {
   fmt::print(
       "{} steps ({} integrator steps, {} retried) to t = {:.5g} s in {:.2f} s: {:.1f} "
       "steps/s, {:.3g} M particle-steps/s\n",
-      sim.steps(), sim.substeps(), sim.retries(), sim.time(), wall, double(sim.steps()) / wall,
-      double(sim.substeps()) * sim.particle_count() / wall * 1e-6);
+      sim.steps(), sim.substeps(), sim.retries(), sim.time(), wall,
+      double(sim.steps() - steps0) / wall,
+      double(sim.substeps() - substeps0) * sim.particle_count() / wall * 1e-6);
   if (const SphSolveStats& ss = sim.solve_stats(); ss.steps > 0)
     fmt::print(
         "dfsph: {:.2f} density and {:.2f} divergence iterations per step, last mean residuals "
@@ -196,14 +267,18 @@ void add_sph_command(CLI::App& app) {
   static SphOptions o;
   auto* cmd =
       add_command(app, "sph", "run an SPH fluid preset headless; export .vtp and CSV", o, run_sph);
+  g_sph_command = cmd;
   add_backend_options(*cmd, o.choice, false);
   accept_old_values(cmd->add_option("--preset,-p", o.preset, "scene"))
       ->check(CLI::IsMember(sph_preset_names()))
       ->capture_default_str();
   add_ranged_option(*cmd, "--particles", o.particles, "fluid particles", 1u, 1u << 30);
   add_old_option(*cmd, "-n", "--particles", o.particles)->check(CLI::Range(1u, 1u << 30));
-  add_ranged_option(*cmd, "--steps", o.steps, "steps to run", uint64_t(1), uint64_t(1) << 40);
-  cmd->add_option("--time", o.time, "run until this simulated time (s) instead of --steps")
+  add_ranged_option(*cmd, "--steps", o.steps, "steps to run (with --restart: further steps)",
+                    uint64_t(1), uint64_t(1) << 40);
+  cmd->add_option("--time", o.time,
+                  "run until this simulated time (s) instead of --steps (with --restart: the "
+                  "time since the first run's start)")
       ->check(CLI::Range(0.0, 1e6))
       ->excludes("--steps");
   cmd->add_option("--integrator", o.integrator, "euler, symplectic-euler, rk4 or leapfrog");
@@ -235,6 +310,16 @@ void add_sph_command(CLI::App& app) {
                     "unstable block is replayed step by step)",
                     1u, SphSimulation::kMaxBlockSteps);
   cmd->add_flag("--quiet,-q", o.quiet, "no progress lines");
+  auto* dir = cmd->add_option("--checkpoint-dir", o.checkpoint_dir,
+                              "write DIR/checkpoint.masav: every --checkpoint-every steps, on "
+                              "Ctrl-C/SIGTERM and at the end (replaced atomically)");
+  add_ranged_option(*cmd, "--checkpoint-every", o.checkpoint_every,
+                    "steps between checkpoints (needs --checkpoint-dir)", uint64_t(1),
+                    uint64_t(1) << 40)
+      ->needs(dir);
+  cmd->add_option("--restart", o.restart,
+                  "resume the run whose --checkpoint-dir this is (its scene, state and time "
+                  "stepping; same trajectory bit for bit on the CPU backend)");
 }
 
 }  // namespace masav::app

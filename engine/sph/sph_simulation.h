@@ -83,6 +83,31 @@ struct SphSolveStats {
 };
 const char* to_string(SphStage s);
 
+// Everything the simulation's next steps depend on besides its scene, for a checkpoint
+// (sph_checkpoint.h): the committed device arrays in the order of the last grid rebuild (the
+// next step's neighbour sums run in that order), the host's step control and the watchdog's
+// baseline. A simulation built from the same scene and given this continues the trajectory the
+// exporting one would have taken, bit for bit on one backend.
+struct SphResumeState {
+  std::vector<Vec4d> positions, velocities, accel;  // accel: leapfrog's carried force, w = count
+  std::vector<uint32_t> ids;
+  std::vector<double> density, pressure;                // at positions, when fields_current
+  std::vector<double> kappa_density, kappa_divergence;  // dfsph's warm starts; empty otherwise
+  double time = 0, last_dt = 0, adaptive_dt = 0;
+  uint64_t steps = 0, substeps = 0, retries = 0, block_replays = 0;
+  SphStepStats stats;  // the last read: the next dt's CFL limit
+  SphSolveStats solve_stats;
+  bool accel_valid = false, fields_current = false, kappa_warm = false;
+  uint32_t block_steps = 8;
+  SphWatchdog watchdog;
+  uint64_t next_energy_check = 0;
+  // The watchdog's last state that passed its energy check, by particle id.
+  std::vector<Vec4d> good_positions, good_velocities;
+  double good_time = 0, good_last_dt = 0;
+  uint64_t good_steps = 0, good_substeps = 0;
+  SphStepStats good_stats;
+};
+
 class SphSimulation {
  public:
   SphSimulation(Backend& backend, const SphScene& scene);
@@ -127,6 +152,12 @@ class SphSimulation {
   const Buffer<Real>& pressure() const { return pressure_; }
   // Replaces the velocities (indexed by particle id), e.g. to start from a velocity field.
   void set_velocities(const std::vector<Vec4d>& by_id);
+
+  // The state a checkpoint keeps (sph_simulation_resume.cpp); restore_resume_state takes one
+  // exported by a simulation of the same scene (throws masav::Error naming the field that does not
+  // fit).
+  SphResumeState export_resume_state();
+  void restore_resume_state(const SphResumeState& r);
 
   // Device time per stage, summed since the last reset (recorded when profiling is on).
   void set_profiling(bool on) { profiling_ = on; }

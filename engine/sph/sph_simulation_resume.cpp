@@ -1,0 +1,122 @@
+// SphSimulation's resume state: export and restore of everything its next steps read (see
+// SphResumeState), for checkpoints.
+#include <fmt/format.h>
+
+#include <string>
+
+#include "engine/core/error.h"
+#include "engine/sph/sph_kernel_calls.h"
+#include "engine/sph/sph_simulation.h"
+
+namespace masav {
+namespace {
+
+template <class T>
+void check_count(const std::vector<T>& v, size_t want, const char* field) {
+  if (v.size() != want)
+    throw_invalid("sph checkpoint", field, fmt::format("{} values", v.size()),
+                  fmt::format("{} (one per particle of the scene)", want));
+}
+
+}  // namespace
+
+SphResumeState SphSimulation::export_resume_state() {
+  SphResumeState r;
+  r.positions = backend_.download(pos_);
+  r.velocities = backend_.download(vel_);
+  r.accel = backend_.download(accel_);
+  r.ids = backend_.download(ids_);
+  r.density = backend_.download(density_);
+  r.pressure = backend_.download(pressure_);
+  if (dfsph()) {
+    r.kappa_density = backend_.download(kappa_density_);
+    r.kappa_divergence = backend_.download(kappa_divergence_);
+  }
+  r.time = time_;
+  r.last_dt = last_dt_;
+  r.adaptive_dt = adaptive_dt_;
+  r.steps = steps_;
+  r.substeps = substeps_;
+  r.retries = retries_;
+  r.block_replays = block_replays_;
+  r.stats = stats_;
+  r.solve_stats = solve_stats_;
+  r.accel_valid = accel_valid_;
+  r.fields_current = fields_current_;
+  r.kappa_warm = kappa_warm_;
+  r.block_steps = block_steps_;
+  r.watchdog = watchdog_;
+  r.next_energy_check = next_energy_check_;
+  r.good_positions = good_.positions;
+  r.good_velocities = good_.velocities;
+  r.good_time = good_.time;
+  r.good_last_dt = good_.last_dt;
+  r.good_steps = good_.steps;
+  r.good_substeps = good_.substeps;
+  r.good_stats = good_.stats;
+  return r;
+}
+
+void SphSimulation::restore_resume_state(const SphResumeState& r) {
+  check_count(r.positions, n_, "positions");
+  check_count(r.velocities, n_, "velocities");
+  check_count(r.accel, n_, "accelerations");
+  check_count(r.ids, n_, "ids");
+  check_count(r.density, n_, "density");
+  check_count(r.pressure, n_, "pressure");
+  check_count(r.kappa_density, dfsph() ? n_ : 0, "dfsph density kappa sums");
+  check_count(r.kappa_divergence, dfsph() ? n_ : 0, "dfsph divergence kappa sums");
+  check_count(r.good_positions, n_, "watchdog positions");
+  check_count(r.good_velocities, n_, "watchdog velocities");
+  // The ids index the state by particle (download()): a permutation of 0..n-1.
+  std::vector<bool> seen(n_, false);
+  for (const uint32_t id : r.ids) {
+    if (id >= n_ || seen[id])
+      throw_invalid("sph checkpoint", "ids", std::to_string(id),
+                    fmt::format("each of 0 to {} exactly once", n_ - 1));
+    seen[id] = true;
+  }
+  if (r.block_steps < 1 || r.block_steps > kMaxBlockSteps)
+    throw_invalid("sph checkpoint", "block steps", std::to_string(r.block_steps),
+                  fmt::format("1 to {}", kMaxBlockSteps));
+  backend_.upload(pos_, r.positions);
+  backend_.upload(vel_, r.velocities);
+  backend_.upload(accel_, r.accel);
+  backend_.upload(ids_, r.ids);
+  backend_.upload(density_, r.density);
+  backend_.upload(pressure_, r.pressure);
+  time_ = r.time;
+  last_dt_ = r.last_dt;
+  adaptive_dt_ = r.adaptive_dt;
+  steps_ = r.steps;
+  substeps_ = r.substeps;
+  retries_ = r.retries;
+  block_replays_ = r.block_replays;
+  stats_ = r.stats;
+  solve_stats_ = r.solve_stats;
+  accel_valid_ = r.accel_valid;
+  fields_current_ = r.fields_current;
+  kappa_warm_ = r.kappa_warm;
+  block_steps_ = r.block_steps;
+  watchdog_ = r.watchdog;
+  next_energy_check_ = r.next_energy_check;
+  good_ = {r.good_positions, r.good_velocities, r.good_time, r.good_last_dt,
+           r.good_steps,     r.good_substeps,   r.good_stats};
+  if (dfsph()) {
+    backend_.upload(kappa_density_, r.kappa_density);
+    backend_.upload(kappa_divergence_, r.kappa_divergence);
+    if (accel_valid_) {
+      // A dfsph step starts from the grid, density, factor and neighbour rows at pos_, which
+      // the step before left: rebuilt here. The positions are in the cell order of that
+      // step's rebuild, which the stable counting sort keeps, so the sums run in the same order.
+      sort_state();
+      reorder(backend_, grid_, kappa_density_.impl(), kappa_density_t_.impl());
+      reorder(backend_, grid_, kappa_divergence_.impl(), kappa_divergence_t_.impl());
+      std::swap(kappa_density_, kappa_density_t_);
+      std::swap(kappa_divergence_, kappa_divergence_t_);
+      dfsph_fields(pos_);
+    }
+  }
+}
+
+}  // namespace masav
