@@ -25,12 +25,12 @@ using namespace masav;
 // same inputs): accelerations within rel L2 2e-6 and max 2e-5 of the RMS, neighbour counts exact.
 void forces_match_reference(Backend& b, Backend& r, const test::SphCase& c, test::SphBuffers& sb,
                             test::SphBuffers& sr) {
-  sph_forces(b, c.params,
-             {&sb.sorted_pos, &sb.sorted_vel, &sb.density, &sb.pressure, sb.view(), &sb.accel,
-              &sb.stats});
-  sph_forces(r, c.params,
-             {&sr.sorted_pos, &sr.sorted_vel, &sr.density, &sr.pressure, sr.view(), &sr.accel,
-              &sr.stats});
+  sph_forces(
+      b, c.params,
+      {&sb.sorted_pos, &sb.sorted_vel, &sb.density, &sb.pressure, sb.view(), &sb.accel, &sb.stats});
+  sph_forces(
+      r, c.params,
+      {&sr.sorted_pos, &sr.sorted_vel, &sr.density, &sr.pressure, sr.view(), &sr.accel, &sr.stats});
   const auto got = b.download(sb.accel), want = r.download(sr.accel);
   const auto g3 = xyz_components(got), w3 = xyz_components(want);
   const ErrorStats e = compare(g3, w3, rms(w3));
