@@ -256,9 +256,7 @@ MASAV_HD inline T wall_image_density(V3<T> xi, V3<T> xj, const WallMirrors<T>& m
 // own image is the energy it gets back.
 template <class T>
 MASAV_HD inline T own_image_density(V3<T> xi, const WallMirrors<T>& m, const SphStepLayout<T>& c) {
-  T sum = T(0);
-  for_each_wall_image(xi, xi, m, c.h2, [&](V3<T>, T r2) { sum += density_term(r2, c); });
-  return c.density * sum;
+  return c.density * wall_image_density(xi, xi, m, c);
 }
 
 template <class T>

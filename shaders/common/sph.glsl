@@ -95,17 +95,8 @@ float sph_wall_image_density(vec3 xi, vec3 xj, SphMirrors m, SphStepLayout c) {
 }
 // The density the particle's own images add (sph::own_image_density: the density kernel's
 // terms, whose gradient is exactly the own image's pair force).
-float sph_own_image_term(vec3 xi, SphMirrors m, uint s, SphStepLayout c) {
-  if ((s & ~m.axes) != 0u) return 0.0;
-  const vec3 d = sph_image_offset(xi, xi, m, s);
-  return sph_density_term(dot(d, d), c);
-}
 float sph_own_image_density(vec3 xi, SphMirrors m, SphStepLayout c) {
-  const float sum = sph_own_image_term(xi, m, 1u, c) + sph_own_image_term(xi, m, 2u, c) +
-                    sph_own_image_term(xi, m, 3u, c) + sph_own_image_term(xi, m, 4u, c) +
-                    sph_own_image_term(xi, m, 5u, c) + sph_own_image_term(xi, m, 6u, c) +
-                    sph_own_image_term(xi, m, 7u, c);
-  return c.density * sum;
+  return c.density * sph_wall_image_density(xi, xi, m, c);
 }
 // Image of (xj, vj, rho_j, q_j = p_j / rho_j^2) in set s on (xi, vi, rho_i, q_i): the pair term
 // with the opposite velocity (no-slip).
