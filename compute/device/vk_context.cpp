@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <atomic>
 #include <cctype>
+#include <cerrno>
 #include <cstdlib>
 #include <cstring>
 
@@ -240,6 +241,21 @@ uint64_t validation_message_count() {
   return g_validation_messages.load();
 }
 
+// MASAV_VK_MAX_BUFFER_MIB lowers (never raises) the largest buffer a kernel may bind, so that
+// the refusal of a count too large for a device is tested the same on every device (the tests
+// set lavapipe's 128 MiB). 0 when unset.
+static uint64_t max_buffer_from_env() {
+  const char* v = std::getenv("MASAV_VK_MAX_BUFFER_MIB");
+  if (!v || !*v) return 0;
+  char* end = nullptr;
+  errno = 0;
+  const unsigned long long mib = std::strtoull(v, &end, 10);
+  if (errno || *end || v[0] == '-' || mib < 1 || mib > (1ull << 20))
+    throw Error("", "environment", fmt::format("invalid MASAV_VK_MAX_BUFFER_MIB = {}", v),
+                "MASAV_VK_MAX_BUFFER_MIB must be a whole number of MiB from 1 to 1048576");
+  return uint64_t(mib) << 20;
+}
+
 ContextOptions options_from_env() {
   ContextOptions o;
   if (const char* d = std::getenv("MASAV_VK_DEVICE")) o.device_selector = d;
@@ -411,6 +427,8 @@ Context::Context(const ContextOptions& options) {
   caps_.shared_memory_bytes = props.limits.maxComputeSharedMemorySize;
   caps_.max_buffer_bytes =
       std::min<uint64_t>(props.limits.maxStorageBufferRange, m3.maxMemoryAllocationSize);
+  if (const uint64_t cap = max_buffer_from_env(); cap && cap < caps_.max_buffer_bytes)
+    caps_.max_buffer_bytes = cap;
   uint64_t largest_heap = 0;
   const auto mem = physical_->getMemoryProperties();
   for (uint32_t h = 0; h < mem.memoryHeapCount; ++h)
