@@ -54,4 +54,9 @@ if(MASAV_WITH_APP)
                    -P ${CMAKE_CURRENT_LIST_FILE})
   set_tests_properties(tools.gpu_report.quick PROPERTIES LABELS "tools;gpu-report"
                        ENVIRONMENT "${test_env}" TIMEOUT 600)
+  # tools/gpu-pack: this build as one archive for a GPU machine without the development packages.
+  add_test(NAME tools.gpu_pack
+           COMMAND ${CMAKE_CURRENT_LIST_DIR}/gpu_pack.sh ${PROJECT_SOURCE_DIR}/tools/gpu-pack
+                   ${CMAKE_BINARY_DIR} ${CMAKE_CURRENT_BINARY_DIR}/out/gpu_pack)
+  set_tests_properties(tools.gpu_pack PROPERTIES LABELS tools ENVIRONMENT "${test_env}")
 endif()
