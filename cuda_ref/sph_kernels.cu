@@ -2,6 +2,13 @@
 // CPU reference runs. One thread per particle; neighbours are read in cell order (the arrays are
 // sorted by the hash grid every rebuild), no atomics in the neighbour loops; statistics are
 // reduced per warp and added with one atomic per warp.
+//
+// The neighbour kernels are instantiated per pressure model (as the Vulkan shaders are
+// specialised on it): each copies the layout and sets its model to the constant, so the bodies'
+// tests of c.model fold away with the other model's terms and registers. This file is compiled
+// with -prec-div=false -prec-sqrt=false (cuda_ref/CMakeLists.txt): the divisions and square roots
+// of the pair terms are the approximate ones (2 ulp, as GLSL's on NVIDIA), within the kernel
+// tests' float tolerances against the fp64 CPU reference.
 #include "cuda_ref/cuda_launch.h"
 #include "cuda_ref/sph_launch.h"
 #include "cuda_ref/warp_reduce.cuh"
@@ -10,12 +17,22 @@
 namespace masav::cuda::launch {
 namespace {
 
+// The layout with its model fixed at compile time.
+template <SphPressureModel M>
+__device__ inline SphStepLayout<float> with_model(const SphStepLayout<float>& layout) {
+  SphStepLayout<float> c = layout;
+  c.model = M;
+  return c;
+}
+
 // Every thread of the block reaches the reductions (kBlock is a multiple of 32).
-__global__ void density_kernel(SphStepLayout<float> c, const V4* __restrict__ pos,
+template <SphPressureModel M>
+__global__ void density_kernel(SphStepLayout<float> layout, const V4* __restrict__ pos,
                                const uint32_t* __restrict__ cells,
                                const uint32_t* __restrict__ start, const uint32_t* __restrict__ end,
                                float* density, float* pressure, uint32_t* stats,
                                uint32_t* neighbor_rows) {
+  const SphStepLayout<float> c = with_model<M>(layout);
   const uint64_t i = particle_thread();
   uint32_t cand = 0, within = 0, over = 0, bad = 0, rho_bits = 0;
   if (i < c.n) {
@@ -48,13 +65,15 @@ __global__ void density_kernel(SphStepLayout<float> c, const V4* __restrict__ po
   }
 }
 
-__global__ void forces_kernel(SphStepLayout<float> c, const V4* __restrict__ pos,
+template <SphPressureModel M>
+__global__ void forces_kernel(SphStepLayout<float> layout, const V4* __restrict__ pos,
                               const V4* __restrict__ vel, const float* __restrict__ density,
                               const float* __restrict__ pressure,
                               const uint32_t* __restrict__ cells,
                               const uint32_t* __restrict__ start, const uint32_t* __restrict__ end,
                               V4* accel, uint32_t* stats,
                               const uint32_t* __restrict__ neighbor_rows) {
+  const SphStepLayout<float> c = with_model<M>(layout);
   const uint64_t i = particle_thread();
   uint32_t cand = 0, over = 0, bad = 0, a2 = 0;
   if (i < c.n) {
@@ -122,18 +141,34 @@ __global__ void integrate_kernel(SphIntegrateLayout<float> p, const V4* x0, cons
 cudaError_t sph_density(cudaStream_t s, dim3 grid, const SphStepLayout<float>& c, const V4* pos,
                         const uint32_t* cells, const uint32_t* start, const uint32_t* end,
                         float* density, float* pressure, uint32_t* stats, uint32_t* neighbor_rows) {
-  density_kernel<<<grid, kBlock, 0, s>>>(c, pos, cells, start, end, density, pressure, stats,
-                                         neighbor_rows);
-  return cudaGetLastError();
+  auto launch = [&](auto kernel) {
+    kernel<<<grid, kBlock, 0, s>>>(c, pos, cells, start, end, density, pressure, stats,
+                                   neighbor_rows);
+    return cudaGetLastError();
+  };
+  switch (c.model) {
+    case SphPressureModel::wcsph: return launch(density_kernel<SphPressureModel::wcsph>);
+    case SphPressureModel::thesis: return launch(density_kernel<SphPressureModel::thesis>);
+    case SphPressureModel::dfsph: return launch(density_kernel<SphPressureModel::dfsph>);
+  }
+  return cudaErrorInvalidValue;
 }
 
 cudaError_t sph_forces(cudaStream_t s, dim3 grid, const SphStepLayout<float>& c, const V4* pos,
                        const V4* vel, const float* density, const float* pressure,
                        const uint32_t* cells, const uint32_t* start, const uint32_t* end, V4* accel,
                        uint32_t* stats, const uint32_t* neighbor_rows) {
-  forces_kernel<<<grid, kBlock, 0, s>>>(c, pos, vel, density, pressure, cells, start, end, accel,
-                                        stats, neighbor_rows);
-  return cudaGetLastError();
+  auto launch = [&](auto kernel) {
+    kernel<<<grid, kBlock, 0, s>>>(c, pos, vel, density, pressure, cells, start, end, accel, stats,
+                                   neighbor_rows);
+    return cudaGetLastError();
+  };
+  switch (c.model) {
+    case SphPressureModel::wcsph: return launch(forces_kernel<SphPressureModel::wcsph>);
+    case SphPressureModel::thesis: return launch(forces_kernel<SphPressureModel::thesis>);
+    case SphPressureModel::dfsph: return launch(forces_kernel<SphPressureModel::dfsph>);
+  }
+  return cudaErrorInvalidValue;
 }
 
 cudaError_t sph_integrate(cudaStream_t s, dim3 grid, const SphIntegrateLayout<float>& p,
