@@ -491,10 +491,14 @@ MASAV_HD inline SkipSpan<T> skip_span(const VoxelRay<T>& r, hd::V3<T> u, Occ&& o
   // One exit either way, of the block or of the brick: a SIMD backend whose lanes disagree pays
   // for one cell_exit, not both.
   const bool block = o.block <= T(0);
-  uint32_t ci[3];
-  for (int a = 0; a < 3; ++a) ci[a] = block ? bi[a] / 2u : bi[a];
-  const T until = cell_exit(r.u0, r.du, r.inv_du, ci, block ? r.blocks : r.g.bricks,
-                            block ? T(2) * r.brick : r.brick);
+  // Selected per element, not as a pointer to one of two arrays: a GPU compiler keeps arrays
+  // in registers only while every index and address is known at compile time.
+  uint32_t ci[3], count[3];
+  for (int a = 0; a < 3; ++a) {
+    ci[a] = block ? bi[a] / 2u : bi[a];
+    count[a] = block ? r.blocks[a] : r.g.bricks[a];
+  }
+  const T until = cell_exit(r.u0, r.du, r.inv_du, ci, count, block ? T(2) * r.brick : r.brick);
   return {block || o.brick <= T(0), until};
 }
 
