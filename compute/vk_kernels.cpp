@@ -22,10 +22,13 @@ void VulkanBackend::run_kernel(const Params& p, uint64_t items, Buffers&... buff
     uint32_t written = 0;
     for (size_t i = 0; i < sizeof...(Buffers); ++i) written |= writes[i] ? 1u << i : 0u;
     if (const uint32_t limit = diag_limit(layout)) pending_diag_limit_ = limit;
-    // sph_density and sph_forces are specialised on the pressure model (shaders/common/sph.glsl).
+    // sph_density and sph_forces are specialised on the pressure model (shaders/common/sph.glsl)
+    // and on whether rows are walked cooperatively (shaders/common/sph_coop.glsl).
     std::vector<uint32_t> constants;
-    if constexpr (std::is_same_v<std::decay_t<decltype(layout)>, SphStepLayout<float>>)
+    if constexpr (std::is_same_v<std::decay_t<decltype(layout)>, SphStepLayout<float>>) {
       constants.push_back(uint32_t(layout.model));
+      constants.push_back(sph_coop_walk_ ? 1u : 0u);
+    }
     dispatch_kernel(K, impls, &layout, sizeof(layout), items, written, constants);
   }
 }

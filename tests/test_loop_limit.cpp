@@ -8,8 +8,10 @@
 #include <algorithm>
 #include <bit>
 #include <cmath>
+#include <cstdlib>
 #include <random>
 #include <set>
+#include <string>
 #include <vector>
 
 #include "engine/atom/orbital_tables.h"
@@ -357,10 +359,13 @@ LOOP_LIMIT_CASE("sph kernels: loop ticks = rows + cells + candidates, capped bel
   // shaders/common/sph_coop.glsl) over the n candidates of the per-lane walk (C = 32 on NVIDIA:
   // 102 extra), else per lane (C = 8 on lavapipe: 375 extra). The wall images are spelled out
   // per neighbour, not looped over: they add no tick.
+  // MASAV_VK_SPH_COOP=off walks every row per lane, with no unions.
+  const char* coop_env = std::getenv("MASAV_VK_SPH_COOP");
+  const bool coop = !coop_env || std::string(coop_env) != "off";
   const uint32_t c = b.caps().min_subgroup_size;
-  const uint32_t unions = 9 * 3 * uint32_t(std::countr_zero(c));
+  const uint32_t unions = coop ? 9 * 3 * uint32_t(std::countr_zero(c)) : 0;
   const uint32_t together = (n + c - 1) / c * (c + 1);
-  const uint32_t row = together - n <= 260 ? together : n;
+  const uint32_t row = coop && together - n <= 260 ? together : n;
   MESSAGE("subgroup ", c, ": the crowded row costs ", row, " ticks (", n, " candidates)");
   CHECK(test::ticks_of(b) == 3 + 9 + unions + 1 + row);
   sph_forces(b, p, {&pos, &vel, &rho, &pr, view, &acc, &stats});

@@ -18,6 +18,8 @@
 
 const uint kSphCoopExtraTicks = 260u;
 const uint kSphCoop = SUBGROUP_MIN;
+// Off: every row is walked per lane (the backend's choice: VulkanBackend::sph_coop_walk_).
+layout(constant_id = 4) const bool SPH_COOP_WALK = true;
 
 uint sph_coop_lane() { return gl_SubgroupInvocationID & (kSphCoop - 1u); }
 // The lane of the cluster that holds, at rotation step k, the candidate this lane examines.
@@ -44,6 +46,8 @@ uint sph_coop_max(uint v) {
 // Whether the cluster walks row `r` (this lane's [first, last)) together, as the union
 // [u.x, u.y); `spent` is the extra ticks charged so far (uniform over the cluster).
 bool sph_coop_row(uvec2 r, inout uint spent, out uvec2 u) {
+  u = uvec2(0u);
+  if (!SPH_COOP_WALK) return false;
   const bool empty = r.y <= r.x;
   u = uvec2(sph_coop_min(empty ? 0xffffffffu : r.x), sph_coop_max(empty ? 0u : r.y));
   const uint own_min = sph_coop_min(empty ? 0u : r.y - r.x);
