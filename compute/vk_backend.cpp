@@ -5,6 +5,7 @@
 #include <cstdlib>
 #include <cstring>
 
+#include "compute/sph_walk_choice.h"
 #include "engine/core/error.h"
 #include "engine/kernels/kernel_checks.h"
 
@@ -47,17 +48,14 @@ SortScatter VulkanBackend::choose_sort_scatter(SortScatter wanted) const {
   return wanted;
 }
 
-// The cooperative SPH row walk (shaders/common/sph_coop.glsl) turns a SIMD CPU driver's
-// per-lane gathers into contiguous loads and register permutes. MASAV_VK_SPH_COOP=on|off|auto
-// overrides the choice, to measure both on a device.
-bool VulkanBackend::choose_sph_coop_walk() const {
+bool sph_coop_walk(std::string_view device_type) {
   if (const char* env = std::getenv("MASAV_VK_SPH_COOP")) {
     const std::string v = env;
     if (v == "on") return true;
     if (v == "off") return false;
     if (!v.empty() && v != "auto") throw_invalid("vulkan", "MASAV_VK_SPH_COOP", v, "auto, on or off");
   }
-  return true;
+  return device_type == "cpu";
 }
 
 VulkanBackend::VulkanBackend(const BackendOptions& options)
@@ -72,7 +70,7 @@ VulkanBackend::VulkanBackend(const BackendOptions& options)
     throw_invalid("vulkan", "workgroup_size", std::to_string(options.workgroup_size),
                   fmt::format("a multiple of 64 up to {}", ctx_.caps().max_workgroup_size));
   scatter_ = choose_sort_scatter(options.sort_scatter);
-  sph_coop_walk_ = choose_sph_coop_walk();
+  sph_coop_walk_ = sph_coop_walk(ctx_.caps().device_type);
   diag_ = allocate(ctx_, sizeof(Diagnostics), MemoryUse::readback, "diagnostics");
   std::memcpy(diag_->mapped, &kCleanDiagnostics, sizeof(Diagnostics));
 }

@@ -87,7 +87,6 @@ class VulkanBackend final : public Backend, public VulkanInterop {
                       std::string_view kernel, uint32_t level = 0);
   void check_diagnostics();
   SortScatter choose_sort_scatter(SortScatter wanted) const;
-  bool choose_sph_coop_walk() const;
 
   BackendOptions options_;
   Context ctx_;
@@ -98,7 +97,7 @@ class VulkanBackend final : public Backend, public VulkanInterop {
   std::shared_ptr<Allocation> readback_;  // staging of downloads from device-only memory
   uint32_t pending_diag_limit_ = 0;       // the limit a pending diagnostic's message names
   SortScatter scatter_ = SortScatter::tiled;
-  bool sph_coop_walk_ = true;  // the SPH neighbour rows walked by subgroup clusters
+  bool sph_coop_walk_ = true;  // the SPH neighbour rows walked by subgroup clusters (sph_walk_choice.h)
 };
 
 }  // namespace masav::vk

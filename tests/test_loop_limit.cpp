@@ -8,15 +8,16 @@
 #include <algorithm>
 #include <bit>
 #include <cmath>
-#include <cstdlib>
 #include <random>
 #include <set>
-#include <string>
 #include <vector>
 
 #include "engine/atom/orbital_tables.h"
 #include "engine/atom/preintegration.h"
 #include "engine/core/error.h"
+#if MASAV_HAVE_VULKAN
+#include "compute/sph_walk_choice.h"
+#endif
 #include "engine/grid/hash_grid.h"
 #include "engine/kernels/atom_checks.h"
 #include "engine/sph/sph_kernel_calls.h"
@@ -359,9 +360,12 @@ LOOP_LIMIT_CASE("sph kernels: loop ticks = rows + cells + candidates, capped bel
   // shaders/common/sph_coop.glsl) over the n candidates of the per-lane walk (C = 32 on NVIDIA:
   // 102 extra), else per lane (C = 8 on lavapipe: 375 extra). The wall images are spelled out
   // per neighbour, not looped over: they add no tick.
-  // MASAV_VK_SPH_COOP=off walks every row per lane, with no unions.
-  const char* coop_env = std::getenv("MASAV_VK_SPH_COOP");
-  const bool coop = !coop_env || std::string(coop_env) != "off";
+  // The per-lane walk (a GPU's, or MASAV_VK_SPH_COOP=off) has no unions.
+#if MASAV_HAVE_VULKAN
+  const bool coop = vk::sph_coop_walk(b.caps().device_type);
+#else
+  const bool coop = false;  // only Vulkan counts loop ticks
+#endif
   const uint32_t c = b.caps().min_subgroup_size;
   const uint32_t unions = coop ? 9 * 3 * uint32_t(std::countr_zero(c)) : 0;
   const uint32_t together = (n + c - 1) / c * (c + 1);

@@ -18,7 +18,7 @@
 
 const uint kSphCoopExtraTicks = 260u;
 const uint kSphCoop = SUBGROUP_MIN;
-// Off: every row is walked per lane (the backend's choice: VulkanBackend::sph_coop_walk_).
+// Off: every row is walked per lane (the backend's choice: compute/sph_walk_choice.h).
 layout(constant_id = 4) const bool SPH_COOP_WALK = true;
 
 uint sph_coop_lane() { return gl_SubgroupInvocationID & (kSphCoop - 1u); }
