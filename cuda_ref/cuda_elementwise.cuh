@@ -2,6 +2,7 @@
 // CUDA's path for every kernel with a shared body (engine/kernels/kernel_body.h): one thread per
 // invocation runs KernelBody<K>::run<float>, the code the CPU reference runs in double. Included
 // only by cuda_kernels.cu, where the kernels are expanded from kernels.inc.
+#include "cuda_ref/cuda_launch.h"
 #include "engine/kernels/kernel_body.h"
 
 namespace masav::cuda {
@@ -15,9 +16,16 @@ struct CudaDiag {
   }
 };
 
+// Blocks of launch::kBlock threads per multiprocessor the compiler must fit: raymarch takes 140
+// registers unbounded (one block, 12.5% occupancy); bounded to three (80, some spilled to L1) it ran an
+// H100's 60^3 at 1024^2 in 0.82 ms against 1.38 and 256^3 at 1920x1080 in 4.98 against 8.82
+// (two blocks: 0.87 and 5.45).
+template <KernelId K>
+constexpr int kMinBlocks = K == KernelId::raymarch ? 3 : 1;
+
 template <KernelId K, class Layout, class... Pointers>
-__global__ void shared_body_kernel(uint64_t items, Layout layout, uint32_t* diag_words,
-                                   Pointers... pointers) {
+__global__ void __launch_bounds__(launch::kBlock, kMinBlocks<K>)
+    shared_body_kernel(uint64_t items, Layout layout, uint32_t* diag_words, Pointers... pointers) {
   const uint64_t i = (uint64_t(blockIdx.y) * gridDim.x + blockIdx.x) * blockDim.x + threadIdx.x;
   if (i >= items) return;
   CudaDiag diag{diag_words};

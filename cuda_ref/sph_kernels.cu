@@ -17,6 +17,12 @@
 namespace masav::cuda::launch {
 namespace {
 
+// Three blocks of kBlock threads per multiprocessor: forces fits 80 registers without spilling
+// (95 unbounded, 2 blocks), 37.5% occupancy instead of 25%. On an H100 (2026-11-26) forces at
+// 1,048,576 particles took 0.379 ms against 0.494 unbounded; 4 blocks (64 registers, spilling)
+// 0.407 ms.
+constexpr int kNeighborBlocks = 3;
+
 // The layout with its model fixed at compile time.
 template <SphPressureModel M>
 __device__ inline SphStepLayout<float> with_model(const SphStepLayout<float>& layout) {
@@ -27,7 +33,7 @@ __device__ inline SphStepLayout<float> with_model(const SphStepLayout<float>& la
 
 // Every thread of the block reaches the reductions (kBlock is a multiple of 32).
 template <SphPressureModel M>
-__global__ void density_kernel(SphStepLayout<float> layout, const V4* __restrict__ pos,
+__global__ void __launch_bounds__(kBlock, kNeighborBlocks) density_kernel(SphStepLayout<float> layout, const V4* __restrict__ pos,
                                const uint32_t* __restrict__ cells,
                                const uint32_t* __restrict__ start, const uint32_t* __restrict__ end,
                                float* density, float* pressure, uint32_t* stats,
@@ -66,7 +72,7 @@ __global__ void density_kernel(SphStepLayout<float> layout, const V4* __restrict
 }
 
 template <SphPressureModel M>
-__global__ void forces_kernel(SphStepLayout<float> layout, const V4* __restrict__ pos,
+__global__ void __launch_bounds__(kBlock, kNeighborBlocks) forces_kernel(SphStepLayout<float> layout, const V4* __restrict__ pos,
                               const V4* __restrict__ vel, const float* __restrict__ density,
                               const float* __restrict__ pressure,
                               const uint32_t* __restrict__ cells,
