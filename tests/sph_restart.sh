@@ -4,7 +4,7 @@
 # against 100 steps with checkpoints every 50, then 100 more from the checkpoint; and a run
 # stopped by SIGTERM after its first checkpoint, restarted to the same end time. The last CSV
 # rows must be equal, and the checkpoints both runs write at their end (the whole state, every
-# value at full precision) byte for byte.
+# value at full precision) byte for byte. And the run is the same whatever it writes on the way.
 set -u
 masav=$1 dir=$2
 rm -rf "$dir"
@@ -33,6 +33,14 @@ grep -q "resumed from $dir/D/checkpoint.masav (written by masav .*): step 100" <
 [[ "$(head -n 2 "$dir/B.csv" | tail -n 1)" == "$(sed -n 102p "$dir/A.csv")" ]] \
   || fail "the restart's first row is not step 100's"
 ls "$dir/D" | grep -qv '^checkpoint.masav$' && fail "files besides checkpoint.masav in $dir/D"
+
+# What is written on the way does not move the adaptive dt's blocks: the same state at step 200
+# without a CSV, with a row every step (A) and with a row and a checkpoint every 3 and 50 steps.
+run "${scene[@]}" --steps 200 --checkpoint-dir "$dir/N" -q >/dev/null
+cmp "$dir/A/checkpoint.masav" "$dir/N/checkpoint.masav" || fail "a CSV row every step changed the run"
+run "${scene[@]}" --steps 200 --csv "$dir/N3.csv" --diag-every 3 --checkpoint-every 50 \
+  --checkpoint-dir "$dir/N3" -q >/dev/null
+cmp "$dir/N/checkpoint.masav" "$dir/N3/checkpoint.masav" || fail "rows every 3 steps changed the run"
 
 # Killed after the first checkpoint: SIGTERM stops it at a step boundary with a checkpoint.
 end=(--time 0.4)

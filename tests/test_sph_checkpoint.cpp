@@ -3,6 +3,7 @@
 // for every integrator and dfsph (its warm-started solves), and damaged or foreign files are
 // refused with an error naming the file, the field and what was expected.
 #include <doctest/doctest.h>
+#include <fmt/format.h>
 
 #include <cstring>
 #include <fstream>
@@ -187,7 +188,7 @@ TEST_CASE("sph checkpoint: damaged, foreign and mismatched files are refused, na
     std::memcpy(b.data() + 8, &v, 4);
     write_bytes(bad, b);
     const std::string e = read_error(bad);
-    CHECK(has(e, "format version: 2"));
+    CHECK(has(e, fmt::format("format version: {}", v)));
     CHECK(has(e, "written by a newer masav"));
   }
   SUBCASE("2^40 particles claimed (checksum intact): refused before allocating") {

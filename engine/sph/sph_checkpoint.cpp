@@ -291,6 +291,11 @@ std::vector<uint8_t> state_bytes(const SphResumeState& r) {
   o.put(uint8_t(r.fields_current));
   o.put(uint8_t(r.kappa_warm));
   o.put(r.block_steps);
+  o.put(uint8_t(!r.block_stats.empty()));
+  if (!r.block_stats.empty()) {
+    o.put(r.block_limit);
+    o.array(r.block_stats);
+  }
   o.put(r.watchdog.max_speed);
   o.put(r.watchdog.max_density);
   o.put(r.watchdog.energy0);
@@ -537,6 +542,13 @@ SphCheckpoint read_sph_checkpoint(const std::string& path) {
   r.fields_current = s.flag("fields_current");
   r.kappa_warm = s.flag("kappa_warm");
   r.block_steps = s.get<uint32_t>("block_steps");
+  if (s.flag("block_open")) {
+    r.block_limit = s.real("block_limit");
+    if (!(r.block_limit > 0))
+      fail(path, "STAT.block_limit",
+           fmt::format("{} where a positive dt was expected", r.block_limit));
+    r.block_stats = s.array<uint32_t>("block_stats", kSphStatWords);
+  }
   r.watchdog.max_speed = s.real("watchdog.max_speed");
   r.watchdog.max_density = s.real("watchdog.max_density");
   r.watchdog.energy0 = s.real("watchdog.energy0");

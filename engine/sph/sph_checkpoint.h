@@ -21,7 +21,7 @@
 
 namespace masav {
 
-inline constexpr uint32_t kSphCheckpointVersion = 1;
+inline constexpr uint32_t kSphCheckpointVersion = 2;  // 2: the open block of run()
 inline constexpr uint32_t kSphCheckpointMaxParticles = 1u << 30;  // the scene's own bound
 
 struct SphCheckpoint {

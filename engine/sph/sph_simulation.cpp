@@ -539,6 +539,7 @@ void SphSimulation::advance(double dt, int depth, bool whole) {
 }
 
 void SphSimulation::step() {
+  block_open_ = false;  // a step of its own ends run()'s block (its stats are reset below)
   const double limit = dt_limit();
   if (scene_.dt) {
     const double dt = *scene_.dt;

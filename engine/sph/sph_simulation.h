@@ -39,6 +39,12 @@
 // bounded by the block length, the message names the step. Where the checkpoint does not fit
 // the device's memory, run() steps one at a time.
 //
+// Blocks fall on fixed steps, multiples of block_steps() from step 0, however the calls to run()
+// split them (a CSV row, a snapshot or a checkpoint every few steps): a block's later parts keep
+// its first part's dt limit, and the device keeps accumulating its stats, so the dt of every
+// step, and with it the trajectory, is the same whatever is written on the way. Only a replay
+// (a block the guard rejects) ends a block where it stands.
+//
 // The stability watchdog (sph_watchdog.h) stops a blown-up run whatever the guard's mode.
 #include <array>
 #include <cstdint>
@@ -99,6 +105,10 @@ struct SphResumeState {
   SphSolveStats solve_stats;
   bool accel_valid = false, fields_current = false, kappa_warm = false;
   uint32_t block_steps = 8;
+  // A block that a call to run() left open (see the header, "Blocks"): its dt limit and the
+  // stats words accumulated on the device so far (kSphStatWords; empty when none is open).
+  double block_limit = 0;
+  std::vector<uint32_t> block_stats;
   SphWatchdog watchdog;
   uint64_t next_energy_check = 0;
   // The watchdog's last state that passed its energy check, by particle id.
@@ -247,6 +257,9 @@ class SphSimulation {
   SphSolveStats solve_stats_;
   Checkpoint checkpoint_;  // the state at the start of run()'s block; empty where it does not fit
   uint32_t block_steps_ = 8;
+  // The block of the fixed schedule that run() left open: its dt limit (see the header).
+  bool block_open_ = false;
+  double block_limit_ = 0;
   SphWatchdog watchdog_;
   uint64_t next_energy_check_ = 0;
   struct GoodState {  // the last state that passed the energy check, by particle id

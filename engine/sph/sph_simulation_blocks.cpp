@@ -44,8 +44,10 @@ uint32_t SphSimulation::block_steps() const {
 uint64_t SphSimulation::run(uint64_t steps, double t_end) {
   uint64_t done = 0;
   while (done < steps && time_ < t_end) {
-    const uint64_t k = std::min<uint64_t>(steps - done, block_steps());
-    if (k > 1 && !profiling_) {
+    const uint64_t b = block_steps();
+    if (b > 1 && !profiling_) {
+      // To the end of the block of the fixed schedule this step falls in.
+      const uint64_t k = std::min<uint64_t>(steps - done, b - steps_ % b);
       done += run_block(k, t_end);
     } else {
       step();
@@ -76,8 +78,10 @@ void SphSimulation::restore_checkpoint(const HostState& h) {
 }
 
 uint64_t SphSimulation::run_block(uint64_t k, double t_end) {
+  // A later part of a block keeps its dt limit and adds to its stats on the device.
+  const bool continuing = block_open_ && steps_ % block_steps() != 0;
   // dt for the whole block, as step() would choose it for the block's first step.
-  const double limit = dt_limit();
+  const double limit = continuing ? block_limit_ : dt_limit();
   uint64_t parts = 1;
   if (scene_.dt && *scene_.dt > limit && scene_.cfl_guard != SphCflGuard::off) {
     const double want = std::ceil(*scene_.dt / limit);
@@ -96,7 +100,9 @@ uint64_t SphSimulation::run_block(uint64_t k, double t_end) {
   }
   const HostState start = save_host_state();
   take_checkpoint();
-  backend_.fill(stats_buf_, 0u);
+  if (!continuing) backend_.fill(stats_buf_, 0u);
+  block_open_ = false;  // until this part is accepted
+  block_limit_ = limit;
   double max_dt = 0;
   uint64_t taken = 0;
   for (; taken < k && time_ < t_end; ++taken) {
@@ -125,6 +131,7 @@ uint64_t SphSimulation::run_block(uint64_t k, double t_end) {
       !scene_.dt || scene_.cfl_guard == SphCflGuard::off || max_dt <= limit_for(s);
   if (fixed_within_limit && judge(w, s, max_dt).ok) {
     stats_ = s;
+    block_open_ = steps_ % block_steps() != 0;
     watch_energy();
     return taken;
   }

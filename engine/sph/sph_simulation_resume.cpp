@@ -45,6 +45,10 @@ SphResumeState SphSimulation::export_resume_state() {
   r.fields_current = fields_current_;
   r.kappa_warm = kappa_warm_;
   r.block_steps = block_steps_;
+  if (block_open_) {
+    r.block_limit = block_limit_;
+    r.block_stats = backend_.download(stats_buf_);
+  }
   r.watchdog = watchdog_;
   r.next_energy_check = next_energy_check_;
   r.good_positions = good_.positions;
@@ -68,6 +72,10 @@ void SphSimulation::restore_resume_state(const SphResumeState& r) {
   check_count(r.kappa_divergence, dfsph() ? n_ : 0, "dfsph divergence kappa sums");
   check_count(r.good_positions, n_, "watchdog positions");
   check_count(r.good_velocities, n_, "watchdog velocities");
+  if (!r.block_stats.empty() && r.block_stats.size() != kSphStatWords)
+    throw_invalid("sph checkpoint", "open block's stats",
+                  fmt::format("{} words", r.block_stats.size()),
+                  fmt::format("{} (kSphStatWords)", kSphStatWords));
   // The ids index the state by particle (download()): a permutation of 0..n-1.
   std::vector<bool> seen(n_, false);
   for (const uint32_t id : r.ids) {
@@ -98,6 +106,9 @@ void SphSimulation::restore_resume_state(const SphResumeState& r) {
   fields_current_ = r.fields_current;
   kappa_warm_ = r.kappa_warm;
   block_steps_ = r.block_steps;
+  block_open_ = !r.block_stats.empty();
+  block_limit_ = r.block_limit;
+  if (block_open_) backend_.upload(stats_buf_, r.block_stats);
   watchdog_ = r.watchdog;
   next_energy_check_ = r.next_energy_check;
   good_ = {r.good_positions, r.good_velocities, r.good_time, r.good_last_dt,
