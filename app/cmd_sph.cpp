@@ -155,6 +155,13 @@ int run_sph(const SphOptions& given) {
     ensure_writable_dir(out_dir(o), "--out");
     out_lock.emplace(out_dir(o), "--out");
   }
+  // Two runs checkpointing into one directory would overwrite each other's state: held too,
+  // unless it is the output directory, already held.
+  std::optional<OutputLock> checkpoint_lock;
+  std::error_code same_error;
+  if (!o.checkpoint_dir.empty() &&
+      !(out_lock && std::filesystem::equivalent(o.checkpoint_dir, out_dir(o), same_error)))
+    checkpoint_lock.emplace(o.checkpoint_dir, "--checkpoint-dir");
   std::optional<CsvStream> csv;
   if (!o.csv.empty()) csv.emplace(o.csv, diagnostics_columns(), "--csv");
   install_interrupt_handler();

@@ -42,6 +42,21 @@ run "${scene[@]}" --steps 200 --csv "$dir/N3.csv" --diag-every 3 --checkpoint-ev
   --checkpoint-dir "$dir/N3" -q >/dev/null
 cmp "$dir/N/checkpoint.masav" "$dir/N3/checkpoint.masav" || fail "rows every 3 steps changed the run"
 
+# A checkpoint directory another process holds is refused, naming it, before any step.
+mkdir -p "$dir/L"
+(exec 9>"$dir/L/.masav.lock" && flock 9 && exec sleep 30) &
+holder=$!
+for _ in $(seq 100); do flock -n "$dir/L/.masav.lock" true || break; sleep 0.05; done
+log=$("$masav" "${scene[@]}" --steps 10 --checkpoint-dir "$dir/L" -q 2>&1) && fail "locked --checkpoint-dir accepted: $log"
+kill $holder
+wait $holder 2>/dev/null
+grep -q -- "--checkpoint-dir.*'$dir/L' is in use by another masav process" <<<"$log" ||
+  fail "locked --checkpoint-dir: $log"
+[[ -e "$dir/L/checkpoint.masav" ]] && fail "a checkpoint written into a locked directory"
+# The same directory for --out and --checkpoint-dir is one lock, held once.
+run "${scene[@]}" --steps 10 --vtp-every 10 --out "$dir/O" --checkpoint-dir "$dir/O" -q >/dev/null
+[[ -e "$dir/O/checkpoint.masav" ]] || fail "no checkpoint in the shared --out directory"
+
 # Killed after the first checkpoint: SIGTERM stops it at a step boundary with a checkpoint.
 end=(--time 0.4)
 run "${scene[@]}" "${end[@]}" --csv "$dir/T.csv" --checkpoint-dir "$dir/T" -q >/dev/null
