@@ -53,7 +53,8 @@ bool sph_coop_walk(std::string_view device_type) {
     const std::string v = env;
     if (v == "on") return true;
     if (v == "off") return false;
-    if (!v.empty() && v != "auto") throw_invalid("vulkan", "MASAV_VK_SPH_COOP", v, "auto, on or off");
+    if (!v.empty() && v != "auto")
+      throw_invalid("vulkan", "MASAV_VK_SPH_COOP", v, "auto, on or off");
   }
   return device_type == "cpu";
 }

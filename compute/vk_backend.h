@@ -97,7 +97,8 @@ class VulkanBackend final : public Backend, public VulkanInterop {
   std::shared_ptr<Allocation> readback_;  // staging of downloads from device-only memory
   uint32_t pending_diag_limit_ = 0;       // the limit a pending diagnostic's message names
   SortScatter scatter_ = SortScatter::tiled;
-  bool sph_coop_walk_ = true;  // the SPH neighbour rows walked by subgroup clusters (sph_walk_choice.h)
+  // The SPH neighbour rows walked by subgroup clusters (compute/sph_walk_choice.h).
+  bool sph_coop_walk_ = true;
 };
 
 }  // namespace masav::vk

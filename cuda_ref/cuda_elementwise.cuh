@@ -17,8 +17,8 @@ struct CudaDiag {
 };
 
 // Blocks of launch::kBlock threads per multiprocessor the compiler must fit: raymarch takes 140
-// registers unbounded (one block, 12.5% occupancy); bounded to three (80, some spilled to L1) it ran an
-// H100's 60^3 at 1024^2 in 0.82 ms against 1.38 and 256^3 at 1920x1080 in 4.98 against 8.82
+// registers unbounded (one block, 12.5% occupancy); bounded to three (80, some spilled to L1) it
+// ran an H100's 60^3 at 1024^2 in 0.82 ms against 1.38 and 256^3 at 1920x1080 in 4.98 against 8.82
 // (two blocks: 0.87 and 5.45).
 template <KernelId K>
 constexpr int kMinBlocks = K == KernelId::raymarch ? 3 : 1;

@@ -33,11 +33,11 @@ __device__ inline SphStepLayout<float> with_model(const SphStepLayout<float>& la
 
 // Every thread of the block reaches the reductions (kBlock is a multiple of 32).
 template <SphPressureModel M>
-__global__ void __launch_bounds__(kBlock, kNeighborBlocks) density_kernel(SphStepLayout<float> layout, const V4* __restrict__ pos,
-                               const uint32_t* __restrict__ cells,
-                               const uint32_t* __restrict__ start, const uint32_t* __restrict__ end,
-                               float* density, float* pressure, uint32_t* stats,
-                               uint32_t* neighbor_rows) {
+__global__ void __launch_bounds__(kBlock, kNeighborBlocks)
+    density_kernel(SphStepLayout<float> layout, const V4* __restrict__ pos,
+                   const uint32_t* __restrict__ cells, const uint32_t* __restrict__ start,
+                   const uint32_t* __restrict__ end, float* density, float* pressure,
+                   uint32_t* stats, uint32_t* neighbor_rows) {
   const SphStepLayout<float> c = with_model<M>(layout);
   const uint64_t i = particle_thread();
   uint32_t cand = 0, within = 0, over = 0, bad = 0, rho_bits = 0;
@@ -72,13 +72,12 @@ __global__ void __launch_bounds__(kBlock, kNeighborBlocks) density_kernel(SphSte
 }
 
 template <SphPressureModel M>
-__global__ void __launch_bounds__(kBlock, kNeighborBlocks) forces_kernel(SphStepLayout<float> layout, const V4* __restrict__ pos,
-                              const V4* __restrict__ vel, const float* __restrict__ density,
-                              const float* __restrict__ pressure,
-                              const uint32_t* __restrict__ cells,
-                              const uint32_t* __restrict__ start, const uint32_t* __restrict__ end,
-                              V4* accel, uint32_t* stats,
-                              const uint32_t* __restrict__ neighbor_rows) {
+__global__ void __launch_bounds__(kBlock, kNeighborBlocks)
+    forces_kernel(SphStepLayout<float> layout, const V4* __restrict__ pos,
+                  const V4* __restrict__ vel, const float* __restrict__ density,
+                  const float* __restrict__ pressure, const uint32_t* __restrict__ cells,
+                  const uint32_t* __restrict__ start, const uint32_t* __restrict__ end, V4* accel,
+                  uint32_t* stats, const uint32_t* __restrict__ neighbor_rows) {
   const SphStepLayout<float> c = with_model<M>(layout);
   const uint64_t i = particle_thread();
   uint32_t cand = 0, over = 0, bad = 0, a2 = 0;
@@ -153,9 +152,12 @@ cudaError_t sph_density(cudaStream_t s, dim3 grid, const SphStepLayout<float>& c
     return cudaGetLastError();
   };
   switch (c.model) {
-    case SphPressureModel::wcsph: return launch(density_kernel<SphPressureModel::wcsph>);
-    case SphPressureModel::thesis: return launch(density_kernel<SphPressureModel::thesis>);
-    case SphPressureModel::dfsph: return launch(density_kernel<SphPressureModel::dfsph>);
+    case SphPressureModel::wcsph:
+      return launch(density_kernel<SphPressureModel::wcsph>);
+    case SphPressureModel::thesis:
+      return launch(density_kernel<SphPressureModel::thesis>);
+    case SphPressureModel::dfsph:
+      return launch(density_kernel<SphPressureModel::dfsph>);
   }
   return cudaErrorInvalidValue;
 }
@@ -170,9 +172,12 @@ cudaError_t sph_forces(cudaStream_t s, dim3 grid, const SphStepLayout<float>& c,
     return cudaGetLastError();
   };
   switch (c.model) {
-    case SphPressureModel::wcsph: return launch(forces_kernel<SphPressureModel::wcsph>);
-    case SphPressureModel::thesis: return launch(forces_kernel<SphPressureModel::thesis>);
-    case SphPressureModel::dfsph: return launch(forces_kernel<SphPressureModel::dfsph>);
+    case SphPressureModel::wcsph:
+      return launch(forces_kernel<SphPressureModel::wcsph>);
+    case SphPressureModel::thesis:
+      return launch(forces_kernel<SphPressureModel::thesis>);
+    case SphPressureModel::dfsph:
+      return launch(forces_kernel<SphPressureModel::dfsph>);
   }
   return cudaErrorInvalidValue;
 }
