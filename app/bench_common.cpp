@@ -112,7 +112,7 @@ void write_record_header(JsonWriter& j, const std::string& benchmark) {
   std::strftime(date, sizeof date, "%Y-%m-%dT%H:%M:%SZ", std::gmtime(&now));
   j.field("benchmark", benchmark).field("date", std::string(date));
   j.key("masav").begin_object();
-  j.field("version", build_info::version).field("git", build_info::git);
+  j.field("version", build_info::version).field("git", build_info::git());
   j.field("compiler", build_info::compiler).field("build_type", build_info::build_type);
   j.field("cuda_architectures", build_info::cuda_architectures);
   j.end_object();

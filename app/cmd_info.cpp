@@ -20,7 +20,7 @@ void print_caps(const Capabilities& c) {
 }
 
 int run_info(bool details) {
-  fmt::print("masav {} ({}), {} {}\n", build_info::version, build_info::git, build_info::compiler,
+  fmt::print("masav {} ({}), {} {}\n", build_info::version, build_info::git(), build_info::compiler,
              build_info::build_type);
   const std::string chosen = auto_backend_name();
   for (const BackendStatus& s : list_backends()) {

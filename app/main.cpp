@@ -1,6 +1,7 @@
 // masav: simulate and render physics on any GPU, with backends that check each other.
-#include <CLI/CLI.hpp>
 #include <fmt/format.h>
+
+#include <CLI/CLI.hpp>
 
 #include "app/build_info.h"
 #include "app/commands.h"
@@ -44,7 +45,7 @@ int main(int argc, char** argv) {
       "masav: GPU physics (hydrogen electron cloud, volume ray casting, SPH fluid) on "
       "Vulkan, CUDA and a CPU reference that check each other"};
   app.set_version_flag("--version", fmt::format("masav {} ({})", masav::app::build_info::version,
-                                                masav::app::build_info::git));
+                                                masav::app::build_info::git()));
   app.require_subcommand(1);
   masav::app::add_info_command(app);
   masav::app::add_check_command(app);
