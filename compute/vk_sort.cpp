@@ -19,8 +19,9 @@ constexpr uint32_t kSubgroupRounds = 256;
 
 }  // namespace
 
-// In-place exclusive prefix sum of data[0..count): scan each tile, scan the tile totals
-// (recursively, one level per factor of the tile size), add them back.
+// In-place exclusive prefix sum of data[0..count): scan each tile, then add each tile's offset:
+// summed by the tile itself from at most one tile of totals (scan_add_prefix), else from the
+// totals scanned recursively (one level per factor of the tile size).
 void VulkanBackend::exclusive_scan(const std::shared_ptr<Allocation>& data, uint32_t count,
                                    std::string_view kernel, uint32_t level) {
   const uint32_t tile = tile_size(), items = options_.items_per_thread;
@@ -28,9 +29,13 @@ void VulkanBackend::exclusive_scan(const std::shared_ptr<Allocation>& data, uint
   auto sums = scratch(fmt::format("{} scan level {}", kernel, level), size_t(tiles) * 4);
   const ScanParams push{count, tiles};
   run({"scan_tiles", 2, sizeof push, {items}}, {data, sums}, &push, tiles);
-  if (tiles > 1) {
+  if (tiles > tile) {
     exclusive_scan(sums, tiles, kernel, level + 1);
     run({"scan_add", 2, sizeof push, {items}}, {data, sums}, &push, tiles);
+  } else if (tiles > 1) {
+    // At most one tile of totals: each tile adds up those before it itself (one dispatch
+    // instead of a scan of the totals and then the add).
+    run({"scan_add_prefix", 2, sizeof push, {items}}, {data, sums}, &push, tiles);
   }
 }
 

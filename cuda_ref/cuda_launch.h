@@ -28,6 +28,9 @@ cudaError_t radix_histogram(cudaStream_t s, dim3 grid, const uint32_t* keys, uin
 cudaError_t scan_tiles(cudaStream_t s, dim3 grid, uint32_t* data, uint32_t* sums, ScanParams scan);
 cudaError_t scan_add(cudaStream_t s, dim3 grid, uint32_t* data, const uint32_t* sums,
                      ScanParams scan);
+// scan_add for at most kSortTile tiles from the tiles' unscanned totals (one launch).
+cudaError_t scan_add_prefix(cudaStream_t s, dim3 grid, uint32_t* data, const uint32_t* sums,
+                            ScanParams scan);
 cudaError_t radix_scatter(cudaStream_t s, dim3 grid, const uint32_t* keys_in,
                           const uint32_t* vals_in, uint32_t* keys_out, uint32_t* vals_out,
                           const uint32_t* offsets, RadixPassParams pass);

@@ -10,7 +10,8 @@
 
 namespace masav::cuda {
 
-// In-place exclusive prefix sum: scan tiles, scan the tile totals recursively, add them back.
+// In-place exclusive prefix sum: scan tiles, then add each tile's offset: summed by the block
+// itself from at most one tile of totals, else from the totals scanned recursively.
 void CudaBackend::exclusive_scan(uint32_t* data, uint32_t count, const char* kernel,
                                  uint32_t level) {
   const uint32_t tiles = (count + launch::kSortTile - 1) / launch::kSortTile;
@@ -19,9 +20,12 @@ void CudaBackend::exclusive_scan(uint32_t* data, uint32_t count, const char* ker
   const dim3 grid = grid_for(tiles, kernel);
   const ScanParams scan{count, tiles};
   launched(launch::scan_tiles(stream_, grid, data, sums, scan), kernel, "scan_tiles");
-  if (tiles > 1) {
+  if (tiles > launch::kSortTile) {
     exclusive_scan(sums, tiles, kernel, level + 1);
     launched(launch::scan_add(stream_, grid, data, sums, scan), kernel, "scan_add");
+  } else if (tiles > 1) {
+    // At most one tile of totals: each block adds up those before it (as on Vulkan).
+    launched(launch::scan_add_prefix(stream_, grid, data, sums, scan), kernel, "scan_add_prefix");
   }
 }
 

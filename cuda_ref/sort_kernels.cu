@@ -95,6 +95,22 @@ __global__ void scan_add_kernel(uint32_t* data, const uint32_t* sums, ScanParams
   }
 }
 
+// scan_add where there are at most kTile tiles, from the unscanned tile totals: each block adds
+// up the totals before its own (as shaders/scan_add_prefix.comp), one launch instead of two.
+__global__ void scan_add_prefix_kernel(uint32_t* data, const uint32_t* sums, ScanParams scan) {
+  const uint32_t tile = flat_block();
+  if (tile >= scan.num_tiles) return;  // the whole block: no barrier is left waiting
+  uint32_t before = 0;
+  for (uint32_t k = threadIdx.x; k < tile; k += kThreads) before += sums[k];
+  uint2 total;
+  block_exclusive_scan(make_uint2(before, 0), total);
+  const uint32_t add = total.x, base = tile * kTile;
+  for (uint32_t i = 0; i < kItems; ++i) {
+    const uint32_t p = base + i * kThreads + threadIdx.x;
+    if (p < scan.n) data[p] += add;
+  }
+}
+
 // One count in the 16-bit field of a 2-bit sub-digit: (sd0 | sd1 << 16, sd2 | sd3 << 16).
 __device__ uint2 split_one(uint32_t sd) {
   return make_uint2(sd == 0 ? 1u : (sd == 1 ? 65536u : 0u), sd == 2 ? 1u : (sd == 3 ? 65536u : 0u));
@@ -178,6 +194,12 @@ cudaError_t scan_tiles(cudaStream_t s, dim3 grid, uint32_t* data, uint32_t* sums
 cudaError_t scan_add(cudaStream_t s, dim3 grid, uint32_t* data, const uint32_t* sums,
                      ScanParams scan) {
   scan_add_kernel<<<grid, kThreads, 0, s>>>(data, sums, scan);
+  return cudaGetLastError();
+}
+
+cudaError_t scan_add_prefix(cudaStream_t s, dim3 grid, uint32_t* data, const uint32_t* sums,
+                            ScanParams scan) {
+  scan_add_prefix_kernel<<<grid, kThreads, 0, s>>>(data, sums, scan);
   return cudaGetLastError();
 }
 

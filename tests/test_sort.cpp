@@ -10,6 +10,9 @@
 
 #include "engine/core/error.h"
 #include "tests/backend_fixture.h"
+#if MASAV_HAVE_VULKAN
+#include "compute/vk_backend.h"
+#endif
 
 using namespace masav;
 
@@ -167,3 +170,28 @@ TEST_CASE("radix_sort rejects bad parameters with a clear error") {
     CHECK_THROWS_WITH_AS(b.radix_sort({10, 32}, foreign, nullptr),
                          doctest::Contains("another backend"), Error);
 }
+
+#if MASAV_HAVE_VULKAN
+TEST_CASE("Vulkan scans at a tile of 64: every level of the recursion, then the one-dispatch add") {
+  // The default tile (256 x 8) takes the one-dispatch fix-up (scan_add_prefix) up to 4 M
+  // entries, beyond what a test sorts; a tile of 64 walks the recursion here: 300,001 keys are
+  // 4,688 sort tiles, a digit histogram of 1,200,128 entries, scanned in tiles of 64 (18,752),
+  // their totals (293), theirs (5: one dispatch each adding up those before it).
+  if (test::backend_name() != "vulkan") {
+    MESSAGE("SKIPPED: a Vulkan backend's own options (this run is " << test::backend_name() << ")");
+    return;
+  }
+  masav::vk::BackendOptions o;
+  o.workgroup_size = 64;
+  o.items_per_thread = 1;
+  masav::vk::VulkanBackend small(o);
+  for (uint32_t bits : {32u, 13u}) {
+    CAPTURE(bits);
+    const auto keys = make_keys(300001, Pattern::random, bits, 77 + bits);
+    const Pairs want = expected(keys, bits);
+    const Pairs got = sort_on(small, keys, bits, true);
+    CHECK(got.keys == want.keys);
+    CHECK(got.values == want.values);
+  }
+}
+#endif
