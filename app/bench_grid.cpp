@@ -32,7 +32,8 @@ struct StageStamps {
 };
 
 // The build's passes, stamped by stage. The counting build knows its ranges before it sorts:
-// its "ranges" are the count and the offsets, its "sort" the scatter and the rank.
+// its "assign" is the assignment with the counts (grid_assign_count), its "ranges" the offsets,
+// its "sort" the scatter and the rank.
 void build_stages(Backend& b, HashGrid& g, const Buffer<Real4>& pos, GridBuild build,
                   StageStamps& t) {
   const GridParams& gp = g.params;
@@ -47,9 +48,8 @@ void build_stages(Backend& b, HashGrid& g, const Buffer<Real4>& pos, GridBuild b
     return;
   }
   const uint32_t cells = uint32_t(grid_cell_count(gp));
-  b.grid_assign_cells(gp, pos, g.point_cells, g.unsorted);
+  b.grid_assign_count({gp}, pos, g.point_cells, g.counts);
   t.end[kAssign] = t.begin[kRanges] = b.timestamp();
-  b.grid_count_cells({gp.n, cells}, g.point_cells, g.counts);
   b.grid_cell_offsets({cells}, g.counts, g.cell_start, g.cell_end);
   t.end[kRanges] = t.begin[kSort] = b.timestamp();
   b.grid_scatter_cells({gp.n, cells}, g.point_cells, g.cell_end, g.counts, g.unsorted);

@@ -301,6 +301,85 @@ TEST_CASE("grid_count_cells rejects cells past the table and sizes past its buff
   CHECK(b.download(counts) == std::vector<uint32_t>{1, 0, 0, 0, 0, 0, 0, 1});
 }
 
+// grid_assign_count on backend b: the cells and the counts added onto `start`.
+std::pair<std::vector<uint32_t>, std::vector<uint32_t>> assign_count_on(
+    Backend& b, const Scene& s, const std::vector<uint32_t>& start) {
+  auto pos = b.create<Real4>(s.points.size(), "positions");
+  b.upload(pos, s.points);
+  auto cells = b.create<uint32_t>(std::max<size_t>(s.points.size(), 1), "cells");
+  auto counts = b.create<uint32_t>(start.size(), "counts");
+  b.upload(counts, start);
+  b.grid_assign_count({s.params}, pos, cells, counts);
+  std::vector<uint32_t> c = b.download(cells);
+  c.resize(s.points.size());
+  return {c, b.download(counts)};
+}
+
+TEST_CASE("grid_assign_count equals grid_assign_cells + grid_count_cells and the CPU reference") {
+  for (const GridCase& gc : kGridCases) {
+    CAPTURE(gc.n);
+    CAPTURE(gc.dims.x);
+    const Scene s = make_scene(gc.n, gc.dims, gc.cell, 31 + gc.n);
+    const uint32_t cell_count = uint32_t(grid_cell_count(s.params));
+    std::vector<uint32_t> start(cell_count);
+    for (uint32_t c = 0; c < cell_count; ++c) start[c] = c % 7;  // the kernel adds
+    Backend& b = test::backend();
+    const auto [cells, counts] = assign_count_on(b, s, start);
+    // The two kernels it fuses, on the same backend.
+    auto pos = b.create<Real4>(std::max<size_t>(gc.n, 1), "positions");
+    if (gc.n) b.upload(pos, s.points);
+    auto cells2 = b.create<uint32_t>(std::max<size_t>(gc.n, 1), "cells");
+    auto idx = b.create<uint32_t>(std::max<size_t>(gc.n, 1), "indices");
+    b.grid_assign_cells(s.params, pos, cells2, idx);
+    std::vector<uint32_t> want_cells = b.download(cells2);
+    want_cells.resize(gc.n);
+    std::vector<uint32_t> want_counts = start;
+    for (uint32_t c : want_cells) ++want_counts[c];
+    CHECK(cells == want_cells);
+    CHECK(counts == want_counts);
+    const auto [ref_cells, ref_counts] = assign_count_on(test::reference(), s, start);
+    CHECK(cells == ref_cells);
+    CHECK(counts == ref_counts);
+  }
+}
+
+TEST_CASE("grid_assign_count rejects a bad grid and buffers too small") {
+  Backend& b = test::backend();
+  auto pos = b.create<Real4>(4, "positions");
+  auto cells = b.create<uint32_t>(4, "cells");
+  auto counts = b.create<uint32_t>(63, "counts");
+  b.upload(pos, std::vector<Vec4f>(4, Vec4f{0.5f, 0.5f, 0.5f, 0}));
+  const GridParams g = make_grid_params({0, 0, 0}, 1.0f, {4, 4, 4}, 4);  // 64 cells
+  CHECK_THROWS_WITH_AS(b.grid_assign_count({g}, pos, cells, counts),
+                       doctest::Contains("grid_assign_count: invalid counts size = 63"), Error);
+  auto counts64 = b.create<uint32_t>(64, "counts");
+  b.fill(counts64, 0u);
+  GridParams big = g;
+  big.n = 5;
+  CHECK_THROWS_WITH_AS(b.grid_assign_count({big}, pos, cells, counts64), doctest::Contains("n = 5"),
+                       Error);
+  GridParams flat = g;
+  flat.dims = {0, 4, 4};
+  CHECK_THROWS_WITH_AS(b.grid_assign_count({flat}, pos, cells, counts64), doctest::Contains("dims"),
+                       Error);
+  b.grid_assign_count({g}, pos, cells, counts64);
+  CHECK(b.download(counts64)[(0 * 4 + 0) * 4 + 0] == 4);
+}
+
+LOOP_LIMIT_CASE("grid_assign_count does not loop", KernelId::grid_assign_count) {
+  Backend& b = test::loop_counter();
+  const uint32_t n = 1 << 16;
+  auto pos = b.create<Real4>(n, "positions");
+  auto cells = b.create<uint32_t>(n, "cells");
+  auto counts = b.create<uint32_t>(8, "counts");
+  b.fill(counts, 0u);
+  b.upload(pos, std::vector<Vec4f>(n, Vec4f{0.1f, 0.1f, 0.1f, 0}));
+  const GridParams g = make_grid_params({0, 0, 0}, 1.0f, {2, 2, 2}, n);
+  b.grid_assign_count({g}, pos, cells, counts);  // every invocation on one cell
+  CHECK(test::ticks_of(b) == 0);
+  CHECK(b.download(counts)[0] == n);
+}
+
 LOOP_LIMIT_CASE("grid_count_cells does not loop", KernelId::grid_count_cells) {
   Backend& b = test::loop_counter();
   const uint32_t n = 1 << 16;

@@ -34,9 +34,8 @@ void count_and_scatter(Backend& backend, HashGrid& grid, const Buffer<Real4>& po
   make_counting_buffers(backend, grid);
   const GridParams& g = grid.params;
   const uint32_t cells = uint32_t(grid_cell_count(g));
-  // grid_assign_cells' indices (0..n-1) are not needed: `unsorted` takes them and is overwritten.
-  backend.grid_assign_cells(g, positions, grid.point_cells, grid.unsorted);
-  backend.grid_count_cells({g.n, cells}, grid.point_cells, grid.counts);
+  // The cells and their counts in one launch (the counting build needs no index array).
+  backend.grid_assign_count({g}, positions, grid.point_cells, grid.counts);
   backend.grid_cell_offsets({cells}, grid.counts, grid.cell_start, grid.cell_end);
   backend.grid_scatter_cells({g.n, cells}, grid.point_cells, grid.cell_end, grid.counts,
                              grid.unsorted);

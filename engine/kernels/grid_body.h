@@ -69,6 +69,25 @@ struct KernelBody<KernelId::grid_count_cells> {
 };
 
 template <>
+struct KernelBody<KernelId::grid_assign_count> {
+  static constexpr uint32_t kCpuGrain = 8192;
+  // cells[i] = the cell of positions[i] (as grid_assign_cells), counts[cells[i]] += 1 (as
+  // grid_count_cells; the cell is in range by construction, so nothing is reported).
+  template <class F, class Diag>
+  MASAV_HD static void run(uint32_t i, const CellAssignCountParams& p, Diag&,
+                           const hd::V4<F>* positions, uint32_t* cells, uint32_t* counts) {
+    const GridParams& g = p.grid;
+    const float origin[3] = {g.origin.x, g.origin.y, g.origin.z};
+    const uint32_t dims[3] = {g.dims.x, g.dims.y, g.dims.z};
+    const grid::Point3 x = grid::point_of(positions[i]);
+    const grid::CellCoord c = grid::point_cell(x.x, x.y, x.z, origin, g.inv_cell, dims);
+    const uint32_t cell = grid::cell_id(c.x, c.y, c.z, dims[1], dims[2]);
+    cells[i] = cell;
+    hd::atomic_add(&counts[cell], 1u);
+  }
+};
+
+template <>
 struct KernelBody<KernelId::grid_scatter_cells> {
   static constexpr uint32_t kCpuGrain = 16384;
   // Point i takes slot cell_end[c] - counts[c] and counts the cell down by one (an atomic add of

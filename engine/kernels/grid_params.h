@@ -1,7 +1,7 @@
 // Parameters of the hash-grid kernels (thesis §4.2.2): grid_assign_cells, grid_cell_ranges,
-// gather, grid_count_neighbors, and the passes of the counting sort by cell (grid_count_cells,
-// grid_cell_offsets, grid_scatter_cells, grid_rank_in_cell). Shared by C++, CUDA and GLSL
-// (engine/core/layout.h).
+// gather, grid_count_neighbors, and the passes of the counting sort by cell (grid_count_cells or
+// grid_assign_count, grid_cell_offsets, grid_scatter_cells, grid_rank_in_cell). Shared by C++, CUDA
+// and GLSL (engine/core/layout.h).
 #ifndef MASAV_KERNELS_GRID_PARAMS_H
 #define MASAV_KERNELS_GRID_PARAMS_H
 #include "engine/core/layout.h"
@@ -40,6 +40,13 @@ MASAV_LAYOUT(GatherLayout) {
 MASAV_LAYOUT(CellCountParams) {
   uint n;
   uint cell_count;
+};
+
+// The first pass fused with the assignment: cells[i] = the cell of positions[i] (as
+// grid_assign_cells) and counts[cells[i]] += 1 (as grid_count_cells) in one launch, for the
+// counting build that needs no index array. The counts are added, as grid_count_cells adds.
+MASAV_LAYOUT(CellAssignCountParams) {
+  GridParams grid;
 };
 
 // The second pass: where each cell's run lies in cell order, from the counts: for c < cell_count,
@@ -102,6 +109,7 @@ MASAV_LAYOUT_CHECK(GridParams, 48, (origin, 0), (cell_size, 12), (dims, 16), (n,
 MASAV_LAYOUT_CHECK(NeighborParams, 64, (grid, 0), (radius, 48), (radius2, 52), (max_candidates, 56))
 MASAV_LAYOUT_CHECK(GatherLayout, 16, (n, 0), (src_count, 4))
 MASAV_LAYOUT_CHECK(CellCountParams, 16, (n, 0), (cell_count, 4))
+MASAV_LAYOUT_CHECK(CellAssignCountParams, 48, (grid, 0))
 MASAV_LAYOUT_CHECK(CellOffsetParams, 16, (cell_count, 0))
 MASAV_LAYOUT_CHECK(CellScatterParams, 16, (n, 0), (cell_count, 4))
 MASAV_LAYOUT_CHECK(CellRankParams, 16, (n, 0), (cell_count, 4), (max_per_cell, 8))
@@ -156,6 +164,8 @@ void validate(const DeviceApi& dev, const GatherParams& p, const Buffer<uint32_t
 void validate(const DeviceApi& dev, const NeighborParams& p, const Buffer<Real4>& positions,
               const Buffer<uint32_t>& cell_start, const Buffer<uint32_t>& cell_end,
               const Buffer<uint32_t>& counts);
+void validate(const DeviceApi& dev, const CellAssignCountParams& p, const Buffer<Real4>& positions,
+              const Buffer<uint32_t>& cells, const Buffer<uint32_t>& counts);
 void validate(const DeviceApi& dev, const CellOffsetParams& p, const Buffer<uint32_t>& counts,
               const Buffer<uint32_t>& cell_start, const Buffer<uint32_t>& cell_end);
 void validate(const DeviceApi& dev, const CellScatterParams& p, const Buffer<uint32_t>& cells,

@@ -62,6 +62,19 @@ void validate(const DeviceApi&, const GridParams& g, const Buffer<Real4>& positi
                               positions.size(), cells.size(), indices.size()));
 }
 
+void validate(const DeviceApi&, const CellAssignCountParams& p, const Buffer<Real4>& positions,
+              const Buffer<uint32_t>& cells, const Buffer<uint32_t>& counts) {
+  const GridParams& g = p.grid;
+  check_grid(g, "grid_assign_count");
+  if (g.n > positions.size() || g.n > cells.size())
+    throw_invalid("grid_assign_count", "n", std::to_string(g.n),
+                  fmt::format("at most the buffers' sizes (positions {}, cells {})",
+                              positions.size(), cells.size()));
+  if (counts.size() < grid_cell_count(g))
+    throw_invalid("grid_assign_count", "counts size", std::to_string(counts.size()),
+                  fmt::format("at least the grid's {} cells", grid_cell_count(g)));
+}
+
 void validate(const DeviceApi&, const GridParams& g, const Buffer<uint32_t>& cells,
               const Buffer<uint32_t>& start, const Buffer<uint32_t>& end) {
   check_grid(g, "grid_cell_ranges");

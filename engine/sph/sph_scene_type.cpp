@@ -170,9 +170,9 @@ scene::SceneType sph_scene_type() {
   t.tables = {&sph_table()};
   t.kernels = [](const ParamSet& p) {
     std::vector<KernelId> k{
-        KernelId::grid_assign_cells,  KernelId::grid_count_cells,   KernelId::grid_cell_offsets,
-        KernelId::grid_scatter_cells, KernelId::grid_rank_and_move, KernelId::gather,
-        KernelId::sph_density,        KernelId::sph_forces,         KernelId::sph_integrate};
+        KernelId::grid_assign_count,  KernelId::grid_cell_offsets, KernelId::grid_scatter_cells,
+        KernelId::grid_rank_and_move, KernelId::gather,            KernelId::sph_density,
+        KernelId::sph_forces,         KernelId::sph_integrate};
     if (p.get_text("sph.pressure") == "dfsph")  // only the dfsph model runs its solves
       k.insert(k.end(), {KernelId::dfsph_factor, KernelId::dfsph_rate, KernelId::dfsph_correct});
     return k;

@@ -168,6 +168,20 @@ std::vector<KernelCheck> foundation_checks() {
     b.grid_count_cells({in.points, cell_count}, cells, counts);
     return CheckOutputs{{"counts", b.download(counts), {}}};
   }));
+  // grid_assign_count: the check points' cells, counted onto a table that already holds counts.
+  c.push_back(exact_check(KernelId::grid_assign_count, [](Backend& b, const CheckInputs& in) {
+    const GridParams g = grid_or_default(in);
+    const uint32_t cell_count = uint32_t(grid_cell_count(g));
+    auto pos = b.create<Real4>(in.points, "check positions");
+    b.upload(pos, check_points(in));
+    std::vector<uint32_t> start(cell_count);
+    std::iota(start.begin(), start.end(), 0u);
+    auto cells = b.create<uint32_t>(in.points, "check cells");
+    auto counts = b.create<uint32_t>(cell_count, "check counts");
+    b.upload(counts, start);
+    b.grid_assign_count({g}, pos, cells, counts);
+    return CheckOutputs{{"cells", b.download(cells), {}}, {"counts", b.download(counts), {}}};
+  }));
   c.push_back(exact_check(KernelId::grid_cell_offsets, [](Backend& b, const CheckInputs& in) {
     const CellTable t = cell_table(in);
     auto counts = uploaded(b, t.counts, "check counts");

@@ -1,0 +1,28 @@
+#version 450
+#extension GL_GOOGLE_include_directive : require
+// cells[i] = grid cell of positions[i] (clamped to the box) and counts[cells[i]] += 1, for
+// i < n: grid_assign_cells and the first pass of the counting sort in one dispatch. Integer
+// atomics, so the counts are the same in any order. Twin of KernelBody<grid_assign_count>
+// (engine/kernels/grid_body.h).
+#include "kernel_base.glsl"
+#include "grid_cell.glsl"
+#include "engine/kernels/grid_params.h"
+
+layout(std430, binding = 1) readonly buffer Positions { vec4 positions[]; };
+layout(std430, binding = 2) writeonly buffer Cells { uint cells[]; };
+layout(std430, binding = 3) buffer Counts { uint counts[]; };
+MASAV_PUSH(CellAssignCountParams);
+
+void run() {
+  const uint i = flat_invocation_id();
+  if (i >= p.grid.n) return;
+  const uvec3 c = grid_point_cell(positions[i].xyz, p.grid.origin, p.grid.inv_cell, p.grid.dims);
+  const uint cell = grid_cell_id(c, p.grid.dims);
+  cells[i] = cell;
+  atomicAdd(counts[cell], 1u);
+}
+
+void main() {
+  run();
+  report_loop_ticks();
+}
