@@ -9,6 +9,8 @@
 // with -prec-div=false -prec-sqrt=false (cuda_ref/CMakeLists.txt): the divisions and square roots
 // of the pair terms are the approximate ones (2 ulp, as GLSL's on NVIDIA), within the kernel
 // tests' float tolerances against the fp64 CPU reference.
+#include <type_traits>
+
 #include "cuda_ref/cuda_launch.h"
 #include "cuda_ref/sph_launch.h"
 #include "cuda_ref/warp_reduce.cuh"
@@ -141,45 +143,40 @@ __global__ void integrate_kernel(SphIntegrateLayout<float> p, const V4* x0, cons
   }
 }
 
+// launch(std::integral_constant<SphPressureModel, M>{}) for the model m: the launch of the
+// kernels instantiated for it.
+template <class Launch>
+cudaError_t for_model(SphPressureModel m, Launch&& launch) {
+  using M = SphPressureModel;
+  switch (m) {
+    case M::wcsph: return launch(std::integral_constant<M, M::wcsph>{});
+    case M::thesis: return launch(std::integral_constant<M, M::thesis>{});
+    case M::dfsph: return launch(std::integral_constant<M, M::dfsph>{});
+  }
+  return cudaErrorInvalidValue;
+}
+
 }  // namespace
 
 cudaError_t sph_density(cudaStream_t s, dim3 grid, const SphStepLayout<float>& c, const V4* pos,
                         const uint32_t* cells, const uint32_t* start, const uint32_t* end,
                         float* density, float* pressure, uint32_t* stats, uint32_t* neighbor_rows) {
-  auto launch = [&](auto kernel) {
-    kernel<<<grid, kBlock, 0, s>>>(c, pos, cells, start, end, density, pressure, stats,
-                                   neighbor_rows);
+  return for_model(c.model, [&](auto m) {
+    density_kernel<decltype(m)::value><<<grid, kBlock, 0, s>>>(c, pos, cells, start, end, density,
+                                                              pressure, stats, neighbor_rows);
     return cudaGetLastError();
-  };
-  switch (c.model) {
-    case SphPressureModel::wcsph:
-      return launch(density_kernel<SphPressureModel::wcsph>);
-    case SphPressureModel::thesis:
-      return launch(density_kernel<SphPressureModel::thesis>);
-    case SphPressureModel::dfsph:
-      return launch(density_kernel<SphPressureModel::dfsph>);
-  }
-  return cudaErrorInvalidValue;
+  });
 }
 
 cudaError_t sph_forces(cudaStream_t s, dim3 grid, const SphStepLayout<float>& c, const V4* pos,
                        const V4* vel, const float* density, const float* pressure,
                        const uint32_t* cells, const uint32_t* start, const uint32_t* end, V4* accel,
                        uint32_t* stats, const uint32_t* neighbor_rows) {
-  auto launch = [&](auto kernel) {
-    kernel<<<grid, kBlock, 0, s>>>(c, pos, vel, density, pressure, cells, start, end, accel, stats,
-                                   neighbor_rows);
+  return for_model(c.model, [&](auto m) {
+    forces_kernel<decltype(m)::value><<<grid, kBlock, 0, s>>>(
+        c, pos, vel, density, pressure, cells, start, end, accel, stats, neighbor_rows);
     return cudaGetLastError();
-  };
-  switch (c.model) {
-    case SphPressureModel::wcsph:
-      return launch(forces_kernel<SphPressureModel::wcsph>);
-    case SphPressureModel::thesis:
-      return launch(forces_kernel<SphPressureModel::thesis>);
-    case SphPressureModel::dfsph:
-      return launch(forces_kernel<SphPressureModel::dfsph>);
-  }
-  return cudaErrorInvalidValue;
+  });
 }
 
 cudaError_t sph_integrate(cudaStream_t s, dim3 grid, const SphIntegrateLayout<float>& p,
