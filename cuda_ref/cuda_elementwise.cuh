@@ -16,12 +16,15 @@ struct CudaDiag {
   }
 };
 
-// Blocks of launch::kBlock threads per multiprocessor the compiler must fit: raymarch takes 140
-// registers unbounded (one block, 12.5% occupancy); bounded to three (80, some spilled to L1) it
-// ran an H100's 60^3 at 1024^2 in 0.82 ms against 1.38 and 256^3 at 1920x1080 in 4.98 against 8.82
-// (two blocks: 0.87 and 5.45).
+// Blocks of launch::kBlock threads per multiprocessor the compiler must fit: a body's
+// kCudaMinBlocks where it names one (as kCpuGrain tunes the CPU reference), else 1 (no bound).
 template <KernelId K>
-constexpr int kMinBlocks = K == KernelId::raymarch ? 3 : 1;
+constexpr int kMinBlocks = [] {
+  if constexpr (requires { KernelBody<K>::kCudaMinBlocks; })
+    return int(KernelBody<K>::kCudaMinBlocks);
+  else
+    return 1;
+}();
 
 template <KernelId K, class Layout, class... Pointers>
 __global__ void __launch_bounds__(launch::kBlock, kMinBlocks<K>)

@@ -172,15 +172,14 @@ TEST_CASE("radix_sort rejects bad parameters with a clear error") {
 }
 
 #if MASAV_HAVE_VULKAN
+// The suite "vulkan backend" runs only under --backend=vulkan (test_main.cpp excludes it
+// elsewhere and says so).
+TEST_SUITE("vulkan backend") {
 TEST_CASE("Vulkan scans at a tile of 64: every level of the recursion, then the one-dispatch add") {
   // The default tile (256 x 8) takes the one-dispatch fix-up (scan_add_prefix) up to 4 M
   // entries, beyond what a test sorts; a tile of 64 walks the recursion here: 300,001 keys are
   // 4,688 sort tiles, a digit histogram of 1,200,128 entries, scanned in tiles of 64 (18,752),
   // their totals (293), theirs (5: one dispatch each adding up those before it).
-  if (test::backend_name() != "vulkan") {
-    MESSAGE("SKIPPED: a Vulkan backend's own options (this run is " << test::backend_name() << ")");
-    return;
-  }
   masav::vk::BackendOptions o;
   o.workgroup_size = 64;
   o.items_per_thread = 1;
@@ -194,4 +193,5 @@ TEST_CASE("Vulkan scans at a tile of 64: every level of the recursion, then the 
     CHECK(got.values == want.values);
   }
 }
+}  // TEST_SUITE("vulkan backend")
 #endif
