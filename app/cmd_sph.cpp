@@ -1,16 +1,22 @@
 // `masav sph`: runs an SPH preset headless on one backend, with per-step diagnostics (CSV) and
 // particle snapshots (VTK .vtp) for ParaView. Every option is validated; an unstable run stops
 // with the step, the particle and advice, and still writes the last good state.
+//
+// Started by mpirun on several ranks, the ranks share the simulation (engine/sph/sph_ranks.h):
+// rank 0 prints, writes the CSV, the snapshots and the checkpoints (of the whole state, which a
+// restart reads on any number of ranks); every rank takes part in each gather.
 #include <fmt/format.h>
 
 #include <algorithm>
 #include <chrono>
+#include <cstring>
 #include <filesystem>
 #include <limits>
 #include <optional>
 
 #include "app/commands.h"
 #include "app/interrupt.h"
+#include "app/mpi_comm.h"
 #include "app/scene_options.h"
 #include "app/vocabulary.h"
 #include "engine/core/error.h"
@@ -134,6 +140,37 @@ void check_restart_flags(const SphOptions& o) {
                               flag));
 }
 
+// Each rank's share and what its exchanges cost (the counters of engine/sph/sph_ranks.h),
+// printed by rank 0: the communication figures of a run on several ranks.
+// `seconds`: the run's wall time so far; what the exchanges did not take is the rank's compute.
+void print_rank_table(SphRanks& ranks, bool lead, double seconds) {
+  struct Row {
+    uint64_t own, halo, rebuilds, migrated, bytes;
+    double exchange, wall;
+  };
+  const SphRankLayout& l = ranks.staged();
+  const SphRankCounters& c = ranks.counters();
+  const Row mine{l.own,        l.local - l.own,    c.rebuilds, c.migrated,
+                 c.bytes_sent, c.exchange_seconds, seconds};
+  Bytes bytes;
+  append_bytes(bytes, std::span<const Row>(&mine, 1));
+  const Bytes all = ranks.gather(bytes);
+  if (!lead) return;
+  fmt::print("ranks: {} (cells split along x; {} re-balances)\n", ranks.ranks(), c.rebalances);
+  fmt::print(
+      "  rank  own particles  halo particles  halo/own  migrated/rebuild  KiB sent/rebuild"
+      "  exchange s  compute s\n");
+  for (size_t r = 0; r * sizeof(Row) < all.size(); ++r) {
+    Row w;
+    std::memcpy(&w, all.data() + r * sizeof(Row), sizeof w);
+    const double per = double(std::max<uint64_t>(w.rebuilds, 1));
+    fmt::print("  {:>4}  {:>13}  {:>14}  {:>7.1f}%  {:>16.1f}  {:>16.1f}  {:>10.3f}  {:>9.3f}\n", r,
+               w.own, w.halo, w.own ? 100.0 * double(w.halo) / double(w.own) : 0.0,
+               double(w.migrated) / per, double(w.bytes) / per / 1024.0, w.exchange,
+               std::max(0.0, w.wall - w.exchange));
+  }
+}
+
 int run_sph(const SphOptions& given) {
   SphOptions o = given;  // a restart takes the preset's name (for file names) from its scene
   check_restart_flags(o);
@@ -147,11 +184,14 @@ int run_sph(const SphOptions& given) {
       if (engine_sph_preset(name) == resumed->scene.preset) o.preset = name;
   }
   const SphScene scene = resumed ? resumed->scene : scene_from(o);
-  if (!o.checkpoint_dir.empty()) ensure_writable_dir(o.checkpoint_dir, "--checkpoint-dir");
+  SphComm* comm = world_comm();
+  const bool lead = !comm || comm->rank() == 0;  // prints and writes
+  if (!lead) o.quiet = true;
+  if (lead && !o.checkpoint_dir.empty()) ensure_writable_dir(o.checkpoint_dir, "--checkpoint-dir");
   // Outputs are opened (and held) before any work: a bad path fails at once, and a CSV row is
   // in the file as soon as its step ran. The directory is only made when something goes there.
   std::optional<OutputLock> out_lock;
-  if (!o.out.empty() || o.vtp_every) {
+  if (lead && (!o.out.empty() || o.vtp_every)) {
     ensure_writable_dir(out_dir(o), "--out");
     out_lock.emplace(out_dir(o), "--out");
   }
@@ -159,45 +199,56 @@ int run_sph(const SphOptions& given) {
   // unless it is the output directory, already held.
   std::optional<OutputLock> checkpoint_lock;
   std::error_code same_error;
-  if (!o.checkpoint_dir.empty() &&
+  if (lead && !o.checkpoint_dir.empty() &&
       !(out_lock && std::filesystem::equivalent(o.checkpoint_dir, out_dir(o), same_error)))
     checkpoint_lock.emplace(o.checkpoint_dir, "--checkpoint-dir");
   std::optional<CsvStream> csv;
-  if (!o.csv.empty()) csv.emplace(o.csv, diagnostics_columns(), "--csv");
+  if (lead && !o.csv.empty()) csv.emplace(o.csv, diagnostics_columns(), "--csv");
   install_interrupt_handler();
   auto backend = create_backend(o.choice.backend, o.choice.device);
-  SphSimulation sim(*backend, scene);
+  SphSimulation sim(*backend, scene, comm);
   sim.set_block_steps(o.block_steps);
   if (resumed) {
     restore_sph_checkpoint(sim, *resumed, restart_file);
-    fmt::print("resumed from {} (written by masav {}): step {}, t = {:.6g} s\n", restart_file,
-               resumed->writer, sim.steps(), sim.time());
+    if (lead)
+      fmt::print("resumed from {} (written by masav {}): step {}, t = {:.6g} s\n", restart_file,
+                 resumed->writer, sim.steps(), sim.time());
     resumed.reset();  // the state lives in the simulation now
   }
   uint64_t checkpointed = UINT64_MAX;  // the step of the last checkpoint written
   // Writes one unless the last holds this step already; returns its path.
   auto checkpoint = [&] {
     const std::string path = checkpoint_path(o.checkpoint_dir);
-    if (checkpointed != sim.steps()) write_sph_checkpoint(path, sim);
+    if (checkpointed != sim.steps()) {
+      const SphResumeState state = sim.export_resume_state();  // every rank's part
+      if (lead) write_sph_checkpoint(path, sim.scene(), state);
+    }
     checkpointed = sim.steps();
     return path;
   };
   const SphParticles& lay = sim.layout();
-  fmt::print(
-      "sph {}: {} particles ({} fluid, {} obstacle), dx {:.4g} m, h {:.4g} m, {} / {}, "
-      "{} on {}\n",
-      o.preset, sim.particle_count(), lay.fluid, lay.obstacle, lay.dx, lay.h,
-      to_string(scene.model), to_string(scene.integrator),
-      scene.dt ? fmt::format("dt {:.3g} s", *scene.dt) : std::string("adaptive dt"),
-      backend->caps().device_name);
+  if (lead)
+    fmt::print(
+        "sph {}: {} particles ({} fluid, {} obstacle), dx {:.4g} m, h {:.4g} m, {} / {}, "
+        "{} on {}{}\n",
+        o.preset, sim.particle_count(), lay.fluid, lay.obstacle, lay.dx, lay.h,
+        to_string(scene.model), to_string(scene.integrator),
+        scene.dt ? fmt::format("dt {:.3g} s", *scene.dt) : std::string("adaptive dt"),
+        backend->caps().device_name, comm ? fmt::format(" x {} ranks", comm->size()) : "");
 
   auto record = [&](const SphState& st) {
-    csv->row(diagnostics_row(sim, compute_diagnostics(st, sim)));
+    if (csv) csv->row(diagnostics_row(sim, compute_diagnostics(st, sim)));
   };
   auto snapshot = [&](const SphState& st, const std::string& tag) {
     const std::string path = snapshot_path(o, tag);
-    write_sph_vtp(path, st);
+    if (lead) write_sph_vtp(path, st);
     return path;
+  };
+  // Whether any rank was interrupted: they stop together, at the same step.
+  auto stop_requested = [&] {
+    uint32_t flag = interrupted() ? 1u : 0u;
+    if (comm) comm->max(std::span<uint32_t>(&flag, 1));
+    return flag != 0;
   };
   const bool want_state = !o.csv.empty() || o.vtp_every;
   if (want_state) {
@@ -216,7 +267,7 @@ int run_sph(const SphOptions& given) {
     // (and with them the blocks) fall on the same steps as in an uninterrupted run.
     const uint64_t end = sim.steps() + o.steps;
     for (uint64_t k = sim.steps();
-         (o.time > 0 ? sim.time() < o.time : k < end) && !interrupted();) {
+         (o.time > 0 ? sim.time() < o.time : k < end) && !stop_requested();) {
       // Up to the next step that prints or writes something (at most one block, so that an
       // interrupt is seen): the simulation reads its stats back once per block.
       k += sim.run(steps_to_next_event(o, k, end), t_end);
@@ -236,16 +287,27 @@ int run_sph(const SphOptions& given) {
       }
     }
     // At the step where the run ends or an interrupt stopped it (a failed run keeps the last).
-    if (!o.checkpoint_dir.empty())
-      fmt::print("checkpoint {}: step {}, t = {:.6g} s\n", checkpoint(), sim.steps(), sim.time());
+    if (!o.checkpoint_dir.empty()) {
+      const std::string path = checkpoint();
+      if (lead) fmt::print("checkpoint {}: step {}, t = {:.6g} s\n", path, sim.steps(), sim.time());
+    }
+    if (SphRanks* ranks = sim.ranks())
+      print_rank_table(
+          *ranks, lead,
+          std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
   } catch (const Error& e) {
-    fmt::print(stderr, "masav: error: {}\n", e.what());
-    if (out_lock)
+    if (lead) fmt::print(stderr, "masav: error: {}\n", e.what());
+    // On several ranks an error may have stopped one rank alone, which a gather would wait
+    // for forever: no last good state there.
+    if (out_lock && !comm)
       fmt::print(stderr, "masav: the last good state (step {}) is in {}\n", sim.steps(),
                  snapshot(sim.download(), "last_good"));
+    else if (comm && lead)
+      fmt::print(stderr, "masav: on several ranks the last good state is not written\n");
     rc = 1;
   }
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  if (!lead) return rc;
   if (csv) fmt::print("wrote {} ({} rows)\n", o.csv, csv->rows());
   fmt::print(
       "{} steps ({} integrator steps, {} retried) to t = {:.5g} s in {:.2f} s: {:.1f} "

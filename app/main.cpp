@@ -2,9 +2,11 @@
 #include <fmt/format.h>
 
 #include <CLI/CLI.hpp>
+#include <string_view>
 
 #include "app/build_info.h"
 #include "app/commands.h"
+#include "app/mpi_comm.h"
 #include "engine/core/error.h"
 
 namespace {
@@ -60,6 +62,16 @@ int main(int argc, char** argv) {
 #endif
   masav::app::add_sph_command(app);
   if (!known_command_words(app, argc, argv)) return 1;
+  // mpirun starts one masav per rank: only `masav sph` shares its work among them; any other
+  // command would run N times over.
+  if (const int ranks = masav::app::launched_ranks();
+      ranks > 1 && (argc < 2 || std::string_view(argv[1]) != "sph")) {
+    fmt::print(stderr,
+               "masav: error: started on {} ranks, but only `masav sph` runs on several ranks; "
+               "start other commands without mpirun\n",
+               ranks);
+    return 1;
+  }
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

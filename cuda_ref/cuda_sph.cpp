@@ -16,11 +16,11 @@ void CudaBackend::run_own(const KernelArgs<KernelId::sph_density>& a) {
   const char* k = "sph_density";
   uint32_t* rows = neighbor_rows ? device_ptr<uint32_t>(*neighbor_rows, k) : nullptr;
   launched(
-      launch::sph_density(stream_, grid_for_items(p.n, k), device_params<float>(p, neighbor_rows),
-                          device_ptr<V4>(positions, k), device_ptr<uint32_t>(cells, k),
-                          device_ptr<uint32_t>(cell_start, k), device_ptr<uint32_t>(cell_end, k),
-                          device_ptr<float>(density, k), device_ptr<float>(pressure, k),
-                          device_ptr<uint32_t>(stats, k), rows),
+      launch::sph_density(stream_, grid_for_items(sph_range_count(p), k),
+                          device_params<float>(p, neighbor_rows), device_ptr<V4>(positions, k),
+                          device_ptr<uint32_t>(cells, k), device_ptr<uint32_t>(cell_start, k),
+                          device_ptr<uint32_t>(cell_end, k), device_ptr<float>(density, k),
+                          device_ptr<float>(pressure, k), device_ptr<uint32_t>(stats, k), rows),
       k);
 }
 
@@ -30,12 +30,12 @@ void CudaBackend::run_own(const KernelArgs<KernelId::sph_forces>& a) {
   const char* k = "sph_forces";
   const uint32_t* rows = neighbor_rows ? device_ptr<uint32_t>(*neighbor_rows, k) : nullptr;
   launched(
-      launch::sph_forces(stream_, grid_for_items(p.n, k), device_params<float>(p, neighbor_rows),
-                         device_ptr<V4>(positions, k), device_ptr<V4>(velocities, k),
-                         device_ptr<float>(density, k), device_ptr<float>(pressure, k),
-                         device_ptr<uint32_t>(cells, k), device_ptr<uint32_t>(cell_start, k),
-                         device_ptr<uint32_t>(cell_end, k), device_ptr<V4>(accel, k),
-                         device_ptr<uint32_t>(stats, k), rows),
+      launch::sph_forces(stream_, grid_for_items(sph_range_count(p), k),
+                         device_params<float>(p, neighbor_rows), device_ptr<V4>(positions, k),
+                         device_ptr<V4>(velocities, k), device_ptr<float>(density, k),
+                         device_ptr<float>(pressure, k), device_ptr<uint32_t>(cells, k),
+                         device_ptr<uint32_t>(cell_start, k), device_ptr<uint32_t>(cell_end, k),
+                         device_ptr<V4>(accel, k), device_ptr<uint32_t>(stats, k), rows),
       k);
 }
 
@@ -43,10 +43,10 @@ void CudaBackend::run_own(const KernelArgs<KernelId::sph_integrate>& a) {
   auto& [p, items_, x0, v0, vk, accel, x_out, v_out, sum_x, sum_v, stats] = a;
   const char* k = "sph_integrate";
   auto opt = [&](const Buffer<Real4>* b) { return b ? device_ptr<V4>(*b, k) : nullptr; };
-  launched(launch::sph_integrate(stream_, grid_for_items(p.n, k), device_params<float>(p), opt(x0),
-                                 device_ptr<V4>(v0, k), opt(vk), device_ptr<V4>(accel, k),
-                                 opt(x_out), device_ptr<V4>(v_out, k), opt(sum_x), opt(sum_v),
-                                 device_ptr<uint32_t>(stats, k)),
+  launched(launch::sph_integrate(stream_, grid_for_items(sph_range_count(p), k),
+                                 device_params<float>(p), opt(x0), device_ptr<V4>(v0, k), opt(vk),
+                                 device_ptr<V4>(accel, k), opt(x_out), device_ptr<V4>(v_out, k),
+                                 opt(sum_x), opt(sum_v), device_ptr<uint32_t>(stats, k)),
            k);
 }
 

@@ -41,9 +41,9 @@ __global__ void __launch_bounds__(kBlock, kNeighborBlocks)
                    const uint32_t* __restrict__ end, float* density, float* pressure,
                    uint32_t* stats, uint32_t* neighbor_rows) {
   const SphStepLayout<float> c = with_model<M>(layout);
-  const uint64_t i = particle_thread();
+  const uint64_t i = c.first + particle_thread();  // the range computed: [first, end)
   uint32_t cand = 0, within = 0, over = 0, bad = 0, rho_bits = 0;
-  if (i < c.n) {
+  if (i < c.end) {
     const uint32_t dims[3] = {c.dims.x, c.dims.y, c.dims.z};
     auto pos_at = [pos](uint32_t j) { return sph::xyz(pos[j]); };
     const auto r = sph::density_at<float>(uint32_t(i), pos_at(uint32_t(i)), cells[i], dims, start,
@@ -81,9 +81,9 @@ __global__ void __launch_bounds__(kBlock, kNeighborBlocks)
                   const uint32_t* __restrict__ start, const uint32_t* __restrict__ end, V4* accel,
                   uint32_t* stats, const uint32_t* __restrict__ neighbor_rows) {
   const SphStepLayout<float> c = with_model<M>(layout);
-  const uint64_t i = particle_thread();
+  const uint64_t i = c.first + particle_thread();  // the range computed: [first, c.end)
   uint32_t cand = 0, over = 0, bad = 0, a2 = 0;
-  if (i < c.n) {
+  if (i < c.end) {
     const uint32_t dims[3] = {c.dims.x, c.dims.y, c.dims.z};
     auto pos_at = [pos](uint32_t j) { return sph::xyz(pos[j]); };
     auto fetch = [=](uint32_t j) {
@@ -118,9 +118,9 @@ __global__ void __launch_bounds__(kBlock, kNeighborBlocks)
 __global__ void integrate_kernel(SphIntegrateLayout<float> p, const V4* x0, const V4* v0,
                                  const V4* vk, const V4* accel, V4* x_out, V4* v_out, V4* sum_x,
                                  V4* sum_v, uint32_t* stats) {
-  const uint64_t i = particle_thread();
+  const uint64_t i = p.first + particle_thread();  // the range stepped: [first, end)
   uint32_t s2 = 0, d2 = 0, bad = 0, outside = 0;
-  if (i < p.n) {
+  if (i < p.end) {
     const auto r =
         sph::integrate_particle(uint32_t(i), p, x0, v0, vk, accel, x_out, v_out, sum_x, sum_v);
     if (r.non_finite) {
@@ -149,9 +149,12 @@ template <class Launch>
 cudaError_t for_model(SphPressureModel m, Launch&& launch) {
   using M = SphPressureModel;
   switch (m) {
-    case M::wcsph: return launch(std::integral_constant<M, M::wcsph>{});
-    case M::thesis: return launch(std::integral_constant<M, M::thesis>{});
-    case M::dfsph: return launch(std::integral_constant<M, M::dfsph>{});
+    case M::wcsph:
+      return launch(std::integral_constant<M, M::wcsph>{});
+    case M::thesis:
+      return launch(std::integral_constant<M, M::thesis>{});
+    case M::dfsph:
+      return launch(std::integral_constant<M, M::dfsph>{});
   }
   return cudaErrorInvalidValue;
 }
@@ -163,7 +166,7 @@ cudaError_t sph_density(cudaStream_t s, dim3 grid, const SphStepLayout<float>& c
                         float* density, float* pressure, uint32_t* stats, uint32_t* neighbor_rows) {
   return for_model(c.model, [&](auto m) {
     density_kernel<decltype(m)::value><<<grid, kBlock, 0, s>>>(c, pos, cells, start, end, density,
-                                                              pressure, stats, neighbor_rows);
+                                                               pressure, stats, neighbor_rows);
     return cudaGetLastError();
   });
 }

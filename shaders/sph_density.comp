@@ -29,8 +29,10 @@ layout(std430, binding = 8) writeonly buffer NeighborRows { uint neighbor_rows[]
 MASAV_PUSH(SphStepLayout);
 
 void main() {
-  const uint i = flat_invocation_id();
-  const bool live = i < p.n;
+  // The range computed, [first, end) of the n (a rank's own particles); the others are only
+  // read as neighbours.
+  const uint i = p.first + flat_invocation_id();
+  const bool live = i < p.end;
   uint candidates = 0u, within = 0u;
   uint rho_bits = 0u;  // a non-negative float's bits order like the float
   bool overflow = false, bad = false;

@@ -154,8 +154,10 @@ void walk_masked(bool live, ivec3 cc, Me me, inout Sum s) {
 }
 
 void main() {
-  const uint i = flat_invocation_id();
-  const bool live = i < p.n;
+  // The range computed, [first, end) of the n (a rank's own particles); the others are only
+  // read as neighbours.
+  const uint i = p.first + flat_invocation_id();
+  const bool live = i < p.end;
   float accel2 = 0.0;
   bool bad = false;
   vec4 pw = vec4(0.0);

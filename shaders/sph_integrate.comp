@@ -22,8 +22,10 @@ layout(std430, binding = 9) buffer Stats { uint stats[]; };
 MASAV_PUSH(SphIntegrateLayout);
 
 void main() {
-  const uint i = flat_invocation_id();
-  const bool live = i < p.n;
+  // The range stepped, [first, end) of the n (a rank's own particles); the others are left
+  // as they are.
+  const uint i = p.first + flat_invocation_id();
+  const bool live = i < p.end;
   const uint op = p.op;
   const bool kick = op == SphStageOp_kick || op == SphStageOp_accelerate;  // no positions
   const bool rk4 = op >= SphStageOp_rk4_stage1 && op <= SphStageOp_rk4_final;

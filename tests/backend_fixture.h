@@ -11,6 +11,11 @@ Backend& backend();    // the backend under test
 Backend& reference();  // the CPU reference (a separate instance)
 const std::string& backend_name();
 bool is_lavapipe();  // Vulkan on Mesa's CPU driver
+// Whether the SPH neighbour sums' order follows a particle's lane: Vulkan's cooperative walk
+// (lavapipe's default, compute/sph_walk_choice.h) rotates a row's candidates by the lane, so
+// the same particle at another index (another range, another rank) sums in another order. Every
+// other walk sums each particle's neighbours in one order.
+bool sph_sums_follow_lanes();
 // The backend under test created once more with loop counting on (Backend::take_max_loop_ticks):
 // the "loop limit" suite's. Only Vulkan counts; on the others that suite is skipped.
 Backend& loop_counter();

@@ -18,6 +18,7 @@
 #include "tests/backend_fixture.h"
 #if MASAV_HAVE_VULKAN
 #include "compute/device/vk_context.h"
+#include "compute/sph_walk_choice.h"
 #endif
 
 namespace masav::test {
@@ -43,6 +44,13 @@ const std::string& backend_name() {
 }
 bool is_lavapipe() {
   return g_name == "vulkan" && g_backend->caps().device_type == "cpu";
+}
+bool sph_sums_follow_lanes() {
+#if MASAV_HAVE_VULKAN
+  return g_name == "vulkan" && vk::sph_coop_walk(g_backend->caps().device_type);
+#else
+  return false;
+#endif
 }
 
 }  // namespace masav::test
@@ -131,9 +139,10 @@ int main(int argc, char** argv) {
     ctx.addFilter("test-suite-exclude", "loop limit");
   }
   if (name != "vulkan") {
-    fmt::print("SKIPPED: the \"vulkan backend\" suite: it builds Vulkan backends of its own "
-               "options (this run is {})\n",
-               name);
+    fmt::print(
+        "SKIPPED: the \"vulkan backend\" suite: it builds Vulkan backends of its own "
+        "options (this run is {})\n",
+        name);
     ctx.addFilter("test-suite-exclude", "vulkan backend");
   }
   int rc = ctx.run();

@@ -136,6 +136,8 @@ SphListInputs CpuBackend::sph_list_inputs(const SphStepParams& p, const Buffer<u
   in.cell_end = own(cell_end.impl(), kernel).as<uint32_t>();
   in.cell_count = grid_cell_count(p.grid);
   in.n = p.n;
+  in.first = p.first;
+  in.end = sph_range_end(p);
   in.dims[0] = p.grid.dims.x;
   in.dims[1] = p.grid.dims.y;
   in.dims[2] = p.grid.dims.z;
@@ -151,7 +153,9 @@ template <class Found>
 void CpuBackend::build_sph_lists(const SphListInputs& in, size_t chunks, Found&& found) {
   sph_lists_.reset(in.n, chunks);
   const Soa& xyz = soa_positions(pool_, in.positions, in.n);
-  pool_.run_chunks(in.n, chunks, [&](size_t chunk, size_t b, size_t e) {
+  pool_.run_chunks(in.end - in.first, chunks, [&](size_t chunk, size_t b, size_t e) {
+    b += in.first;
+    e += in.first;
     // Per-thread scratch, kept between calls (60,004 entries at the default candidate cap).
     static thread_local std::vector<uint32_t> index;
     static thread_local std::vector<double> r2;
@@ -180,7 +184,7 @@ size_t CpuBackend::sph_chunks(uint32_t n) const {
 }
 
 void CpuBackend::ensure_sph_lists(const SphListInputs& in) {
-  const size_t chunks = sph_chunks(in.n);
+  const size_t chunks = sph_chunks(in.end - in.first);
   if (!sph_lists_.matches(in, chunks))
     build_sph_lists(in, chunks, [](size_t, uint32_t, uint32_t, const double*) {});
 }
@@ -196,7 +200,7 @@ void CpuBackend::run_own(const KernelArgs<KernelId::sph_density>& a) {
   double* pr = own(pressure.impl(), k).as<double>();
   uint32_t* words = own(stats.impl(), k).as<uint32_t>();
   uint32_t* rows = neighbor_rows ? own(neighbor_rows->impl(), k).as<uint32_t>() : nullptr;
-  const size_t chunks = sph_chunks(p.n);
+  const size_t chunks = sph_chunks(sph_range_count(p));
   std::vector<ChunkStats> st(chunks);
   // sph::density_at's sum over the neighbour list: the particle itself (r = 0, term 1) first,
   // then its neighbours; candidates beyond h add exactly nothing there.
@@ -233,7 +237,7 @@ void CpuBackend::run_own(const KernelArgs<KernelId::sph_forces>& a) {
   const double* pr = own(pressure.impl(), k).as<double>();
   double* acc_out = own(accel.impl(), k).as<double>();
   uint32_t* words = own(stats.impl(), k).as<uint32_t>();
-  const size_t chunks = sph_chunks(p.n);
+  const size_t chunks = sph_chunks(sph_range_count(p));
   std::vector<ChunkStats> st(chunks);
   // The lists sph_density left, if they belong to these positions and this grid; else new ones.
   ensure_sph_lists(in);
@@ -246,8 +250,11 @@ void CpuBackend::run_own(const KernelArgs<KernelId::sph_forces>& a) {
   auto fetch = [&](uint32_t j) {
     return sph::Neighbor<double>{load3(pos, j), load3(vel, j), rho[j], p_rho2[j]};
   };
-  // sph::force_at's pair terms over the neighbour list (the same neighbours in the same order).
-  pool_.run_chunks(p.n, chunks, [&](size_t chunk, size_t b, size_t e) {
+  // sph::force_at's pair terms over the neighbour list (the same neighbours in the same order),
+  // for the particles of the range.
+  pool_.run_chunks(sph_range_count(p), chunks, [&](size_t chunk, size_t b, size_t e) {
+    b += p.first;
+    e += p.first;
     ChunkStats& s = st[chunk];
     for (size_t i = b; i < e; ++i) {
       const uint32_t self = uint32_t(i);
@@ -291,9 +298,11 @@ void CpuBackend::run_own(const KernelArgs<KernelId::sph_integrate>& a) {
     return b ? static_cast<CpuBuffer&>(b->impl()).as<V4>() : nullptr;
   };
   const auto layout = device_params<double>(p);
-  const size_t chunks = chunk_count(pool_, p.n, 2048);
+  const size_t chunks = chunk_count(pool_, sph_range_count(p), 2048);
   std::vector<ChunkStats> st(chunks);
-  pool_.run_chunks(p.n, chunks, [&](size_t chunk, size_t b, size_t e) {
+  pool_.run_chunks(sph_range_count(p), chunks, [&](size_t chunk, size_t b, size_t e) {
+    b += p.first;
+    e += p.first;
     ChunkStats& s = st[chunk];
     for (size_t i = b; i < e; ++i) {
       const auto r =

@@ -28,6 +28,8 @@ void SphNeighborLists::reset(uint32_t n, size_t chunks) {
 
 void SphNeighborLists::remember(const SphListInputs& in) {
   n_ = in.n;
+  first_ = in.first;
+  end_ = in.end;
   max_candidates_ = in.max_candidates;
   std::copy(in.dims, in.dims + 3, dims_);
   h2_ = in.h2;
@@ -39,10 +41,10 @@ void SphNeighborLists::remember(const SphListInputs& in) {
 }
 
 bool SphNeighborLists::matches(const SphListInputs& in, size_t chunks) const {
-  return valid_ && chunks == chunks_ && in.n == n_ && in.max_candidates == max_candidates_ &&
-         std::equal(in.dims, in.dims + 3, dims_) && in.h2 == h2_ &&
-         same(positions_, in.positions, 4 * size_t(in.n)) && same(cells_, in.cells, in.n) &&
-         same(cell_start_, in.cell_start, in.cell_count) &&
+  return valid_ && chunks == chunks_ && in.n == n_ && in.first == first_ && in.end == end_ &&
+         in.max_candidates == max_candidates_ && std::equal(in.dims, in.dims + 3, dims_) &&
+         in.h2 == h2_ && same(positions_, in.positions, 4 * size_t(in.n)) &&
+         same(cells_, in.cells, in.n) && same(cell_start_, in.cell_start, in.cell_count) &&
          same(cell_end_, in.cell_end, in.cell_count);
 }
 

@@ -12,7 +12,8 @@
 namespace masav::cpu {
 
 // What a neighbour walk reads: sorted positions (x, y, z, w), each particle's cell, the cell
-// ranges, the grid's dims, h^2 and the candidate cap.
+// ranges, the grid's dims, h^2 and the candidate cap; and the particles whose lists are made,
+// [first, end) of the n.
 struct SphListInputs {
   const double* positions;
   const uint32_t* cells;
@@ -20,6 +21,7 @@ struct SphListInputs {
   const uint32_t* cell_end;
   uint64_t cell_count;
   uint32_t n;
+  uint32_t first, end;
   uint32_t dims[3];
   double h2;
   uint32_t max_candidates;
@@ -48,7 +50,7 @@ class SphNeighborLists {
  private:
   bool valid_ = false;
   uint64_t generation_ = 0;
-  uint32_t n_ = 0, max_candidates_ = 0, dims_[3] = {0, 0, 0};
+  uint32_t n_ = 0, first_ = 0, end_ = 0, max_candidates_ = 0, dims_[3] = {0, 0, 0};
   double h2_ = 0;
   size_t chunks_ = 0;
   std::vector<double> positions_;  // x, y, z, w per particle, compared bit for bit

@@ -38,11 +38,24 @@ void check_view(const DeviceApi& dev, const SphStepParams& p, const Buffer<uint3
   need(dev, &cell_end, n_cells, kernel, "cell_end");
 }
 
+// The particles computed, [first, first + count), lie within the n.
+template <class P>
+void check_particle_range(const P& p, const char* kernel) {
+  if (p.first > p.n)
+    throw_invalid(kernel, "first", std::to_string(p.first),
+                  fmt::format("at most the particle count n = {}", p.n));
+  if (p.count != kSphAllParticles && uint64_t(p.first) + p.count > p.n)
+    throw_invalid(kernel, "count", std::to_string(p.count),
+                  fmt::format("at most n - first = {} (or kSphAllParticles: from first to n)",
+                              p.n - p.first));
+}
+
 void check_sph_step(const DeviceApi& dev, const SphStepParams& p, const char* kernel) {
   check_grid(p.grid, kernel);
   if (p.n != p.grid.n)
     throw_invalid(kernel, "n", std::to_string(p.n),
                   fmt::format("equal to the grid's point count {}", p.grid.n));
+  check_particle_range(p, kernel);
   finite_positive(kernel, "h", p.h, false);
   if (double(p.grid.cell_size) < p.h)
     throw_invalid(kernel, "grid cell_size", fmt::format("{}", p.grid.cell_size),
@@ -88,6 +101,10 @@ void check_dfsph(const DeviceApi& dev, const DfsphParams& p, const Buffer<Real4>
                  const Buffer<uint32_t>& cell_end, const Buffer<uint32_t>* neighbor_rows,
                  const char* kernel) {
   check_sph_step(dev, p.step, kernel);
+  if (p.step.first != 0 || sph_range_end(p.step) != p.step.n)
+    throw_invalid(kernel, "first, count",
+                  fmt::format("{}, {}", p.step.first, sph_range_count(p.step)),
+                  "0 and every particle (the dfsph kernels compute all n)");
   if (p.step.model != SphPressureModel::dfsph)
     throw_invalid(kernel, "model", std::to_string(uint32_t(p.step.model)), "dfsph (2)");
   const uint32_t solve = uint32_t(p.solve);
@@ -199,6 +216,7 @@ void validate(const DeviceApi& dev, const SphIntegrateParams& p, const Buffer<Re
     throw_invalid(k, "restitution", fmt::format("{}", p.restitution), "in [0, 1]");
   if (!(p.tangential_damping >= 0 && p.tangential_damping <= 1))
     throw_invalid(k, "tangential_damping", fmt::format("{}", p.tangential_damping), "in [0, 1]");
+  check_particle_range(p, k);
   const SphStageOp o = p.op;
   const bool rk4 = o >= SphStageOp::rk4_stage1 && o <= SphStageOp::rk4_final;
   need(dev, &v0, p.n, k, "v0");

@@ -82,6 +82,9 @@ MASAV_REAL_LAYOUT(SphStepLayout) {
   // 1 when the call passes neighbor_rows: a shader cannot tell a missing optional buffer from
   // the one Vulkan binds in its place (C++ and CUDA test the pointer instead).
   uint neighbor_rows;
+  // The particles computed: [first, end) of the n (SphStepParams::first, count).
+  uint first;
+  uint end;
 };
 
 // What sph_integrate reads: one stage of the integrator, then the box walls.
@@ -94,6 +97,8 @@ MASAV_REAL_LAYOUT(SphIntegrateLayout) {
   real_t restitution;
   real_t hi[3];
   real_t tangential_damping;
+  uint first;  // the particles stepped: [first, end) of the n
+  uint end;
 };
 
 MASAV_NAMESPACE_END
@@ -108,21 +113,30 @@ MASAV_NAMESPACE_END
 namespace masav {
 
 // At most 128 bytes: the most push constants every Vulkan device takes (vk_kernels.cpp asserts
-// it). One check takes at most 20 fields (engine/core/pp.h).
-MASAV_LAYOUT_CHECK(SphStepLayout<float>, 112, (dims, 0), (n, 12), (max_candidates, 16), (model, 20),
+// it). One check takes at most 20 fields (engine/core/pp.h): SphStepLayout's take two.
+MASAV_LAYOUT_CHECK(SphStepLayout<float>, 128, (dims, 0), (n, 12), (max_candidates, 16), (model, 20),
                    (clamp_negative_pressure, 24), (walls, 28), (h2, 32), (inv_h, 36), (inv_h2, 40),
                    (density, 44), (pressure, 48), (viscosity, 52), (rest_density, 56),
                    (inv_rest_density, 60), (eos, 64), (gravity, 68), (lo, 80), (hi, 92),
                    (neighbor_rows, 104))
-MASAV_LAYOUT_CHECK(SphIntegrateLayout<float>, 48, (op, 0), (walls, 4), (n, 8), (dt, 12), (lo, 16),
-                   (restitution, 28), (hi, 32), (tangential_damping, 44))
+MASAV_LAYOUT_CHECK(SphStepLayout<float>, 128, (first, 108), (end, 112))
+MASAV_LAYOUT_CHECK(SphIntegrateLayout<float>, 64, (op, 0), (walls, 4), (n, 8), (dt, 12), (lo, 16),
+                   (restitution, 28), (hi, 32), (tangential_damping, 44), (first, 48), (end, 52))
+
+// SphStepParams / SphIntegrateParams::count for "from first to n".
+inline constexpr uint32_t kSphAllParticles = UINT32_MAX;
 
 // What the density and force kernels need. The particles are sorted by `grid` (cell size >= h,
 // built by build_hash_grid); each kernel walks the 27 cells around the particle's cell at that
 // build, so stage positions may drift from it by at most (cell_size - h) / 2.
 struct SphStepParams {
   GridParams grid;
-  uint32_t n = 0;                  // particles (== grid.n)
+  uint32_t n = 0;  // particles (== grid.n)
+  // The particles the kernel computes: [first, first + count) of the n; the others are only
+  // read, as neighbours (a rank's halo, engine/sph/sph_ranks.h). count kSphAllParticles: from
+  // first to n.
+  uint32_t first = 0;
+  uint32_t count = kSphAllParticles;
   uint32_t max_candidates = 8192;  // examined per particle; beyond it the kernel reports
   SphPressureModel model = SphPressureModel::wcsph;
   double h = 0.02;               // support radius (m)
@@ -176,6 +190,11 @@ struct SphForcesIO {
 
 struct SphIntegrateParams {
   uint32_t n = 0;
+  // The particles the kernel computes: [first, first + count) of the n; the others are only
+  // read, as neighbours (a rank's halo, engine/sph/sph_ranks.h). count kSphAllParticles: from
+  // first to n.
+  uint32_t first = 0;
+  uint32_t count = kSphAllParticles;
   SphStageOp op = SphStageOp::euler;
   double dt = 1e-4;  // s
   bool walls = true;
@@ -197,6 +216,17 @@ struct SphIntegrateIO {
   Buffer<Real4>* sum_v = nullptr;  // RK4 running sums; kick_drift: predicted v1
   Buffer<uint32_t>* stats = nullptr;
 };
+
+// One past the last particle a kernel computes, and how many it computes.
+template <class P>
+uint32_t sph_range_end(const P& p) {
+  return p.count == kSphAllParticles ? p.n : p.first + p.count;
+}
+template <class P>
+uint32_t sph_range_count(const P& p) {
+  const uint32_t end = sph_range_end(p);
+  return end > p.first ? end - p.first : 0u;
+}
 
 // Signal speed of the pressure model (m/s): c0 for wcsph; for the thesis model, whose force
 // kp m sum (rho_j - rho_i)/(2 rho_j) grad W_thesis approximates -(3/14) kp h grad rho (the
@@ -258,6 +288,8 @@ SphStepLayout<F> device_params(const SphStepParams& p, const Buffers&... buffers
     c.hi[a] = F(hi[a]);
   }
   c.neighbor_rows = passes_neighbor_rows(buffers...) ? 1u : 0u;
+  c.first = p.first;
+  c.end = sph_range_end(p);
   return c;
 }
 
@@ -276,6 +308,8 @@ SphIntegrateLayout<F> device_params(const SphIntegrateParams& p, const Buffers&.
   }
   s.restitution = F(p.restitution);
   s.tangential_damping = F(p.tangential_damping);
+  s.first = p.first;
+  s.end = sph_range_end(p);
   return s;
 }
 

@@ -85,9 +85,14 @@ const char* to_string(SphStage s) {
   return enum_name(s, names);
 }
 
-SphSimulation::SphSimulation(Backend& backend, const SphScene& scene)
+SphSimulation::SphSimulation(Backend& backend, const SphScene& scene, SphComm* comm)
     : backend_(backend), scene_(scene) {
   validate(scene_);
+  if (comm && comm->size() > 1 && scene_.model == SphPressureModel::dfsph)
+    throw_invalid("sph scene", "pressure", "dfsph",
+                  fmt::format("wcsph or thesis on {} ranks (dfsph runs in one process only, "
+                              "for now)",
+                              comm->size()));
   check_capacity(backend_, scene_);
   layout_ = build_particles(scene_);
   n_ = layout_.total();
@@ -146,6 +151,7 @@ SphSimulation::SphSimulation(Backend& backend, const SphScene& scene)
   step_params_.box_max = scene_.box_max;
 
   grid_ = make_hash_grid(backend_, gp, n_);
+  if (comm && comm->size() > 1) ranks_ = std::make_unique<SphRanks>(*comm, backend_, gp);
   auto real4 = [&](const char* label) { return backend_.create<Real4>(n_, label); };
   pos_ = real4("sph positions");
   vel_ = real4("sph velocities");
@@ -174,11 +180,15 @@ SphSimulation::SphSimulation(Backend& backend, const SphScene& scene)
     checkpoint_.ids = backend_.create<uint32_t>(n_, "sph checkpoint ids");
   }
 
-  backend_.upload(pos_, layout_.positions);
-  backend_.upload(vel_, layout_.velocities);
-  std::vector<uint32_t> ids(n_);
-  for (uint32_t i = 0; i < n_; ++i) ids[i] = i;
-  backend_.upload(ids_, ids);
+  if (ranks_) {
+    ranks_->scatter_by_id(layout_.positions, layout_.velocities, true, pos_, vel_, ids_);
+  } else {
+    backend_.upload(pos_, layout_.positions);
+    backend_.upload(vel_, layout_.velocities);
+    std::vector<uint32_t> ids(n_);
+    for (uint32_t i = 0; i < n_; ++i) ids[i] = i;
+    backend_.upload(ids_, ids);
+  }
 
   // A first force pass gives a_max for the first dt (and leapfrog's first kick).
   backend_.fill(stats_buf_, 0u);
@@ -246,8 +256,26 @@ void SphSimulation::rebuild_moving(const Buffer<Real4>& x, Buffer<Real4>& x_sort
                          MovedArrays{&x_sorted, &v, &v_sorted, &ids, &ids_sorted});
 }
 
+void SphSimulation::use_rank_layout(const Buffer<Real4>& x) {
+  const SphRankLayout& l = ranks_->staged();
+  grid_.params.n = l.local;
+  step_params_.grid.n = l.local;
+  step_params_.n = l.local;
+  step_params_.first = l.first;
+  step_params_.count = l.own;
+  // The arrays are in cell order already: this build only marks the cells' ranges (its sort
+  // keeps the order, being stable).
+  build_hash_grid(backend_, grid_, x, {GridBuild::counting, scene_.max_candidates});
+}
+
 void SphSimulation::sort_state() {
-  rebuild_moving(pos_, ta_, vel_, tb_, ids_, ids_t_);
+  if (ranks_) {
+    ranks_->redistribute(pos_, vel_, ids_, nullptr, ta_, tb_, ids_t_, nullptr);
+    ranks_->commit();
+    use_rank_layout(ta_);
+  } else {
+    rebuild_moving(pos_, ta_, vel_, tb_, ids_, ids_t_);
+  }
   std::swap(pos_, ta_);
   std::swap(vel_, tb_);
   std::swap(ids_, ids_t_);
@@ -263,6 +291,10 @@ void SphSimulation::evaluate(const Buffer<Real4>& x, const Buffer<Real4>& v) {
   sph_density(backend_, step_params_,
               SphDensityIO{&x, view, &density_, &pressure_, &stats_buf_, neighbor_rows()});
   mark(SphStage::density);
+  if (ranks_) {
+    ranks_->exchange_halos(density_);
+    ranks_->exchange_halos(pressure_);
+  }
   sph_forces(
       backend_, step_params_,
       SphForcesIO{&x, &v, &density_, &pressure_, view, &accel_, &stats_buf_, neighbor_rows()});
@@ -275,6 +307,14 @@ void SphSimulation::integrate(SphStageOp op, double dt, const Buffer<Real4>& x0,
                               Buffer<Real4>* sum_v) {
   SphIntegrateParams p;
   p.n = n_;
+  if (ranks_) {
+    // kick_drift starts from the committed state; the other stages from the grid's arrays
+    // (the same layout, except for leapfrog's kick after its rebuild).
+    const SphRankLayout& l = op == SphStageOp::kick_drift ? ranks_->committed() : ranks_->staged();
+    p.n = l.local;
+    p.first = l.first;
+    p.count = l.own;
+  }
   p.op = op;
   p.dt = dt;
   p.walls = scene_.walls;
@@ -306,11 +346,20 @@ void SphSimulation::step_euler(double dt, SphStageOp op) {
 void SphSimulation::step_rk4(double dt) {
   sort_state();  // the one rebuild of this step (see the header)
   evaluate(pos_, vel_);
+  // On several ranks the halos' stage states come from their owners before each evaluation.
+  auto stage_halos = [&] {
+    if (!ranks_) return;
+    ranks_->exchange_halos(xs_);
+    ranks_->exchange_halos(vs_);
+  };
   integrate(SphStageOp::rk4_stage1, dt, pos_, vel_, nullptr, &xs_, vs_, &sum_x_, &sum_v_);
+  stage_halos();
   evaluate(xs_, vs_);
   integrate(SphStageOp::rk4_stage2, dt, pos_, vel_, &vs_, &xs_, vs_, &sum_x_, &sum_v_);
+  stage_halos();
   evaluate(xs_, vs_);
   integrate(SphStageOp::rk4_stage3, dt, pos_, vel_, &vs_, &xs_, vs_, &sum_x_, &sum_v_);
+  stage_halos();
   evaluate(xs_, vs_);
   integrate(SphStageOp::rk4_final, dt, pos_, vel_, &vs_, &xs_, vs_, &sum_x_, &sum_v_);
 }
@@ -323,9 +372,16 @@ void SphSimulation::step_leapfrog(double dt) {
   }
   // Kick and drift from the committed state; sum_v_ gets the predicted end velocity.
   integrate(SphStageOp::kick_drift, dt, pos_, vel_, nullptr, &xs_, vs_, nullptr, &sum_v_);
-  rebuild_moving(xs_, ta_, vs_, tb_, ids_, ids_t_);
   const bool viscous = scene_.viscosity > 0;
-  if (viscous) reorder(backend_, grid_, sum_v_.impl(), tc_.impl());
+  if (ranks_) {
+    // The predicted velocities move with the particles (the halos' too).
+    ranks_->redistribute(xs_, vs_, ids_, viscous ? &sum_v_ : nullptr, ta_, tb_, ids_t_,
+                         viscous ? &tc_ : nullptr);
+    use_rank_layout(ta_);
+  } else {
+    rebuild_moving(xs_, ta_, vs_, tb_, ids_, ids_t_);
+    if (viscous) reorder(backend_, grid_, sum_v_.impl(), tc_.impl());
+  }
   mark(SphStage::grid);
   // Forces at the new positions; viscosity sees the predicted end-of-step velocity, which keeps
   // the scheme second order when forces depend on velocity.
@@ -337,6 +393,7 @@ void SphSimulation::step_leapfrog(double dt) {
 SphStepStats SphSimulation::read_stats(uint32_t w[kSphStatWords]) {
   const std::vector<uint32_t> words = backend_.download(stats_buf_);
   std::copy(words.begin(), words.begin() + kSphStatWords, w);
+  if (ranks_) ranks_->reduce_stats(w);
   SphStepStats s;
   s.max_speed = std::sqrt(double(bits_to_float(w[kSphStatMaxSpeed2])));
   s.max_accel = std::sqrt(double(bits_to_float(w[kSphStatMaxAccel2])));
@@ -435,6 +492,7 @@ void SphSimulation::commit(double dt) {
     kappa_warm_ = true;
   }
   if (scene_.integrator == SphIntegrator::leapfrog || dfsph()) {
+    if (ranks_) ranks_->commit();
     std::swap(pos_, ta_);
     std::swap(vel_, tb_);
     std::swap(ids_, ids_t_);
@@ -483,6 +541,7 @@ SphSimulation::Attempt SphSimulation::attempt(double dt) {
 }
 
 void SphSimulation::fail_non_finite(double dt) {
+  if (ranks_) fail_non_finite_ranks(dt);
   // Name the particle: one already non-finite in the committed state (the origin), else the
   // first one the step turned non-finite.
   auto first_bad = [](const std::vector<Vec4d>& p, const std::vector<Vec4d>& v,
@@ -603,11 +662,15 @@ void SphSimulation::watch_energy() {
   const uint64_t bad_step = steps_;
   const double bad_time = time_;
   // Back to the last state that passed: positions and velocities by id, in id order.
-  std::vector<uint32_t> ids(n_);
-  for (uint32_t i = 0; i < n_; ++i) ids[i] = i;
-  backend_.upload(pos_, good_.positions);
-  backend_.upload(vel_, good_.velocities);
-  backend_.upload(ids_, ids);
+  if (ranks_) {
+    ranks_->scatter_by_id(good_.positions, good_.velocities, false, pos_, vel_, ids_);
+  } else {
+    std::vector<uint32_t> ids(n_);
+    for (uint32_t i = 0; i < n_; ++i) ids[i] = i;
+    backend_.upload(pos_, good_.positions);
+    backend_.upload(vel_, good_.velocities);
+    backend_.upload(ids_, ids);
+  }
   time_ = good_.time;
   last_dt_ = good_.last_dt;
   steps_ = good_.steps;
@@ -630,8 +693,11 @@ void SphSimulation::set_velocities(const std::vector<Vec4d>& by_id) {
     throw_invalid("sph", "velocities", std::to_string(by_id.size()),
                   fmt::format("one per particle ({})", n_));
   const std::vector<uint32_t> ids = backend_.download(ids_);
-  std::vector<Vec4d> vel(n_);
-  for (uint32_t i = 0; i < n_; ++i) vel[i] = by_id[ids[i]];
+  std::vector<Vec4d> vel = backend_.download(vel_);
+  // The own particles' (on several ranks), or all.
+  const uint32_t first = ranks_ ? ranks_->committed().first : 0;
+  const uint32_t end = ranks_ ? first + ranks_->committed().own : n_;
+  for (uint32_t i = first; i < end; ++i) vel[i] = by_id[ids[i]];
   backend_.upload(vel_, vel);
   accel_valid_ = false;
   fields_current_ = false;

@@ -46,6 +46,13 @@
 // (a block the guard rejects) ends a block where it stands.
 //
 // The stability watchdog (sph_watchdog.h) stops a blown-up run whatever the guard's mode.
+//
+// Ranks. Given a communicator of more than one rank, the simulation is shared among them
+// (sph_ranks.h): each rank computes the particles of its cells, the rebuilds move particles
+// between ranks and bring halos, the stats are reduced over the ranks, and the trajectory is
+// the one process's, bit for bit. download() gathers the whole state on every rank, and a
+// checkpoint (export_resume_state) holds the one-process arrays, so a run restores on any
+// number of ranks. Not yet on several ranks: the dfsph model.
 #include <array>
 #include <cstdint>
 #include <limits>
@@ -55,8 +62,10 @@
 
 #include "engine/grid/hash_grid.h"
 #include "engine/kernels/backend.h"
+#include "engine/sph/sph_comm.h"
 #include "engine/sph/sph_params.h"
 #include "engine/sph/sph_particles.h"
+#include "engine/sph/sph_ranks.h"
 #include "engine/sph/sph_watchdog.h"
 
 namespace masav {
@@ -120,7 +129,9 @@ struct SphResumeState {
 
 class SphSimulation {
  public:
-  SphSimulation(Backend& backend, const SphScene& scene);
+  // `comm`: the ranks sharing the simulation (see the header); null or one rank: this process
+  // alone.
+  SphSimulation(Backend& backend, const SphScene& scene, SphComm* comm = nullptr);
 
   // Advances the simulation by one step: dt (fixed, possibly split into sub-steps by the CFL
   // guard) or the adaptive dt. Throws masav::Error (state left at the last good step).
@@ -144,13 +155,17 @@ class SphSimulation {
 
   const SphScene& scene() const { return scene_; }
   const SphParticles& layout() const { return layout_; }  // spacing, h, mass, counts
-  uint32_t particle_count() const { return n_; }
+  uint32_t particle_count() const { return n_; }          // all ranks' together
+  // The decomposition when the simulation runs on several ranks; null otherwise.
+  const SphRanks* ranks() const { return ranks_.get(); }
+  SphRanks* ranks() { return ranks_.get(); }
   SphStepParams step_params() const { return step_params_; }
   const SphStepStats& last_stats() const { return stats_; }
   const SphSolveStats& solve_stats() const { return solve_stats_; }  // dfsph only
   Backend& backend() { return backend_; }
 
-  // Current state, in particle-id order, with density and pressure at these positions.
+  // Current state, in particle-id order, with density and pressure at these positions (on
+  // several ranks: every rank's particles, on every rank).
   SphState download();
   // The committed state on the backend, for a renderer to bind without a copy: in the order of
   // the last grid rebuild (not particle-id order); positions' w = inverse mass scale. density()
@@ -191,6 +206,11 @@ class SphSimulation {
                       Buffer<Real4>& v_sorted, const Buffer<uint32_t>& ids,
                       Buffer<uint32_t>& ids_sorted);
   void sort_state();  // rebuild on pos_ with pos_, vel_, ids_ moved into cell order
+  // On several ranks: the grid of the staged layout's arrays, already in cell order (x), and the
+  // kernels' particle counts and own ranges.
+  void use_rank_layout(const Buffer<Real4>& x);
+  SphState download_ranks();
+  [[noreturn]] void fail_non_finite_ranks(double dt);
   void evaluate(const Buffer<Real4>& x, const Buffer<Real4>& v);
   Buffer<uint32_t>* neighbor_rows();  // null where the masks are not kept
   void integrate(SphStageOp op, double dt, const Buffer<Real4>& x0, const Buffer<Real4>& v0,
@@ -239,6 +259,7 @@ class SphSimulation {
   double cell_size_ = 0;
   double skin_ = 0;  // m: allowed drift of a stage from the rebuild positions (RK4)
   HashGrid grid_;
+  std::unique_ptr<SphRanks> ranks_;  // several ranks only
 
   // Committed state in the order of the last rebuild, and scratch.
   Buffer<Real4> pos_, vel_, xs_, vs_, sum_x_, sum_v_, ta_, tb_, tc_, accel_;

@@ -13,10 +13,13 @@ struct SphSimulation::HostState {
   uint64_t steps, substeps;
   SphStepStats stats;
   bool accel_valid, fields_current;
+  SphRankLayout ranks;  // the committed layout, on several ranks
 };
 
 SphSimulation::HostState SphSimulation::save_host_state() const {
-  return {time_, last_dt_, adaptive_dt_, steps_, substeps_, stats_, accel_valid_, fields_current_};
+  return {time_,        last_dt_,        adaptive_dt_,
+          steps_,       substeps_,       stats_,
+          accel_valid_, fields_current_, ranks_ ? ranks_->committed() : SphRankLayout{}};
 }
 
 void SphSimulation::restore_host_state(const HostState& h) {
@@ -28,6 +31,7 @@ void SphSimulation::restore_host_state(const HostState& h) {
   stats_ = h.stats;
   accel_valid_ = h.accel_valid;
   fields_current_ = h.fields_current;
+  if (ranks_) ranks_->restore(h.ranks);
 }
 
 void SphSimulation::set_block_steps(uint32_t k) {

@@ -7,6 +7,7 @@
 namespace masav {
 
 SphState SphSimulation::download() {
+  if (ranks_) return download_ranks();
   const Buffer<Real4>* px = &pos_;
   const Buffer<Real4>* pv = &vel_;
   const Buffer<uint32_t>* pid = &ids_;

@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <string>
+#include <type_traits>
 
 #include "engine/core/error.h"
 #include "engine/sph/sph_kernel_calls.h"
@@ -22,12 +23,22 @@ void check_count(const std::vector<T>& v, size_t want, const char* field) {
 
 SphResumeState SphSimulation::export_resume_state() {
   SphResumeState r;
-  r.positions = backend_.download(pos_);
-  r.velocities = backend_.download(vel_);
-  r.accel = backend_.download(accel_);
-  r.ids = backend_.download(ids_);
-  r.density = backend_.download(density_);
-  r.pressure = backend_.download(pressure_);
+  if (ranks_) {
+    // The ranks' own particles in rank order: the one-process arrays (sph_ranks.h).
+    r.positions = gather_own(backend_, *ranks_, pos_);
+    r.velocities = gather_own(backend_, *ranks_, vel_);
+    r.accel = gather_own(backend_, *ranks_, accel_);
+    r.ids = gather_own(backend_, *ranks_, ids_);
+    r.density = gather_own(backend_, *ranks_, density_);
+    r.pressure = gather_own(backend_, *ranks_, pressure_);
+  } else {
+    r.positions = backend_.download(pos_);
+    r.velocities = backend_.download(vel_);
+    r.accel = backend_.download(accel_);
+    r.ids = backend_.download(ids_);
+    r.density = backend_.download(density_);
+    r.pressure = backend_.download(pressure_);
+  }
   if (dfsph()) {
     r.kappa_density = backend_.download(kappa_density_);
     r.kappa_divergence = backend_.download(kappa_divergence_);
@@ -48,6 +59,7 @@ SphResumeState SphSimulation::export_resume_state() {
   if (block_open_) {
     r.block_limit = block_limit_;
     r.block_stats = backend_.download(stats_buf_);
+    if (ranks_) ranks_->reduce_stats(r.block_stats.data());
   }
   r.watchdog = watchdog_;
   r.next_energy_check = next_energy_check_;
@@ -87,12 +99,33 @@ void SphSimulation::restore_resume_state(const SphResumeState& r) {
   if (r.block_steps < 1 || r.block_steps > kMaxBlockSteps)
     throw_invalid("sph checkpoint", "block steps", std::to_string(r.block_steps),
                   fmt::format("1 to {}", kMaxBlockSteps));
-  backend_.upload(pos_, r.positions);
-  backend_.upload(vel_, r.velocities);
-  backend_.upload(accel_, r.accel);
-  backend_.upload(ids_, r.ids);
-  backend_.upload(density_, r.density);
-  backend_.upload(pressure_, r.pressure);
+  std::vector<uint32_t> block_stats = r.block_stats;
+  if (ranks_) {
+    // Each rank takes an equal contiguous piece of the one-process arrays, whatever the number
+    // of ranks that wrote them; the next rebuild moves the particles to their cells' owners.
+    ranks_->balance(r.positions);
+    const auto [b, e] = ranks_->share(n_);
+    auto piece = [b = b, e = e](const auto& v) {
+      using V = std::decay_t<decltype(v)>;
+      return V(v.begin() + std::ptrdiff_t(b), v.begin() + std::ptrdiff_t(e));
+    };
+    backend_.upload(pos_, piece(r.positions));
+    backend_.upload(vel_, piece(r.velocities));
+    backend_.upload(accel_, piece(r.accel));
+    backend_.upload(ids_, piece(r.ids));
+    backend_.upload(density_, piece(r.density));
+    backend_.upload(pressure_, piece(r.pressure));
+    ranks_->restore({uint32_t(e - b), 0, uint32_t(e - b)});
+    // The open block's stats are maxima, except the outside count, a sum: rank 0 keeps it.
+    if (!block_stats.empty() && ranks_->rank() != 0) block_stats[kSphStatOutside] = 0;
+  } else {
+    backend_.upload(pos_, r.positions);
+    backend_.upload(vel_, r.velocities);
+    backend_.upload(accel_, r.accel);
+    backend_.upload(ids_, r.ids);
+    backend_.upload(density_, r.density);
+    backend_.upload(pressure_, r.pressure);
+  }
   time_ = r.time;
   last_dt_ = r.last_dt;
   adaptive_dt_ = r.adaptive_dt;
@@ -108,7 +141,7 @@ void SphSimulation::restore_resume_state(const SphResumeState& r) {
   block_steps_ = r.block_steps;
   block_open_ = !r.block_stats.empty();
   block_limit_ = r.block_limit;
-  if (block_open_) backend_.upload(stats_buf_, r.block_stats);
+  if (block_open_) backend_.upload(stats_buf_, block_stats);
   watchdog_ = r.watchdog;
   next_energy_check_ = r.next_energy_check;
   good_ = {r.good_positions, r.good_velocities, r.good_time, r.good_last_dt,

@@ -1,0 +1,158 @@
+#include "app/mpi_comm.h"
+
+#include <fmt/format.h>
+
+#include <climits>
+#include <cstdlib>
+#include <string>
+
+#include "engine/core/error.h"
+
+#if MASAV_HAVE_MPI
+#include <mpi.h>
+#endif
+
+namespace masav::app {
+
+int launched_ranks() {
+  for (const char* name : {"OMPI_COMM_WORLD_SIZE", "PMI_SIZE"}) {
+    if (const char* v = std::getenv(name)) {
+      char* end = nullptr;
+      const long n = std::strtol(v, &end, 10);
+      if (end != v && *end == '\0' && n >= 1 && n <= INT_MAX) return int(n);
+    }
+  }
+  return 1;
+}
+
+#if MASAV_HAVE_MPI
+namespace {
+
+void check(int rc, const char* call) {
+  if (rc == MPI_SUCCESS) return;
+  char text[MPI_MAX_ERROR_STRING];
+  int len = 0;
+  MPI_Error_string(rc, text, &len);
+  throw Error("mpi", call, std::string(text, size_t(len)),
+              "check the MPI installation and that every rank runs the same masav");
+}
+
+// MPI counts are ints: one exchange moves at most INT_MAX bytes per rank.
+int count_of(size_t bytes, const char* what) {
+  if (bytes > size_t(INT_MAX))
+    throw Error("mpi", what, fmt::format("{} bytes in one exchange", bytes),
+                "at most 2 GiB per rank and exchange: run on more ranks");
+  return int(bytes);
+}
+
+class MpiComm final : public SphComm {
+ public:
+  MpiComm() {
+    check(MPI_Comm_rank(MPI_COMM_WORLD, &rank_), "MPI_Comm_rank");
+    check(MPI_Comm_size(MPI_COMM_WORLD, &size_), "MPI_Comm_size");
+  }
+  int rank() const override { return rank_; }
+  int size() const override { return size_; }
+
+  std::vector<Bytes> exchange(const std::vector<Bytes>& to) override {
+    const size_t n = size_t(size_);
+    std::vector<int> send_counts(n, 0), recv_counts(n, 0), send_at(n, 0), recv_at(n, 0);
+    size_t sent = 0;
+    for (size_t r = 0; r < n; ++r) {
+      if (int(r) == rank_ || r >= to.size()) continue;
+      send_at[r] = count_of(sent, "exchange");
+      send_counts[r] = count_of(to[r].size(), "exchange");
+      sent += to[r].size();
+    }
+    Bytes send;
+    send.reserve(sent);
+    for (size_t r = 0; r < n; ++r)
+      if (send_counts[r]) send.insert(send.end(), to[r].begin(), to[r].end());
+    check(MPI_Alltoall(send_counts.data(), 1, MPI_INT, recv_counts.data(), 1, MPI_INT,
+                       MPI_COMM_WORLD),
+          "MPI_Alltoall");
+    size_t received = 0;
+    for (size_t r = 0; r < n; ++r) {
+      recv_at[r] = count_of(received, "exchange");
+      received += size_t(recv_counts[r]);
+    }
+    Bytes recv(received);
+    count_of(received, "exchange");
+    check(MPI_Alltoallv(send.data(), send_counts.data(), send_at.data(), MPI_BYTE, recv.data(),
+                        recv_counts.data(), recv_at.data(), MPI_BYTE, MPI_COMM_WORLD),
+          "MPI_Alltoallv");
+    std::vector<Bytes> from(n);
+    for (size_t r = 0; r < n; ++r)
+      from[r].assign(recv.begin() + recv_at[r], recv.begin() + recv_at[r] + recv_counts[r]);
+    return from;
+  }
+
+  void max(std::span<uint32_t> values) override {
+    check(MPI_Allreduce(MPI_IN_PLACE, values.data(), int(values.size()), MPI_UINT32_T, MPI_MAX,
+                        MPI_COMM_WORLD),
+          "MPI_Allreduce");
+  }
+  void sum(std::span<uint64_t> values) override {
+    check(MPI_Allreduce(MPI_IN_PLACE, values.data(), int(values.size()), MPI_UINT64_T, MPI_SUM,
+                        MPI_COMM_WORLD),
+          "MPI_Allreduce");
+  }
+
+  std::vector<Bytes> allgather(std::span<const std::byte> mine) override {
+    const size_t n = size_t(size_);
+    int count = count_of(mine.size(), "allgather");
+    std::vector<int> counts(n), at(n);
+    check(MPI_Allgather(&count, 1, MPI_INT, counts.data(), 1, MPI_INT, MPI_COMM_WORLD),
+          "MPI_Allgather");
+    size_t total = 0;
+    for (size_t r = 0; r < n; ++r) {
+      at[r] = count_of(total, "allgather");
+      total += size_t(counts[r]);
+    }
+    Bytes all(total);
+    count_of(total, "allgather");
+    check(MPI_Allgatherv(mine.data(), count, MPI_BYTE, all.data(), counts.data(), at.data(),
+                         MPI_BYTE, MPI_COMM_WORLD),
+          "MPI_Allgatherv");
+    std::vector<Bytes> out(n);
+    for (size_t r = 0; r < n; ++r)
+      out[r].assign(all.begin() + at[r], all.begin() + at[r] + counts[r]);
+    return out;
+  }
+
+ private:
+  int rank_ = 0, size_ = 1;
+};
+
+}  // namespace
+
+SphComm* world_comm() {
+  if (launched_ranks() <= 1) return nullptr;
+  static std::unique_ptr<MpiComm> comm = [] {
+    int initialized = 0;
+    MPI_Initialized(&initialized);
+    if (!initialized) {
+      check(MPI_Init(nullptr, nullptr), "MPI_Init");
+      std::atexit([] {
+        int finalized = 0;
+        MPI_Finalized(&finalized);
+        if (!finalized) MPI_Finalize();
+      });
+    }
+    return std::make_unique<MpiComm>();
+  }();
+  return comm->size() > 1 ? comm.get() : nullptr;
+}
+
+#else
+
+SphComm* world_comm() {
+  const int n = launched_ranks();
+  if (n <= 1) return nullptr;
+  throw Error("", "ranks", fmt::format("started on {} ranks, but this masav has no MPI", n),
+              "install libopenmpi-dev (tools/setup does) and rebuild, or run one process");
+}
+
+#endif
+
+}  // namespace masav::app

@@ -1,0 +1,440 @@
+#include "engine/sph/sph_ranks.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cstring>
+#include <numeric>
+#include <span>
+
+#include "engine/core/error.h"
+#include "engine/kernels/grid_cell.h"
+#include "engine/kernels/sph_kernel_params.h"
+
+namespace masav {
+namespace {
+
+// Particles in transit: the raw device bytes of each array, so that nothing is converted.
+struct Fields {
+  size_t real4 = 0;    // bytes of one Real4
+  bool extra = false;  // the optional array moves too
+};
+
+struct Pack {
+  size_t count = 0;
+  Bytes x, v, ids, extra;
+
+  void append_all(const Pack& src) {
+    x.insert(x.end(), src.x.begin(), src.x.end());
+    v.insert(v.end(), src.v.begin(), src.v.end());
+    ids.insert(ids.end(), src.ids.begin(), src.ids.end());
+    extra.insert(extra.end(), src.extra.begin(), src.extra.end());
+    count += src.count;
+  }
+};
+
+// Particle `i` of pack `p`.
+struct Ref {
+  const Pack* p;
+  uint32_t i;
+};
+
+// The particles `refs` names, in that order (one copy per array and particle, no reallocation).
+Pack pick(std::span<const Ref> refs, const Fields& f) {
+  Pack out;
+  out.count = refs.size();
+  auto field_of = [&](Bytes Pack::*field, size_t each) {
+    Bytes& dst = out.*field;
+    dst.resize(refs.size() * each);
+    for (size_t k = 0; k < refs.size(); ++k)
+      std::memcpy(dst.data() + k * each, ((*refs[k].p).*field).data() + size_t(refs[k].i) * each,
+                  each);
+  };
+  field_of(&Pack::x, f.real4);
+  field_of(&Pack::v, f.real4);
+  field_of(&Pack::ids, 4);
+  if (f.extra) field_of(&Pack::extra, f.real4);
+  return out;
+}
+
+Pack pick(const Pack& p, std::span<const uint32_t> indices, const Fields& f) {
+  std::vector<Ref> refs(indices.size());
+  for (size_t k = 0; k < indices.size(); ++k) refs[k] = {&p, indices[k]};
+  return pick(refs, f);
+}
+
+Bytes serialize(const Pack& p) {
+  Bytes out;
+  const uint64_t count = p.count;
+  append_bytes(out, std::span<const uint64_t>(&count, 1));
+  out.insert(out.end(), p.x.begin(), p.x.end());
+  out.insert(out.end(), p.v.begin(), p.v.end());
+  out.insert(out.end(), p.ids.begin(), p.ids.end());
+  out.insert(out.end(), p.extra.begin(), p.extra.end());
+  return out;
+}
+
+[[noreturn]] void fail_message(int from, size_t bytes, size_t want) {
+  throw Error("sph", "ranks",
+              fmt::format("rank {} sent {} bytes where {} were expected", from, bytes, want),
+              "the ranks run different builds or scenes: start every rank with the same masav "
+              "and the same arguments");
+}
+
+Pack deserialize(const Bytes& b, const Fields& f, int from) {
+  uint64_t count = 0;
+  if (b.size() < sizeof count) fail_message(from, b.size(), sizeof count);
+  std::memcpy(&count, b.data(), sizeof count);
+  const size_t each = 2 * f.real4 + 4 + (f.extra ? f.real4 : 0);
+  if (count > (b.size() - sizeof count) / each || b.size() != sizeof count + count * each)
+    fail_message(from, b.size(), sizeof count + size_t(count) * each);
+  Pack p;
+  p.count = size_t(count);
+  auto take = [&, at = sizeof count](Bytes& dst, size_t n) mutable {
+    dst.assign(b.begin() + std::ptrdiff_t(at), b.begin() + std::ptrdiff_t(at + n));
+    at += n;
+  };
+  take(p.x, p.count * f.real4);
+  take(p.v, p.count * f.real4);
+  take(p.ids, p.count * 4);
+  if (f.extra) take(p.extra, p.count * f.real4);
+  return p;
+}
+
+void download_range(Backend& b, const BufferImpl& src, Bytes& dst, size_t first, size_t count,
+                    size_t elem) {
+  dst.resize(count * elem);
+  if (count) b.download_bytes(src, dst.data(), count * elem, first * elem);
+}
+
+void upload_range(Backend& b, BufferImpl& dst, const Bytes& src, size_t first) {
+  if (!src.empty()) b.upload_bytes(dst, src.data(), src.size(), first);
+}
+
+}  // namespace
+
+class SphRanks::Timer {
+ public:
+  explicit Timer(double& total) : total_(total), start_(std::chrono::steady_clock::now()) {}
+  ~Timer() {
+    total_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+  }
+
+ private:
+  double& total_;
+  std::chrono::steady_clock::time_point start_;
+};
+
+SphRanks::SphRanks(SphComm& comm, Backend& backend, const GridParams& grid)
+    : comm_(comm), backend_(backend), grid_(grid) {
+  cell_count_ = uint32_t(grid_cell_count(grid_));
+  partition_ = balance_partition({}, 1, cell_count_, comm_.size());
+  halo_send_.assign(size_t(comm_.size()), {});
+  halo_recv_.assign(size_t(comm_.size()), 0);
+}
+
+uint32_t SphRanks::cell_of(const std::byte* real4) const {
+  float p[3];
+  if (backend_.real_bytes() == 8) {
+    double d[3];
+    std::memcpy(d, real4, sizeof d);
+    for (int a = 0; a < 3; ++a) p[a] = float(d[a]);
+  } else {
+    std::memcpy(p, real4, sizeof p);
+  }
+  // As the grid kernels compute it (engine/kernels/grid_body.h): fp32, clamped to the grid.
+  const float origin[3] = {grid_.origin.x, grid_.origin.y, grid_.origin.z};
+  const uint32_t dims[3] = {grid_.dims.x, grid_.dims.y, grid_.dims.z};
+  const grid::CellCoord c = grid::point_cell(p[0], p[1], p[2], origin, grid_.inv_cell, dims);
+  return grid::cell_id(c.x, c.y, c.z, dims[1], dims[2]);
+}
+
+SphPartition SphRanks::partition_for(const std::vector<uint32_t>& cells, bool global) {
+  const uint32_t per = partition_bucket_cells(cell_count_);
+  std::vector<uint64_t> counts((uint64_t(cell_count_) + per - 1) / per, 0);
+  for (uint32_t c : cells) ++counts[c / per];
+  if (global) comm_.sum(counts);
+  return balance_partition(counts, per, cell_count_, comm_.size());
+}
+
+void SphRanks::maybe_rebalance(const std::vector<uint32_t>& cells) {
+  uint32_t most = uint32_t(cells.size());
+  uint64_t total = cells.size();
+  comm_.max(std::span<uint32_t>(&most, 1));
+  comm_.sum(std::span<uint64_t>(&total, 1));
+  const double mean = double(total) / double(comm_.size());
+  if (double(most) <= (1.0 + kImbalance) * mean) return;
+  partition_ = partition_for(cells, true);
+  ++counters_.rebalances;
+}
+
+std::vector<uint32_t> SphRanks::cells_of(const std::vector<Vec4d>& positions) const {
+  std::vector<uint32_t> cells(positions.size());
+  for (size_t i = 0; i < positions.size(); ++i) {
+    // The cell of the position as the backend will store it.
+    const Vec4d& p = positions[i];
+    std::byte raw[32];
+    if (backend_.real_bytes() == 8) {
+      const double d[4] = {p.x, p.y, p.z, p.w};
+      std::memcpy(raw, d, sizeof d);
+    } else {
+      const float f[4] = {float(p.x), float(p.y), float(p.z), float(p.w)};
+      std::memcpy(raw, f, sizeof f);
+    }
+    cells[i] = cell_of(raw);
+  }
+  return cells;
+}
+
+void SphRanks::balance(const std::vector<Vec4d>& positions) {
+  partition_ = partition_for(cells_of(positions), false);  // every rank has every particle
+}
+
+std::pair<size_t, size_t> SphRanks::share(size_t count) const {
+  const size_t r = size_t(rank()), n = size_t(ranks());
+  return {count * r / n, count * (r + 1) / n};
+}
+
+void SphRanks::scatter_by_id(const std::vector<Vec4d>& positions,
+                             const std::vector<Vec4d>& velocities, bool balance, Buffer<Real4>& x,
+                             Buffer<Real4>& v, Buffer<uint32_t>& ids) {
+  const std::vector<uint32_t> cells = cells_of(positions);
+  if (balance) partition_ = partition_for(cells, false);  // every rank has every particle
+  std::vector<Vec4d> own_x, own_v;
+  std::vector<uint32_t> own_ids;
+  for (size_t i = 0; i < positions.size(); ++i) {
+    if (partition_.owner(cells[i]) != rank()) continue;
+    own_x.push_back(positions[i]);
+    own_v.push_back(velocities[i]);
+    own_ids.push_back(uint32_t(i));
+  }
+  backend_.upload(x, own_x);
+  backend_.upload(v, own_v);
+  backend_.upload(ids, own_ids);
+  const uint32_t own = uint32_t(own_ids.size());
+  restore({own, 0, own});
+}
+
+void SphRanks::restore(const SphRankLayout& committed) {
+  committed_ = staged_ = committed;
+  halo_send_.assign(size_t(ranks()), {});
+  halo_recv_.assign(size_t(ranks()), 0);
+}
+
+const SphRankLayout& SphRanks::redistribute(const Buffer<Real4>& x, const Buffer<Real4>& v,
+                                            const Buffer<uint32_t>& ids, const Buffer<Real4>* extra,
+                                            Buffer<Real4>& x_out, Buffer<Real4>& v_out,
+                                            Buffer<uint32_t>& ids_out, Buffer<Real4>* extra_out) {
+  Timer timer(counters_.exchange_seconds);
+  const int me = rank(), count = ranks();
+  const Fields f{4 * backend_.real_bytes(), extra != nullptr};
+  const SphRankLayout& L = committed_;
+  Pack own;
+  own.count = L.own;
+  download_range(backend_, x.impl(), own.x, L.first, L.own, f.real4);
+  download_range(backend_, v.impl(), own.v, L.first, L.own, f.real4);
+  download_range(backend_, ids.impl(), own.ids, L.first, L.own, 4);
+  if (f.extra) download_range(backend_, extra->impl(), own.extra, L.first, L.own, f.real4);
+  std::vector<uint32_t> cells(own.count);
+  for (size_t i = 0; i < own.count; ++i) cells[i] = cell_of(&own.x[i * f.real4]);
+  maybe_rebalance(cells);
+
+  // Migration: each particle to its cell's owner, in this rank's order (leaving[me]: those
+  // that stay).
+  std::vector<std::vector<uint32_t>> leaving(static_cast<size_t>(count));
+  for (size_t i = 0; i < own.count; ++i)
+    leaving[size_t(partition_.owner(cells[i]))].push_back(uint32_t(i));
+  std::vector<Bytes> out(static_cast<size_t>(count));
+  for (int r = 0; r < count; ++r)
+    if (r != me) {
+      out[size_t(r)] = serialize(pick(own, leaving[size_t(r)], f));
+      counters_.bytes_sent += out[size_t(r)].size();
+    }
+  const std::vector<Bytes> arrived = comm_.exchange(out);
+
+  // In the one-process order: lower ranks' particles, this rank's, higher ranks'.
+  std::vector<Pack> in(static_cast<size_t>(count));
+  std::vector<Ref> merged;
+  std::vector<uint32_t> merged_cells;
+  merged.reserve(own.count);
+  merged_cells.reserve(own.count);
+  for (int r = 0; r < count; ++r) {
+    if (r == me) {
+      for (uint32_t i : leaving[size_t(me)]) {
+        merged.push_back({&own, i});
+        merged_cells.push_back(cells[i]);
+      }
+      continue;
+    }
+    const Pack& p = in[size_t(r)] = deserialize(arrived[size_t(r)], f, r);
+    counters_.migrated += p.count;
+    for (size_t i = 0; i < p.count; ++i) {
+      const uint32_t c = cell_of(&p.x[i * f.real4]);
+      if (partition_.owner(c) != me)
+        throw Error("sph", "ranks",
+                    fmt::format("rank {} sent rank {} a particle of cell {}, owned by rank {}", r,
+                                me, c, partition_.owner(c)),
+                    "the ranks disagree on the decomposition: start every rank with the same "
+                    "masav and the same arguments");
+      merged.push_back({&p, uint32_t(i)});
+      merged_cells.push_back(c);
+    }
+  }
+  std::vector<uint32_t> order(merged.size());
+  std::iota(order.begin(), order.end(), 0u);
+  std::stable_sort(order.begin(), order.end(),
+                   [&](uint32_t a, uint32_t b) { return merged_cells[a] < merged_cells[b]; });
+  std::vector<Ref> by_cell(order.size());
+  std::vector<uint32_t> sorted_cells(order.size());
+  for (size_t k = 0; k < order.size(); ++k) {
+    by_cell[k] = merged[order[k]];
+    sorted_cells[k] = merged_cells[order[k]];
+  }
+  const Pack sorted = pick(by_cell, f);
+
+  // Halos: every particle of a cell next to another rank's range goes to that rank.
+  halo_send_.assign(size_t(count), {});
+  std::vector<char> wants(size_t(count), 0);
+  const uint32_t dims[3] = {grid_.dims.x, grid_.dims.y, grid_.dims.z};
+  uint32_t last = UINT32_MAX;
+  for (uint32_t k = 0; k < sorted.count; ++k) {
+    const uint32_t c = sorted_cells[k];
+    if (c != last) {
+      last = c;
+      std::fill(wants.begin(), wants.end(), 0);
+      const int cz = int(c % dims[2]), cy = int((c / dims[2]) % dims[1]),
+                cx = int(c / (dims[2] * dims[1]));
+      for (int n = 0; n < 27; ++n) {
+        const int nx = cx + n / 9 - 1, ny = cy + (n / 3) % 3 - 1, nz = cz + n % 3 - 1;
+        if (nx < 0 || ny < 0 || nz < 0 || nx >= int(dims[0]) || ny >= int(dims[1]) ||
+            nz >= int(dims[2]))
+          continue;
+        wants[size_t(partition_.owner(
+            grid::cell_id(uint32_t(nx), uint32_t(ny), uint32_t(nz), dims[1], dims[2])))] = 1;
+      }
+      wants[size_t(me)] = 0;
+    }
+    for (int r = 0; r < count; ++r)
+      if (wants[size_t(r)]) halo_send_[size_t(r)].push_back(k);
+  }
+  for (int r = 0; r < count; ++r) {
+    out[size_t(r)].clear();
+    if (r == me) continue;
+    out[size_t(r)] = serialize(pick(sorted, halo_send_[size_t(r)], f));
+    counters_.bytes_sent += out[size_t(r)].size();
+  }
+  const std::vector<Bytes> halos = comm_.exchange(out);
+
+  Pack local;
+  halo_recv_.assign(size_t(count), 0);
+  auto add_halo = [&](int r) {
+    const Pack in = deserialize(halos[size_t(r)], f, r);
+    halo_recv_[size_t(r)] = uint32_t(in.count);
+    counters_.halo += in.count;
+    local.append_all(in);
+  };
+  for (int r = 0; r < me; ++r) add_halo(r);
+  const uint32_t first = uint32_t(local.count);
+  local.append_all(sorted);
+  for (int r = me + 1; r < count; ++r) add_halo(r);
+  if (local.count > x_out.size())
+    throw Error(backend_.name(), "sph ranks",
+                fmt::format("rank {} holds {} particles with its halos, more than its buffers' "
+                            "{}",
+                            me, local.count, x_out.size()),
+                "run on fewer ranks or with more particles per rank");
+  upload_range(backend_, x_out.impl(), local.x, 0);
+  upload_range(backend_, v_out.impl(), local.v, 0);
+  upload_range(backend_, ids_out.impl(), local.ids, 0);
+  if (f.extra && extra_out) upload_range(backend_, extra_out->impl(), local.extra, 0);
+  staged_ = {uint32_t(local.count), first, uint32_t(sorted.count)};
+  ++counters_.rebuilds;
+  return staged_;
+}
+
+void SphRanks::exchange_halos(BufferImpl& b, size_t elem) {
+  Timer timer(counters_.exchange_seconds);
+  const int me = rank(), count = ranks();
+  const SphRankLayout& L = staged_;
+  Bytes own;
+  download_range(backend_, b, own, L.first, L.own, elem);
+  std::vector<Bytes> out(static_cast<size_t>(count));
+  for (int r = 0; r < count; ++r) {
+    if (r == me) continue;
+    Bytes& m = out[size_t(r)];
+    m.reserve(halo_send_[size_t(r)].size() * elem);
+    for (uint32_t k : halo_send_[size_t(r)])
+      m.insert(m.end(), own.begin() + std::ptrdiff_t(k * elem),
+               own.begin() + std::ptrdiff_t((k + 1) * elem));
+    counters_.bytes_sent += m.size();
+  }
+  const std::vector<Bytes> in = comm_.exchange(out);
+  Bytes lower, upper;
+  for (int r = 0; r < count; ++r) {
+    if (r == me) continue;
+    const Bytes& m = in[size_t(r)];
+    if (m.size() != size_t(halo_recv_[size_t(r)]) * elem)
+      fail_message(r, m.size(), size_t(halo_recv_[size_t(r)]) * elem);
+    Bytes& dst = r < me ? lower : upper;
+    dst.insert(dst.end(), m.begin(), m.end());
+  }
+  upload_range(backend_, b, lower, 0);
+  upload_range(backend_, b, upper, size_t(L.first + L.own) * elem);
+  ++counters_.halo_updates;
+}
+
+void SphRanks::exchange_halos(Buffer<Real>& b) {
+  exchange_halos(b.impl(), backend_.real_bytes());
+}
+
+void SphRanks::exchange_halos(Buffer<Real4>& b) {
+  exchange_halos(b.impl(), 4 * backend_.real_bytes());
+}
+
+void SphRanks::reduce_stats(uint32_t* words) {
+  uint64_t outside = words[kSphStatOutside];
+  comm_.max(std::span<uint32_t>(words, kSphStatWords));
+  comm_.sum(std::span<uint64_t>(&outside, 1));
+  words[kSphStatOutside] = uint32_t(std::min<uint64_t>(outside, UINT32_MAX));
+}
+
+uint32_t SphRanks::min(uint32_t value) {
+  uint32_t inverted = ~value;
+  comm_.max(std::span<uint32_t>(&inverted, 1));
+  return ~inverted;
+}
+
+Bytes SphRanks::gather(const Bytes& mine) {
+  const std::vector<Bytes> all = comm_.allgather(mine);
+  Bytes out;
+  for (const Bytes& b : all) out.insert(out.end(), b.begin(), b.end());
+  return out;
+}
+
+namespace {
+
+template <class T, class Elem>
+std::vector<T> gather_own_values(Backend& backend, SphRanks& ranks, const Buffer<Elem>& b) {
+  const std::vector<T> all = backend.download(b);
+  const SphRankLayout& l = ranks.committed();
+  Bytes mine;
+  append_bytes(mine, std::span<const T>(all.data() + l.first, l.own));
+  const Bytes bytes = ranks.gather(mine);
+  std::vector<T> out(bytes.size() / sizeof(T));
+  std::memcpy(out.data(), bytes.data(), out.size() * sizeof(T));
+  return out;
+}
+
+}  // namespace
+
+std::vector<Vec4d> gather_own(Backend& backend, SphRanks& ranks, const Buffer<Real4>& b) {
+  return gather_own_values<Vec4d>(backend, ranks, b);
+}
+std::vector<double> gather_own(Backend& backend, SphRanks& ranks, const Buffer<Real>& b) {
+  return gather_own_values<double>(backend, ranks, b);
+}
+std::vector<uint32_t> gather_own(Backend& backend, SphRanks& ranks, const Buffer<uint32_t>& b) {
+  return gather_own_values<uint32_t>(backend, ranks, b);
+}
+
+}  // namespace masav

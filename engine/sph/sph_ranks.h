@@ -1,0 +1,126 @@
+#pragma once
+// One SPH simulation shared among ranks (processes, or threads in the tests), each driving its
+// own backend: the decomposition, the migration of particles between ranks and the halo
+// exchange. SphSimulation calls it where one process would rebuild its grid.
+//
+// Identical to one process. One process keeps its particles sorted by cell, stably (within a
+// cell in the order of the previous sort), and sums over neighbours in that order. A rank owns a
+// contiguous range of cell ids (sph_partition.h), so its particles are a contiguous piece of
+// that one-process array, and the pieces of the ranks, in rank order, are the whole array. At a
+// rebuild each rank sends the particles that left its range to their new owners; the receiver
+// puts those from lower ranks before its own and those from higher ranks after, which is their
+// order in the one-process array, and sorts stably by cell: the same order one process gets.
+// Then each rank sends every particle of a cell next to another rank's range (the 27 cells
+// around it) to that rank, in its order: halo cells arrive whole and in the one-process order,
+// before the rank's own cells (from lower ranks) or after them (from higher ranks). The local
+// arrays are [halos of lower cells][own][halos of higher cells], sorted by cell like the
+// one-process array, and a kernel computing only the own range walks the same neighbours in the
+// same order as one process: the same bits, on every backend. Stats are maxima (and one sum of
+// counts) over the ranks, exact, so every rank chooses the same dt.
+//
+// Data moves through host memory (download, exchange, upload).
+#include <chrono>
+#include <cstdint>
+#include <vector>
+
+#include "engine/kernels/backend.h"
+#include "engine/sph/sph_comm.h"
+#include "engine/sph/sph_partition.h"
+
+namespace masav {
+
+// Where a rank's particles sit in its local arrays.
+struct SphRankLayout {
+  uint32_t local = 0;  // own and halo particles
+  uint32_t first = 0;  // own particles: [first, first + own)
+  uint32_t own = 0;
+};
+
+// What the exchanges cost, summed since the simulation started (this rank's share).
+struct SphRankCounters {
+  uint64_t rebuilds = 0;      // redistribute() calls
+  uint64_t migrated = 0;      // particles received from other ranks at rebuilds
+  uint64_t halo = 0;          // halo particles received at rebuilds
+  uint64_t halo_updates = 0;  // exchange_halos() calls
+  uint64_t bytes_sent = 0;    // to other ranks, all exchanges
+  uint64_t rebalances = 0;
+  double exchange_seconds = 0;  // in the exchanges, host work and waiting included
+};
+
+class SphRanks {
+ public:
+  SphRanks(SphComm& comm, Backend& backend, const GridParams& grid);
+
+  SphComm& comm() { return comm_; }
+  int rank() const { return comm_.rank(); }
+  int ranks() const { return comm_.size(); }
+  const SphPartition& partition() const { return partition_; }
+  const SphRankCounters& counters() const { return counters_; }
+
+  // This rank's share of all particles (given by id, the same on every rank), in id order: its
+  // own particles, without halos, become the committed layout (the next redistribute() adds the
+  // halos). `balance`: first balance the partition for these particles.
+  void scatter_by_id(const std::vector<Vec4d>& positions, const std::vector<Vec4d>& velocities,
+                     bool balance, Buffer<Real4>& x, Buffer<Real4>& v, Buffer<uint32_t>& ids);
+  // Balances the partition for all particles' positions (the same on every rank).
+  void balance(const std::vector<Vec4d>& positions);
+  // This rank's share [first, end) of `count` values in the one-process order (the order of a
+  // rebuild): equal contiguous pieces in rank order, which redistribute() accepts as the
+  // committed layout wherever the particles are.
+  std::pair<size_t, size_t> share(size_t count) const;
+
+  // The rebuild's exchange (see the header): the own particles of the committed layout of x,
+  // v, ids (and `extra`, a per-particle array that moves with them) go to their cells' owners,
+  // re-balancing first when the ranks hold more than kImbalance above their mean; the result,
+  // halos included, is written to the *_out buffers (which may not be the inputs) in the new,
+  // staged layout. The inputs keep the committed layout until commit().
+  static constexpr double kImbalance = 0.10;
+  const SphRankLayout& redistribute(const Buffer<Real4>& x, const Buffer<Real4>& v,
+                                    const Buffer<uint32_t>& ids, const Buffer<Real4>* extra,
+                                    Buffer<Real4>& x_out, Buffer<Real4>& v_out,
+                                    Buffer<uint32_t>& ids_out, Buffer<Real4>* extra_out);
+  const SphRankLayout& committed() const { return committed_; }
+  const SphRankLayout& staged() const { return staged_; }  // the grid's: the last redistribute
+  void commit() { committed_ = staged_; }                  // the staged arrays became the state
+  void restore(const SphRankLayout& committed);            // a checkpoint's state, no halos
+
+  // The staged layout's halo slots of `b` get their owners' values (whose own values a kernel
+  // wrote since the rebuild).
+  void exchange_halos(Buffer<Real>& b);
+  void exchange_halos(Buffer<Real4>& b);
+
+  // kSphStatWords stats words: maxima over the ranks, the outside counts summed.
+  void reduce_stats(uint32_t* words);
+  // The smallest of the ranks' values.
+  uint32_t min(uint32_t value);
+  // The ranks' `mine`, concatenated in rank order, on every rank.
+  Bytes gather(const Bytes& mine);
+
+ private:
+  class Timer;
+  void exchange_halos(BufferImpl& b, size_t elem_bytes);
+  uint32_t cell_of(const std::byte* real4) const;
+  std::vector<uint32_t> cells_of(const std::vector<Vec4d>& positions) const;
+  void maybe_rebalance(const std::vector<uint32_t>& cells);
+  SphPartition partition_for(const std::vector<uint32_t>& cells, bool global);
+
+  SphComm& comm_;
+  Backend& backend_;
+  GridParams grid_;
+  uint32_t cell_count_ = 0;
+  SphPartition partition_;
+  SphRankLayout committed_, staged_;
+  // The staged layout's halo traffic: own indices (relative to first) sent to each rank, and
+  // how many particles each rank sent here.
+  std::vector<std::vector<uint32_t>> halo_send_;
+  std::vector<uint32_t> halo_recv_;
+  SphRankCounters counters_;
+};
+
+// The own particles' values of `b` (the committed layout) of every rank, in rank order (the
+// one-process order), on every rank.
+std::vector<Vec4d> gather_own(Backend& backend, SphRanks& ranks, const Buffer<Real4>& b);
+std::vector<double> gather_own(Backend& backend, SphRanks& ranks, const Buffer<Real>& b);
+std::vector<uint32_t> gather_own(Backend& backend, SphRanks& ranks, const Buffer<uint32_t>& b);
+
+}  // namespace masav

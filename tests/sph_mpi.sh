@@ -1,0 +1,74 @@
+#!/usr/bin/env bash
+# sph_mpi.sh MASAV MPIEXEC DIR
+# `mpirun -np N masav sph` against one process on the CPU backend: the state after 200 steps of
+# the dam break is the same bit for bit on 1, 2, 3 and 4 ranks (the checkpoints, which hold every
+# value at full precision, compared byte for byte) and so are the CSV diagnostics; a checkpoint
+# written on 2 ranks continues on 3; a rank killed mid-run loses at most the steps since the last
+# checkpoint, and the restart ends at the uninterrupted run's state. Other commands and dfsph are
+# refused on several ranks. The ranks oversubscribe the machine's cores (as root too: CI).
+set -u
+masav=$1 mpiexec=$2 dir=$3
+[[ -x $mpiexec ]] || { echo "SKIPPED: no MPI launcher at $mpiexec on this machine"; exit 77; }
+rm -rf "$dir"
+mkdir -p "$dir"
+export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
+export OMPI_MCA_rmaps_base_oversubscribe=1
+fail() { printf 'FAIL: %s\n' "$1"; exit 1; }
+run() {
+  local log rc
+  log=$("$@" 2>&1)
+  rc=$?
+  [[ $rc -eq 0 ]] || fail "$(printf '%s failed (exit %d):\n%s' "$*" "$rc" "$log")"
+  printf '%s\n' "$log"
+}
+scene=(sph --backend cpu --preset dambreak --particles 2000)
+
+run "$masav" "${scene[@]}" --steps 200 --checkpoint-dir "$dir/P1" --csv "$dir/P1.csv" -q >/dev/null
+run "$masav" "${scene[@]}" --steps 200 --checkpoint-dir "$dir/Q1" -q >/dev/null
+for n in 2 3 4; do
+  log=$(run "$mpiexec" -np $n "$masav" "${scene[@]}" --steps 200 --checkpoint-dir "$dir/P$n" -q)
+  grep -q " x $n ranks" <<<"$log" || fail "no ranks in the header on $n ranks: $log"
+  grep -qE "^ +$((n - 1)) +[0-9]+ +[0-9]+ " <<<"$log" || fail "no rank table on $n ranks: $log"
+  cmp "$dir/Q1/checkpoint.masav" "$dir/P$n/checkpoint.masav" \
+    || fail "the state after 200 steps on $n ranks differs from one process's"
+  printf '%d ranks: the same state as one process\n%s\n' $n "$(grep -A$((n + 1)) '^ranks:' <<<"$log")"
+done
+run "$mpiexec" -np 3 "$masav" "${scene[@]}" --steps 200 --csv "$dir/P3.csv" -q >/dev/null
+cmp "$dir/P1.csv" "$dir/P3.csv" || fail "the CSV diagnostics on 3 ranks differ from one process's"
+
+# A checkpoint written on 2 ranks at step 100, continued on 3 ranks to step 200.
+run "$mpiexec" -np 2 "$masav" "${scene[@]}" --steps 100 --checkpoint-every 50 \
+  --checkpoint-dir "$dir/R2" -q >/dev/null
+run "$mpiexec" -np 3 "$masav" sph --backend cpu --restart "$dir/R2" --steps 100 \
+  --checkpoint-dir "$dir/R3" -q >/dev/null
+cmp "$dir/Q1/checkpoint.masav" "$dir/R3/checkpoint.masav" \
+  || fail "2 ranks, then 3 from the checkpoint, differ from one process"
+
+# A rank killed after the first checkpoint (every 50 steps, of 4000): mpirun stops the run; the
+# restart from the last checkpoint ends at the uninterrupted run's step 200.
+"$mpiexec" -np 2 "$masav" "${scene[@]}" --steps 4000 --checkpoint-every 50 \
+  --checkpoint-dir "$dir/K" >"$dir/K.log" 2>&1 &
+job=$!
+for _ in $(seq 600); do grep -q "wrote checkpoint" "$dir/K.log" && break; sleep 0.05; done
+grep -q "wrote checkpoint" "$dir/K.log" || { kill $job; fail "no checkpoint before the kill"; }
+victim=$(pgrep -f -n -- "--checkpoint-dir $dir/K") || fail "no rank process to kill"
+kill -9 "$victim"
+wait $job && fail "the run with a killed rank exited 0"
+log=$(run "$masav" sph --backend cpu --restart "$dir/K" --steps 1 -q --checkpoint-dir "$dir/K1")
+step=$(sed -n 's/^resumed from .*: step \([0-9]*\),.*/\1/p' <<<"$log")
+[[ -n "$step" && $step -ge 50 && $step -le 4000 ]] || fail "no resume step: $log"
+if [[ $step -le 200 ]]; then
+  run "$mpiexec" -np 2 "$masav" sph --backend cpu --restart "$dir/K" --steps $((200 - step)) \
+    --checkpoint-dir "$dir/K2" -q >/dev/null
+  cmp "$dir/Q1/checkpoint.masav" "$dir/K2/checkpoint.masav" \
+    || fail "the restart after the killed rank differs from the uninterrupted run"
+fi
+printf 'killed rank: restarted from step %s\n' "$step"
+
+# Refusals, naming what runs on several ranks.
+log=$("$mpiexec" -np 2 "$masav" info 2>&1) && fail "info on 2 ranks accepted"
+grep -q "only \`masav sph\` runs on several ranks" <<<"$log" || fail "no refusal of info: $log"
+log=$("$mpiexec" -np 2 "$masav" "${scene[@]}" --steps 2 --pressure dfsph 2>&1) \
+  && fail "dfsph on 2 ranks accepted"
+grep -q "wcsph or thesis on 2 ranks" <<<"$log" || fail "no refusal of dfsph: $log"
+echo "sph_mpi: ok"

@@ -1,0 +1,279 @@
+// One SPH simulation shared among ranks (engine/sph/sph_ranks.h), the ranks run as threads
+// (tests/thread_comm.h) on every backend: the same trajectory as one process, bit for bit on the
+// CPU reference, with particles migrating between ranks and the partition re-balanced; the whole
+// state checkpointed on one number of ranks and continued on another.
+#include <doctest/doctest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+#include "engine/sph/sph_partition.h"
+#include "engine/sph/sph_presets.h"
+#include "engine/sph/sph_simulation.h"
+#include "registry/backends.h"
+#include "tests/backend_fixture.h"
+#include "tests/thread_comm.h"
+
+using namespace masav;
+
+namespace {
+
+struct RankRun {
+  SphState state;
+  double time = 0;
+  uint64_t steps = 0, substeps = 0;
+  uint64_t migrated = 0, halo = 0, rebalances = 0;  // summed over the ranks
+};
+
+// The largest difference of positions and velocities, relative to the scale of each (0: the
+// same bits).
+double difference(const SphState& a, const SphState& b) {
+  REQUIRE(a.positions.size() == b.positions.size());
+  double worst = 0;
+  for (size_t i = 0; i < a.positions.size(); ++i) {
+    const Vec4d &p = a.positions[i], &q = b.positions[i], &v = a.velocities[i],
+                &w = b.velocities[i];
+    worst = std::max({worst, std::abs(p.x - q.x), std::abs(p.y - q.y), std::abs(p.z - q.z),
+                      std::abs(v.x - w.x) * 1e-2, std::abs(v.y - w.y) * 1e-2,
+                      std::abs(v.z - w.z) * 1e-2});
+  }
+  return worst;
+}
+
+bool same_bits(const SphState& a, const SphState& b) {
+  for (size_t i = 0; i < a.positions.size(); ++i) {
+    const Vec4d &p = a.positions[i], &q = b.positions[i], &v = a.velocities[i],
+                &w = b.velocities[i];
+    if (p.x != q.x || p.y != q.y || p.z != q.z || v.x != w.x || v.y != w.y || v.z != w.z)
+      return false;
+  }
+  return a.positions.size() == b.positions.size();
+}
+
+RankRun one_process(const SphScene& s, uint64_t steps) {
+  SphSimulation sim(test::backend(), s);
+  sim.run(steps);
+  return {sim.download(), sim.time(), sim.steps(), sim.substeps()};
+}
+
+// `steps` steps on `ranks` ranks; `resume`: start from this exported state. The assertions run
+// after the ranks' threads end (doctest's are not thread-safe).
+RankRun on_ranks(int ranks, const SphScene& s, uint64_t steps,
+                 const SphResumeState* resume = nullptr, SphResumeState* exported = nullptr) {
+  struct PerRank {
+    SphState state;
+    double time = 0;
+    uint64_t steps = 0, substeps = 0;
+    SphRankCounters counters;
+    SphResumeState exported;
+  };
+  std::vector<PerRank> per(static_cast<size_t>(ranks));
+  test::run_ranks(ranks, [&](SphComm& comm) {
+    auto backend = create_backend(test::backend_name());
+    SphSimulation sim(*backend, s, &comm);
+    if (resume) sim.restore_resume_state(*resume);
+    sim.run(steps);
+    PerRank& mine = per[size_t(comm.rank())];
+    mine.state = sim.download();  // every rank: the whole state
+    if (exported) mine.exported = sim.export_resume_state();
+    mine.time = sim.time();
+    mine.steps = sim.steps();
+    mine.substeps = sim.substeps();
+    if (const SphRanks* r = sim.ranks()) mine.counters = r->counters();  // none on one rank
+  });
+  RankRun out{per[0].state, per[0].time, per[0].steps, per[0].substeps};
+  for (const PerRank& r : per) {
+    CHECK(same_bits(r.state, out.state));  // the gather is the same on every rank
+    CHECK(r.steps == out.steps);
+    out.migrated += r.counters.migrated;
+    out.halo += r.counters.halo;
+    out.rebalances = std::max(out.rebalances, r.counters.rebalances);
+  }
+  if (exported) *exported = std::move(per[0].exported);
+  return out;
+}
+
+// Exactly the one-process state, except where the summation order may differ: a chaotic flow
+// then drifts away from it at fp32 rounding's pace.
+double tolerance(double coop) {
+  return test::sph_sums_follow_lanes() ? coop : 0.0;
+}
+double tolerance() {
+  return tolerance(1e-4);
+}
+
+}  // namespace
+
+TEST_CASE("[sph-ranks] partition: balanced ranges on bucket boundaries, owners") {
+  const std::vector<uint64_t> counts = {0, 10, 10, 0, 0, 20, 0, 40};
+  const SphPartition p = balance_partition(counts, 4, 30, 4);  // 8 buckets of 4 cells
+  REQUIRE(p.begin.size() == 5);
+  CHECK(p.begin[0] == 0);
+  // 80 particles: rank 1 from 20 before (bucket 3), rank 2 from 40 (bucket 6), rank 3 from 60:
+  // bucket 7 starts at 40 before it, 80 after: rank 3 at the end (nothing left for it).
+  CHECK(p.begin[1] == 12);
+  CHECK(p.begin[2] == 24);
+  CHECK(p.begin[3] == 30);
+  CHECK(p.begin[4] == 30);
+  CHECK(p.owner(0) == 0);
+  CHECK(p.owner(11) == 0);
+  CHECK(p.owner(12) == 1);
+  CHECK(p.owner(27) == 2);
+  CHECK(p.owner(29) == 2);
+  // An empty range is skipped: cell 5 of {0, 5, 5, 9} belongs to rank 2.
+  const SphPartition q{{0, 5, 5, 9}};
+  CHECK(q.owner(4) == 0);
+  CHECK(q.owner(5) == 2);
+  const SphPartition none = balance_partition({}, 1, 10, 3);
+  CHECK(none.begin == std::vector<uint32_t>{0, 3, 6, 10});
+  CHECK(partition_bucket_cells(100) == 1);
+  CHECK(partition_bucket_cells((uint64_t(1) << 20) + 1) == 17);
+}
+
+TEST_CASE("[sph-ranks] 1 to 4 ranks follow the one-process trajectory") {
+  struct Case {
+    SphIntegrator integrator;
+    uint64_t steps;
+  };
+  for (const Case c : {Case{SphIntegrator::symplectic_euler, 120},
+                       Case{SphIntegrator::leapfrog, 120}, Case{SphIntegrator::rk4, 40}}) {
+    const std::string name = to_string(c.integrator);
+    CAPTURE(name);
+    SphScene s = make_preset("dam-break", 1500);
+    s.integrator = c.integrator;
+    const RankRun one = one_process(s, c.steps);
+    for (int ranks = 1; ranks <= 4; ++ranks) {
+      CAPTURE(ranks);
+      const RankRun r = on_ranks(ranks, s, c.steps);
+      CHECK(r.steps == one.steps);
+      CHECK(r.substeps == one.substeps);
+      if (tolerance() == 0) {
+        CHECK(r.time == one.time);
+        CHECK(same_bits(r.state, one.state));
+      } else {
+        CHECK(r.time == doctest::Approx(one.time).epsilon(1e-3));
+        CHECK(difference(r.state, one.state) <= tolerance());
+      }
+      if (ranks > 1) CHECK(r.halo > 0);
+    }
+  }
+}
+
+TEST_CASE("[sph-ranks] an explosion moves particles across every boundary, re-balanced") {
+  SphScene s = make_preset("explosion", 1000);
+  const RankRun one = one_process(s, 200);
+  for (int ranks = 2; ranks <= 4; ++ranks) {
+    CAPTURE(ranks);
+    const RankRun r = on_ranks(ranks, s, 200);
+    MESSAGE("explosion on ", ranks, " ranks: migrated ", r.migrated, ", halo ", r.halo,
+            ", re-balances ", r.rebalances);
+    CHECK(r.steps == one.steps);
+    if (tolerance() == 0)
+      CHECK(same_bits(r.state, one.state));
+    else  // particles collide: rounding differences grow to 1.5-3 cm in 200 steps on lavapipe
+      CHECK(difference(r.state, one.state) <= tolerance(0.06));
+    CHECK(r.migrated > 0);
+    if (ranks > 2) CHECK(r.rebalances > 0);  // 2 ranks split the symmetric burst evenly
+  }
+}
+
+TEST_CASE("[sph-ranks] a checkpoint continues on another number of ranks") {
+  SphScene s = make_preset("dam-break", 1200);
+  s.integrator = SphIntegrator::leapfrog;
+  const RankRun whole = one_process(s, 100);
+  // 2 ranks for 45 steps (inside a block of 8), then 3 ranks; one process, then 2 ranks.
+  SphResumeState half;
+  on_ranks(2, s, 45, nullptr, &half);
+  const RankRun continued = on_ranks(3, s, 55, &half);
+  SphSimulation first(test::backend(), s);
+  first.run(45);
+  const SphResumeState alone = first.export_resume_state();
+  const RankRun continued2 = on_ranks(2, s, 55, &alone);
+  for (const RankRun* r : {&continued, &continued2}) {
+    CHECK(r->steps == whole.steps);
+    if (tolerance() == 0)
+      CHECK(same_bits(r->state, whole.state));
+    else
+      CHECK(difference(r->state, whole.state) <= tolerance());
+  }
+}
+
+TEST_CASE("[sph-ranks] dfsph is refused on several ranks") {
+  SphScene s = make_preset("dam-break", 500);
+  s.model = SphPressureModel::dfsph;
+  s.integrator = SphIntegrator::symplectic_euler;
+  test::run_ranks(2, [&](SphComm& comm) {
+    CHECK_THROWS_WITH_AS(SphSimulation(test::backend(), s, &comm),
+                         doctest::Contains("wcsph or thesis on 2 ranks"), Error);
+  });
+}
+
+TEST_CASE("[sph-ranks] a rejected block replays and stops at the step one process stops at") {
+  // As "a block the guard rejects is replayed ..." (test_sph_blocks.cpp), on 3 ranks: the guard
+  // (stop) refuses a step inside a block; the ranks roll back to the block's start and replay.
+  SphScene s = make_preset("explosion", 1000);
+  s.dt = 4.35e-4;
+  s.cfl_guard = SphCflGuard::stop;
+  auto run = [&](SphSimulation& sim, std::string& error) {
+    sim.set_block_steps(8);
+    try {
+      sim.run(200);
+    } catch (const Error& e) {
+      error = e.what();
+    }
+  };
+  std::string want;
+  SphSimulation one(test::backend(), s);
+  run(one, want);
+  REQUIRE_FALSE(want.empty());
+  const SphState want_state = one.download();
+  struct PerRank {
+    std::string error;
+    uint64_t steps = 0, replays = 0;
+    SphState state;
+  };
+  std::vector<PerRank> per(3);
+  test::run_ranks(3, [&](SphComm& comm) {
+    auto backend = create_backend(test::backend_name());
+    SphSimulation sim(*backend, s, &comm);
+    PerRank& mine = per[size_t(comm.rank())];
+    run(sim, mine.error);
+    mine.steps = sim.steps();
+    mine.replays = sim.block_replays();
+    mine.state = sim.download();  // the last good state, gathered
+  });
+  for (const PerRank& r : per) {
+    CHECK(r.error == want);
+    CHECK(r.steps == one.steps());
+    CHECK(r.replays == one.block_replays());
+    CHECK(r.replays >= 1);
+    if (tolerance() == 0)
+      CHECK(same_bits(r.state, want_state));
+    else
+      CHECK(difference(r.state, want_state) <= tolerance(0.06));
+  }
+}
+
+TEST_CASE("[sph-ranks] reading the state between steps leaves the trajectory alone") {
+  // download() on several ranks re-sorts the committed state where the fields are stale (one
+  // process sorts a scratch copy): calls of 5 steps with a download after each, against one
+  // process without any.
+  SphScene s = make_preset("dam-break", 1200);
+  s.integrator = SphIntegrator::rk4;
+  const RankRun one = one_process(s, 45);
+  SphState got;
+  test::run_ranks(2, [&](SphComm& comm) {
+    auto backend = create_backend(test::backend_name());
+    SphSimulation sim(*backend, s, &comm);
+    for (int k = 0; k < 9; ++k) {
+      sim.run(5);
+      const SphState st = sim.download();
+      if (comm.rank() == 0 && k == 8) got = st;
+    }
+  });
+  if (tolerance() == 0)
+    CHECK(same_bits(got, one.state));
+  else
+    CHECK(difference(got, one.state) <= tolerance());
+}
