@@ -3,8 +3,9 @@
 // with the step, the particle and advice, and still writes the last good state.
 //
 // Started by mpirun on several ranks, the ranks share the simulation (engine/sph/sph_ranks.h):
-// rank 0 prints, writes the CSV, the snapshots and the checkpoints (of the whole state, which a
-// restart reads on any number of ranks); every rank takes part in each gather.
+// rank 0 prints, writes the CSV and the checkpoints (of the whole state, which a restart reads on
+// any number of ranks); a snapshot is one .vtp piece per rank and rank 0's .pvtp index. Every
+// rank takes part in each gather.
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -111,6 +112,13 @@ SphScene scene_from(const SphOptions& o) {
 
 std::string snapshot_path(const SphOptions& o, const std::string& tag) {
   return (std::filesystem::path(out_dir(o)) / fmt::format("{}_{}.vtp", o.preset, tag)).string();
+}
+// On several ranks: rank r's piece (its name in the .pvtp, relative) and the index.
+std::string piece_name(const SphOptions& o, const std::string& tag, int rank) {
+  return fmt::format("{}_{}_r{}.vtp", o.preset, tag, rank);
+}
+std::string index_path(const SphOptions& o, const std::string& tag) {
+  return (std::filesystem::path(out_dir(o)) / fmt::format("{}_{}.pvtp", o.preset, tag)).string();
 }
 
 // Steps from step k (counted from the run's start, a restart's included) to the next one that
@@ -239,9 +247,21 @@ int run_sph(const SphOptions& given) {
   auto record = [&](const SphState& st) {
     if (csv) csv->row(diagnostics_row(sim, compute_diagnostics(st, sim)));
   };
-  auto snapshot = [&](const SphState& st, const std::string& tag) {
-    const std::string path = snapshot_path(o, tag);
-    if (lead) write_sph_vtp(path, st);
+  // One .vtp of every particle; on several ranks each rank's piece and rank 0's .pvtp index.
+  auto snapshot = [&](const std::optional<SphState>& all, const std::string& tag) {
+    if (!comm) {
+      const std::string path = snapshot_path(o, tag);
+      write_sph_vtp(path, all ? *all : sim.download());
+      return path;
+    }
+    std::vector<uint32_t> ids;
+    const SphState mine = sim.download_own(ids);
+    write_sph_vtp((std::filesystem::path(out_dir(o)) / piece_name(o, tag, comm->rank())).string(),
+                  mine, ids);
+    std::vector<std::string> pieces;
+    for (int r = 0; r < comm->size(); ++r) pieces.push_back(piece_name(o, tag, r));
+    const std::string path = index_path(o, tag);
+    if (lead) write_sph_pvtp(path, pieces);
     return path;
   };
   // Whether any rank was interrupted: they stop together, at the same step.
@@ -252,8 +272,8 @@ int run_sph(const SphOptions& given) {
   };
   const bool want_state = !o.csv.empty() || o.vtp_every;
   if (want_state) {
-    const SphState st = sim.download();
-    if (!o.csv.empty()) record(st);
+    std::optional<SphState> st;
+    if (!o.csv.empty()) record(*(st = sim.download()));
     if (o.vtp_every) snapshot(st, fmt::format("{:06}", 0));
   }
 
@@ -274,8 +294,8 @@ int run_sph(const SphOptions& given) {
       const bool diag = !o.csv.empty() && k % o.diag_every == 0;
       const bool vtp = o.vtp_every && k % o.vtp_every == 0;
       if (diag || vtp) {
-        const SphState st = sim.download();
-        if (diag) record(st);
+        std::optional<SphState> st;  // every particle: for the CSV, and one process's .vtp
+        if (diag) record(*(st = sim.download()));
         if (vtp) snapshot(st, fmt::format("{:06}", k));
       }
       if (!o.quiet && k % 100 == 0)
@@ -301,7 +321,7 @@ int run_sph(const SphOptions& given) {
     // for forever: no last good state there.
     if (out_lock && !comm)
       fmt::print(stderr, "masav: the last good state (step {}) is in {}\n", sim.steps(),
-                 snapshot(sim.download(), "last_good"));
+                 snapshot(std::nullopt, "last_good"));
     else if (comm && lead)
       fmt::print(stderr, "masav: on several ranks the last good state is not written\n");
     rc = 1;

@@ -33,8 +33,22 @@ for n in 2 3 4; do
     || fail "the state after 200 steps on $n ranks differs from one process's"
   printf '%d ranks: the same state as one process\n%s\n' $n "$(grep -A$((n + 1)) '^ranks:' <<<"$log")"
 done
-run "$mpiexec" -np 3 "$masav" "${scene[@]}" --steps 200 --csv "$dir/P3.csv" -q >/dev/null
+run "$mpiexec" -np 3 "$masav" "${scene[@]}" --steps 200 --csv "$dir/P3.csv" -q \
+  --vtp-every 100 --out "$dir/V3" >/dev/null
 cmp "$dir/P1.csv" "$dir/P3.csv" || fail "the CSV diagnostics on 3 ranks differ from one process's"
+# Snapshots: a piece per rank and the index naming them, every particle in one piece.
+for tag in 000000 000100 000200; do
+  index="$dir/V3/dambreak_$tag.pvtp"
+  [[ -f $index ]] || fail "no $index"
+  total=0
+  for r in 0 1 2; do
+    grep -q "<Piece Source=\"dambreak_${tag}_r$r.vtp\"/>" "$index" || fail "$index lacks piece $r"
+    points=$(grep -o 'NumberOfPoints="[0-9]*"' "$dir/V3/dambreak_${tag}_r$r.vtp" | grep -o '[0-9]*')
+    [[ -n "$points" ]] || fail "no piece $r of step $tag"
+    total=$((total + points))
+  done
+  [[ $total -eq 2000 ]] || fail "the pieces of step $tag hold $total particles, not 2000"
+done
 
 # A checkpoint written on 2 ranks at step 100, continued on 3 ranks to step 200.
 run "$mpiexec" -np 2 "$masav" "${scene[@]}" --steps 100 --checkpoint-every 50 \

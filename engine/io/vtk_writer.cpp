@@ -30,8 +30,8 @@ void check_arrays(const std::vector<VtkArray>& arrays, size_t count, const std::
   for (const auto& a : arrays)
     if (a.components < 1 || a.values.size() != count * size_t(a.components))
       throw Error("", "vtk export",
-                  fmt::format("array '{}' has {} values for {} points x {} components ({})",
-                              a.name, a.values.size(), count, a.components, path),
+                  fmt::format("array '{}' has {} values for {} points x {} components ({})", a.name,
+                              a.values.size(), count, a.components, path),
                   "internal error: report it");
   if (count * 16 > UINT32_MAX)
     throw Error("", "vtk export", fmt::format("{} points exceed one VTK binary block", count),
@@ -73,6 +73,25 @@ void write_vtp(const std::string& path, const std::vector<float>& points,
   body += "      </PointData>\n      <Points>\n";
   body += data_array(VtkArray{"Points", 3, points});
   body += "      </Points>\n    </Piece>\n  </PolyData>\n</VTKFile>\n";
+  write_file_atomic(path, body);
+}
+
+void write_pvtp(const std::string& path, const std::vector<VtkArray>& point_data,
+                const std::vector<std::string>& pieces) {
+  std::string body =
+      "<?xml version=\"1.0\"?>\n"
+      "<VTKFile type=\"PPolyData\" version=\"1.0\" byte_order=\"LittleEndian\" "
+      "header_type=\"UInt32\">\n  <PPolyData GhostLevel=\"0\">\n    <PPointData>\n";
+  for (const auto& a : point_data)
+    body +=
+        fmt::format("      <PDataArray type=\"Float32\" Name=\"{}\" NumberOfComponents=\"{}\"/>\n",
+                    a.name, a.components);
+  body +=
+      "    </PPointData>\n    <PPoints>\n"
+      "      <PDataArray type=\"Float32\" Name=\"Points\" NumberOfComponents=\"3\"/>\n"
+      "    </PPoints>\n";
+  for (const auto& piece : pieces) body += fmt::format("    <Piece Source=\"{}\"/>\n", piece);
+  body += "  </PPolyData>\n</VTKFile>\n";
   write_file_atomic(path, body);
 }
 

@@ -167,6 +167,9 @@ class SphSimulation {
   // Current state, in particle-id order, with density and pressure at these positions (on
   // several ranks: every rank's particles, on every rank).
   SphState download();
+  // This rank's own particles (every particle in one process), in the order of the last grid
+  // rebuild, with their ids: what a rank writes as its piece of a snapshot.
+  SphState download_own(std::vector<uint32_t>& ids);
   // The committed state on the backend, for a renderer to bind without a copy: in the order of
   // the last grid rebuild (not particle-id order); positions' w = inverse mass scale. density()
   // and pressure() are index-aligned with positions() and belong to the last force pass (at
@@ -210,6 +213,7 @@ class SphSimulation {
   // kernels' particle counts and own ranges.
   void use_rank_layout(const Buffer<Real4>& x);
   SphState download_ranks();
+  void refresh_fields_ranks();  // density and pressure at the committed state's positions
   [[noreturn]] void fail_non_finite_ranks(double dt);
   void evaluate(const Buffer<Real4>& x, const Buffer<Real4>& v);
   Buffer<uint32_t>* neighbor_rows();  // null where the masks are not kept

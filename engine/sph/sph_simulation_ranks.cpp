@@ -25,16 +25,44 @@ bool finite_state(const Vec4d& p, const Vec4d& v) {
 
 }  // namespace
 
-SphState SphSimulation::download_ranks() {
-  if (!fields_current_) {
-    // Density at the current positions: the committed state itself is re-sorted (a rebuild on
-    // unchanged positions is what the next step's rebuild gives anyway) and evaluated there.
-    sort_state();
-    backend_.fill(stats_buf_, 0u);
-    evaluate(pos_, vel_);
-    accel_valid_ = false;
-    fields_current_ = true;
+void SphSimulation::refresh_fields_ranks() {
+  if (fields_current_) return;
+  // Density at the current positions: the committed state itself is re-sorted (a rebuild on
+  // unchanged positions is what the next step's rebuild gives anyway) and evaluated there.
+  sort_state();
+  backend_.fill(stats_buf_, 0u);
+  evaluate(pos_, vel_);
+  accel_valid_ = false;
+  fields_current_ = true;
+}
+
+SphState SphSimulation::download_own(std::vector<uint32_t>& ids) {
+  if (!ranks_) {
+    SphState s = download();
+    ids.resize(n_);
+    for (uint32_t i = 0; i < n_; ++i) ids[i] = i;
+    return s;
   }
+  refresh_fields_ranks();
+  const SphRankLayout l = ranks_->committed();
+  const auto pos = backend_.download(pos_);
+  const auto vel = backend_.download(vel_);
+  const auto id = backend_.download(ids_);
+  const auto rho = backend_.download(density_);
+  const auto pr = backend_.download(pressure_);
+  const auto acc = backend_.download(accel_);
+  SphState s;
+  ids.assign(id.begin() + l.first, id.begin() + l.first + l.own);
+  s.positions.assign(pos.begin() + l.first, pos.begin() + l.first + l.own);
+  s.velocities.assign(vel.begin() + l.first, vel.begin() + l.first + l.own);
+  s.density.assign(rho.begin() + l.first, rho.begin() + l.first + l.own);
+  s.pressure.assign(pr.begin() + l.first, pr.begin() + l.first + l.own);
+  for (uint32_t k = 0; k < l.own; ++k) s.neighbors.push_back(acc[l.first + k].w + 1.0);
+  return s;
+}
+
+SphState SphSimulation::download_ranks() {
+  refresh_fields_ranks();
   const SphRankLayout l = ranks_->committed();
   const auto pos = backend_.download(pos_);
   const auto vel = backend_.download(vel_);
