@@ -179,6 +179,19 @@ void print_rank_table(SphRanks& ranks, bool lead, double seconds) {
   }
 }
 
+// Ranks on one machine share its GPUs: without --device, a rank takes device (local rank mod the
+// backend's devices), so `mpirun -np 8` on an 8-GPU node puts one rank on each.
+std::string rank_device(const BackendChoice& c, const SphComm* comm) {
+  if (!comm || !c.device.empty()) return c.device;
+  const int local = local_rank();
+  const std::string name = c.backend == "auto" ? auto_backend_name() : c.backend;
+  if (local < 0 || name == "cpu") return c.device;
+  for (const BackendStatus& s : list_backends())
+    if (s.name == name && s.devices.size() > 1)
+      return std::to_string(size_t(local) % s.devices.size());
+  return c.device;
+}
+
 int run_sph(const SphOptions& given) {
   SphOptions o = given;  // a restart takes the preset's name (for file names) from its scene
   check_restart_flags(o);
@@ -213,7 +226,7 @@ int run_sph(const SphOptions& given) {
   std::optional<CsvStream> csv;
   if (lead && !o.csv.empty()) csv.emplace(o.csv, diagnostics_columns(), "--csv");
   install_interrupt_handler();
-  auto backend = create_backend(o.choice.backend, o.choice.device);
+  auto backend = create_backend(o.choice.backend, rank_device(o.choice, comm));
   SphSimulation sim(*backend, scene, comm);
   sim.set_block_steps(o.block_steps);
   if (resumed) {

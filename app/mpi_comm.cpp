@@ -25,6 +25,17 @@ int launched_ranks() {
   return 1;
 }
 
+int local_rank() {
+  for (const char* name : {"OMPI_COMM_WORLD_LOCAL_RANK", "MPI_LOCALRANKID"}) {
+    if (const char* v = std::getenv(name)) {
+      char* end = nullptr;
+      const long r = std::strtol(v, &end, 10);
+      if (end != v && *end == '\0' && r >= 0 && r < INT_MAX) return int(r);
+    }
+  }
+  return -1;
+}
+
 #if MASAV_HAVE_MPI
 namespace {
 

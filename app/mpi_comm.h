@@ -12,6 +12,9 @@ namespace masav::app {
 // environment), without initialising MPI; 1 when started alone.
 int launched_ranks();
 
+// This process's rank among the ranks on its machine (OpenMPI, MPICH), -1 when not told.
+int local_rank();
+
 // The world communicator when started on more than one rank (MPI is initialised once and
 // finalised at exit); null when started alone. Throws masav::Error when started on several
 // ranks by a masav built without MPI.

@@ -356,8 +356,27 @@ void SphRanks::exchange_halos(BufferImpl& b, size_t elem) {
   Timer timer(counters_.exchange_seconds);
   const int me = rank(), count = ranks();
   const SphRankLayout& L = staged_;
-  Bytes own;
-  download_range(backend_, b, own, L.first, L.own, elem);
+  // Only the own particles that go anywhere are read: those for lower ranks lie at the start of
+  // the own range (the cells next to theirs), those for higher ranks at its end.
+  size_t lo_end = 0, hi_begin = L.own;
+  for (int r = 0; r < count; ++r) {
+    const std::vector<uint32_t>& k = halo_send_[size_t(r)];
+    if (r == me || k.empty()) continue;
+    if (r < me) lo_end = std::max(lo_end, size_t(k.back()) + 1);
+    if (r > me) hi_begin = std::min(hi_begin, size_t(k.front()));
+  }
+  Bytes own(size_t(L.own) * elem), span;
+  auto read = [&](size_t from, size_t to) {
+    if (from >= to) return;
+    download_range(backend_, b, span, L.first + from, to - from, elem);
+    std::copy(span.begin(), span.end(), own.begin() + std::ptrdiff_t(from * elem));
+  };
+  if (hi_begin <= lo_end) {
+    read(0, L.own);
+  } else {
+    read(0, lo_end);
+    read(hi_begin, L.own);
+  }
   std::vector<Bytes> out(static_cast<size_t>(count));
   for (int r = 0; r < count; ++r) {
     if (r == me) continue;
