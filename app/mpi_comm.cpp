@@ -56,6 +56,23 @@ int count_of(size_t bytes, const char* what) {
   return int(bytes);
 }
 
+// An MPI_Ialltoallv in flight: its buffers live until it is waited for.
+struct Pending final : SphPendingExchange {
+  Bytes send, recv;
+  std::vector<int> send_counts, send_at, recv_counts, recv_at;
+  MPI_Request request = MPI_REQUEST_NULL;
+  std::vector<Bytes> finish() override {
+    check(MPI_Wait(&request, MPI_STATUS_IGNORE), "MPI_Wait");
+    std::vector<Bytes> from(recv_counts.size());
+    for (size_t r = 0; r < from.size(); ++r)
+      from[r].assign(recv.begin() + recv_at[r], recv.begin() + recv_at[r] + recv_counts[r]);
+    return from;
+  }
+  ~Pending() override {
+    if (request != MPI_REQUEST_NULL) MPI_Wait(&request, MPI_STATUS_IGNORE);
+  }
+};
+
 class MpiComm final : public SphComm {
  public:
   MpiComm() {
@@ -96,6 +113,35 @@ class MpiComm final : public SphComm {
     for (size_t r = 0; r < n; ++r)
       from[r].assign(recv.begin() + recv_at[r], recv.begin() + recv_at[r] + recv_counts[r]);
     return from;
+  }
+
+  std::unique_ptr<SphPendingExchange> start_exchange(std::vector<Bytes> to,
+                                                     std::vector<size_t> sizes) override {
+    const size_t n = size_t(size_);
+    auto p = std::make_unique<Pending>();
+    p->send_counts.assign(n, 0);
+    p->send_at.assign(n, 0);
+    p->recv_counts.assign(n, 0);
+    p->recv_at.assign(n, 0);
+    size_t sent = 0, received = 0;
+    for (size_t r = 0; r < n; ++r) {
+      if (int(r) == rank_) continue;
+      p->send_at[r] = count_of(sent, "exchange");
+      p->send_counts[r] = count_of(r < to.size() ? to[r].size() : 0, "exchange");
+      sent += size_t(p->send_counts[r]);
+      p->recv_at[r] = count_of(received, "exchange");
+      p->recv_counts[r] = count_of(r < sizes.size() ? sizes[r] : 0, "exchange");
+      received += size_t(p->recv_counts[r]);
+    }
+    p->send.reserve(sent);
+    for (size_t r = 0; r < n; ++r)
+      if (p->send_counts[r]) p->send.insert(p->send.end(), to[r].begin(), to[r].end());
+    p->recv.resize(received);
+    check(MPI_Ialltoallv(p->send.data(), p->send_counts.data(), p->send_at.data(), MPI_BYTE,
+                         p->recv.data(), p->recv_counts.data(), p->recv_at.data(), MPI_BYTE,
+                         MPI_COMM_WORLD, &p->request),
+          "MPI_Ialltoallv");
+    return p;
   }
 
   void max(std::span<uint32_t> values) override {

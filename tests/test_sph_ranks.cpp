@@ -24,6 +24,7 @@ struct RankRun {
   double time = 0;
   uint64_t steps = 0, substeps = 0;
   uint64_t migrated = 0, halo = 0, rebalances = 0;  // summed over the ranks
+  uint64_t overlapped = 0;                          // forces computed while halos travelled
 };
 
 // The largest difference of positions and velocities, relative to the scale of each (0: the
@@ -88,6 +89,7 @@ RankRun on_ranks(int ranks, const SphScene& s, uint64_t steps,
     CHECK(r.steps == out.steps);
     out.migrated += r.counters.migrated;
     out.halo += r.counters.halo;
+    out.overlapped += r.counters.overlapped;
     out.rebalances = std::max(out.rebalances, r.counters.rebalances);
   }
   if (exported) *exported = std::move(per[0].exported);
@@ -167,13 +169,14 @@ TEST_CASE("[sph-ranks] an explosion moves particles across every boundary, re-ba
     CAPTURE(ranks);
     const RankRun r = on_ranks(ranks, s, 200);
     MESSAGE("explosion on ", ranks, " ranks: migrated ", r.migrated, ", halo ", r.halo,
-            ", re-balances ", r.rebalances);
+            ", re-balances ", r.rebalances, ", forces overlapped ", r.overlapped);
     CHECK(r.steps == one.steps);
     if (tolerance() == 0)
       CHECK(same_bits(r.state, one.state));
     else  // particles collide: rounding differences grow to 1.5-3 cm in 200 steps on lavapipe
       CHECK(difference(r.state, one.state) <= tolerance(0.06));
     CHECK(r.migrated > 0);
+    CHECK(r.overlapped > 0);                 // interior forces ran during the halo updates
     if (ranks > 2) CHECK(r.rebalances > 0);  // 2 ranks split the symmetric burst evenly
   }
 }

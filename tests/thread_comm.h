@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <condition_variable>
 #include <functional>
+#include <memory>
 #include <mutex>
 #include <thread>
 #include <vector>
@@ -59,6 +60,28 @@ class ThreadComm final : public SphComm {
       if (r != rank_) from[size_t(r)] = hub_.boxes_[size_t(r)][size_t(rank_)];
     hub_.barrier();
     return from;
+  }
+  // The messages wait in the slots until finish(), which every rank calls before its next
+  // collective (the slots are free again: the last collective ended with a barrier).
+  std::unique_ptr<SphPendingExchange> start_exchange(std::vector<Bytes> to,
+                                                     std::vector<size_t>) override {
+    hub_.boxes_[size_t(rank_)] = std::move(to);
+    hub_.boxes_[size_t(rank_)].resize(size_t(size()));
+    struct Pending final : SphPendingExchange {
+      ThreadComm* comm;
+      std::vector<Bytes> finish() override {
+        ThreadHub& hub = comm->hub_;
+        hub.barrier();
+        std::vector<Bytes> from(static_cast<size_t>(comm->size()));
+        for (int r = 0; r < comm->size(); ++r)
+          if (r != comm->rank_) from[size_t(r)] = hub.boxes_[size_t(r)][size_t(comm->rank_)];
+        hub.barrier();
+        return from;
+      }
+    };
+    auto p = std::make_unique<Pending>();
+    p->comm = this;
+    return p;
   }
   void max(std::span<uint32_t> values) override {
     hub_.words_[size_t(rank_)].assign(values.begin(), values.end());

@@ -25,12 +25,11 @@ V load3(const double* a, size_t i) {
 // The candidates of sorted particle i: itself, then its neighbour list.
 struct ListWalk {
   const SphNeighborLists& lists;
-  size_t chunk;
   uint32_t i;
   template <class Visit>
   void operator()(Visit&& visit) const {
     visit(i);
-    const uint32_t* list = lists.list(chunk, i);
+    const uint32_t* list = lists.list(i);
     for (uint32_t k = 0, n = lists.count(i); k < n; ++k) visit(list[k]);
   }
 };
@@ -76,7 +75,7 @@ bool CpuBackend::ensure_dfsph_terms(const double* pos, const DfsphLayout<double>
       const sph::WallMirrors<double> m = sph::dfsph_mirrors(xi, c);
       uint32_t neighbors = 0;
       dfsph_terms_.begin(chunk, self);
-      ListWalk{sph_lists_, chunk, self}([&](uint32_t j) {
+      ListWalk{sph_lists_, self}([&](uint32_t j) {
         const V xj = load3(pos, j);
         const V d = xi - xj;
         const double r2 = sph::dot(d, d);
@@ -124,8 +123,7 @@ void CpuBackend::run_own(const KernelArgs<KernelId::dfsph_factor>& a) {
     for (size_t i = b; i < e; ++i) {
       const uint32_t self = uint32_t(i);
       if (!dfsph_terms_on_) {
-        f[i] =
-            sph::dfsph_factor_of(self, load3(pos, i), c, ListWalk{sph_lists_, chunk, self}, pos_at);
+        f[i] = sph::dfsph_factor_of(self, load3(pos, i), c, ListWalk{sph_lists_, self}, pos_at);
       } else if (!found) {
         const V xi = load3(pos, i);
         f[i] = factor_of_terms(chunk, self, xi, sph::dfsph_mirrors(xi, c), pos);
@@ -170,7 +168,7 @@ void CpuBackend::run_own(const KernelArgs<KernelId::dfsph_rate>& a) {
       const auto r = dfsph_terms_on_
                          ? rate_of_terms(chunk, self)
                          : sph::dfsph_rate_of(self, load3(pos, i), load3(vel, i), rho[i], f[i], c,
-                                              ListWalk{sph_lists_, chunk, self}, pos_at, vel_at);
+                                              ListWalk{sph_lists_, self}, pos_at, vel_at);
       kap[i] = r.kappa;
       sum[i] = sph::dfsph_kappa_sum(sum[i], r.kappa, c);
       if (pos[4 * i + 3] > 0) s.residual += sph::dfsph_residual_units(r.residual);
@@ -213,10 +211,10 @@ void CpuBackend::run_own(const KernelArgs<KernelId::dfsph_correct>& a) {
       const uint32_t self = uint32_t(i);
       const double w = pos[4 * i + 3];
       if (!(w > 0)) continue;  // pinned: never moves
-      const V dv = dfsph_terms_on_ ? correction_of_terms(chunk, self)
-                                   : sph::dfsph_correction_of(self, load3(pos, i), kap[i], c,
-                                                              ListWalk{sph_lists_, chunk, self},
-                                                              pos_at, kappa_at);
+      const V dv = dfsph_terms_on_
+                       ? correction_of_terms(chunk, self)
+                       : sph::dfsph_correction_of(self, load3(pos, i), kap[i], c,
+                                                  ListWalk{sph_lists_, self}, pos_at, kappa_at);
       const V v = load3(vel, i) + w * dv;
       vel[4 * i] = v.x;
       vel[4 * i + 1] = v.y;

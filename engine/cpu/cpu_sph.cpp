@@ -185,7 +185,7 @@ size_t CpuBackend::sph_chunks(uint32_t n) const {
 
 void CpuBackend::ensure_sph_lists(const SphListInputs& in) {
   const size_t chunks = sph_chunks(in.end - in.first);
-  if (!sph_lists_.matches(in, chunks))
+  if (!sph_lists_.matches(in))
     build_sph_lists(in, chunks, [](size_t, uint32_t, uint32_t, const double*) {});
 }
 
@@ -209,14 +209,14 @@ void CpuBackend::run_own(const KernelArgs<KernelId::sph_density>& a) {
     const double sum = c.model != SphPressureModel::thesis ? spiky_density_sum(r2, count, c)
                                                            : density_sum(r2, count, c.inv_h2);
     rho[i] = c.density * (1.0 + sum) +
-             wall_images_density(c, in.positions, i, sph_lists_.list(chunk, i), count);
+             wall_images_density(c, in.positions, i, sph_lists_.list(i), count);
     pr[i] = sph::pressure_of(rho[i], c);
     s.max_candidates = std::max(s.max_candidates, sph_lists_.candidates(i));
     s.max_neighbors = std::max(s.max_neighbors, count + 1);
     if (rho[i] > s.max_density) s.max_density = rho[i];  // NaN is reported as non-finite
     if (sph_lists_.overflow(i)) s.overflow = std::min(s.overflow, i);
     if (!std::isfinite(rho[i]) || !std::isfinite(pr[i])) s.non_finite = std::min(s.non_finite, i);
-    if (rows) write_row_masks(in, i, sph_lists_.list(chunk, i), count, rows);
+    if (rows) write_row_masks(in, i, sph_lists_.list(i), count, rows);
   });
   merge(words, st);
 }
@@ -259,7 +259,7 @@ void CpuBackend::run_own(const KernelArgs<KernelId::sph_forces>& a) {
     for (size_t i = b; i < e; ++i) {
       const uint32_t self = uint32_t(i);
       const auto me = fetch(self);
-      const uint32_t* list = sph_lists_.list(chunk, self);
+      const uint32_t* list = sph_lists_.list(self);
       const uint32_t count = sph_lists_.count(self);
       V acc{0, 0, 0};
       for (uint32_t n = 0; n < count; ++n) {

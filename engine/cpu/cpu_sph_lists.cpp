@@ -17,10 +17,10 @@ bool same(const std::vector<T>& kept, const T* now, size_t count) {
 void SphNeighborLists::reset(uint32_t n, size_t chunks) {
   valid_ = false;
   ++generation_;
-  chunks_ = chunks;
   index_.resize(chunks);
   for (auto& l : index_) l.clear();
   begin_.resize(n);
+  chunk_of_.resize(n);
   count_.resize(n);
   candidates_.resize(n);
   overflow_.resize(n);
@@ -40,8 +40,8 @@ void SphNeighborLists::remember(const SphListInputs& in) {
   valid_ = true;
 }
 
-bool SphNeighborLists::matches(const SphListInputs& in, size_t chunks) const {
-  return valid_ && chunks == chunks_ && in.n == n_ && in.first == first_ && in.end == end_ &&
+bool SphNeighborLists::matches(const SphListInputs& in) const {
+  return valid_ && in.n == n_ && in.first >= first_ && in.end <= end_ &&
          in.max_candidates == max_candidates_ && std::equal(in.dims, in.dims + 3, dims_) &&
          in.h2 == h2_ && same(positions_, in.positions, 4 * size_t(in.n)) &&
          same(cells_, in.cells, in.n) && same(cell_start_, in.cell_start, in.cell_count) &&
@@ -52,6 +52,7 @@ void SphNeighborLists::append(size_t chunk, uint32_t i, const uint32_t* neighbor
                               uint32_t candidates, bool overflow) {
   std::vector<uint32_t>& l = index_[chunk];
   begin_[i] = l.size();
+  chunk_of_[i] = uint32_t(chunk);
   l.insert(l.end(), neighbors, neighbors + count);
   count_[i] = count;
   candidates_[i] = candidates;

@@ -33,8 +33,9 @@ class SphNeighborLists {
   void reset(uint32_t n, size_t chunks);
   // Records the inputs the lists now being built belong to (copies them).
   void remember(const SphListInputs& in);
-  // True if the lists were built from inputs equal to `in`, split into `chunks` chunks.
-  bool matches(const SphListInputs& in, size_t chunks) const;
+  // True if the lists were built from inputs equal to `in` (for the particles of its range, or a
+  // range around it: a rank's forces run over parts of the range its density pass listed).
+  bool matches(const SphListInputs& in) const;
   // Counts the builds (reset): what is derived from the lists names the build it came from.
   uint64_t generation() const { return generation_; }
 
@@ -42,7 +43,7 @@ class SphNeighborLists {
   void append(size_t chunk, uint32_t i, const uint32_t* neighbors, uint32_t count,
               uint32_t candidates, bool overflow);
 
-  const uint32_t* list(size_t chunk, uint32_t i) const { return index_[chunk].data() + begin_[i]; }
+  const uint32_t* list(uint32_t i) const { return index_[chunk_of_[i]].data() + begin_[i]; }
   uint32_t count(uint32_t i) const { return count_[i]; }
   uint32_t candidates(uint32_t i) const { return candidates_[i]; }
   bool overflow(uint32_t i) const { return overflow_[i] != 0; }
@@ -52,12 +53,12 @@ class SphNeighborLists {
   uint64_t generation_ = 0;
   uint32_t n_ = 0, first_ = 0, end_ = 0, max_candidates_ = 0, dims_[3] = {0, 0, 0};
   double h2_ = 0;
-  size_t chunks_ = 0;
   std::vector<double> positions_;  // x, y, z, w per particle, compared bit for bit
   std::vector<uint32_t> cells_, cell_start_, cell_end_;
 
   std::vector<std::vector<uint32_t>> index_;  // per chunk: its particles' lists, concatenated
-  std::vector<size_t> begin_;  // where particle i's list starts in its chunk's index_
+  std::vector<size_t> begin_;       // where particle i's list starts in its chunk's index_
+  std::vector<uint32_t> chunk_of_;  // the chunk that listed particle i
   std::vector<uint32_t> count_, candidates_;
   std::vector<uint8_t> overflow_;
 };

@@ -6,12 +6,21 @@
 #include <cstddef>
 #include <cstdint>
 #include <cstring>
+#include <memory>
 #include <span>
 #include <vector>
 
 namespace masav {
 
 using Bytes = std::vector<std::byte>;
+
+// An exchange under way (SphComm::start_exchange): finish() waits for it and returns what each
+// rank sent to this one.
+class SphPendingExchange {
+ public:
+  virtual ~SphPendingExchange() = default;
+  virtual std::vector<Bytes> finish() = 0;
+};
 
 class SphComm {
  public:
@@ -20,6 +29,11 @@ class SphComm {
   virtual int size() const = 0;
   // to[r] goes to rank r (to[rank()] is not sent); returns what each rank sent to this one.
   virtual std::vector<Bytes> exchange(const std::vector<Bytes>& to) = 0;
+  // exchange() without waiting, for messages whose sizes the receivers know (sizes[r]: the bytes
+  // rank r sends here): the caller computes while they travel and calls finish() before its next
+  // collective.
+  virtual std::unique_ptr<SphPendingExchange> start_exchange(std::vector<Bytes> to,
+                                                             std::vector<size_t> sizes) = 0;
   // Element-wise maximum / sum over the ranks, in place (the same result on every rank).
   virtual void max(std::span<uint32_t> values) = 0;
   virtual void sum(std::span<uint64_t> values) = 0;

@@ -219,6 +219,8 @@ void SphRanks::restore(const SphRankLayout& committed) {
   committed_ = staged_ = committed;
   halo_send_.assign(size_t(ranks()), {});
   halo_recv_.assign(size_t(ranks()), 0);
+  lo_end_ = 0;
+  hi_begin_ = committed.own;
 }
 
 const SphRankLayout& SphRanks::redistribute(const Buffer<Real4>& x, const Buffer<Real4>& v,
@@ -348,66 +350,105 @@ const SphRankLayout& SphRanks::redistribute(const Buffer<Real4>& x, const Buffer
   upload_range(backend_, ids_out.impl(), local.ids, 0);
   if (f.extra && extra_out) upload_range(backend_, extra_out->impl(), local.extra, 0);
   staged_ = {uint32_t(local.count), first, uint32_t(sorted.count)};
+  // The own particles that go to lower ranks lie before lo_end_, to higher ones from hi_begin_.
+  lo_end_ = 0;
+  hi_begin_ = staged_.own;
+  for (int r = 0; r < count; ++r) {
+    const std::vector<uint32_t>& k = halo_send_[size_t(r)];
+    if (r == me || k.empty()) continue;
+    if (r < me) lo_end_ = std::max(lo_end_, k.back() + 1);
+    if (r > me) hi_begin_ = std::min(hi_begin_, k.front());
+  }
   ++counters_.rebuilds;
   return staged_;
 }
 
-void SphRanks::exchange_halos(BufferImpl& b, size_t elem) {
+void SphRanks::start_halos(HaloArrays arrays) {
+  if (pending_)
+    throw Error("sph", "ranks", "a halo update started before the last one finished",
+                "internal error: call finish_halos() first");
   Timer timer(counters_.exchange_seconds);
   const int me = rank(), count = ranks();
   const SphRankLayout& L = staged_;
-  // Only the own particles that go anywhere are read: those for lower ranks lie at the start of
-  // the own range (the cells next to theirs), those for higher ranks at its end.
-  size_t lo_end = 0, hi_begin = L.own;
-  for (int r = 0; r < count; ++r) {
-    const std::vector<uint32_t>& k = halo_send_[size_t(r)];
-    if (r == me || k.empty()) continue;
-    if (r < me) lo_end = std::max(lo_end, size_t(k.back()) + 1);
-    if (r > me) hi_begin = std::min(hi_begin, size_t(k.front()));
-  }
-  Bytes own(size_t(L.own) * elem), span;
-  auto read = [&](size_t from, size_t to) {
-    if (from >= to) return;
-    download_range(backend_, b, span, L.first + from, to - from, elem);
-    std::copy(span.begin(), span.end(), own.begin() + std::ptrdiff_t(from * elem));
-  };
-  if (hi_begin <= lo_end) {
-    read(0, L.own);
-  } else {
-    read(0, lo_end);
-    read(hi_begin, L.own);
-  }
   std::vector<Bytes> out(static_cast<size_t>(count));
-  for (int r = 0; r < count; ++r) {
-    if (r == me) continue;
-    Bytes& m = out[size_t(r)];
-    m.reserve(halo_send_[size_t(r)].size() * elem);
-    for (uint32_t k : halo_send_[size_t(r)])
-      m.insert(m.end(), own.begin() + std::ptrdiff_t(k * elem),
-               own.begin() + std::ptrdiff_t((k + 1) * elem));
-    counters_.bytes_sent += m.size();
+  std::vector<size_t> sizes(static_cast<size_t>(count), 0);
+  for (const auto& [b, elem] : arrays) {
+    // Only the own particles that go anywhere are read (see lo_end_, hi_begin_).
+    Bytes own(size_t(L.own) * elem), span;
+    auto read = [&](size_t from, size_t to) {
+      if (from >= to) return;
+      download_range(backend_, *b, span, L.first + from, to - from, elem);
+      std::copy(span.begin(), span.end(), own.begin() + std::ptrdiff_t(from * elem));
+    };
+    if (hi_begin_ <= lo_end_) {
+      read(0, L.own);
+    } else {
+      read(0, lo_end_);
+      read(hi_begin_, L.own);
+    }
+    for (int r = 0; r < count; ++r) {
+      if (r == me) continue;
+      Bytes& m = out[size_t(r)];
+      for (uint32_t k : halo_send_[size_t(r)])
+        m.insert(m.end(), own.begin() + std::ptrdiff_t(k * elem),
+                 own.begin() + std::ptrdiff_t((k + 1) * elem));
+      sizes[size_t(r)] += size_t(halo_recv_[size_t(r)]) * elem;
+    }
   }
-  const std::vector<Bytes> in = comm_.exchange(out);
-  Bytes lower, upper;
-  for (int r = 0; r < count; ++r) {
-    if (r == me) continue;
-    const Bytes& m = in[size_t(r)];
-    if (m.size() != size_t(halo_recv_[size_t(r)]) * elem)
-      fail_message(r, m.size(), size_t(halo_recv_[size_t(r)]) * elem);
-    Bytes& dst = r < me ? lower : upper;
-    dst.insert(dst.end(), m.begin(), m.end());
+  for (int r = 0; r < count; ++r) counters_.bytes_sent += out[size_t(r)].size();
+  pending_arrays_ = std::move(arrays);
+  pending_ = comm_.start_exchange(std::move(out), std::move(sizes));
+}
+
+void SphRanks::finish_halos() {
+  if (!pending_) return;
+  Timer timer(counters_.exchange_seconds);
+  const int me = rank(), count = ranks();
+  const SphRankLayout& L = staged_;
+  const std::vector<Bytes> in = pending_->finish();
+  pending_.reset();
+  // Each message holds the arrays' values one after the other, halo_recv_[r] of each.
+  std::vector<size_t> at(static_cast<size_t>(count), 0);
+  for (const auto& [b, elem] : pending_arrays_) {
+    Bytes lower, upper;
+    for (int r = 0; r < count; ++r) {
+      if (r == me) continue;
+      const Bytes& m = in[size_t(r)];
+      const size_t bytes = size_t(halo_recv_[size_t(r)]) * elem;
+      if (m.size() < at[size_t(r)] + bytes) fail_message(r, m.size(), at[size_t(r)] + bytes);
+      Bytes& dst = r < me ? lower : upper;
+      dst.insert(dst.end(), m.begin() + std::ptrdiff_t(at[size_t(r)]),
+                 m.begin() + std::ptrdiff_t(at[size_t(r)] + bytes));
+      at[size_t(r)] += bytes;
+    }
+    upload_range(backend_, *b, lower, 0);
+    upload_range(backend_, *b, upper, size_t(L.first + L.own) * elem);
   }
-  upload_range(backend_, b, lower, 0);
-  upload_range(backend_, b, upper, size_t(L.first + L.own) * elem);
+  for (int r = 0; r < count; ++r)
+    if (r != me && in[size_t(r)].size() != at[size_t(r)])
+      fail_message(r, in[size_t(r)].size(), at[size_t(r)]);
+  pending_arrays_.clear();
   ++counters_.halo_updates;
 }
 
 void SphRanks::exchange_halos(Buffer<Real>& b) {
-  exchange_halos(b.impl(), backend_.real_bytes());
+  start_halos({{&b.impl(), backend_.real_bytes()}});
+  finish_halos();
 }
 
 void SphRanks::exchange_halos(Buffer<Real4>& b) {
-  exchange_halos(b.impl(), 4 * backend_.real_bytes());
+  start_halos({{&b.impl(), 4 * backend_.real_bytes()}});
+  finish_halos();
+}
+
+void SphRanks::start_halos(Buffer<Real>& a, Buffer<Real>& b) {
+  start_halos({{&a.impl(), backend_.real_bytes()}, {&b.impl(), backend_.real_bytes()}});
+}
+
+std::pair<uint32_t, uint32_t> SphRanks::interior() const {
+  const SphRankLayout& l = staged_;
+  if (hi_begin_ <= lo_end_) return {l.first, l.first};  // every own particle is next to a halo
+  return {l.first + lo_end_, l.first + hi_begin_};
 }
 
 void SphRanks::reduce_stats(uint32_t* words) {

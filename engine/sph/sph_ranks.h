@@ -21,6 +21,8 @@
 // Data moves through host memory (download, exchange, upload).
 #include <chrono>
 #include <cstdint>
+#include <memory>
+#include <utility>
 #include <vector>
 
 #include "engine/kernels/backend.h"
@@ -41,7 +43,8 @@ struct SphRankCounters {
   uint64_t rebuilds = 0;      // redistribute() calls
   uint64_t migrated = 0;      // particles received from other ranks at rebuilds
   uint64_t halo = 0;          // halo particles received at rebuilds
-  uint64_t halo_updates = 0;  // exchange_halos() calls
+  uint64_t halo_updates = 0;  // halo updates (density and pressure together count once)
+  uint64_t overlapped = 0;    // own particles whose forces ran while their halos travelled
   uint64_t bytes_sent = 0;    // to other ranks, all exchanges
   uint64_t rebalances = 0;
   double exchange_seconds = 0;  // in the exchanges, host work and waiting included
@@ -88,6 +91,14 @@ class SphRanks {
   // wrote since the rebuild).
   void exchange_halos(Buffer<Real>& b);
   void exchange_halos(Buffer<Real4>& b);
+  // The same for two arrays, started: the caller computes what needs no halo (interior()) while
+  // the values travel, then calls finish_halos() before anything else of this object.
+  void start_halos(Buffer<Real>& a, Buffer<Real>& b);
+  void finish_halos();
+  // The own particles none of whose neighbours is a halo, [begin, end) in the local arrays: the
+  // middle of the own range (cells next to another rank's are at its ends).
+  std::pair<uint32_t, uint32_t> interior() const;
+  void count_overlapped(uint32_t particles) { counters_.overlapped += particles; }
 
   // kSphStatWords stats words: maxima over the ranks, the outside counts summed.
   void reduce_stats(uint32_t* words);
@@ -98,7 +109,8 @@ class SphRanks {
 
  private:
   class Timer;
-  void exchange_halos(BufferImpl& b, size_t elem_bytes);
+  using HaloArrays = std::vector<std::pair<BufferImpl*, size_t>>;  // buffer, bytes per element
+  void start_halos(HaloArrays arrays);
   uint32_t cell_of(const std::byte* real4) const;
   std::vector<uint32_t> cells_of(const std::vector<Vec4d>& positions) const;
   void maybe_rebalance(const std::vector<uint32_t>& cells);
@@ -114,6 +126,10 @@ class SphRanks {
   // how many particles each rank sent here.
   std::vector<std::vector<uint32_t>> halo_send_;
   std::vector<uint32_t> halo_recv_;
+  // Own indices below lo_end_ go to lower ranks, from hi_begin_ on to higher ranks.
+  uint32_t lo_end_ = 0, hi_begin_ = 0;
+  HaloArrays pending_arrays_;  // a started halo update
+  std::unique_ptr<SphPendingExchange> pending_;
   SphRankCounters counters_;
 };
 

@@ -291,13 +291,28 @@ void SphSimulation::evaluate(const Buffer<Real4>& x, const Buffer<Real4>& v) {
   sph_density(backend_, step_params_,
               SphDensityIO{&x, view, &density_, &pressure_, &stats_buf_, neighbor_rows()});
   mark(SphStage::density);
-  if (ranks_) {
-    ranks_->exchange_halos(density_);
-    ranks_->exchange_halos(pressure_);
+  const SphForcesIO forces{&x,   &v,      &density_,   &pressure_,
+                           view, &accel_, &stats_buf_, neighbor_rows()};
+  if (!ranks_) {
+    sph_forces(backend_, step_params_, forces);
+  } else {
+    // The halos' density and pressure travel while the forces of the own particles that have
+    // no halo neighbour run; then the rest of the own range (its ends).
+    ranks_->start_halos(density_, pressure_);
+    const auto [begin, end] = ranks_->interior();
+    auto forces_over = [&](uint32_t first, uint32_t last) {
+      if (first >= last) return;
+      SphStepParams p = step_params_;
+      p.first = first;
+      p.count = last - first;
+      sph_forces(backend_, p, forces);
+    };
+    forces_over(begin, end);
+    ranks_->finish_halos();
+    forces_over(step_params_.first, begin);
+    forces_over(end, step_params_.first + step_params_.count);
+    ranks_->count_overlapped(end - begin);
   }
-  sph_forces(
-      backend_, step_params_,
-      SphForcesIO{&x, &v, &density_, &pressure_, view, &accel_, &stats_buf_, neighbor_rows()});
   mark(SphStage::forces);
 }
 
