@@ -83,36 +83,16 @@ class MpiComm final : public SphComm {
   int size() const override { return size_; }
 
   std::vector<Bytes> exchange(const std::vector<Bytes>& to) override {
+    // The sizes first, then the messages.
     const size_t n = size_t(size_);
-    std::vector<int> send_counts(n, 0), recv_counts(n, 0), send_at(n, 0), recv_at(n, 0);
-    size_t sent = 0;
-    for (size_t r = 0; r < n; ++r) {
-      if (int(r) == rank_ || r >= to.size()) continue;
-      send_at[r] = count_of(sent, "exchange");
-      send_counts[r] = count_of(to[r].size(), "exchange");
-      sent += to[r].size();
-    }
-    Bytes send;
-    send.reserve(sent);
-    for (size_t r = 0; r < n; ++r)
-      if (send_counts[r]) send.insert(send.end(), to[r].begin(), to[r].end());
+    std::vector<int> send_counts(n, 0), recv_counts(n, 0);
+    for (size_t r = 0; r < n && r < to.size(); ++r)
+      if (int(r) != rank_) send_counts[r] = count_of(to[r].size(), "exchange");
     check(MPI_Alltoall(send_counts.data(), 1, MPI_INT, recv_counts.data(), 1, MPI_INT,
                        MPI_COMM_WORLD),
           "MPI_Alltoall");
-    size_t received = 0;
-    for (size_t r = 0; r < n; ++r) {
-      recv_at[r] = count_of(received, "exchange");
-      received += size_t(recv_counts[r]);
-    }
-    Bytes recv(received);
-    count_of(received, "exchange");
-    check(MPI_Alltoallv(send.data(), send_counts.data(), send_at.data(), MPI_BYTE, recv.data(),
-                        recv_counts.data(), recv_at.data(), MPI_BYTE, MPI_COMM_WORLD),
-          "MPI_Alltoallv");
-    std::vector<Bytes> from(n);
-    for (size_t r = 0; r < n; ++r)
-      from[r].assign(recv.begin() + recv_at[r], recv.begin() + recv_at[r] + recv_counts[r]);
-    return from;
+    return start_exchange(to, std::vector<size_t>(recv_counts.begin(), recv_counts.end()))
+        ->finish();
   }
 
   std::unique_ptr<SphPendingExchange> start_exchange(std::vector<Bytes> to,

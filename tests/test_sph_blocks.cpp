@@ -10,6 +10,7 @@
 #include "engine/sph/sph_presets.h"
 #include "engine/sph/sph_simulation.h"
 #include "tests/backend_fixture.h"
+#include "tests/sph_state_compare.h"
 
 using namespace masav;
 
@@ -40,16 +41,6 @@ Outcome run_in_blocks(const SphScene& s, uint32_t block, uint64_t steps) {
   return o;
 }
 
-bool same_state(const SphState& a, const SphState& b) {
-  for (size_t i = 0; i < a.positions.size(); ++i) {
-    const Vec4d &p = a.positions[i], &q = b.positions[i], &v = a.velocities[i],
-                &w = b.velocities[i];
-    if (p.x != q.x || p.y != q.y || p.z != q.z || v.x != w.x || v.y != w.y || v.z != w.z)
-      return false;
-  }
-  return a.positions.size() == b.positions.size();
-}
-
 }  // namespace
 
 TEST_CASE("[sph-physics] run() in blocks gives the step-by-step state bit for bit") {
@@ -66,7 +57,7 @@ TEST_CASE("[sph-physics] run() in blocks gives the step-by-step state bit for bi
     CHECK(blocks.replays == 0);
     CHECK(blocks.steps == 20);
     CHECK(blocks.time == single.time);
-    CHECK(same_state(blocks.state, single.state));
+    CHECK(test::same_state(blocks.state, single.state));
   }
 }
 
@@ -83,7 +74,7 @@ TEST_CASE("[sph-physics] a block the guard rejects is replayed and stops at the 
   CHECK(blocks.error == single.error);
   CHECK(blocks.steps == single.steps);
   CHECK(blocks.replays >= 1);
-  CHECK(same_state(blocks.state, single.state));  // the last good state, as step by step
+  CHECK(test::same_state(blocks.state, single.state));  // the last good state, as step by step
 }
 
 TEST_CASE("[sph-physics] a NaN entering a block is named by step and particle") {
@@ -136,6 +127,6 @@ TEST_CASE("[sph-physics] run() split anywhere gives the trajectory of one call b
     CHECK(x->run(25) == 25);
     CHECK(x->time() == whole.time);
     CHECK(x->last_dt() > 0);
-    CHECK(same_state(x->download(), whole.state));
+    CHECK(test::same_state(x->download(), whole.state));
   }
 }

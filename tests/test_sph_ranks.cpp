@@ -13,6 +13,7 @@
 #include "engine/sph/sph_simulation.h"
 #include "registry/backends.h"
 #include "tests/backend_fixture.h"
+#include "tests/sph_state_compare.h"
 #include "tests/thread_comm.h"
 
 using namespace masav;
@@ -40,16 +41,6 @@ double difference(const SphState& a, const SphState& b) {
                       std::abs(v.z - w.z) * 1e-2});
   }
   return worst;
-}
-
-bool same_bits(const SphState& a, const SphState& b) {
-  for (size_t i = 0; i < a.positions.size(); ++i) {
-    const Vec4d &p = a.positions[i], &q = b.positions[i], &v = a.velocities[i],
-                &w = b.velocities[i];
-    if (p.x != q.x || p.y != q.y || p.z != q.z || v.x != w.x || v.y != w.y || v.z != w.z)
-      return false;
-  }
-  return a.positions.size() == b.positions.size();
 }
 
 RankRun one_process(const SphScene& s, uint64_t steps) {
@@ -85,7 +76,7 @@ RankRun on_ranks(int ranks, const SphScene& s, uint64_t steps,
   });
   RankRun out{per[0].state, per[0].time, per[0].steps, per[0].substeps};
   for (const PerRank& r : per) {
-    CHECK(same_bits(r.state, out.state));  // the gather is the same on every rank
+    CHECK(test::same_state(r.state, out.state));  // the gather is the same on every rank
     CHECK(r.steps == out.steps);
     out.migrated += r.counters.migrated;
     out.halo += r.counters.halo;
@@ -152,7 +143,7 @@ TEST_CASE("[sph-ranks] 1 to 4 ranks follow the one-process trajectory") {
       CHECK(r.substeps == one.substeps);
       if (tolerance() == 0) {
         CHECK(r.time == one.time);
-        CHECK(same_bits(r.state, one.state));
+        CHECK(test::same_state(r.state, one.state));
       } else {
         CHECK(r.time == doctest::Approx(one.time).epsilon(1e-3));
         CHECK(difference(r.state, one.state) <= tolerance());
@@ -172,7 +163,7 @@ TEST_CASE("[sph-ranks] an explosion moves particles across every boundary, re-ba
             ", re-balances ", r.rebalances, ", forces overlapped ", r.overlapped);
     CHECK(r.steps == one.steps);
     if (tolerance() == 0)
-      CHECK(same_bits(r.state, one.state));
+      CHECK(test::same_state(r.state, one.state));
     else  // particles collide: rounding differences grow to 1.5-3 cm in 200 steps on lavapipe
       CHECK(difference(r.state, one.state) <= tolerance(0.06));
     CHECK(r.migrated > 0);
@@ -196,7 +187,7 @@ TEST_CASE("[sph-ranks] a checkpoint continues on another number of ranks") {
   for (const RankRun* r : {&continued, &continued2}) {
     CHECK(r->steps == whole.steps);
     if (tolerance() == 0)
-      CHECK(same_bits(r->state, whole.state));
+      CHECK(test::same_state(r->state, whole.state));
     else
       CHECK(difference(r->state, whole.state) <= tolerance());
   }
@@ -252,7 +243,7 @@ TEST_CASE("[sph-ranks] a rejected block replays and stops at the step one proces
     CHECK(r.replays == one.block_replays());
     CHECK(r.replays >= 1);
     if (tolerance() == 0)
-      CHECK(same_bits(r.state, want_state));
+      CHECK(test::same_state(r.state, want_state));
     else
       CHECK(difference(r.state, want_state) <= tolerance(0.06));
   }
@@ -276,7 +267,7 @@ TEST_CASE("[sph-ranks] reading the state between steps leaves the trajectory alo
     }
   });
   if (tolerance() == 0)
-    CHECK(same_bits(got, one.state));
+    CHECK(test::same_state(got, one.state));
   else
     CHECK(difference(got, one.state) <= tolerance());
 }

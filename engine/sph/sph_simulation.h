@@ -250,6 +250,9 @@ class SphSimulation {
   bool dfsph() const { return scene_.model == SphPressureModel::dfsph; }
   SphStepStats read_stats(uint32_t words[kSphStatWords]);
   [[noreturn]] void fail_non_finite(double dt);
+  // The error naming particle `id` (UINT32_MAX: unknown) that entered the step non-finite
+  // (`origin`) or got so in it.
+  [[noreturn]] void throw_non_finite(double dt, uint32_t id, bool origin) const;
   void mark(SphStage ended);
   void collect_stage_times();
   double limit_for(const SphStepStats& s) const;

@@ -62,27 +62,13 @@ SphState SphSimulation::download_own(std::vector<uint32_t>& ids) {
 }
 
 SphState SphSimulation::download_ranks() {
-  refresh_fields_ranks();
-  const SphRankLayout l = ranks_->committed();
-  const auto pos = backend_.download(pos_);
-  const auto vel = backend_.download(vel_);
-  const auto ids = backend_.download(ids_);
-  const auto rho = backend_.download(density_);
-  const auto pr = backend_.download(pressure_);
-  const auto acc = backend_.download(accel_);
-  std::vector<GatheredParticle> mine(l.own);
-  for (uint32_t k = 0; k < l.own; ++k) {
-    const uint32_t i = l.first + k;
-    GatheredParticle& g = mine[k];
-    g.id = ids[i];
-    const Vec4d& x = pos[i];
-    const Vec4d& v = vel[i];
-    const double xs[4] = {x.x, x.y, x.z, x.w}, vs[4] = {v.x, v.y, v.z, v.w};
-    std::memcpy(g.position, xs, sizeof xs);
-    std::memcpy(g.velocity, vs, sizeof vs);
-    g.density = rho[i];
-    g.pressure = pr[i];
-    g.neighbors = acc[i].w + 1.0;
+  std::vector<uint32_t> ids;
+  const SphState own = download_own(ids);
+  std::vector<GatheredParticle> mine(ids.size());
+  for (size_t k = 0; k < ids.size(); ++k) {
+    const Vec4d &x = own.positions[k], &v = own.velocities[k];
+    mine[k] = {ids[k],         {x.x, x.y, x.z, x.w}, {v.x, v.y, v.z, v.w},
+               own.density[k], own.pressure[k],      own.neighbors[k]};
   }
   Bytes bytes;
   append_bytes(bytes, std::span<const GatheredParticle>(mine));
@@ -136,14 +122,7 @@ void SphSimulation::fail_non_finite_ranks(double dt) {
     id = lf ? first_bad(ta_, tb_, ids_t_, ranks_->staged())
             : first_bad(xs_, vs_, ids_, ranks_->committed());
   }
-  throw Error(
-      backend_.name(), "sph",
-      fmt::format("step {} (t = {:.6g} s, dt = {:.3g} s): particle {} {} a non-finite "
-                  "position or velocity",
-                  steps_ + 1, time_, dt, id == UINT32_MAX ? std::string("?") : std::to_string(id),
-                  origin ? "entered the step with" : "got"),
-      "the state of the last good step is kept (export it to inspect); lower dt or use "
-      "the adaptive dt, raise viscosity, or check the scene's parameters");
+  throw_non_finite(dt, id, origin);
 }
 
 }  // namespace masav
