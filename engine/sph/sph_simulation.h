@@ -213,6 +213,20 @@ class SphSimulation {
   // kernels' particle counts and own ranges.
   void use_rank_layout(const Buffer<Real4>& x);
   SphState download_ranks();
+  // For the scope of an evaluation outside the steps (download()): the stats words start from
+  // zero and, where run() left a block open, get the block's back at the end (its maxima choose
+  // the next block's dt: reading the state must not change the trajectory).
+  class StatsKeeper {
+   public:
+    explicit StatsKeeper(SphSimulation& sim);
+    ~StatsKeeper();
+    StatsKeeper(const StatsKeeper&) = delete;
+    StatsKeeper& operator=(const StatsKeeper&) = delete;
+
+   private:
+    SphSimulation& sim_;
+    std::vector<uint32_t> block_;
+  };
   void refresh_fields_ranks();  // density and pressure at the committed state's positions
   [[noreturn]] void fail_non_finite_ranks(double dt);
   void evaluate(const Buffer<Real4>& x, const Buffer<Real4>& v);

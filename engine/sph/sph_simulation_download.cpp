@@ -6,6 +6,15 @@
 
 namespace masav {
 
+SphSimulation::StatsKeeper::StatsKeeper(SphSimulation& sim) : sim_(sim) {
+  if (sim_.block_open_) block_ = sim_.backend_.download(sim_.stats_buf_);
+  sim_.backend_.fill(sim_.stats_buf_, 0u);
+}
+
+SphSimulation::StatsKeeper::~StatsKeeper() {
+  if (!block_.empty()) sim_.backend_.upload(sim_.stats_buf_, block_);
+}
+
 SphState SphSimulation::download() {
   if (ranks_) return download_ranks();
   const Buffer<Real4>* px = &pos_;
@@ -15,7 +24,7 @@ SphState SphSimulation::download() {
     // Density at the current positions without touching the committed state: sort copies of
     // the positions, velocities and ids into a fresh grid (scratch buffers), evaluate there.
     rebuild_moving(pos_, ta_, vel_, tb_, ids_, ids_t_);
-    backend_.fill(stats_buf_, 0u);
+    const StatsKeeper keep(*this);
     const SphGridView view{&grid_.sorted_cells, &grid_.cell_start, &grid_.cell_end};
     sph_density(backend_, step_params_,
                 SphDensityIO{&ta_, view, &density_, &pressure_, &stats_buf_, neighbor_rows()});

@@ -30,7 +30,7 @@ void SphSimulation::refresh_fields_ranks() {
   // Density at the current positions: the committed state itself is re-sorted (a rebuild on
   // unchanged positions is what the next step's rebuild gives anyway) and evaluated there.
   sort_state();
-  backend_.fill(stats_buf_, 0u);
+  const StatsKeeper keep(*this);
   evaluate(pos_, vel_);
   accel_valid_ = false;
   fields_current_ = true;
