@@ -154,7 +154,18 @@ SphPartition SphRanks::partition_for(const std::vector<uint32_t>& cells, bool gl
   std::vector<uint64_t> counts((uint64_t(cell_count_) + per - 1) / per, 0);
   for (uint32_t c : cells) ++counts[c / per];
   if (global) comm_.sum(counts);
-  return balance_partition(counts, per, cell_count_, comm_.size());
+  SphPartition p = balance_partition(counts, per, cell_count_, comm_.size());
+  // The imbalance this partition reaches: no partition on these buckets does better.
+  std::vector<uint64_t> held(size_t(comm_.size()), 0);
+  uint64_t total = 0;
+  for (size_t b = 0; b < counts.size(); ++b) {
+    held[size_t(p.owner(uint32_t(std::min<uint64_t>(uint64_t(b) * per, cell_count_ - 1))))] +=
+        counts[b];
+    total += counts[b];
+  }
+  const double mean = double(total) / double(comm_.size());
+  reachable_ = total ? double(*std::max_element(held.begin(), held.end())) / mean - 1.0 : 0.0;
+  return p;
 }
 
 void SphRanks::maybe_rebalance(const std::vector<uint32_t>& cells) {
@@ -163,7 +174,9 @@ void SphRanks::maybe_rebalance(const std::vector<uint32_t>& cells) {
   comm_.max(std::span<uint32_t>(&most, 1));
   comm_.sum(std::span<uint64_t>(&total, 1));
   const double mean = double(total) / double(comm_.size());
-  if (double(most) <= (1.0 + kImbalance) * mean) return;
+  // Beyond the threshold, and by as much beyond what the last balance could reach (few
+  // particles in few cells cannot be balanced finer than a bucket: no balance every step).
+  if (double(most) <= (1.0 + std::max(kImbalance, reachable_ + kImbalance)) * mean) return;
   partition_ = partition_for(cells, true);
   ++counters_.rebalances;
 }

@@ -74,7 +74,8 @@ class SphRanks {
 
   // The rebuild's exchange (see the header): the own particles of the committed layout of x,
   // v, ids (and `extra`, a per-particle array that moves with them) go to their cells' owners,
-  // re-balancing first when the ranks hold more than kImbalance above their mean; the result,
+  // re-balancing first when the fullest rank holds more than kImbalance above the mean (and
+  // kImbalance above what the last balance could reach); the result,
   // halos included, is written to the *_out buffers (which may not be the inputs) in the new,
   // staged layout. The inputs keep the committed layout until commit().
   static constexpr double kImbalance = 0.10;
@@ -121,6 +122,7 @@ class SphRanks {
   GridParams grid_;
   uint32_t cell_count_ = 0;
   SphPartition partition_;
+  double reachable_ = 0;  // the imbalance the last balance reached (max / mean - 1)
   SphRankLayout committed_, staged_;
   // The staged layout's halo traffic: own indices (relative to first) sent to each rank, and
   // how many particles each rank sent here.
