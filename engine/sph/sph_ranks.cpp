@@ -444,13 +444,9 @@ void SphRanks::finish_halos() {
   ++counters_.halo_updates;
 }
 
-void SphRanks::exchange_halos(Buffer<Real>& b) {
-  start_halos({{&b.impl(), backend_.real_bytes()}});
-  finish_halos();
-}
-
-void SphRanks::exchange_halos(Buffer<Real4>& b) {
-  start_halos({{&b.impl(), 4 * backend_.real_bytes()}});
+void SphRanks::exchange_halos(Buffer<Real4>& a, Buffer<Real4>& b) {
+  const size_t real4 = 4 * backend_.real_bytes();
+  start_halos({{&a.impl(), real4}, {&b.impl(), real4}});
   finish_halos();
 }
 
@@ -486,12 +482,25 @@ Bytes SphRanks::gather(const Bytes& mine) {
 
 namespace {
 
+// Reals of the backend's precision, `scalars` of them, from the device bytes at `offset`.
+std::vector<double> read_reals(Backend& backend, const BufferImpl& b, size_t offset,
+                               size_t scalars) {
+  std::vector<double> out(scalars);
+  if (backend.real_bytes() == 8) {
+    backend.download_bytes(b, out.data(), scalars * 8, offset * 8);
+  } else {
+    std::vector<float> narrow(scalars);
+    backend.download_bytes(b, narrow.data(), scalars * 4, offset * 4);
+    std::copy(narrow.begin(), narrow.end(), out.begin());
+  }
+  return out;
+}
+
 template <class T, class Elem>
 std::vector<T> gather_own_values(Backend& backend, SphRanks& ranks, const Buffer<Elem>& b) {
-  const std::vector<T> all = backend.download(b);
-  const SphRankLayout& l = ranks.committed();
+  const std::vector<T> mine_values = own_values(backend, ranks, b);
   Bytes mine;
-  append_bytes(mine, std::span<const T>(all.data() + l.first, l.own));
+  append_bytes(mine, std::span<const T>(mine_values));
   const Bytes bytes = ranks.gather(mine);
   std::vector<T> out(bytes.size() / sizeof(T));
   std::memcpy(out.data(), bytes.data(), out.size() * sizeof(T));
@@ -499,6 +508,26 @@ std::vector<T> gather_own_values(Backend& backend, SphRanks& ranks, const Buffer
 }
 
 }  // namespace
+
+std::vector<Vec4d> own_values(Backend& backend, const SphRanks& ranks, const Buffer<Real4>& b) {
+  const SphRankLayout& l = ranks.committed();
+  const std::vector<double> flat = read_reals(backend, b.impl(), 4 * size_t(l.first), 4 * l.own);
+  std::vector<Vec4d> out(l.own);
+  for (size_t i = 0; i < l.own; ++i)
+    out[i] = {flat[4 * i], flat[4 * i + 1], flat[4 * i + 2], flat[4 * i + 3]};
+  return out;
+}
+std::vector<double> own_values(Backend& backend, const SphRanks& ranks, const Buffer<Real>& b) {
+  const SphRankLayout& l = ranks.committed();
+  return read_reals(backend, b.impl(), l.first, l.own);
+}
+std::vector<uint32_t> own_values(Backend& backend, const SphRanks& ranks,
+                                 const Buffer<uint32_t>& b) {
+  const SphRankLayout& l = ranks.committed();
+  std::vector<uint32_t> out(l.own);
+  backend.download_bytes(b.impl(), out.data(), size_t(l.own) * 4, size_t(l.first) * 4);
+  return out;
+}
 
 std::vector<Vec4d> gather_own(Backend& backend, SphRanks& ranks, const Buffer<Real4>& b) {
   return gather_own_values<Vec4d>(backend, ranks, b);

@@ -54,10 +54,8 @@ class SphRanks {
  public:
   SphRanks(SphComm& comm, Backend& backend, const GridParams& grid);
 
-  SphComm& comm() { return comm_; }
   int rank() const { return comm_.rank(); }
   int ranks() const { return comm_.size(); }
-  const SphPartition& partition() const { return partition_; }
   const SphRankCounters& counters() const { return counters_; }
 
   // This rank's share of all particles (given by id, the same on every rank), in id order: its
@@ -90,8 +88,7 @@ class SphRanks {
 
   // The staged layout's halo slots of `b` get their owners' values (whose own values a kernel
   // wrote since the rebuild).
-  void exchange_halos(Buffer<Real>& b);
-  void exchange_halos(Buffer<Real4>& b);
+  void exchange_halos(Buffer<Real4>& a, Buffer<Real4>& b);  // both arrays in one exchange
   // The same for two arrays, started: the caller computes what needs no halo (interior()) while
   // the values travel, then calls finish_halos() before anything else of this object.
   void start_halos(Buffer<Real>& a, Buffer<Real>& b);
@@ -135,6 +132,12 @@ class SphRanks {
   SphRankCounters counters_;
 };
 
+// The own particles' values of `b` in the committed layout, read from the device alone (not
+// the whole buffer).
+std::vector<Vec4d> own_values(Backend& backend, const SphRanks& ranks, const Buffer<Real4>& b);
+std::vector<double> own_values(Backend& backend, const SphRanks& ranks, const Buffer<Real>& b);
+std::vector<uint32_t> own_values(Backend& backend, const SphRanks& ranks,
+                                 const Buffer<uint32_t>& b);
 // The own particles' values of `b` (the committed layout) of every rank, in rank order (the
 // one-process order), on every rank.
 std::vector<Vec4d> gather_own(Backend& backend, SphRanks& ranks, const Buffer<Real4>& b);

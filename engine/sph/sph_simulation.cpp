@@ -364,8 +364,7 @@ void SphSimulation::step_rk4(double dt) {
   // On several ranks the halos' stage states come from their owners before each evaluation.
   auto stage_halos = [&] {
     if (!ranks_) return;
-    ranks_->exchange_halos(xs_);
-    ranks_->exchange_halos(vs_);
+    ranks_->exchange_halos(xs_, vs_);
   };
   integrate(SphStageOp::rk4_stage1, dt, pos_, vel_, nullptr, &xs_, vs_, &sum_x_, &sum_v_);
   stage_halos();

@@ -79,6 +79,9 @@ struct SphState {
   std::vector<double> neighbors;  // within h, itself included
 };
 
+// A state of n particles, every array sized (to be filled by id).
+SphState sized_state(size_t n);
+
 struct SphStepStats {
   double max_speed = 0, max_accel = 0, max_drift = 0;  // m/s, m/s^2, m
   double max_density = 0;                              // kg/m^3

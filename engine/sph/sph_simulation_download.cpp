@@ -6,6 +6,16 @@
 
 namespace masav {
 
+SphState sized_state(size_t n) {
+  SphState s;
+  s.positions.resize(n);
+  s.velocities.resize(n);
+  s.density.resize(n);
+  s.pressure.resize(n);
+  s.neighbors.resize(n);
+  return s;
+}
+
 SphSimulation::StatsKeeper::StatsKeeper(SphSimulation& sim) : sim_(sim) {
   if (sim_.block_open_) block_ = sim_.backend_.download(sim_.stats_buf_);
   sim_.backend_.fill(sim_.stats_buf_, 0u);
@@ -52,12 +62,7 @@ SphState SphSimulation::download() {
     for (uint32_t i = 0; i < n_; ++i) pr[i] *= rho[i] * rho[i] / layout_.gradient_correction;
   }
   const auto acc = backend_.download(accel_);
-  SphState s;
-  s.positions.resize(n_);
-  s.velocities.resize(n_);
-  s.density.resize(n_);
-  s.pressure.resize(n_);
-  s.neighbors.resize(n_);
+  SphState s = sized_state(n_);
   for (uint32_t i = 0; i < n_; ++i) {
     const uint32_t id = ids[i];
     s.positions[id] = pos[i];

@@ -44,20 +44,13 @@ SphState SphSimulation::download_own(std::vector<uint32_t>& ids) {
     return s;
   }
   refresh_fields_ranks();
-  const SphRankLayout l = ranks_->committed();
-  const auto pos = backend_.download(pos_);
-  const auto vel = backend_.download(vel_);
-  const auto id = backend_.download(ids_);
-  const auto rho = backend_.download(density_);
-  const auto pr = backend_.download(pressure_);
-  const auto acc = backend_.download(accel_);
   SphState s;
-  ids.assign(id.begin() + l.first, id.begin() + l.first + l.own);
-  s.positions.assign(pos.begin() + l.first, pos.begin() + l.first + l.own);
-  s.velocities.assign(vel.begin() + l.first, vel.begin() + l.first + l.own);
-  s.density.assign(rho.begin() + l.first, rho.begin() + l.first + l.own);
-  s.pressure.assign(pr.begin() + l.first, pr.begin() + l.first + l.own);
-  for (uint32_t k = 0; k < l.own; ++k) s.neighbors.push_back(acc[l.first + k].w + 1.0);
+  ids = own_values(backend_, *ranks_, ids_);
+  s.positions = own_values(backend_, *ranks_, pos_);
+  s.velocities = own_values(backend_, *ranks_, vel_);
+  s.density = own_values(backend_, *ranks_, density_);
+  s.pressure = own_values(backend_, *ranks_, pressure_);
+  for (const Vec4d& a : own_values(backend_, *ranks_, accel_)) s.neighbors.push_back(a.w + 1.0);
   return s;
 }
 
@@ -78,12 +71,7 @@ SphState SphSimulation::download_ranks() {
                 fmt::format("the ranks hold {} bytes of particles, {} expected for {}", all.size(),
                             size_t(n_) * sizeof(GatheredParticle), n_),
                 "start every rank with the same masav and the same arguments");
-  SphState s;
-  s.positions.resize(n_);
-  s.velocities.resize(n_);
-  s.density.resize(n_);
-  s.pressure.resize(n_);
-  s.neighbors.resize(n_);
+  SphState s = sized_state(n_);
   std::vector<bool> seen(n_, false);
   for (size_t k = 0; k < n_; ++k) {
     GatheredParticle g;
