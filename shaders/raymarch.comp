@@ -2,7 +2,7 @@
 #extension GL_GOOGLE_include_directive : require
 // raymarch: one pixel per invocation, in 8x8 tiles; the GLSL twin of volume::raymarch_pixel
 // (engine/kernels/volume_math.h: segments, midpoint samples, opacity correction, early ray
-// termination, empty space skipped per segment by bricks and blocks of bricks, the thesis's lerp
+// termination, empty space skipped per segment in cubes of bricks of one kind, the thesis's lerp
 // mode).
 #include "kernel_base.glsl"
 #include "slab.glsl"
@@ -36,20 +36,26 @@ Lighting ray_lighting(vec3 dir) {
                   p.shade_specular);
 }
 
-// The GLSL twin of volume::cell_exit: where the ray u(t) = u0 + du t leaves cell ci of `count`
-// cells of `size` voxels on one axis (the outermost cells reach to infinity outward).
-float axis_exit(float u0, float du, float inv_du, uint ci, uint count, float size, float exit) {
+// The GLSL twin of volume::box_exit: where the ray u(t) = u0 + du t leaves the cells lo .. hi of
+// `count` cells of `size` voxels on one axis (the outermost cells reach to infinity outward).
+float axis_exit(float u0, float du, float inv_du, uint lo, uint hi, uint count, float size,
+                float exit) {
   float face = -1.0;
-  if (du > 0.0 && ci + 1u < count) face = float(ci + 1u) * size;
-  if (du < 0.0 && ci > 0u) face = float(ci) * size;
+  if (du > 0.0 && hi + 1u < count) face = float(hi + 1u) * size;
+  if (du < 0.0 && lo > 0u) face = float(lo) * size;
   return face >= 0.0 ? min(exit, (face - u0) * inv_du) : exit;
 }
 
-float cell_exit(vec3 u0, vec3 du, vec3 inv_du, uvec3 ci, uvec3 count, float size) {
+// The twin of volume::skip_span's exit: brick bi's lookup b = (min, max, alpha, stride) holds for
+// every brick within stride - 1 of bi; where the ray leaves that cube of bricks.
+float skip_exit(vec3 u0, vec3 du, vec3 inv_du, uvec3 bi, vec4 b, uvec3 nb, float size) {
+  const uint reach = b.w >= 2.0 && b.w <= float(kBrickSkipMaxRadius + 1u) ? uint(b.w) - 1u : 0u;
+  const uvec3 lo = uvec3(max(ivec3(bi) - int(reach), ivec3(0)));
+  const uvec3 hi = min(bi + reach, nb - 1u);
   float exit = VOLUME_FAR;
-  exit = axis_exit(u0.x, du.x, inv_du.x, ci.x, count.x, size, exit);
-  exit = axis_exit(u0.y, du.y, inv_du.y, ci.y, count.y, size, exit);
-  return axis_exit(u0.z, du.z, inv_du.z, ci.z, count.z, size, exit);
+  exit = axis_exit(u0.x, du.x, inv_du.x, lo.x, hi.x, nb.x, size, exit);
+  exit = axis_exit(u0.y, du.y, inv_du.y, lo.y, hi.y, nb.y, size, exit);
+  return axis_exit(u0.z, du.z, inv_du.z, lo.z, hi.z, nb.z, size, exit);
 }
 
 // The twin of volume::pow_step: x^e, with a square root or product for e = 1/4, 1/2, 1, 2.
@@ -111,7 +117,6 @@ vec4 march(uint px, uint py) {
   const uvec3 nb = (dims + ray_brick() - 1u) / ray_brick();
   Lighting light;
   if (shade) light = ray_lighting(dir);
-  const uvec3 blocks = (nb + 1u) / 2u;
   const uint shift = brick_shift();
   const float inv_step = 1.0 / step_len;
   const float exponent = step_len / p.reference_step;
@@ -131,12 +136,9 @@ vec4 march(uint px, uint py) {
     if (skip && tm >= occupied_until) {
       const uvec3 bi = brick_of(u, shift, nb);
       const vec4 b = bricks[(bi.z * nb.y + bi.y) * nb.x + bi.x];
-      // The whole 2x2x2 block of bricks is empty, or else the brick is: one cell_exit either way
-      // (lanes that disagree run one, not both).
-      const bool block = b.w <= 0.0;
-      const float exit = cell_exit(u0, du, inv_du, block ? bi / 2u : bi, block ? blocks : nb,
-                                   block ? 2.0 * brick : brick);
-      if (block || b.z <= 0.0) {
+      // One exit either way, empty or occupied (lanes that disagree run one, not two).
+      const float exit = skip_exit(u0, du, inv_du, bi, b, nb, brick);
+      if (b.z <= 0.0) {
         i = first_segment_after(exit, tn, inv_step, i, n);
         skipped = true;
       } else {
@@ -174,8 +176,8 @@ TfPos value_at(vec3 u0, vec3 du, float t, uvec3 dims) {
 }
 
 // The twin of volume::raymarch_pixel_preintegrated: the scalar at segment boundaries, each
-// segment's colour and opacity from the pre-integrated table, runs of segments inside one empty
-// block or brick skipped.
+// segment's colour and opacity from the pre-integrated table, runs of segments inside one
+// cube of empty bricks skipped.
 vec4 march_preintegrated(uint px, uint py) {
   vec4 acc = vec4(0.0);
   const bool skip = (p.bits & kRaySkipEmpty) != 0u;
@@ -199,7 +201,6 @@ vec4 march_preintegrated(uint px, uint py) {
   const uvec3 nb = (dims + ray_brick() - 1u) / ray_brick();
   Lighting light;
   if (shade) light = ray_lighting(dir);
-  const uvec3 blocks = (nb + 1u) / 2u;
   const uint shift = brick_shift();
   const float inv_step = 1.0 / step_len;
   const float inv_ref = 1.0 / p.reference_step;
@@ -219,11 +220,9 @@ vec4 march_preintegrated(uint px, uint py) {
       const vec3 u = u0 + du * s0;
       const uvec3 bi = brick_of(u, shift, nb);
       const vec4 b = bricks[(bi.z * nb.y + bi.y) * nb.x + bi.x];
-      const bool block = b.w <= 0.0;  // the whole 2x2x2 block of bricks is empty
-      const float exit = cell_exit(u0, du, inv_du, block ? bi / 2u : bi, block ? blocks : nb,
-                                   block ? 2.0 * brick : brick);
+      const float exit = skip_exit(u0, du, inv_du, bi, b, nb, brick);
       float empty_until = -1.0;
-      if (block || b.z <= 0.0) {
+      if (b.z <= 0.0) {
         empty_until = exit;
       } else {
         occupied_until = exit;

@@ -1,10 +1,10 @@
 #version 450
 #extension GL_GOOGLE_include_directive : require
 // volume_bricks: per brick of BRICK^3 voxels plus the one-voxel apron that trilinear sampling
-// reads, (min, max, largest transfer alpha over [min, max], the same alpha over the 2x2x2 block of
-// bricks that holds it): the GLSL twin of KernelBody<volume_bricks> (engine/kernels/atom_body.h).
-// raymarch skips a brick or block with alpha 0. At most (16 + 1)^3 + (32 + 1)^3 + 2 x 4096 loop
-// iterations per invocation.
+// reads, (min, max, largest transfer alpha over [min, max], 1: the stride a ray crosses it in,
+// which volume_brick_skip widens): the GLSL twin of KernelBody<volume_bricks>
+// (engine/kernels/atom_body.h). raymarch skips bricks with alpha 0. At most (16 + 1)^3 + 4096
+// loop iterations per invocation.
 #include "kernel_base.glsl"
 #include "engine/kernels/atom_params.h"
 
@@ -49,10 +49,7 @@ void run() {
   if (id >= nb.x * nb.y * nb.z) return;
   const uvec3 b = uvec3(id % nb.x, (id / nb.x) % nb.y, id / (nb.x * nb.y));
   const vec2 range = value_range(b * p.brick, min((b + 1u) * p.brick, d - 1u), d);
-  const uvec3 block = b / 2u;
-  const vec2 block_range =
-      value_range(block * 2u * p.brick, min((block + 1u) * 2u * p.brick, d - 1u), d);
-  bricks[id] = vec4(range, range_alpha(range), range_alpha(block_range));
+  bricks[id] = vec4(range, range_alpha(range), 1.0);
 }
 
 void main() {

@@ -80,5 +80,5 @@ TEST_CASE("the atom-volume scene runs the same stages on every backend and cross
       verify::cross_check_scene(test::backend(), test::reference(), p);
   INFO(verify::format_report(report));
   CHECK(report.pass());
-  CHECK(report.rows.size() == 11);
+  CHECK(report.rows.size() == 12);
 }

@@ -259,10 +259,28 @@ LOOP_LIMIT_CASE("voxelize does not loop; volume_bricks at the largest brick stay
   b.volume_bricks({vol, 16, 4096}, v, tf, bricks);
   const uint32_t ticks = test::ticks_of(b);
   MESSAGE("volume_bricks, brick 16: " << ticks << " loop iterations");
-  // The voxels of the first brick and of its block of 2x2x2 bricks, with their aprons, and 2 TF
-  // entries for each.
-  CHECK(ticks == 17 * 17 * 17 + 33 * 33 * 33 + 4);
+  // The voxels of the first brick with its apron, and 2 TF entries.
+  CHECK(ticks == 17 * 17 * 17 + 2);
   CHECK(ticks < test::loop_counter().caps().max_loop_iterations);
+}
+
+LOOP_LIMIT_CASE("volume_brick_skip walks 2 radius + 1 bricks at most",
+                KernelId::volume_brick_skip) {
+  Backend& b = test::loop_counter();
+  BrickSkipParams p;
+  p.bricks = {600, 2, 2};
+  p.radius = kBrickSkipMaxRadius;
+  auto bricks = b.create<Real4>(2400, "bricks");
+  b.upload(bricks, std::vector<Vec4d>(2400, Vec4d{0, 0, 0, 1}));
+  auto distances = b.create<uint32_t>(4800, "distances");
+  uint32_t worst = 0;
+  for (p.axis = 0; p.axis < 3; ++p.axis) {
+    (void)test::ticks_of(b);
+    b.volume_brick_skip(p, bricks, distances);
+    worst = std::max(worst, test::ticks_of(b));
+  }
+  MESSAGE("volume_brick_skip at radius " << p.radius << ": " << worst << " loop iterations");
+  CHECK(worst == 2 * kBrickSkipMaxRadius + 1);
 }
 
 LOOP_LIMIT_CASE(
@@ -309,9 +327,20 @@ LOOP_LIMIT_CASE(
   CHECK(worst_pre < test::loop_counter().caps().max_loop_iterations);
   rp.preintegrate = false;
   rp.skip_empty = true;
-  const uint32_t empty = run(0.5, 0.0);  // every block of bricks empty: one step per block
+  const uint32_t empty = run(0.5, 0.0);  // every brick empty, stride 1: one step per brick
   MESSAGE("raymarch through empty bricks: " << empty << " loop iterations");
   CHECK(empty < 200);
+  // With the strides the whole grid of 8^3 bricks is one empty cube: one lookup per ray.
+  BrickSkipParams s;
+  s.bricks = {8, 8, 8};
+  auto distances = b.create<uint32_t>(1024, "distances");
+  for (s.axis = 0; s.axis < 3; ++s.axis) b.volume_brick_skip(s, bricks, distances);
+  (void)test::ticks_of(b);
+  b.raymarch(rp, v, tf, bricks, img, &table);
+  const uint32_t strided = test::ticks_of(b);
+  MESSAGE("raymarch through empty bricks with strides: " << strided << " loop iterations");
+  CHECK(strided <= 2);
+  CHECK(strided < empty);
   rp.termination_alpha = 0.99f;
   rp.reference_step = rp.step;
   const uint32_t dense = run(0.5, 0.5);  // opaque after seven samples

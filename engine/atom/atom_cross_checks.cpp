@@ -10,6 +10,7 @@
 #include <mutex>
 
 #include "engine/atom/atom_schema.h"
+#include "engine/atom/brick_skip.h"
 #include "engine/atom/orbital.h"
 #include "engine/atom/orbital_tables.h"
 #include "engine/atom/preintegration.h"
@@ -242,7 +243,7 @@ BrickedVolume upload_bricked(Backend& b, const CheckVolume& v) {
   const uint32_t brick = RaymarchParams{}.brick;
   const UVec3 nb = brick_dims(v.desc, brick);
   bv.bricks = b.create<Real4>(size_t(nb.x) * nb.y * nb.z, "check bricks");
-  b.volume_bricks({v.desc, brick, uint32_t(v.tf.size())}, bv.volume, bv.transfer, bv.bricks);
+  atom::fill_bricks(b, {v.desc, brick, uint32_t(v.tf.size())}, bv.volume, bv.transfer, bv.bricks);
   bv.preintegrated = atom::upload_preintegrated(b, v.tf);
   return bv;
 }
@@ -362,6 +363,30 @@ std::vector<KernelCheck> atom_checks() {
                                 const BrickedVolume bv = upload_bricked(b, v);
                                 return CheckOutputs{{"bricks", {}, flatten(b.download(bv.bricks))}};
                               }));
+  // volume_brick_skip: integer distances over a pattern of occupied bricks made on the host (a
+  // ball, scattered single bricks, strides reaching the radius): bit for bit.
+  c.push_back(exact_check(KernelId::volume_brick_skip, [](Backend& b, const CheckInputs&) {
+    BrickSkipParams s;
+    s.bricks = {23, 17, 11};
+    s.radius = 6;
+    const size_t n = size_t(s.bricks.x) * s.bricks.y * s.bricks.z;
+    std::vector<Vec4d> alpha(n);
+    uint32_t h = 0x9e3779b9u;
+    for (size_t i = 0; i < n; ++i) {
+      h = h * 1664525u + 1013904223u;
+      const double x = double(i % s.bricks.x) - 8, y = double(i / s.bricks.x % s.bricks.y) - 9,
+                   z = double(i / (size_t(s.bricks.x) * s.bricks.y)) - 5;
+      const bool occupied = x * x + y * y + z * z < 20 || (h >> 24) < 6;
+      alpha[i] = {0.0, 1.0, occupied ? 0.5 : 0.0, 1.0};
+    }
+    auto bricks = b.create<Real4>(n, "check bricks");
+    b.upload(bricks, alpha);
+    auto distances = b.create<uint32_t>(2 * n, "check brick distances");
+    for (s.axis = 0; s.axis < 3; ++s.axis) b.volume_brick_skip(s, bricks, distances);
+    std::vector<uint32_t> strides;
+    for (const Vec4d& v : b.download(bricks)) strides.push_back(uint32_t(v.w));
+    return CheckOutputs{{"strides", strides, {}}};
+  }));
   // raymarch: fp32 compositing along ~100 steps: rel L2 1e-4; per channel 2e-3 absolute (the
   // kernel test's 1e-4 is for a gentle transfer function; the default one's opacity ramp is
   // steeper: measured 8.8e-4).

@@ -6,6 +6,7 @@
 #include <chrono>
 #include <cmath>
 
+#include "engine/atom/brick_skip.h"
 #include "engine/atom/preintegration.h"
 #include "engine/core/error.h"
 #include "engine/grid/hash_grid.h"
@@ -235,7 +236,7 @@ RaymarchBuffers prepare_raymarch(Backend& b, const Buffer<Real>& volume,
   b.upload(r.tf, tf);
   const UVec3 nb = brick_dims(rp.volume, rp.brick);
   r.bricks = b.create<Real4>(size_t(nb.x) * nb.y * nb.z, "bricks");
-  b.volume_bricks({rp.volume, rp.brick, rp.tf_size}, volume, r.tf, r.bricks);
+  fill_bricks(b, {rp.volume, rp.brick, rp.tf_size}, volume, r.tf, r.bricks);
   if (rp.preintegrate) r.tf_integral = upload_preintegrated(b, tf);
   r.image = b.create<Real4>(size_t(rp.width) * rp.height, "image");
   return r;

@@ -12,7 +12,7 @@
 // atom-volume adds:
 //   voxelize       voxelize (light scaled by the light stage)  [light, volume.dims/s/t]
 //   transfer       the transfer function's table  [volume.transfer_file, volume.transfer]
-//   bricks         volume_bricks           [voxelize, transfer]
+//   bricks         volume_bricks + volume_brick_skip  [voxelize, transfer]
 //   raymarch       raymarch with the camera  [bricks, view, render.width/height,
 //                                            volume.step_voxels/compositing]
 // An edited transfer function (volume.transfer) reruns transfer, bricks and raymarch only.

@@ -52,7 +52,8 @@ scene::SceneType atom_volume_scene_type() {
   t.tables = {&atom_table(), &nebula_table(), &scatter_table_schema(), &volume_table()};
   t.kernels = [](const ParamSet&) {
     std::vector<KernelId> k = cloud_kernels();
-    k.insert(k.end(), {KernelId::voxelize, KernelId::volume_bricks, KernelId::raymarch});
+    k.insert(k.end(), {KernelId::voxelize, KernelId::volume_bricks, KernelId::volume_brick_skip,
+                       KernelId::raymarch});
     return k;
   };
   t.check_inputs = check_inputs_of;

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 
+#include "engine/atom/brick_skip.h"
 #include "engine/atom/preintegration.h"
 #include "engine/core/error.h"
 #include "engine/kernels/atom_checks.h"
@@ -53,7 +54,7 @@ void VolumeRender::build_bricks(const VolumeDesc& d, const Buffer<Real>& volume)
   const UVec3 nb = brick_dims(d, brick);
   const size_t n = size_t(nb.x) * nb.y * nb.z;
   if (bricks_.size() != n) bricks_ = backend_.create<Real4>(n, "bricks");
-  backend_.volume_bricks({d, brick, uint32_t(tf_.size())}, volume, tf_, bricks_);
+  fill_bricks(backend_, {d, brick, uint32_t(tf_.size())}, volume, tf_, bricks_);
 }
 
 void add_clip_shade_keys(scene::TableSchema& s) {

@@ -200,7 +200,8 @@ scene::SceneType volume_scene_type() {
   t.help = "a scalar volume file (raw, NRRD, VTI) raymarched through a transfer function";
   t.tables = {&source_table(), &raymarch_table()};
   t.kernels = [](const ParamSet&) {
-    return std::vector<KernelId>{KernelId::volume_bricks, KernelId::raymarch};
+    return std::vector<KernelId>{KernelId::volume_bricks, KernelId::volume_brick_skip,
+                                 KernelId::raymarch};
   };
   // The volume kernels' checks build their own small volume (atom_cross_checks.cpp).
   t.check_inputs = [](const ParamSet& p) {

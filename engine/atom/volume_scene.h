@@ -7,7 +7,7 @@
 // Stages (inputs in brackets):
 //   load      the file, uploaded   [source.*]
 //   transfer  the transfer function's tables  [raymarch.transfer_file, raymarch.transfer]
-//   bricks    volume_bricks        [load, transfer]
+//   bricks    volume_bricks + volume_brick_skip  [load, transfer]
 //   raymarch  raymarch with the camera  [bricks, view, render.width/height,
 //                                        raymarch.step_voxels/compositing/preintegrate]
 #include "engine/atom/volume_file.h"

@@ -64,10 +64,9 @@ struct KernelBody<KernelId::nebula_view> {
 template <>
 struct KernelBody<KernelId::volume_bricks> {
   static constexpr uint32_t kCpuGrain = 16;
-  // bricks[id] = (value min, value max, largest transfer alpha over that range, the same alpha
-  // over the block of 2x2x2 bricks that holds brick id) over the voxels and the one-voxel apron
-  // that trilinear sampling reads there. The block level lets raymarch cross empty space in
-  // steps of two bricks (volume::raymarch_pixel).
+  // bricks[id] = (value min, value max, largest transfer alpha over that range, 1) over the voxels
+  // and the one-voxel apron that trilinear sampling reads there. The 1 is the stride a ray may
+  // cross the brick in, in bricks: this brick alone, until volume_brick_skip widens it.
   template <class F, class Diag>
   MASAV_HD static void run(uint32_t id, const VolumeBrickParams& p, Diag&, const F* volume,
                            const hd::V4<F>* tf, hd::V4<F>* bricks) {
@@ -82,14 +81,7 @@ struct KernelBody<KernelId::volume_bricks> {
     }
     F lo, hi;
     value_range(volume, d, first, last, lo, hi);
-    const F amax = range_alpha(p, tf, lo, hi);
-    for (int a = 0; a < 3; ++a) {
-      first[a] = bi[a] / 2 * 2 * b;
-      last[a] = hd::min_t((bi[a] / 2 + 1) * 2 * b, d[a] - 1);
-    }
-    F block_lo, block_hi;
-    value_range(volume, d, first, last, block_lo, block_hi);
-    bricks[id] = hd::V4<F>{lo, hi, amax, range_alpha(p, tf, block_lo, block_hi)};
+    bricks[id] = hd::V4<F>{lo, hi, range_alpha(p, tf, lo, hi), F(1)};
   }
 
  private:
@@ -119,6 +111,52 @@ struct KernelBody<KernelId::volume_bricks> {
     F amax = F(0);
     for (uint32_t k = k0; k <= k1; ++k) amax = hd::max_t(amax, tf[k].w);
     return amax;
+  }
+};
+
+template <>
+struct KernelBody<KernelId::volume_brick_skip> {
+  static constexpr uint32_t kCpuGrain = 1024;
+  // One pass of the separable max-norm distance transform over the brick grid (x fastest), both
+  // ways at once: the distance to the nearest occupied brick (low 16 bits of a word) and to the
+  // nearest empty one (high 16), each at most radius + 1. Pass 0 reads the bricks' alpha along x
+  // and writes distances[id]; pass 1 reads those along y and writes distances[count + id]; pass 2
+  // reads those along z and writes the distance to the other kind to bricks[id].w. The minimum
+  // over the line of max(|offset|, the previous pass's distance there) is the distance over the
+  // line's neighbourhood, since max(|dx|, |dy|, |dz|) nests.
+  template <class F, class Diag>
+  MASAV_HD static void run(uint32_t id, const BrickSkipParams& p, Diag&, hd::V4<F>* bricks,
+                           uint32_t* distances) {
+    const uint32_t n[3] = {p.bricks.x, p.bricks.y, p.bricks.z};
+    const uint32_t count = n[0] * n[1] * n[2];
+    const uint32_t a = p.axis;
+    const uint32_t at = a == 0u ? id % n[0] : (a == 1u ? id / n[0] % n[1] : id / (n[0] * n[1]));
+    const uint32_t stride = a == 0u ? 1u : (a == 1u ? n[0] : n[0] * n[1]);
+    const uint32_t line = id - at * stride;  // the line's first brick
+    const uint32_t far = p.radius + 1u;
+    const uint32_t first = at > p.radius ? at - p.radius : 0u;
+    const uint32_t last = hd::min_t(at + p.radius, n[a] - 1u);
+    uint32_t to_occupied = far, to_empty = far;
+    for (uint32_t c = first; c <= last; ++c) {
+      const uint32_t j = line + c * stride;
+      const uint32_t off = c > at ? c - at : at - c;
+      uint32_t occupied, empty;
+      if (a == 0u) {
+        const bool o = bricks[j].z > F(0);
+        occupied = o ? 0u : far;
+        empty = o ? far : 0u;
+      } else {
+        const uint32_t w = distances[(a - 1u) * count + j];
+        occupied = w & 0xffffu;
+        empty = w >> 16;
+      }
+      to_occupied = hd::min_t(to_occupied, hd::max_t(off, occupied));
+      to_empty = hd::min_t(to_empty, hd::max_t(off, empty));
+    }
+    if (a < 2u)
+      distances[a * count + id] = to_occupied | (to_empty << 16);
+    else
+      bricks[id].w = F(bricks[id].z > F(0) ? to_empty : to_occupied);
   }
 };
 
@@ -156,7 +194,7 @@ struct KernelBody<KernelId::raymarch> {
     };
     auto occ = [bricks, nbx, nby](uint32_t bx, uint32_t by, uint32_t bz) {
       const hd::V4<F> b = bricks[(size_t(bz) * nby + by) * nbx + bx];
-      return volume::Occupancy<F>{b.z, b.w};
+      return volume::Occupancy<F>{b.z, b.w};  // (alpha, stride in bricks)
     };
     auto entry = [](const hd::V4<F>* table) {
       return [table](uint32_t k) {

@@ -238,6 +238,27 @@ void validate(const DeviceApi&, const VolumeBrickParams& p, const Buffer<Real>& 
   at_least(k, "bricks", bricks.size(), uint64_t(b.x) * b.y * b.z);
 }
 
+uint64_t brick_count(const BrickSkipParams& p) {
+  return uint64_t(p.bricks.x) * p.bricks.y * p.bricks.z;
+}
+
+void validate(const DeviceApi&, const BrickSkipParams& p, const Buffer<Real4>& bricks,
+              const Buffer<uint32_t>& distances) {
+  const char* k = "volume_brick_skip";
+  in_range(k, "bricks.x", p.bricks.x, 1, 1 << 16);
+  in_range(k, "bricks.y", p.bricks.y, 1, 1 << 16);
+  in_range(k, "bricks.z", p.bricks.z, 1, 1 << 16);
+  const uint64_t count = brick_count(p);
+  // The body indexes bricks and both passes' distances with 32-bit words.
+  if (2 * count > 0xffffffffull)
+    throw_invalid(k, "bricks", fmt::format("{} x {} x {}", p.bricks.x, p.bricks.y, p.bricks.z),
+                  "at most 2^31 bricks");
+  in_range(k, "axis", p.axis, 0, 2);
+  in_range(k, "radius", p.radius, 1, kBrickSkipMaxRadius);
+  at_least(k, "bricks", bricks.size(), count);
+  at_least(k, "distances", distances.size(), 2 * count);
+}
+
 RaymarchLayout raymarch_layout(const RaymarchParams& p) {
   const double e[3] = {p.eye.x, p.eye.y, p.eye.z}, t[3] = {p.target.x, p.target.y, p.target.z};
   const double u[3] = {p.up.x, p.up.y, p.up.z};

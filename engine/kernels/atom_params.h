@@ -149,6 +149,19 @@ MASAV_LAYOUT(VolumeBrickParams) {
   uint tf_size MASAV_INIT(256u);
 };
 
+// The stride a ray crosses bricks in: per brick, the Chebyshev distance in bricks (at least 1) to
+// the nearest brick of the other kind (occupied: alpha > 0; or empty), so that every brick within
+// distance - 1 of it is of its kind and a ray crosses that cube of bricks with one lookup.
+// Distances beyond `radius` read radius + 1. The max-norm distance transform is separable: pass
+// (axis) 0 reads the bricks' alpha along x, 1 the first pass's distances along y, 2 the second's
+// along z and writes the distance to bricks[].w (volume_bricks writes 1 there: one brick).
+MASAV_LAYOUT(BrickSkipParams) {
+  uvec3 bricks MASAV_INIT(uvec3(1, 1, 1));  // bricks per axis
+  uint axis MASAV_INIT(0u);                 // the pass: 0, 1, 2
+  uint radius MASAV_INIT(16u);              // the farthest distance looked for, 1 .. 255
+};
+MASAV_CONSTANT(kBrickSkipMaxRadius, 255)
+
 MASAV_ENUM_BEGIN(Compositing)
 // emission-absorption, opacity corrected for the step, early termination
 MASAV_ENUMERATOR(Compositing, front_to_back, 0)
@@ -229,6 +242,7 @@ MASAV_LAYOUT_CHECK(VoxelizeParams, 64, (grid, 0), (s, 48), (t, 52), (light_to_un
 MASAV_LAYOUT_CHECK(VolumeDesc, 48, (dims, 0), (value_min, 12), (box_min, 16), (value_max, 28),
                    (box_max, 32))
 MASAV_LAYOUT_CHECK(VolumeBrickParams, 64, (volume, 0), (brick, 48), (tf_size, 52))
+MASAV_LAYOUT_CHECK(BrickSkipParams, 32, (bricks, 0), (axis, 12), (radius, 16))
 MASAV_LAYOUT_CHECK(RaymarchLayout, 128, (eye, 0), (step, 12), (forward, 16), (reference_step, 28),
                    (right, 32), (termination_alpha, 44), (up, 48), (value_min, 60), (box_min, 64),
                    (value_scale, 76), (box_max, 80), (clip_position, 92), (dims, 96),
@@ -314,11 +328,15 @@ void validate(const DeviceApi& dev, const VoxelizeParams& p, const Buffer<Real4>
               const Buffer<Real>& mean_light, const Buffer<Real>& sample);
 void validate(const DeviceApi& dev, const VolumeBrickParams& p, const Buffer<Real>& volume,
               const Buffer<Real4>& tf, const Buffer<Real4>& bricks);
+void validate(const DeviceApi& dev, const BrickSkipParams& p, const Buffer<Real4>& bricks,
+              const Buffer<uint32_t>& distances);
 void validate(const DeviceApi& dev, const RaymarchParams& p, const Buffer<Real>& volume,
               const Buffer<Real4>& tf, const Buffer<Real4>& bricks, const Buffer<Real4>& image,
               const Buffer<Real4>* tf_integral);
 // Bricks of volume_bricks' output: its invocations.
 uint64_t brick_count(const VolumeBrickParams& p);
+// Bricks of volume_brick_skip's grid: its invocations.
+uint64_t brick_count(const BrickSkipParams& p);
 // The raymarch's invocations: the image padded to whole 8x8 tiles (volume::tile_pixel).
 uint64_t raymarch_invocations(const RaymarchParams& p);
 

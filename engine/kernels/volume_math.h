@@ -366,26 +366,28 @@ MASAV_HD inline bool tile_pixel(const RaymarchLayout& c, uint32_t id, uint32_t& 
   return x < ray_width(c) && y < ray_height(c);
 }
 
-// The largest transfer alpha over a brick, and over the block of 2x2x2 bricks that holds it
-// (engine/kernels/atom_body.h, volume_bricks): 0 means nothing there is visible.
+// What one brick tells a ray (engine/kernels/atom_body.h, volume_bricks and volume_brick_skip):
+// the largest transfer alpha over the brick's values (0: nothing there is visible) and its
+// stride, the Chebyshev distance in bricks to the nearest brick of the other kind (>= 1): every
+// brick within stride - 1 of it is empty too, or occupied too.
 template <class T>
 struct Occupancy {
-  T brick, block;
+  T brick, stride;
 };
 
-// The ray's t where it leaves cell ci of a grid of `count` cells of `size` voxels per axis, the ray
-// being u(t) = u0 + du t in voxel coordinates (inv_du = 1 / du, 0 where du = 0). The grid's
-// outermost cells reach to infinity outward, as the clamped cell index does; kFar if the ray
-// never leaves.
+// The ray's t where it leaves the box of cells lo .. hi (per axis) of a grid of `count` cells of
+// `size` voxels per axis, the ray being u(t) = u0 + du t in voxel coordinates (inv_du = 1 / du, 0
+// where du = 0). The grid's outermost cells reach to infinity outward, as the clamped cell index
+// does; kFar if the ray never leaves.
 template <class T>
-MASAV_HD inline T cell_exit(hd::V3<T> u0, hd::V3<T> du, hd::V3<T> inv_du, const uint32_t ci[3],
-                            const uint32_t count[3], T size) {
+MASAV_HD inline T box_exit(hd::V3<T> u0, hd::V3<T> du, hd::V3<T> inv_du, const uint32_t lo[3],
+                           const uint32_t hi[3], const uint32_t count[3], T size) {
   T exit = T(kFar);
   for (int a = 0; a < 3; ++a) {
     const T d = hd::comp(du, a);
     T face = T(-1);
-    if (d > T(0) && ci[a] + 1u < count[a]) face = T(ci[a] + 1u) * size;
-    if (d < T(0) && ci[a] > 0u) face = T(ci[a]) * size;
+    if (d > T(0) && hi[a] + 1u < count[a]) face = T(hi[a] + 1u) * size;
+    if (d < T(0) && lo[a] > 0u) face = T(lo[a]) * size;
     if (face >= T(0)) exit = hd::min_t(exit, (face - hd::comp(u0, a)) * hd::comp(inv_du, a));
   }
   return exit;
@@ -432,7 +434,6 @@ struct VoxelRay {
   hd::V3<T> u0, du, inv_du;  // voxel position u0 + du t; 1 / du (0 where du is)
   T brick;                   // voxels per brick
   uint32_t brick_shift;      // log2 of voxels per brick where that is a power of two, else 0
-  uint32_t blocks[3];        // 2x2x2 blocks of bricks per axis
   T inv_step;                // 1 / c.step
 };
 
@@ -463,13 +464,12 @@ MASAV_HD inline bool voxel_ray(const RaymarchLayout& c, uint32_t px, uint32_t py
   r.brick_shift = 0u;
   for (uint32_t s = 1u; s < 5u; ++s)
     if ((1u << s) == ray_brick(c)) r.brick_shift = s;
-  for (int a = 0; a < 3; ++a) r.blocks[a] = (r.g.bricks[a] + 1u) / 2u;
   r.inv_step = T(1) / T(c.step);
   return true;
 }
 
-// What one occupancy lookup at voxel position u tells the ray: its 2x2x2 block of bricks, or
-// else its brick, is empty up to `until` (empty), or its brick is occupied up to `until`.
+// What one occupancy lookup at voxel position u tells the ray: the bricks within its brick's
+// stride are all empty (empty) or all occupied, up to `until`, where the ray leaves them.
 template <class T>
 struct SkipSpan {
   bool empty;
@@ -488,18 +488,16 @@ MASAV_HD inline SkipSpan<T> skip_span(const VoxelRay<T>& r, hd::V3<T> u, Occ&& o
     bi[a] = hd::min_t(b, r.g.bricks[a] - 1u);
   }
   const Occupancy<T> o = occupancy(bi[0], bi[1], bi[2]);
-  // One exit either way, of the block or of the brick: a SIMD backend whose lanes disagree pays
-  // for one cell_exit, not both.
-  const bool block = o.block <= T(0);
-  // Selected per element, not as a pointer to one of two arrays: a GPU compiler keeps arrays
-  // in registers only while every index and address is known at compile time.
-  uint32_t ci[3], count[3];
+  // Bricks within stride - 1 of this one (a stride that is not a number from 1 to the largest
+  // radius + 1 counts as 1: this brick alone).
+  const uint32_t reach =
+      o.stride >= T(2) && o.stride <= T(kBrickSkipMaxRadius + 1) ? uint32_t(o.stride) - 1u : 0u;
+  uint32_t lo[3], hi[3];
   for (int a = 0; a < 3; ++a) {
-    ci[a] = block ? bi[a] / 2u : bi[a];
-    count[a] = block ? r.blocks[a] : r.g.bricks[a];
+    lo[a] = bi[a] > reach ? bi[a] - reach : 0u;
+    hi[a] = hd::min_t(bi[a] + reach, r.g.bricks[a] - 1u);
   }
-  const T until = cell_exit(r.u0, r.du, r.inv_du, ci, count, block ? T(2) * r.brick : r.brick);
-  return {block || o.brick <= T(0), until};
+  return {o.brick <= T(0), box_exit(r.u0, r.du, r.inv_du, lo, hi, r.g.bricks, r.brick)};
 }
 
 template <class T>
@@ -513,9 +511,9 @@ MASAV_HD inline uint32_t last_boundary_before(T t, T tn, T inv_step, uint32_t n)
 //
 // Segment i runs between boundaries tn + i step and the next (the last ends at the box); the
 // scalar is sampled at boundaries, each shared by the two segments that meet there. Empty space
-// is skipped where a whole run of segments lies inside one empty block or brick: every value
-// between their ends is in that cell's range, whose opacity is 0, so skipping leaves the image as
-// the march without skipping makes it.
+// is skipped where a whole run of segments lies inside one cube of empty bricks (skip_span): every
+// value between their ends is in those bricks' ranges, whose opacity is 0, so skipping leaves the
+// image as the march without skipping makes it.
 template <class T, class Vol, class Pt, class Occ>
 MASAV_HD inline V4<T> raymarch_pixel_preintegrated(const RaymarchLayout& c, uint32_t px,
                                                    uint32_t py, Vol&& vol, Pt&& pt,
@@ -586,8 +584,9 @@ MASAV_HD inline V4<T> raymarch_pixel_preintegrated(const RaymarchLayout& c, uint
 // Occupancy of brick (bx, by, bz).
 //
 // Empty space is skipped per ray segment: where the ray enters a brick, one lookup tells whether
-// its 2x2x2 block of bricks, or else the brick, is empty, and the ray jumps to where it leaves
-// that block or brick; an occupied brick is sampled to its exit with no further lookups. Every
+// it is empty, and how far around it every brick is of its kind (its stride); the ray jumps to
+// where it leaves that cube of empty bricks, or samples a cube of occupied ones to its exit with
+// no further lookups. Every
 // iteration advances at least one segment, so iterations <= the segment count (validated on the
 // host below kMaxRaySteps). The samples taken are exactly those of the march without skipping
 // whose value could be visible, so skipping does not change the image.
