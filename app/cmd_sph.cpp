@@ -148,34 +148,47 @@ void check_restart_flags(const SphOptions& o) {
                               flag));
 }
 
-// Each rank's share and what its exchanges cost (the counters of engine/sph/sph_ranks.h),
-// printed by rank 0: the communication figures of a run on several ranks.
-// `seconds`: the run's wall time so far; what the exchanges did not take is the rank's compute.
-void print_rank_table(SphRanks& ranks, bool lead, double seconds) {
+// Each rank's share and what its exchanges cost (the counters of engine/sph/sph_ranks.h) over
+// the run's steps (`before`: the counters when they started, after the set-up's first rebuild),
+// printed by rank 0: the communication figures of a run on several ranks. `seconds`: the run's
+// wall time, `steps` the steps it took; what the exchanges and reductions did not take is the
+// rank's compute.
+void print_rank_table(SphSimulation& sim, const SphRankCounters& before, bool lead, double seconds,
+                      uint64_t steps) {
+  SphRanks& ranks = *sim.ranks();
   struct Row {
-    uint64_t own, halo, rebuilds, migrated, bytes;
-    double exchange, wall;
+    uint64_t own, halo, capacity, rebuilds, migrated, bytes;
+    double exchange, mpi, reduce, wall;
   };
   const SphRankLayout& l = ranks.staged();
-  const SphRankCounters& c = ranks.counters();
-  const Row mine{l.own,        l.local - l.own,    c.rebuilds, c.migrated,
-                 c.bytes_sent, c.exchange_seconds, seconds};
+  SphRankCounters c = ranks.counters();
+  c.rebuilds -= before.rebuilds;
+  c.migrated -= before.migrated;
+  c.bytes_sent -= before.bytes_sent;
+  c.exchange_seconds -= before.exchange_seconds;
+  c.mpi_seconds -= before.mpi_seconds;
+  c.reduce_seconds -= before.reduce_seconds;
+  const Row mine{l.own,        l.local - l.own,    sim.capacity(), c.rebuilds,       c.migrated,
+                 c.bytes_sent, c.exchange_seconds, c.mpi_seconds,  c.reduce_seconds, seconds};
   Bytes bytes;
   append_bytes(bytes, std::span<const Row>(&mine, 1));
   const Bytes all = ranks.gather(bytes);
   if (!lead) return;
-  fmt::print("ranks: {} (cells split along x; {} re-balances)\n", ranks.ranks(), c.rebalances);
+  fmt::print("ranks: {} (cells split along x; {} re-balances; {} steps, {} grid rebuilds)\n",
+             ranks.ranks(), c.rebalances, steps, c.rebuilds);
   fmt::print(
-      "  rank  own particles  halo particles  halo/own  migrated/rebuild  KiB sent/rebuild"
-      "  exchange s  compute s\n");
+      "  rank  own particles  halo particles  halo/own  buffers for  migrated/rebuild"
+      "  KiB sent/step  exchange s  in MPI s  reduce s  compute s\n");
   for (size_t r = 0; r * sizeof(Row) < all.size(); ++r) {
     Row w;
     std::memcpy(&w, all.data() + r * sizeof(Row), sizeof w);
     const double per = double(std::max<uint64_t>(w.rebuilds, 1));
-    fmt::print("  {:>4}  {:>13}  {:>14}  {:>7.1f}%  {:>16.1f}  {:>16.1f}  {:>10.3f}  {:>9.3f}\n", r,
-               w.own, w.halo, w.own ? 100.0 * double(w.halo) / double(w.own) : 0.0,
-               double(w.migrated) / per, double(w.bytes) / per / 1024.0, w.exchange,
-               std::max(0.0, w.wall - w.exchange));
+    fmt::print(
+        "  {:>4}  {:>13}  {:>14}  {:>7.1f}%  {:>11}  {:>16.1f}  {:>13.1f}  {:>10.3f}  {:>8.3f}"
+        "  {:>8.3f}  {:>9.3f}\n",
+        r, w.own, w.halo, w.own ? 100.0 * double(w.halo) / double(w.own) : 0.0, w.capacity,
+        double(w.migrated) / per, double(w.bytes) / double(std::max<uint64_t>(steps, 1)) / 1024.0,
+        w.exchange, w.mpi, w.reduce, std::max(0.0, w.wall - w.exchange - w.reduce));
   }
 }
 
@@ -291,6 +304,7 @@ int run_sph(const SphOptions& given) {
   }
 
   const auto t0 = std::chrono::steady_clock::now();
+  const SphRankCounters counters0 = sim.ranks() ? sim.ranks()->counters() : SphRankCounters{};
   // The rates count this run's steps (a restart's totals include the earlier runs').
   const uint64_t steps0 = sim.steps(), substeps0 = sim.substeps();
   int rc = 0;
@@ -324,10 +338,10 @@ int run_sph(const SphOptions& given) {
       const std::string path = checkpoint();
       if (lead) fmt::print("checkpoint {}: step {}, t = {:.6g} s\n", path, sim.steps(), sim.time());
     }
-    if (SphRanks* ranks = sim.ranks())
-      print_rank_table(
-          *ranks, lead,
-          std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
+    if (sim.ranks())
+      print_rank_table(sim, counters0, lead,
+                       std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(),
+                       sim.steps() - steps0);
   } catch (const Error& e) {
     if (lead) fmt::print(stderr, "masav: error: {}\n", e.what());
     // On several ranks an error may have stopped one rank alone, which a gather would wait

@@ -5,7 +5,8 @@
 # value at full precision, compared byte for byte) and so are the CSV diagnostics; a checkpoint
 # written on 2 ranks continues on 3; a rank killed mid-run loses at most the steps since the last
 # checkpoint, and the restart ends at the uninterrupted run's state. Other commands and dfsph are
-# refused on several ranks. The ranks oversubscribe the machine's cores (as root too: CI).
+# refused on several ranks. A count one process's buffers cannot hold runs on 2 ranks. The ranks
+# oversubscribe the machine's cores (as root too: CI).
 set -u
 masav=$1 mpiexec=$2 dir=$3
 [[ -x $mpiexec ]] || { echo "SKIPPED: no MPI launcher at $mpiexec on this machine"; exit 77; }
@@ -85,4 +86,12 @@ grep -q "only \`masav sph\` runs on several ranks" <<<"$log" || fail "no refusal
 log=$("$mpiexec" -np 2 "$masav" "${scene[@]}" --steps 2 --pressure dfsph 2>&1) \
   && fail "dfsph on 2 ranks accepted"
 grep -q "wcsph or thesis on 2 ranks" <<<"$log" || fail "no refusal of dfsph: $log"
+# A rank's buffers hold its share and its halos, not every particle: with buffers of 1 MiB
+# (65,536 positions), 90,000 particles are refused in one process and run on 2 ranks.
+big=(sph --backend vulkan --preset dambreak --particles 90000 --steps 2 -q)
+log=$(MASAV_VK_MAX_BUFFER_MIB=1 "$masav" "${big[@]}" 2>&1) && fail "90,000 particles in 1 MiB buffers"
+grep -q "particles = 90000 .*at most 65536 on" <<<"$log" || fail "no refusal naming the limit: $log"
+log=$(MASAV_VK_MAX_BUFFER_MIB=1 run "$mpiexec" -np 2 "$masav" "${big[@]}")
+grep -qE "^ +1 +[0-9]+ +[0-9]+ +[0-9.]+% +[0-9]+ " <<<"$log" || fail "no rank table: $log"
+printf '90,000 particles on 2 ranks with 1 MiB buffers:\n%s\n' "$(grep -A3 '^ranks:' <<<"$log")"
 echo "sph_mpi: ok"

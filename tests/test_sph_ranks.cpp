@@ -26,6 +26,8 @@ struct RankRun {
   uint64_t steps = 0, substeps = 0;
   uint64_t migrated = 0, halo = 0, rebalances = 0;  // summed over the ranks
   uint64_t overlapped = 0;                          // forces computed while halos travelled
+  uint32_t capacity_min = UINT32_MAX, capacity_max = 0;  // particles per buffer, over the ranks
+  uint64_t capacity_growths = 0;                         // summed over the ranks
 };
 
 // The largest difference of positions and velocities, relative to the scale of each (0: the
@@ -59,6 +61,8 @@ RankRun on_ranks(int ranks, const SphScene& s, uint64_t steps,
     uint64_t steps = 0, substeps = 0;
     SphRankCounters counters;
     SphResumeState exported;
+    uint32_t capacity = 0;
+    uint64_t growths = 0;
   };
   std::vector<PerRank> per(static_cast<size_t>(ranks));
   test::run_ranks(ranks, [&](SphComm& comm) {
@@ -73,6 +77,8 @@ RankRun on_ranks(int ranks, const SphScene& s, uint64_t steps,
     mine.steps = sim.steps();
     mine.substeps = sim.substeps();
     if (const SphRanks* r = sim.ranks()) mine.counters = r->counters();  // none on one rank
+    mine.capacity = sim.capacity();
+    mine.growths = sim.capacity_growths();
   });
   RankRun out{per[0].state, per[0].time, per[0].steps, per[0].substeps};
   for (const PerRank& r : per) {
@@ -82,6 +88,9 @@ RankRun on_ranks(int ranks, const SphScene& s, uint64_t steps,
     out.halo += r.counters.halo;
     out.overlapped += r.counters.overlapped;
     out.rebalances = std::max(out.rebalances, r.counters.rebalances);
+    out.capacity_min = std::min(out.capacity_min, r.capacity);
+    out.capacity_max = std::max(out.capacity_max, r.capacity);
+    out.capacity_growths += r.growths;
   }
   if (exported) *exported = std::move(per[0].exported);
   return out;
@@ -160,7 +169,9 @@ TEST_CASE("[sph-ranks] an explosion moves particles across every boundary, re-ba
     CAPTURE(ranks);
     const RankRun r = on_ranks(ranks, s, 200);
     MESSAGE("explosion on ", ranks, " ranks: migrated ", r.migrated, ", halo ", r.halo,
-            ", re-balances ", r.rebalances, ", forces overlapped ", r.overlapped);
+            ", re-balances ", r.rebalances, ", forces overlapped ", r.overlapped,
+            ", buffers for ", r.capacity_min, " to ", r.capacity_max, " particles (",
+            r.capacity_growths, " growths)");
     CHECK(r.steps == one.steps);
     if (tolerance() == 0)
       CHECK(test::same_state(r.state, one.state));
@@ -170,6 +181,28 @@ TEST_CASE("[sph-ranks] an explosion moves particles across every boundary, re-ba
     CHECK(r.overlapped > 0);                 // interior forces ran during the halo updates
     if (ranks > 2) CHECK(r.rebalances > 0);  // 2 ranks split the symmetric burst evenly
   }
+}
+
+TEST_CASE("[sph-ranks] a rank's buffers hold its share and halos, and grow with them") {
+  // 12,000 particles on 4 ranks: each rank's buffers start at a quarter and a quarter more (plus
+  // 1,024); slabs a few cells wide have halos near their own size, which outgrow that, and the
+  // buffers grow, their contents kept: the run still follows one process, and no rank holds
+  // room for every particle.
+  SphScene s = make_preset("dam-break", 12000);
+  const uint64_t steps = 16;
+  const RankRun one = one_process(s, steps);
+  const RankRun r = on_ranks(4, s, steps);
+  MESSAGE("dam break, 12,000 particles on 4 ranks: buffers for ", r.capacity_min, " to ",
+          r.capacity_max, " particles, ", r.capacity_growths, " growths");
+  const uint32_t n = one.state.positions.size();
+  CHECK(r.capacity_max < n);
+  CHECK(r.capacity_min < 2 * n / 3);
+  CHECK(r.capacity_growths > 0);
+  CHECK(r.steps == one.steps);
+  if (tolerance() == 0)
+    CHECK(test::same_state(r.state, one.state));
+  else
+    CHECK(difference(r.state, one.state) <= tolerance());
 }
 
 TEST_CASE("[sph-ranks] a checkpoint continues on another number of ranks") {

@@ -221,6 +221,7 @@ void SphRanks::scatter_by_id(const std::vector<Vec4d>& positions,
     own_v.push_back(velocities[i]);
     own_ids.push_back(uint32_t(i));
   }
+  if (reserve_) reserve_(uint32_t(own_x.size()));
   backend_.upload(x, own_x);
   backend_.upload(v, own_v);
   backend_.upload(ids, own_ids);
@@ -265,7 +266,7 @@ const SphRankLayout& SphRanks::redistribute(const Buffer<Real4>& x, const Buffer
       out[size_t(r)] = serialize(pick(own, leaving[size_t(r)], f));
       counters_.bytes_sent += out[size_t(r)].size();
     }
-  const std::vector<Bytes> arrived = comm_.exchange(out);
+  const std::vector<Bytes> arrived = transfer(out);
 
   // In the one-process order: lower ranks' particles, this rank's, higher ranks'.
   std::vector<Pack> in(static_cast<size_t>(count));
@@ -338,7 +339,7 @@ const SphRankLayout& SphRanks::redistribute(const Buffer<Real4>& x, const Buffer
     out[size_t(r)] = serialize(pick(sorted, halo_send_[size_t(r)], f));
     counters_.bytes_sent += out[size_t(r)].size();
   }
-  const std::vector<Bytes> halos = comm_.exchange(out);
+  const std::vector<Bytes> halos = transfer(out);
 
   Pack local;
   halo_recv_.assign(size_t(count), 0);
@@ -352,6 +353,7 @@ const SphRankLayout& SphRanks::redistribute(const Buffer<Real4>& x, const Buffer
   const uint32_t first = uint32_t(local.count);
   local.append_all(sorted);
   for (int r = me + 1; r < count; ++r) add_halo(r);
+  if (reserve_) reserve_(uint32_t(local.count));
   if (local.count > x_out.size())
     throw Error(backend_.name(), "sph ranks",
                 fmt::format("rank {} holds {} particles with its halos, more than its buffers' "
@@ -418,7 +420,11 @@ void SphRanks::finish_halos() {
   Timer timer(counters_.exchange_seconds);
   const int me = rank(), count = ranks();
   const SphRankLayout& L = staged_;
-  const std::vector<Bytes> in = pending_->finish();
+  std::vector<Bytes> in;
+  {
+    Timer in_mpi(counters_.mpi_seconds);
+    in = pending_->finish();
+  }
   pending_.reset();
   // Each message holds the arrays' values one after the other, halo_recv_[r] of each.
   std::vector<size_t> at(static_cast<size_t>(count), 0);
@@ -460,7 +466,13 @@ std::pair<uint32_t, uint32_t> SphRanks::interior() const {
   return {l.first + lo_end_, l.first + hi_begin_};
 }
 
+std::vector<Bytes> SphRanks::transfer(const std::vector<Bytes>& out) {
+  Timer in_mpi(counters_.mpi_seconds);
+  return comm_.exchange(out);
+}
+
 void SphRanks::reduce_stats(uint32_t* words) {
+  Timer timer(counters_.reduce_seconds);
   uint64_t outside = words[kSphStatOutside];
   comm_.max(std::span<uint32_t>(words, kSphStatWords));
   comm_.sum(std::span<uint64_t>(&outside, 1));

@@ -21,6 +21,7 @@
 // Data moves through host memory (download, exchange, upload).
 #include <chrono>
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <utility>
 #include <vector>
@@ -48,11 +49,18 @@ struct SphRankCounters {
   uint64_t bytes_sent = 0;    // to other ranks, all exchanges
   uint64_t rebalances = 0;
   double exchange_seconds = 0;  // in the exchanges, host work and waiting included
+  double mpi_seconds = 0;       // of those, inside the transfers (and waiting for other ranks)
+  double reduce_seconds = 0;    // in the step statistics' reductions (every rank waits for all)
 };
 
 class SphRanks {
  public:
   SphRanks(SphComm& comm, Backend& backend, const GridParams& grid);
+
+  // Called with the number of particles this rank is about to hold (own and halos) before they
+  // are written to the caller's buffers (redistribute, scatter_by_id), so that buffers sized
+  // for a rank's share grow when it takes more: the simulation's per-rank capacity.
+  void on_reserve(std::function<void(uint32_t)> reserve) { reserve_ = std::move(reserve); }
 
   int rank() const { return comm_.rank(); }
   int ranks() const { return comm_.size(); }
@@ -109,6 +117,8 @@ class SphRanks {
   class Timer;
   using HaloArrays = std::vector<std::pair<BufferImpl*, size_t>>;  // buffer, bytes per element
   void start_halos(HaloArrays arrays);
+  // comm_.exchange, its time counted as in MPI.
+  std::vector<Bytes> transfer(const std::vector<Bytes>& out);
   uint32_t cell_of(const std::byte* real4) const;
   std::vector<uint32_t> cells_of(const std::vector<Vec4d>& positions) const;
   void maybe_rebalance(const std::vector<uint32_t>& cells);
@@ -129,6 +139,7 @@ class SphRanks {
   uint32_t lo_end_ = 0, hi_begin_ = 0;
   HaloArrays pending_arrays_;  // a started halo update
   std::unique_ptr<SphPendingExchange> pending_;
+  std::function<void(uint32_t)> reserve_;  // see on_reserve
   SphRankCounters counters_;
 };
 

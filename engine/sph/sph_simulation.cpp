@@ -57,25 +57,42 @@ bool keeps_neighbor_rows(const Backend& b, uint64_t n, bool dfsph) {
          n * bytes_per_particle(b, true, false, dfsph) <= caps.device_memory_bytes / 2;
 }
 
-// Refuses, before anything is allocated, a particle count the device cannot hold.
-void check_capacity(const Backend& b, const SphScene& s) {
+// The particles a rank's buffers start with room for: all of them in one process; on several
+// ranks an equal share and a quarter more (plus 1,024) for its halos (reserve() grows them).
+uint32_t initial_capacity(uint64_t particles, int ranks) {
+  if (ranks <= 1) return uint32_t(particles);
+  const uint64_t share = (particles + uint64_t(ranks) - 1) / uint64_t(ranks);
+  return uint32_t(std::min<uint64_t>(particles, share + share / 4 + 1024));
+}
+
+// Refuses, before anything is allocated, a particle count the device cannot hold (on several
+// ranks: a rank's share, see initial_capacity).
+void check_capacity(const Backend& b, const SphScene& s, int ranks) {
   const Capabilities& caps = b.caps();
-  const uint64_t n = s.particles;  // the obstacle is checked once its size is known
+  // The obstacle is checked once its size is known.
+  const uint64_t n = initial_capacity(s.particles, ranks);
+  // On several ranks the limit is a rank's: its share with room for halos.
+  const std::string per_rank =
+      ranks > 1 ? fmt::format(
+                      " per rank's buffers (now {}: 1/{} of the particles and room for "
+                      "halos); use more ranks,",
+                      n, ranks)
+                : "";
   const uint64_t real4 = 4 * b.real_bytes();
   if (caps.max_buffer_bytes && n * real4 > caps.max_buffer_bytes)
-    throw_invalid(
-        "sph scene", "particles", std::to_string(n),
-        fmt::format("at most {} on {} (one buffer of positions holds at most {} MiB); "
-                    "use fewer particles or a device with larger buffers",
-                    caps.max_buffer_bytes / real4, caps.device_name, caps.max_buffer_bytes >> 20));
+    throw_invalid("sph scene", "particles", std::to_string(s.particles),
+                  fmt::format("at most {}{} on {} (one buffer of positions holds at most {} MiB); "
+                              "use fewer particles or a device with larger buffers",
+                              caps.max_buffer_bytes / real4, per_rank, caps.device_name,
+                              caps.max_buffer_bytes >> 20));
   // Without the row masks: a count they do not fit runs without them.
   const uint64_t per_particle =
       bytes_per_particle(b, false, false, s.model == SphPressureModel::dfsph);
   if (caps.device_memory_bytes && n * per_particle > caps.device_memory_bytes / 2)
-    throw_invalid("sph scene", "particles", std::to_string(n),
-                  fmt::format("at most {} on {} ({} bytes per particle, {} MiB of memory)",
-                              caps.device_memory_bytes / 2 / per_particle, caps.device_name,
-                              per_particle, caps.device_memory_bytes >> 20));
+    throw_invalid("sph scene", "particles", std::to_string(s.particles),
+                  fmt::format("at most {}{} on {} ({} bytes per particle, {} MiB of memory)",
+                              caps.device_memory_bytes / 2 / per_particle, per_rank,
+                              caps.device_name, per_particle, caps.device_memory_bytes >> 20));
 }
 
 }  // namespace
@@ -93,12 +110,14 @@ SphSimulation::SphSimulation(Backend& backend, const SphScene& scene, SphComm* c
                   fmt::format("wcsph or thesis on {} ranks (dfsph runs in one process only, "
                               "for now)",
                               comm->size()));
-  check_capacity(backend_, scene_);
+  const int ranks = comm ? comm->size() : 1;
+  check_capacity(backend_, scene_, ranks);
   layout_ = build_particles(scene_);
   n_ = layout_.total();
+  capacity_ = initial_capacity(n_, ranks);
   const Capabilities& caps = backend_.caps();
   const uint64_t real4_bytes = 4 * backend_.real_bytes();
-  if (caps.max_buffer_bytes && uint64_t(n_) * real4_bytes > caps.max_buffer_bytes) {
+  if (caps.max_buffer_bytes && uint64_t(capacity_) * real4_bytes > caps.max_buffer_bytes) {
     const uint64_t fit = caps.max_buffer_bytes / real4_bytes;
     throw_invalid("sph scene", "particles", std::to_string(n_),
                   fmt::format("at most {} on {} (one buffer of positions holds at most {} MiB); "
@@ -150,35 +169,15 @@ SphSimulation::SphSimulation(Backend& backend, const SphScene& scene, SphComm* c
   step_params_.box_min = scene_.box_min;
   step_params_.box_max = scene_.box_max;
 
-  grid_ = make_hash_grid(backend_, gp, n_);
-  if (comm && comm->size() > 1) ranks_ = std::make_unique<SphRanks>(*comm, backend_, gp);
-  auto real4 = [&](const char* label) { return backend_.create<Real4>(n_, label); };
-  pos_ = real4("sph positions");
-  vel_ = real4("sph velocities");
-  xs_ = real4("sph stage positions");
-  vs_ = real4("sph stage velocities");
-  sum_x_ = real4("sph rk4 position sums");
-  sum_v_ = real4("sph rk4 velocity sums");
-  ta_ = real4("sph sorted positions");
-  tb_ = real4("sph sorted velocities");
-  tc_ = real4("sph sorted predicted velocities");
-  accel_ = real4("sph accelerations");
-  density_ = backend_.create<Real>(n_, "sph density");
-  pressure_ = backend_.create<Real>(n_, "sph pressure");
-  ids_ = backend_.create<uint32_t>(n_, "sph ids");
-  ids_t_ = backend_.create<uint32_t>(n_, "sph sorted ids");
-  stats_buf_ = backend_.create<uint32_t>(kSphStatWords, "sph stats");
-  if (keeps_neighbor_rows(backend_, n_, dfsph()))
-    neighbor_rows_ =
-        backend_.create<uint32_t>(size_t(kSphRowMaskWords) * n_, "sph neighbour row masks");
-  if (dfsph()) allocate_dfsph();
-  // dfsph reads its solves' residuals every iteration: it steps one at a time (no blocks).
-  if (!dfsph() && keeps_checkpoint(backend_, n_, neighbor_rows_.valid())) {
-    checkpoint_.pos = real4("sph checkpoint positions");
-    checkpoint_.vel = real4("sph checkpoint velocities");
-    checkpoint_.accel = real4("sph checkpoint accelerations");
-    checkpoint_.ids = backend_.create<uint32_t>(n_, "sph checkpoint ids");
+  if (ranks > 1) {
+    ranks_ = std::make_unique<SphRanks>(*comm, backend_, gp);
+    ranks_->on_reserve([this](uint32_t local) { reserve(local); });  // beyond initial_capacity
   }
+  GridParams local_grid = gp;  // on several ranks the rank layout sets n before any build
+  local_grid.n = std::min(gp.n, capacity_);
+  grid_ = make_hash_grid(backend_, local_grid, capacity_);
+  stats_buf_ = backend_.create<uint32_t>(kSphStatWords, "sph stats");
+  allocate_particle_buffers();
 
   if (ranks_) {
     ranks_->scatter_by_id(layout_.positions, layout_.velocities, true, pos_, vel_, ids_);
@@ -266,6 +265,38 @@ void SphSimulation::use_rank_layout(const Buffer<Real4>& x) {
   // The arrays are in cell order already: this build only marks the cells' ranges (its sort
   // keeps the order, being stable).
   build_hash_grid(backend_, grid_, x, {GridBuild::counting, scene_.max_candidates});
+}
+
+void SphSimulation::allocate_particle_buffers() {
+  const size_t c = capacity_;
+  auto real4 = [&](const char* label) { return backend_.create<Real4>(c, label); };
+  pos_ = real4("sph positions");
+  vel_ = real4("sph velocities");
+  xs_ = real4("sph stage positions");
+  vs_ = real4("sph stage velocities");
+  sum_x_ = real4("sph rk4 position sums");
+  sum_v_ = real4("sph rk4 velocity sums");
+  ta_ = real4("sph sorted positions");
+  tb_ = real4("sph sorted velocities");
+  tc_ = real4("sph sorted predicted velocities");
+  accel_ = real4("sph accelerations");
+  density_ = backend_.create<Real>(c, "sph density");
+  pressure_ = backend_.create<Real>(c, "sph pressure");
+  ids_ = backend_.create<uint32_t>(c, "sph ids");
+  ids_t_ = backend_.create<uint32_t>(c, "sph sorted ids");
+  // Whether the row masks and the block checkpoint fit is decided once, for the buffers' first
+  // size; a rank's growth keeps what it has.
+  if (keeps_neighbor_rows(backend_, c, dfsph()))
+    neighbor_rows_ =
+        backend_.create<uint32_t>(size_t(kSphRowMaskWords) * c, "sph neighbour row masks");
+  if (dfsph()) allocate_dfsph();
+  // dfsph reads its solves' residuals every iteration: it steps one at a time (no blocks).
+  if (!dfsph() && keeps_checkpoint(backend_, c, neighbor_rows_.valid())) {
+    checkpoint_.pos = real4("sph checkpoint positions");
+    checkpoint_.vel = real4("sph checkpoint velocities");
+    checkpoint_.accel = real4("sph checkpoint accelerations");
+    checkpoint_.ids = backend_.create<uint32_t>(c, "sph checkpoint ids");
+  }
 }
 
 void SphSimulation::sort_state() {

@@ -159,6 +159,10 @@ class SphSimulation {
   const SphScene& scene() const { return scene_; }
   const SphParticles& layout() const { return layout_; }  // spacing, h, mass, counts
   uint32_t particle_count() const { return n_; }          // all ranks' together
+  // The particles this rank's buffers hold: all of them in one process; on several ranks its
+  // share with room for halos, grown (never shrunk) when it takes more (see reserve).
+  uint32_t capacity() const { return capacity_; }
+  uint64_t capacity_growths() const { return capacity_growths_; }
   // The decomposition when the simulation runs on several ranks; null otherwise.
   const SphRanks* ranks() const { return ranks_.get(); }
   SphRanks* ranks() { return ranks_.get(); }
@@ -212,6 +216,10 @@ class SphSimulation {
                       Buffer<Real4>& v_sorted, const Buffer<uint32_t>& ids,
                       Buffer<uint32_t>& ids_sorted);
   void sort_state();  // rebuild on pos_ with pos_, vel_, ids_ moved into cell order
+  void allocate_particle_buffers();
+  // On several ranks: room for `local` particles in every per-particle buffer, the contents
+  // kept (sph_simulation_capacity.cpp).
+  void reserve(uint32_t local);
   // On several ranks: the grid of the staged layout's arrays, already in cell order (x), and the
   // kernels' particle counts and own ranges.
   void use_rank_layout(const Buffer<Real4>& x);
@@ -279,6 +287,8 @@ class SphSimulation {
   SphScene scene_;
   SphParticles layout_;
   uint32_t n_ = 0;
+  uint32_t capacity_ = 0;  // particles per per-particle buffer (see capacity())
+  uint64_t capacity_growths_ = 0;
   SphStepParams step_params_;
   double cell_size_ = 0;
   double skin_ = 0;  // m: allowed drift of a stage from the rebuild positions (RK4)
