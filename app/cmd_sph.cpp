@@ -344,13 +344,20 @@ int run_sph(const SphOptions& given) {
                        sim.steps() - steps0);
   } catch (const Error& e) {
     if (lead) fmt::print(stderr, "masav: error: {}\n", e.what());
-    // On several ranks an error may have stopped one rank alone, which a gather would wait
-    // for forever: no last good state there.
-    if (out_lock && !comm)
-      fmt::print(stderr, "masav: the last good state (step {}) is in {}\n", sim.steps(),
-                 snapshot(std::nullopt, "last_good"));
-    else if (comm && lead)
-      fmt::print(stderr, "masav: on several ranks the last good state is not written\n");
+    // On several ranks, an error of the simulation's own checks (decided on reduced values) was
+    // raised by every rank at the same step, so they write the last good state together (a
+    // piece each and the index); any other error may have stopped one rank alone, and a
+    // collective write would wait for the others forever.
+    const bool has_out = !o.out.empty() || o.vtp_every;  // rank 0 holds its lock
+    if (has_out && (!comm || sim.failed_together())) {
+      const std::string path = snapshot(std::nullopt, "last_good");
+      if (lead)
+        fmt::print(stderr, "masav: the last good state (step {}) is in {}\n", sim.steps(), path);
+    } else if (comm && lead) {
+      fmt::print(stderr,
+                 "masav: on several ranks the last good state is written only after the "
+                 "simulation's own checks fail (this error may have stopped one rank alone)\n");
+    }
     rc = 1;
   }
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();

@@ -80,6 +80,27 @@ if [[ $step -le 200 ]]; then
 fi
 printf 'killed rank: restarted from step %s\n' "$step"
 
+# The simulation's own checks stop every rank at one step: the CFL guard (a fixed dt the flow
+# outgrows) ends one process and 3 ranks at the same step, and the ranks write the last good
+# state together, a piece each holding every particle once.
+guard=(sph --backend cpu --preset dambreak --particles 2000 --steps 3000 --dt 0.00035
+  --cfl-guard stop -q)
+log1=$("$masav" "${guard[@]}" --out "$dir/G1" 2>&1) && fail "the guard did not stop one process"
+log3=$("$mpiexec" -np 3 "$masav" "${guard[@]}" --out "$dir/G3" 2>&1) && fail "the guard did not stop 3 ranks"
+stop1=$(grep -o "last good state (step [0-9]*)" <<<"$log1")
+stop3=$(grep -o "last good state (step [0-9]*)" <<<"$log3")
+[[ -n "$stop1" && "$stop1" == "$stop3" ]] || fail "3 ranks stopped at '$stop3', one process at '$stop1'"
+total=0
+for r in 0 1 2; do
+  points=$(grep -o 'NumberOfPoints="[0-9]*"' "$dir/G3/dambreak_last_good_r$r.vtp" | grep -o '[0-9]*')
+  [[ -n "$points" ]] || fail "no last good piece of rank $r"
+  total=$((total + points))
+done
+[[ $total -eq 2000 ]] || fail "the last good pieces hold $total particles, not 2000"
+grep -q 'Source="dambreak_last_good_r2.vtp"' "$dir/G3/dambreak_last_good.pvtp" \
+  || fail "no last good index"
+printf '3 ranks stopped by the guard at the %s, as one process\n' "$stop3"
+
 # Refusals, naming what runs on several ranks.
 log=$("$mpiexec" -np 2 "$masav" info 2>&1) && fail "info on 2 ranks accepted"
 grep -q "only \`masav sph\` runs on several ranks" <<<"$log" || fail "no refusal of info: $log"

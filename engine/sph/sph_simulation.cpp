@@ -565,17 +565,18 @@ SphSimulation::Attempt SphSimulation::attempt(double dt) {
   collect_stage_times();
   const Attempt a = judge(w, s, dt);
   if (a.overflow)
-    throw Error(backend_.name(), "sph",
-                fmt::format("step {}: a particle has more than {} neighbour candidates in its 27 "
-                            "cells (the fluid is compressed far beyond rest density)",
-                            steps_ + 1, scene_.max_candidates),
-                "raise max_candidates (at most 65000), lower dt, or stiffen the fluid "
-                "(sound_speed, kp)");
+    fail_together(
+        Error(backend_.name(), "sph",
+              fmt::format("step {}: a particle has more than {} neighbour candidates in its 27 "
+                          "cells (the fluid is compressed far beyond rest density)",
+                          steps_ + 1, scene_.max_candidates),
+              "raise max_candidates (at most 65000), lower dt, or stiffen the fluid "
+              "(sound_speed, kp)"));
   if (a.watchdog)
-    throw Error(
+    fail_together(Error(
         backend_.name(), "sph watchdog",
         fmt::format("step {} (t = {:.6g} s, dt = {:.3g} s): {}", steps_ + 1, time_, dt, a.reason),
-        watchdog_remedy());
+        watchdog_remedy()));
   if (!a.ok) {
     if (scene_.integrator == SphIntegrator::leapfrog || dfsph()) accel_valid_ = false;
     return a;
@@ -610,15 +611,20 @@ void SphSimulation::fail_non_finite(double dt) {
   throw_non_finite(dt, id, origin);
 }
 
-void SphSimulation::throw_non_finite(double dt, uint32_t id, bool origin) const {
-  throw Error(
+void SphSimulation::fail_together(const Error& e) {
+  failed_together_ = true;
+  throw e;
+}
+
+void SphSimulation::throw_non_finite(double dt, uint32_t id, bool origin) {
+  fail_together(Error(
       backend_.name(), "sph",
       fmt::format("step {} (t = {:.6g} s, dt = {:.3g} s): particle {} {} a non-finite "
                   "position or velocity",
                   steps_ + 1, time_, dt, id == UINT32_MAX ? std::string("?") : std::to_string(id),
                   origin ? "entered the step with" : "got"),
       "the state of the last good step is kept (export it to inspect); lower dt or use "
-      "the adaptive dt, raise viscosity, or check the scene's parameters");
+      "the adaptive dt, raise viscosity, or check the scene's parameters"));
 }
 
 void SphSimulation::advance(double dt, int depth, bool whole) {
@@ -629,17 +635,18 @@ void SphSimulation::advance(double dt, int depth, bool whole) {
   if (scene_.cfl_guard == SphCflGuard::stop || scene_.cfl_guard == SphCflGuard::off ||
       depth >= kMaxRetries || dt * 0.5 < scene_.dt_min) {
     if (non_finite) fail_non_finite(dt);
-    throw Error(backend_.name(), "sph cfl guard",
-                fmt::format("step {} (t = {:.6g} s) with dt = {:.3g} s was unstable: {}",
-                            steps_ + 1, time_, dt, a.reason),
-                scene_.cfl_guard == SphCflGuard::stop
-                    ? fmt::format("use dt <= {:.3g} s (the CFL limit now) or the adaptive dt, "
-                                  "or --cfl-guard reduce to let masav split steps",
-                                  dt_limit())
-                    : fmt::format("the guard could not stabilise it above dt_min = {:.3g} s: "
-                                  "lower sound_speed or kp, raise viscosity, or give the fluid "
-                                  "more room",
-                                  scene_.dt_min));
+    fail_together(
+        Error(backend_.name(), "sph cfl guard",
+              fmt::format("step {} (t = {:.6g} s) with dt = {:.3g} s was unstable: {}", steps_ + 1,
+                          time_, dt, a.reason),
+              scene_.cfl_guard == SphCflGuard::stop
+                  ? fmt::format("use dt <= {:.3g} s (the CFL limit now) or the adaptive dt, "
+                                "or --cfl-guard reduce to let masav split steps",
+                                dt_limit())
+                  : fmt::format("the guard could not stabilise it above dt_min = {:.3g} s: "
+                                "lower sound_speed or kp, raise viscosity, or give the fluid "
+                                "more room",
+                                scene_.dt_min)));
   }
   // Retry with half the step; a fixed-dt step still covers its whole interval.
   advance(0.5 * dt, depth + 1, whole);
@@ -654,33 +661,34 @@ void SphSimulation::step() {
     uint64_t parts = 1;
     if (dt > limit && scene_.cfl_guard != SphCflGuard::off) {
       if (scene_.cfl_guard == SphCflGuard::stop)
-        throw Error(
+        fail_together(Error(
             backend_.name(), "sph cfl guard",
             fmt::format("step {} (t = {:.6g} s): dt = {:.3g} s exceeds the CFL limit "
                         "{:.3g} s (velocity {:.3g} m/s, acceleration {:.3g} m/s^2, "
                         "signal speed {:.3g} m/s, h = {:.3g} m)",
                         steps_ + 1, time_, dt, limit, stats_.max_speed, stats_.max_accel,
                         signal_speed(step_params_), layout_.h),
-            fmt::format("use dt <= {:.3g} s, the adaptive dt, or --cfl-guard reduce", limit));
+            fmt::format("use dt <= {:.3g} s, the adaptive dt, or --cfl-guard reduce", limit)));
       const double want = std::ceil(dt / limit);
       if (want > double(kMaxSubsteps) || dt / want < scene_.dt_min)
-        throw Error(backend_.name(), "sph cfl guard",
-                    fmt::format("step {}: dt = {:.3g} s would need {:.3g} sub-steps of the CFL "
-                                "limit {:.3g} s",
-                                steps_ + 1, dt, want, limit),
-                    "use a smaller dt or the adaptive dt; lower sound_speed or kp");
+        fail_together(
+            Error(backend_.name(), "sph cfl guard",
+                  fmt::format("step {}: dt = {:.3g} s would need {:.3g} sub-steps of the CFL "
+                              "limit {:.3g} s",
+                              steps_ + 1, dt, want, limit),
+                  "use a smaller dt or the adaptive dt; lower sound_speed or kp"));
       parts = uint64_t(want);
     }
     for (uint64_t k = 0; k < parts; ++k) advance(dt / double(parts), 0, true);
   } else {
     const double dt = std::min({limit, adaptive_dt_ * 1.25, scene_.dt_max});
     if (dt < scene_.dt_min)
-      throw Error(
+      fail_together(Error(
           backend_.name(), "sph cfl guard",
           fmt::format("step {} (t = {:.6g} s): the CFL limit {:.3g} s is below dt_min = "
                       "{:.3g} s (max speed {:.3g} m/s, max acceleration {:.3g} m/s^2)",
                       steps_ + 1, time_, dt, scene_.dt_min, stats_.max_speed, stats_.max_accel),
-          "the fluid is blowing up: lower sound_speed or kp, raise viscosity");
+          "the fluid is blowing up: lower sound_speed or kp, raise viscosity"));
     advance(dt, 0, false);
     adaptive_dt_ = last_dt_;
   }

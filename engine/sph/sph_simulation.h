@@ -163,6 +163,10 @@ class SphSimulation {
   // share with room for halos, grown (never shrunk) when it takes more (see reserve).
   uint32_t capacity() const { return capacity_; }
   uint64_t capacity_growths() const { return capacity_growths_; }
+  // Whether the last error came from the simulation's own checks (the CFL guard, the watchdog,
+  // a non-finite state, neighbour overflow), which decide on values reduced over the ranks: then
+  // every rank raised it at the same step, and they can still write the state together.
+  bool failed_together() const { return failed_together_; }
   // The decomposition when the simulation runs on several ranks; null otherwise.
   const SphRanks* ranks() const { return ranks_.get(); }
   SphRanks* ranks() { return ranks_.get(); }
@@ -277,7 +281,9 @@ class SphSimulation {
   [[noreturn]] void fail_non_finite(double dt);
   // The error naming particle `id` (UINT32_MAX: unknown) that entered the step non-finite
   // (`origin`) or got so in it.
-  [[noreturn]] void throw_non_finite(double dt, uint32_t id, bool origin) const;
+  [[noreturn]] void throw_non_finite(double dt, uint32_t id, bool origin);
+  // Throws e as an error of the simulation's own checks (failed_together()).
+  [[noreturn]] void fail_together(const Error& e);
   void mark(SphStage ended);
   void collect_stage_times();
   double limit_for(const SphStepStats& s) const;
@@ -289,6 +295,7 @@ class SphSimulation {
   uint32_t n_ = 0;
   uint32_t capacity_ = 0;  // particles per per-particle buffer (see capacity())
   uint64_t capacity_growths_ = 0;
+  bool failed_together_ = false;
   SphStepParams step_params_;
   double cell_size_ = 0;
   double skin_ = 0;  // m: allowed drift of a stage from the rebuild positions (RK4)

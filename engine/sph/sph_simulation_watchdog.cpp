@@ -50,14 +50,14 @@ void SphSimulation::watch_energy() {
   stats_ = good_.stats;
   accel_valid_ = false;
   fields_current_ = false;
-  throw Error(
-      backend_.name(), "sph watchdog",
-      fmt::format("step {} (t = {:.6g} s): the energy above the floor reached {:.4g} J, "
-                  "above the watchdog's bound {:.4g} J (the initial {:.4g} J plus {:.0f}%); "
-                  "the state is back at step {} (t = {:.6g} s), the last that passed",
-                  bad_step, bad_time, e, bound, watchdog_.energy0, 100 * SphWatchdog::kEnergyMargin,
-                  steps_, time_),
-      watchdog_remedy());
+  fail_together(
+      Error(backend_.name(), "sph watchdog",
+            fmt::format("step {} (t = {:.6g} s): the energy above the floor reached {:.4g} J, "
+                        "above the watchdog's bound {:.4g} J (the initial {:.4g} J plus {:.0f}%); "
+                        "the state is back at step {} (t = {:.6g} s), the last that passed",
+                        bad_step, bad_time, e, bound, watchdog_.energy0,
+                        100 * SphWatchdog::kEnergyMargin, steps_, time_),
+            watchdog_remedy()));
 }
 
 }  // namespace masav
