@@ -23,78 +23,6 @@ float bits_to_float(uint32_t w) {
   return std::bit_cast<float>(w);
 }
 
-// Device memory the simulation needs per particle: 10 Real4 arrays, 2 Real (8 with dfsph's
-// factor and kappas), 2 ids, the grid's 4 words (cells, order, and the counting build's counts
-// and ranks), the neighbour row masks where they are kept, and run()'s checkpoint (3 Real4 and
-// ids) where it is kept.
-uint64_t bytes_per_particle(const Backend& b, bool neighbor_rows, bool checkpoint = false,
-                            bool dfsph = false) {
-  return 10 * 4 * b.real_bytes() + (dfsph ? 8 : 2) * b.real_bytes() + 6 * 4 +
-         (neighbor_rows ? uint64_t(kSphRowMaskWords) * 4 : 0) +
-         (checkpoint ? 3 * 4 * b.real_bytes() + 4 : 0);
-}
-
-// Whether run() keeps a checkpoint for its blocks: where it fits the memory budget
-// check_capacity applies (with the row masks, when they are kept).
-bool keeps_checkpoint(const Backend& b, uint64_t n, bool neighbor_rows) {
-  const Capabilities& caps = b.caps();
-  return !caps.device_memory_bytes ||
-         n * bytes_per_particle(b, neighbor_rows, true) <= caps.device_memory_bytes / 2;
-}
-
-// Whether sph_density records neighbour row masks for sph_forces, which then visits only the
-// neighbours instead of testing every candidate of the 27 cells again: on the fp32 backends
-// (Vulkan, CUDA), not on the CPU reference, which keeps its own neighbour lists
-// (engine/cpu/cpu_sph_lists.h) and would only fill the masks for nothing. Only where they fit
-// one buffer and the memory budget check_capacity applies; elsewhere the kernels walk every
-// candidate, as without masks.
-bool keeps_neighbor_rows(const Backend& b, uint64_t n, bool dfsph) {
-  const Capabilities& caps = b.caps();
-  if (caps.real_is_double) return false;
-  const uint64_t mask_bytes = n * kSphRowMaskWords * 4;
-  if (caps.max_buffer_bytes && mask_bytes > caps.max_buffer_bytes) return false;
-  return !caps.device_memory_bytes ||
-         n * bytes_per_particle(b, true, false, dfsph) <= caps.device_memory_bytes / 2;
-}
-
-// The particles a rank's buffers start with room for: all of them in one process; on several
-// ranks an equal share and a quarter more (plus 1,024) for its halos (reserve() grows them).
-uint32_t initial_capacity(uint64_t particles, int ranks) {
-  if (ranks <= 1) return uint32_t(particles);
-  const uint64_t share = (particles + uint64_t(ranks) - 1) / uint64_t(ranks);
-  return uint32_t(std::min<uint64_t>(particles, share + share / 4 + 1024));
-}
-
-// Refuses, before anything is allocated, a particle count the device cannot hold (on several
-// ranks: a rank's share, see initial_capacity).
-void check_capacity(const Backend& b, const SphScene& s, int ranks) {
-  const Capabilities& caps = b.caps();
-  // The obstacle is checked once its size is known.
-  const uint64_t n = initial_capacity(s.particles, ranks);
-  // On several ranks the limit is a rank's: its share with room for halos.
-  const std::string per_rank =
-      ranks > 1 ? fmt::format(
-                      " per rank's buffers (now {}: 1/{} of the particles and room for "
-                      "halos); use more ranks,",
-                      n, ranks)
-                : "";
-  const uint64_t real4 = 4 * b.real_bytes();
-  if (caps.max_buffer_bytes && n * real4 > caps.max_buffer_bytes)
-    throw_invalid("sph scene", "particles", std::to_string(s.particles),
-                  fmt::format("at most {}{} on {} (one buffer of positions holds at most {} MiB); "
-                              "use fewer particles or a device with larger buffers",
-                              caps.max_buffer_bytes / real4, per_rank, caps.device_name,
-                              caps.max_buffer_bytes >> 20));
-  // Without the row masks: a count they do not fit runs without them.
-  const uint64_t per_particle =
-      bytes_per_particle(b, false, false, s.model == SphPressureModel::dfsph);
-  if (caps.device_memory_bytes && n * per_particle > caps.device_memory_bytes / 2)
-    throw_invalid("sph scene", "particles", std::to_string(s.particles),
-                  fmt::format("at most {}{} on {} ({} bytes per particle, {} MiB of memory)",
-                              caps.device_memory_bytes / 2 / per_particle, per_rank,
-                              caps.device_name, per_particle, caps.device_memory_bytes >> 20));
-}
-
 }  // namespace
 
 const char* to_string(SphStage s) {
@@ -265,38 +193,6 @@ void SphSimulation::use_rank_layout(const Buffer<Real4>& x) {
   // The arrays are in cell order already: this build only marks the cells' ranges (its sort
   // keeps the order, being stable).
   build_hash_grid(backend_, grid_, x, {GridBuild::counting, scene_.max_candidates});
-}
-
-void SphSimulation::allocate_particle_buffers() {
-  const size_t c = capacity_;
-  auto real4 = [&](const char* label) { return backend_.create<Real4>(c, label); };
-  pos_ = real4("sph positions");
-  vel_ = real4("sph velocities");
-  xs_ = real4("sph stage positions");
-  vs_ = real4("sph stage velocities");
-  sum_x_ = real4("sph rk4 position sums");
-  sum_v_ = real4("sph rk4 velocity sums");
-  ta_ = real4("sph sorted positions");
-  tb_ = real4("sph sorted velocities");
-  tc_ = real4("sph sorted predicted velocities");
-  accel_ = real4("sph accelerations");
-  density_ = backend_.create<Real>(c, "sph density");
-  pressure_ = backend_.create<Real>(c, "sph pressure");
-  ids_ = backend_.create<uint32_t>(c, "sph ids");
-  ids_t_ = backend_.create<uint32_t>(c, "sph sorted ids");
-  // Whether the row masks and the block checkpoint fit is decided once, for the buffers' first
-  // size; a rank's growth keeps what it has.
-  if (keeps_neighbor_rows(backend_, c, dfsph()))
-    neighbor_rows_ =
-        backend_.create<uint32_t>(size_t(kSphRowMaskWords) * c, "sph neighbour row masks");
-  if (dfsph()) allocate_dfsph();
-  // dfsph reads its solves' residuals every iteration: it steps one at a time (no blocks).
-  if (!dfsph() && keeps_checkpoint(backend_, c, neighbor_rows_.valid())) {
-    checkpoint_.pos = real4("sph checkpoint positions");
-    checkpoint_.vel = real4("sph checkpoint velocities");
-    checkpoint_.accel = real4("sph checkpoint accelerations");
-    checkpoint_.ids = backend_.create<uint32_t>(c, "sph checkpoint ids");
-  }
 }
 
 void SphSimulation::sort_state() {

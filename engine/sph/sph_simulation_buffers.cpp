@@ -1,0 +1,150 @@
+// SphSimulation's per-particle device buffers: what a particle costs, what fits the device, and
+// on several ranks buffers sized for a rank's share and its halos rather than for every
+// particle (so that memory per rank falls as ranks are added), grown when a rank takes more.
+#include <fmt/format.h>
+
+#include <algorithm>
+
+#include "engine/core/error.h"
+#include "engine/kernels/kernel_checks.h"
+#include "engine/sph/sph_simulation.h"
+
+namespace masav {
+namespace {
+
+// Device memory the simulation needs per particle: 10 Real4 arrays, 2 Real (8 with dfsph's
+// factor and kappas), 2 ids, the grid's 4 words (cells, order, and the counting build's counts
+// and ranks), the neighbour row masks where they are kept, and run()'s checkpoint (3 Real4 and
+// ids) where it is kept.
+uint64_t bytes_per_particle(const Backend& b, bool neighbor_rows, bool checkpoint = false,
+                            bool dfsph = false) {
+  return 10 * 4 * b.real_bytes() + (dfsph ? 8 : 2) * b.real_bytes() + 6 * 4 +
+         (neighbor_rows ? uint64_t(kSphRowMaskWords) * 4 : 0) +
+         (checkpoint ? 3 * 4 * b.real_bytes() + 4 : 0);
+}
+
+// Whether run() keeps a checkpoint for its blocks: where it fits the memory budget
+// check_capacity applies (with the row masks, when they are kept).
+bool keeps_checkpoint(const Backend& b, uint64_t n, bool neighbor_rows) {
+  const Capabilities& caps = b.caps();
+  return !caps.device_memory_bytes ||
+         n * bytes_per_particle(b, neighbor_rows, true) <= caps.device_memory_bytes / 2;
+}
+
+// Whether sph_density records neighbour row masks for sph_forces, which then visits only the
+// neighbours instead of testing every candidate of the 27 cells again: on the fp32 backends
+// (Vulkan, CUDA), not on the CPU reference, which keeps its own neighbour lists
+// (engine/cpu/cpu_sph_lists.h) and would only fill the masks for nothing. Only where they fit
+// one buffer and the memory budget check_capacity applies; elsewhere the kernels walk every
+// candidate, as without masks.
+bool keeps_neighbor_rows(const Backend& b, uint64_t n, bool dfsph) {
+  const Capabilities& caps = b.caps();
+  if (caps.real_is_double) return false;
+  const uint64_t mask_bytes = n * kSphRowMaskWords * 4;
+  if (caps.max_buffer_bytes && mask_bytes > caps.max_buffer_bytes) return false;
+  return !caps.device_memory_bytes ||
+         n * bytes_per_particle(b, true, false, dfsph) <= caps.device_memory_bytes / 2;
+}
+
+}  // namespace
+
+// The particles a rank's buffers start with room for: all of them in one process; on several
+// ranks an equal share and a quarter more (plus 1,024) for its halos (reserve() grows them).
+uint32_t SphSimulation::initial_capacity(uint64_t particles, int ranks) {
+  if (ranks <= 1) return uint32_t(particles);
+  const uint64_t share = (particles + uint64_t(ranks) - 1) / uint64_t(ranks);
+  return uint32_t(std::min<uint64_t>(particles, share + share / 4 + 1024));
+}
+
+// Refuses, before anything is allocated, a particle count the device cannot hold (on several
+// ranks: a rank's share, see initial_capacity).
+void SphSimulation::check_capacity(const Backend& b, const SphScene& s, int ranks) {
+  const Capabilities& caps = b.caps();
+  // The obstacle is checked once its size is known.
+  const uint64_t n = initial_capacity(s.particles, ranks);
+  // On several ranks the limit is a rank's: its share with room for halos.
+  const std::string per_rank =
+      ranks > 1 ? fmt::format(
+                      " per rank's buffers (now {}: 1/{} of the particles and room for "
+                      "halos); use more ranks,",
+                      n, ranks)
+                : "";
+  const uint64_t real4 = 4 * b.real_bytes();
+  if (caps.max_buffer_bytes && n * real4 > caps.max_buffer_bytes)
+    throw_invalid("sph scene", "particles", std::to_string(s.particles),
+                  fmt::format("at most {}{} on {} (one buffer of positions holds at most {} MiB); "
+                              "use fewer particles or a device with larger buffers",
+                              caps.max_buffer_bytes / real4, per_rank, caps.device_name,
+                              caps.max_buffer_bytes >> 20));
+  // Without the row masks: a count they do not fit runs without them.
+  const uint64_t per_particle =
+      bytes_per_particle(b, false, false, s.model == SphPressureModel::dfsph);
+  if (caps.device_memory_bytes && n * per_particle > caps.device_memory_bytes / 2)
+    throw_invalid("sph scene", "particles", std::to_string(s.particles),
+                  fmt::format("at most {}{} on {} ({} bytes per particle, {} MiB of memory)",
+                              caps.device_memory_bytes / 2 / per_particle, per_rank,
+                              caps.device_name, per_particle, caps.device_memory_bytes >> 20));
+}
+
+void SphSimulation::allocate_particle_buffers() {
+  const size_t c = capacity_;
+  auto real4 = [&](const char* label) { return backend_.create<Real4>(c, label); };
+  pos_ = real4("sph positions");
+  vel_ = real4("sph velocities");
+  xs_ = real4("sph stage positions");
+  vs_ = real4("sph stage velocities");
+  sum_x_ = real4("sph rk4 position sums");
+  sum_v_ = real4("sph rk4 velocity sums");
+  ta_ = real4("sph sorted positions");
+  tb_ = real4("sph sorted velocities");
+  tc_ = real4("sph sorted predicted velocities");
+  accel_ = real4("sph accelerations");
+  density_ = backend_.create<Real>(c, "sph density");
+  pressure_ = backend_.create<Real>(c, "sph pressure");
+  ids_ = backend_.create<uint32_t>(c, "sph ids");
+  ids_t_ = backend_.create<uint32_t>(c, "sph sorted ids");
+  // Whether the row masks and the block checkpoint fit is decided once, for the buffers' first
+  // size; a rank's growth keeps what it has.
+  if (keeps_neighbor_rows(backend_, c, dfsph()))
+    neighbor_rows_ =
+        backend_.create<uint32_t>(size_t(kSphRowMaskWords) * c, "sph neighbour row masks");
+  if (dfsph()) allocate_dfsph();
+  // dfsph reads its solves' residuals every iteration: it steps one at a time (no blocks).
+  if (!dfsph() && keeps_checkpoint(backend_, c, neighbor_rows_.valid())) {
+    checkpoint_.pos = real4("sph checkpoint positions");
+    checkpoint_.vel = real4("sph checkpoint velocities");
+    checkpoint_.accel = real4("sph checkpoint accelerations");
+    checkpoint_.ids = backend_.create<uint32_t>(c, "sph checkpoint ids");
+  }
+}
+
+namespace {
+
+// `b` with room for `count` elements, its contents kept.
+template <class T>
+void grow(Backend& backend, Buffer<T>& b, size_t count) {
+  if (!b.valid() || b.size() >= count) return;
+  Buffer<T> bigger = backend.create<T>(count, b.impl().label());
+  backend.copy_bytes(b.impl(), bigger.impl(), b.impl().bytes());
+  b = std::move(bigger);
+}
+
+}  // namespace
+
+void SphSimulation::reserve(uint32_t local) {
+  if (local <= capacity_) return;
+  // A quarter more than asked, so that a rank whose share creeps up grows a few times only.
+  capacity_ = uint32_t(std::min<uint64_t>(n_, uint64_t(local) + local / 4 + 1024));
+  ++capacity_growths_;
+  const size_t c = capacity_;
+  for (Buffer<Real4>* b : {&pos_, &vel_, &xs_, &vs_, &sum_x_, &sum_v_, &ta_, &tb_, &tc_, &accel_,
+                           &checkpoint_.pos, &checkpoint_.vel, &checkpoint_.accel})
+    grow(backend_, *b, c);
+  for (Buffer<Real>* b : {&density_, &pressure_}) grow(backend_, *b, c);
+  for (Buffer<uint32_t>* b :
+       {&ids_, &ids_t_, &checkpoint_.ids, &grid_.sorted_cells, &grid_.sorted_index})
+    grow(backend_, *b, c);
+  grow(backend_, neighbor_rows_, size_t(kSphRowMaskWords) * c);
+}
+
+}  // namespace masav
