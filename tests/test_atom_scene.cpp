@@ -164,6 +164,28 @@ TEST_CASE(
   FrameClock clock;
   s->update(clock);
   CHECK(s->max_preview_level() == kMaxPreviewLevel);
+  auto image = [&](const SceneInstance& scene) {
+    const SceneView v = scene.view();  // a value: the layer must outlive this call's temporary
+    REQUIRE(v.background.has_value());
+    const auto& bg = *v.background;
+    std::vector<uint8_t> bytes(size_t(bg.width) * bg.height * 4 * cpu.real_bytes());
+    cpu.download_bytes(*bg.pixels, bytes.data(), bytes.size(), 0);
+    return bytes;
+  };
+  // A preview samples a voxel apart (the scene's step is 1/2 voxel): at level 1, the one-shot
+  // image of a 24x18 frame at step 1 voxel.
+  s->set_preview_level(1);
+  CHECK(s->update(clock).ran == Names{"raymarch"});
+  CHECK(s->view().background->width == 24);
+  {
+    ParamSet small = p;
+    small.set("render.width", int64_t(24));
+    small.set("render.height", int64_t(18));
+    small.set("volume.step_voxels", 1.0);
+    auto coarse = find_scene_type("atom-volume").create(cpu, small);
+    coarse->update(clock);
+    CHECK(image(*s) == image(*coarse));
+  }
   // A preview of the same view: the raymarch only, at a quarter of the 48x36 frame per axis.
   s->set_preview_level(2);
   CHECK_FALSE(s->changes_pending(clock));  // the preview level is not a change of the scene
@@ -183,14 +205,6 @@ TEST_CASE(
   // The same image as a scene rendered once at this time.
   auto once = find_scene_type("atom-volume").create(cpu, p);
   once->update(clock);
-  auto image = [&](const SceneInstance& scene) {
-    const SceneView v = scene.view();  // a value: the layer must outlive this call's temporary
-    REQUIRE(v.background.has_value());
-    const auto& bg = *v.background;
-    std::vector<uint8_t> bytes(size_t(bg.width) * bg.height * 4 * cpu.real_bytes());
-    cpu.download_bytes(*bg.pixels, bytes.data(), bytes.size(), 0);
-    return bytes;
-  };
   CHECK(image(*s) == image(*once));
   s->set_preview_level(9);
   CHECK(s->preview_level() == kMaxPreviewLevel);  // clamped to the scene's coarsest

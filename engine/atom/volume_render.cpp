@@ -87,6 +87,10 @@ void VolumeRender::raymarch(const scene::ParamSet& p, const std::string& table, 
                                 (d.box_max.y - d.box_min.y) / float(d.dims.y),
                                 (d.box_max.z - d.box_min.z) / float(d.dims.z)});
   rp.step = float(p.get_real(table + ".step_voxels")) * voxel;
+  // A preview (the view moving, 1/2^level of the pixels upsampled) samples at least a voxel
+  // apart: half the samples at the default 1/2 voxel, the brightness kept by the opacity
+  // correction; the still frame (level 0) samples as asked.
+  if (shrink > 1) rp.step = std::max(rp.step, voxel);
   rp.reference_step = voxel;
   rp.mode =
       p.get_text(table + ".compositing") == "lerp" ? Compositing::lerp : Compositing::front_to_back;
