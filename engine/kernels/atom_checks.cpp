@@ -229,7 +229,7 @@ void validate(const DeviceApi&, const VolumeBrickParams& p, const Buffer<Real>& 
               const Buffer<Real4>& tf, const Buffer<Real4>& bricks) {
   const char* k = "volume_bricks";
   check_volume(p.volume, k);
-  in_range(k, "brick", p.brick, 2, 16);  // (brick + 1)^3 + (2 brick + 1)^3 voxels each
+  in_range(k, "brick", p.brick, 2, 16);  // (brick + 1)^3 voxels each
   in_range(k, "tf_size", p.tf_size, 2, 4096);
   at_least(k, "transfer function", tf.size(), p.tf_size);
   const uint64_t voxels = uint64_t(p.volume.dims.x) * p.volume.dims.y * p.volume.dims.z;

@@ -42,16 +42,8 @@ SphSimulation::SphSimulation(Backend& backend, const SphScene& scene, SphComm* c
   check_capacity(backend_, scene_, ranks);
   layout_ = build_particles(scene_);
   n_ = layout_.total();
+  check_buffer_size(backend_, n_, ranks);  // with the obstacle's particles
   capacity_ = initial_capacity(n_, ranks);
-  const Capabilities& caps = backend_.caps();
-  const uint64_t real4_bytes = 4 * backend_.real_bytes();
-  if (caps.max_buffer_bytes && uint64_t(capacity_) * real4_bytes > caps.max_buffer_bytes) {
-    const uint64_t fit = caps.max_buffer_bytes / real4_bytes;
-    throw_invalid("sph scene", "particles", std::to_string(n_),
-                  fmt::format("at most {} on {} (one buffer of positions holds at most {} MiB); "
-                              "use fewer particles or a device with larger buffers",
-                              fit, caps.device_name, caps.max_buffer_bytes >> 20));
-  }
 
   // The grid: cells of h (Euler, leapfrog) or h (1 + skin) (RK4) over the box.
   const double h = layout_.h;

@@ -220,10 +220,12 @@ class SphSimulation {
                       Buffer<Real4>& v_sorted, const Buffer<uint32_t>& ids,
                       Buffer<uint32_t>& ids_sorted);
   void sort_state();  // rebuild on pos_ with pos_, vel_, ids_ moved into cell order
-  // The particles a rank's buffers start with room for, and the refusal of a count the device
-  // cannot hold (sph_simulation_buffers.cpp).
+  // The particles a rank's buffers start with room for, and the refusals, before anything is
+  // allocated, of a count the device cannot hold: one buffer of positions, then the memory
+  // budget (sph_simulation_buffers.cpp).
   static uint32_t initial_capacity(uint64_t particles, int ranks);
   static void check_capacity(const Backend& b, const SphScene& s, int ranks);
+  static void check_buffer_size(const Backend& b, uint64_t particles, int ranks);
   void allocate_particle_buffers();
   // On several ranks: room for `local` particles in every per-particle buffer, the contents
   // kept (sph_simulation_buffers.cpp).

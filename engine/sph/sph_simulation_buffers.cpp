@@ -56,33 +56,43 @@ uint32_t SphSimulation::initial_capacity(uint64_t particles, int ranks) {
   return uint32_t(std::min<uint64_t>(particles, share + share / 4 + 1024));
 }
 
-// Refuses, before anything is allocated, a particle count the device cannot hold (on several
-// ranks: a rank's share, see initial_capacity).
-void SphSimulation::check_capacity(const Backend& b, const SphScene& s, int ranks) {
+namespace {
+
+// On several ranks the limits are a rank's (its share with room for halos, `n`), said so.
+std::string per_rank_note(uint64_t n, int ranks) {
+  if (ranks <= 1) return "";
+  return fmt::format(
+      " per rank's buffers (now {}: 1/{} of the particles and room for halos); "
+      "use more ranks,",
+      n, ranks);
+}
+
+}  // namespace
+
+void SphSimulation::check_buffer_size(const Backend& b, uint64_t particles, int ranks) {
   const Capabilities& caps = b.caps();
-  // The obstacle is checked once its size is known.
-  const uint64_t n = initial_capacity(s.particles, ranks);
-  // On several ranks the limit is a rank's: its share with room for halos.
-  const std::string per_rank =
-      ranks > 1 ? fmt::format(
-                      " per rank's buffers (now {}: 1/{} of the particles and room for "
-                      "halos); use more ranks,",
-                      n, ranks)
-                : "";
+  const uint64_t n = initial_capacity(particles, ranks);
   const uint64_t real4 = 4 * b.real_bytes();
   if (caps.max_buffer_bytes && n * real4 > caps.max_buffer_bytes)
-    throw_invalid("sph scene", "particles", std::to_string(s.particles),
+    throw_invalid("sph scene", "particles", std::to_string(particles),
                   fmt::format("at most {}{} on {} (one buffer of positions holds at most {} MiB); "
                               "use fewer particles or a device with larger buffers",
-                              caps.max_buffer_bytes / real4, per_rank, caps.device_name,
-                              caps.max_buffer_bytes >> 20));
+                              caps.max_buffer_bytes / real4, per_rank_note(n, ranks),
+                              caps.device_name, caps.max_buffer_bytes >> 20));
+}
+
+void SphSimulation::check_capacity(const Backend& b, const SphScene& s, int ranks) {
+  // The obstacle is checked once its size is known (check_buffer_size again).
+  check_buffer_size(b, s.particles, ranks);
+  const Capabilities& caps = b.caps();
+  const uint64_t n = initial_capacity(s.particles, ranks);
   // Without the row masks: a count they do not fit runs without them.
   const uint64_t per_particle =
       bytes_per_particle(b, false, false, s.model == SphPressureModel::dfsph);
   if (caps.device_memory_bytes && n * per_particle > caps.device_memory_bytes / 2)
     throw_invalid("sph scene", "particles", std::to_string(s.particles),
                   fmt::format("at most {}{} on {} ({} bytes per particle, {} MiB of memory)",
-                              caps.device_memory_bytes / 2 / per_particle, per_rank,
+                              caps.device_memory_bytes / 2 / per_particle, per_rank_note(n, ranks),
                               caps.device_name, per_particle, caps.device_memory_bytes >> 20));
 }
 
