@@ -1,9 +1,11 @@
 // Voxelization on the CPU reference (double precision), and the fp32 render path of the raymarch
-// (CpuRenderPrecision::fp32); the fp64 raymarch is the shared body on the thread pool.
+// (CpuRenderPrecision::fp32: several rays at a time, cpu_raymarch_lanes.h, where the compositing
+// allows it, else the shared body per pixel); the fp64 raymarch is the shared body on the pool.
 #include <algorithm>
 #include <vector>
 
 #include "engine/cpu/cpu_backend.h"
+#include "engine/cpu/cpu_raymarch_lanes.h"
 #include "engine/kernels/atom_body.h"
 #include "engine/kernels/atom_checks.h"
 #include "engine/kernels/grid_cell.h"
@@ -51,13 +53,23 @@ void CpuBackend::raymarch_fp32(const RaymarchParams& p, const Buffer<Real>& volu
   const size_t voxels = size_t(c.dims.x) * c.dims.y * c.dims.z;
   const UVec3 nb = brick_dims(p.volume, p.brick);
   const size_t brick_count = size_t(nb.x) * nb.y * nb.z;
-  // fp32 copies of what the rays read (a fraction of a frame's work: one read per voxel).
-  std::vector<float> vol(voxels);
+  const bool lanes = raymarch_lanes_apply(c);
+  // fp32 copies of what the rays read (a fraction of a frame's work: one read per voxel); padded
+  // by a voxel on each axis for the lanes.
+  std::vector<float> vol;
   std::vector<hd::V4<float>> tf32(p.tf_size), bricks32(brick_count), integral32;
   const double* vd = own(volume.impl(), k).as<double>();
-  pool_.parallel_for(voxels, 1 << 16, [&](size_t b, size_t e) {
-    for (size_t i = b; i < e; ++i) vol[i] = float(vd[i]);
-  });
+  if (lanes) {
+    vol.resize(size_t(c.dims.x + 1) * (c.dims.y + 1) * (c.dims.z + 1));
+    pool_.parallel_for(c.dims.z + 1, 1, [&](size_t b, size_t e) {
+      pad_volume(vd, c.dims, uint32_t(b), uint32_t(e), vol.data());
+    });
+  } else {
+    vol.resize(voxels);
+    pool_.parallel_for(voxels, 1 << 16, [&](size_t b, size_t e) {
+      for (size_t i = b; i < e; ++i) vol[i] = float(vd[i]);
+    });
+  }
   auto to_float4 = [](const double* d, std::vector<hd::V4<float>>& out) {
     for (size_t i = 0; i < out.size(); ++i)
       out[i] = {float(d[4 * i]), float(d[4 * i + 1]), float(d[4 * i + 2]), float(d[4 * i + 3])};
@@ -75,6 +87,11 @@ void CpuBackend::raymarch_fp32(const RaymarchParams& p, const Buffer<Real>& volu
   const uint32_t tiles_x = (p.width + volume::kRayTile - 1) / volume::kRayTile;
   const uint32_t tile_rows = (p.height + volume::kRayTile - 1) / volume::kRayTile;
   pool_.run_chunks(tile_rows, tile_rows, [&](size_t, size_t b, size_t e) {
+    if (lanes) {
+      raymarch_lanes(c, vol.data(), tf32.data(), bricks32.data(), b * tiles_x * tile_px,
+                     e * tiles_x * tile_px, out);
+      return;
+    }
     for (size_t id = b * tiles_x * tile_px; id < e * tiles_x * tile_px; ++id) {
       uint32_t x, y;
       if (!volume::tile_pixel(c, uint32_t(id), x, y)) continue;

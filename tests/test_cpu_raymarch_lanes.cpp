@@ -1,0 +1,201 @@
+// The CPU backend's raymarch several rays at a time (engine/cpu/cpu_raymarch_lanes.h) against the
+// shared body's march of one pixel in fp32 (KernelBody<raymarch>::pixel<float>, what CUDA runs):
+// the same image, pixel for pixel, over views from outside and inside the box, steps whose
+// opacity correction is a square root or a pow, early termination on and off, skipping on and off
+// with bricks whose index is a shift or a division, clipping and shading, and images whose size
+// leaves lanes idle at the end.
+#include <doctest/doctest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <random>
+#include <vector>
+
+#include "engine/atom/brick_skip.h"
+#include "engine/cpu/cpu_backend.h"
+#include "engine/cpu/cpu_raymarch_lanes.h"
+#include "engine/kernels/atom_body.h"
+#include "engine/kernels/atom_checks.h"
+
+using namespace masav;
+
+namespace {
+
+struct Scene {
+  VolumeDesc desc;
+  std::vector<double> values;
+  std::vector<Vec4d> tf;
+};
+
+// A sparse cloud (most voxels 0, as voxelized particles leave it) under a transfer function that
+// is transparent at 0: empty bricks between occupied ones.
+Scene sparse_cloud() {
+  const UVec3 dims{27, 22, 25};
+  Scene s{make_volume_desc(dims, {-1, -0.8f, -0.9f}, {1, 0.8f, 0.9f}, 0.0f, 1.0f), {}, {}};
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> u01(0.0, 1.0);
+  for (uint32_t k = 0; k < dims.z; ++k)
+    for (uint32_t j = 0; j < dims.y; ++j)
+      for (uint32_t i = 0; i < dims.x; ++i) {
+        const double dx = i - 13.0, dy = j - 11.0, dz = k - 12.0;
+        const double r2 = (dx * dx + dy * dy + dz * dz) / 60.0;
+        s.values.push_back(u01(rng) < 0.4 * std::exp(-r2) ? u01(rng) : 0.0);
+      }
+  s.tf.resize(64);
+  for (uint32_t k = 0; k < 64; ++k) {
+    const double v = k / 63.0;
+    s.tf[k] = {v, 1 - v, 0.5, v < 0.1 ? 0.0 : 0.6 * v};
+  }
+  return s;
+}
+
+// A smooth field, opaque enough for early termination, over a two-entry transfer function.
+Scene smooth_field() {
+  const UVec3 dims{20, 24, 16};
+  Scene s{make_volume_desc(dims, {-1, -1.2f, -0.8f}, {1, 1.2f, 0.8f}, -0.2f, 1.1f), {}, {}};
+  for (uint32_t k = 0; k < dims.z; ++k)
+    for (uint32_t j = 0; j < dims.y; ++j)
+      for (uint32_t i = 0; i < dims.x; ++i)
+        s.values.push_back(std::sin(0.4 * i) * std::cos(0.3 * j) + 0.05 * k);
+  s.tf = {{0.1, 0.2, 0.9, 0.0}, {1.0, 0.6, 0.1, 0.9}};
+  return s;
+}
+
+std::vector<hd::V4<float>> to_float4(const std::vector<Vec4d>& v) {
+  std::vector<hd::V4<float>> out(v.size());
+  for (size_t i = 0; i < v.size(); ++i)
+    out[i] = {float(v[i].x), float(v[i].y), float(v[i].z), float(v[i].w)};
+  return out;
+}
+
+struct Compared {
+  double max_diff = 0;   // largest |lanes - shared body| over every pixel's RGBA
+  double max_alpha = 0;  // the image's largest alpha (something is in view)
+  size_t identical = 0, pixels = 0;
+};
+
+Compared compare(const Scene& s, const RaymarchParams& rp) {
+  cpu::CpuBackend b(2);
+  auto vol = b.create<Real>(s.values.size(), "volume");
+  b.upload(vol, s.values);
+  auto tf = b.create<Real4>(s.tf.size(), "tf");
+  b.upload(tf, s.tf);
+  const UVec3 nb = brick_dims(rp.volume, rp.brick);
+  auto bricks = b.create<Real4>(size_t(nb.x) * nb.y * nb.z, "bricks");
+  atom::fill_bricks(b, {rp.volume, rp.brick, rp.tf_size}, vol, tf, bricks);
+  const std::vector<hd::V4<float>> tf32 = to_float4(s.tf), bricks32 = to_float4(b.download(bricks));
+  std::vector<float> vol32(s.values.begin(), s.values.end());
+  const UVec3 d = rp.volume.dims;
+  std::vector<float> padded(size_t(d.x + 1) * (d.y + 1) * (d.z + 1));
+  cpu::pad_volume(s.values.data(), d, 0, d.z + 1, padded.data());
+
+  const RaymarchLayout c = raymarch_layout(rp);
+  REQUIRE(cpu::raymarch_lanes_apply(c));
+  std::vector<double> image(4 * size_t(rp.width) * rp.height, -1.0);
+  cpu::raymarch_lanes(c, padded.data(), tf32.data(), bricks32.data(), 0,
+                      volume::tiled_pixel_count(rp.width, rp.height), image.data());
+  Compared out;
+  for (uint32_t y = 0; y < rp.height; ++y)
+    for (uint32_t x = 0; x < rp.width; ++x) {
+      const volume::V4<float> want = KernelBody<KernelId::raymarch>::pixel<float>(
+          c, x, y, vol32.data(), tf32.data(), bricks32.data(), nullptr);
+      const double* got = &image[4 * (size_t(y) * rp.width + x)];
+      const double w[4] = {want.r, want.g, want.b, want.a};
+      bool same = true;
+      for (int ch = 0; ch < 4; ++ch) {
+        out.max_diff = std::max(out.max_diff, std::abs(got[ch] - w[ch]));
+        same = same && got[ch] == w[ch];
+      }
+      out.max_alpha = std::max(out.max_alpha, w[3]);
+      out.identical += same;
+      ++out.pixels;
+    }
+  return out;
+}
+
+}  // namespace
+
+TEST_CASE("raymarch lanes: the CPU backend's rays in SIMD lanes give the shared body's image") {
+  const Scene scenes[] = {sparse_cloud(), smooth_field()};
+  size_t identical = 0, pixels = 0, cases = 0;
+  double worst = 0;
+  for (int si = 0; si < 2; ++si) {
+    const Scene& s = scenes[si];
+    const float voxel = (s.desc.box_max.x - s.desc.box_min.x) / float(s.desc.dims.x);
+    const Vec3f eyes[] = {{2.1f, -1.7f, 1.3f}, {0.05f, -0.1f, 0.02f}, {0.0f, -3.0f, 0.0f}};
+    for (const Vec3f& eye : eyes)
+      for (float step_voxels : {0.5f, 1.0f, 0.37f})
+        for (uint32_t brick : {2u, 3u})
+          for (bool skip : {true, false})
+            for (float termination : {0.99f, 1.0f}) {
+              RaymarchParams rp;
+              rp.volume = s.desc;
+              rp.width = 29;  // 4 tiles across, the last one partly outside: idle lanes
+              rp.height = 19;
+              rp.eye = eye;
+              rp.up = {0, 0, 1};
+              rp.fov_y_deg = 60.0f;
+              rp.reference_step = voxel;
+              rp.step = step_voxels * voxel;
+              rp.tf_size = uint32_t(s.tf.size());
+              rp.brick = brick;
+              rp.skip_empty = skip;
+              rp.termination_alpha = termination;
+              CAPTURE(si);
+              CAPTURE(eye.x);
+              CAPTURE(step_voxels);
+              CAPTURE(brick);
+              CAPTURE(skip);
+              CAPTURE(termination);
+              const Compared r = compare(s, rp);
+              CHECK(r.max_alpha > 0.2);
+              CHECK(r.max_diff <= 1e-6);
+              identical += r.identical;
+              pixels += r.pixels;
+              worst = std::max(worst, r.max_diff);
+              ++cases;
+            }
+  }
+  // Clipping and shading (per lane, on the samples that are visible).
+  for (bool shade : {false, true}) {
+    const Scene s = smooth_field();
+    RaymarchParams rp;
+    rp.volume = s.desc;
+    rp.width = 23;
+    rp.height = 17;
+    rp.eye = {2.5f, -1.5f, 2.0f};
+    rp.reference_step = 0.1f;
+    rp.step = 0.05f;
+    rp.tf_size = 2;
+    rp.clip.enabled = true;
+    rp.clip.axis = 1;
+    rp.clip.position = 0.4f;
+    rp.shading.enabled = shade;
+    CAPTURE(shade);
+    const Compared r = compare(s, rp);
+    CHECK(r.max_alpha > 0.2);
+    CHECK(r.max_diff <= 1e-6);
+    identical += r.identical;
+    pixels += r.pixels;
+    worst = std::max(worst, r.max_diff);
+    ++cases;
+  }
+  std::printf(
+      "raymarch lanes: %zu cases, %zu of %zu pixels bit-identical, largest difference %.3g\n",
+      cases, identical, pixels, worst);
+}
+
+TEST_CASE("pad_volume: one more voxel on each axis, a copy of the last") {
+  const UVec3 d{3, 2, 2};
+  std::vector<double> v(12);
+  for (size_t i = 0; i < v.size(); ++i) v[i] = double(i) + 0.5;
+  std::vector<float> p(4 * 3 * 3, -1.0f);
+  cpu::pad_volume(v.data(), d, 0, 3, p.data());
+  for (uint32_t k = 0; k < 3; ++k)
+    for (uint32_t j = 0; j < 3; ++j)
+      for (uint32_t i = 0; i < 4; ++i) {
+        const size_t src = (std::min(k, 1u) * 2 + std::min(j, 1u)) * 3 + std::min(i, 2u);
+        CHECK(p[(k * 3 + j) * 4 + i] == float(v[src]));
+      }
+}
