@@ -75,7 +75,7 @@ struct Compared {
   size_t identical = 0, pixels = 0;
 };
 
-Compared compare(const Scene& s, const RaymarchParams& rp) {
+Compared compare(const Scene& s, const RaymarchParams& rp, cpu::RayLanes lanes) {
   cpu::CpuBackend b(2);
   auto vol = b.create<Real>(s.values.size(), "volume");
   b.upload(vol, s.values);
@@ -94,7 +94,7 @@ Compared compare(const Scene& s, const RaymarchParams& rp) {
   REQUIRE(cpu::raymarch_lanes_apply(c));
   std::vector<double> image(4 * size_t(rp.width) * rp.height, -1.0);
   cpu::raymarch_lanes(c, padded.data(), tf32.data(), bricks32.data(), 0,
-                      volume::tiled_pixel_count(rp.width, rp.height), image.data());
+                      volume::tiled_pixel_count(rp.width, rp.height), image.data(), lanes);
   Compared out;
   for (uint32_t y = 0; y < rp.height; ++y)
     for (uint32_t x = 0; x < rp.width; ++x) {
@@ -114,9 +114,7 @@ Compared compare(const Scene& s, const RaymarchParams& rp) {
   return out;
 }
 
-}  // namespace
-
-TEST_CASE("raymarch lanes: the CPU backend's rays in SIMD lanes give the shared body's image") {
+void check_lanes(cpu::RayLanes lanes, const char* name) {
   const Scene scenes[] = {sparse_cloud(), smooth_field()};
   size_t identical = 0, pixels = 0, cases = 0;
   double worst = 0;
@@ -148,7 +146,7 @@ TEST_CASE("raymarch lanes: the CPU backend's rays in SIMD lanes give the shared 
               CAPTURE(brick);
               CAPTURE(skip);
               CAPTURE(termination);
-              const Compared r = compare(s, rp);
+              const Compared r = compare(s, rp, lanes);
               CHECK(r.max_alpha > 0.2);
               CHECK(r.max_diff <= 1e-6);
               identical += r.identical;
@@ -173,7 +171,7 @@ TEST_CASE("raymarch lanes: the CPU backend's rays in SIMD lanes give the shared 
     rp.clip.position = 0.4f;
     rp.shading.enabled = shade;
     CAPTURE(shade);
-    const Compared r = compare(s, rp);
+    const Compared r = compare(s, rp, lanes);
     CHECK(r.max_alpha > 0.2);
     CHECK(r.max_diff <= 1e-6);
     identical += r.identical;
@@ -182,8 +180,23 @@ TEST_CASE("raymarch lanes: the CPU backend's rays in SIMD lanes give the shared 
     ++cases;
   }
   std::printf(
-      "raymarch lanes: %zu cases, %zu of %zu pixels bit-identical, largest difference %.3g\n",
-      cases, identical, pixels, worst);
+      "raymarch lanes (%s): %zu cases, %zu of %zu pixels bit-identical, largest difference "
+      "%.3g\n",
+      name, cases, identical, pixels, worst);
+}
+
+}  // namespace
+
+TEST_CASE("raymarch lanes: the CPU backend's rays in SIMD lanes give the shared body's image") {
+  SUBCASE("four lanes (SSE)") {
+    check_lanes(cpu::RayLanes::four, "four");
+  }
+  SUBCASE("eight lanes (AVX2)") {
+    if (cpu::ray_lanes_avx2_available())
+      check_lanes(cpu::RayLanes::best, "eight");
+    else
+      std::printf("note: this CPU has no AVX2: the eight-lane march is not tested here\n");
+  }
 }
 
 TEST_CASE("pad_volume: one more voxel on each axis, a copy of the last") {

@@ -1,7 +1,7 @@
 // The CPU backend's fp32 raymarch, several rays at a time. One ray's samples form a chain of
 // dependent operations (position, trilinear gather, transfer lookup, opacity, compositing) about
-// a hundred cycles long, of which an out-of-order core overlaps little; marching kRayLanes rays
-// side by side gives it independent chains and lets the arithmetic run as SIMD across rays.
+// a hundred cycles long, of which an out-of-order core overlaps little; marching 4 or 8 rays side
+// by side gives it independent chains and lets the arithmetic run as SIMD across rays.
 // Each lane follows volume::raymarch_pixel's march exactly (the same segments, skips and
 // termination, and per sample the same operations in the same order), and takes the next pixel
 // as soon as its ray ends, so lanes stay busy whatever their rays' lengths.
@@ -24,11 +24,16 @@ bool raymarch_lanes_apply(const RaymarchLayout& c);
 // slices z_begin <= k < z_end of dims.z + 1: what raymarch_lanes reads.
 void pad_volume(const double* volume, UVec3 dims, uint32_t z_begin, uint32_t z_end, float* padded);
 
+// Lanes per vector: eight where the CPU has AVX2 (best), else four; `four` forces four.
+enum class RayLanes { best, four };
+bool ray_lanes_avx2_available();
+
 // Marches invocations [begin, end) of volume::tile_pixel's order and writes each pixel's RGBA to
 // image[4 * (y * width + x) ...] (padding invocations write nothing). volume from pad_volume; tf
 // and bricks as the raymarch kernel reads them, in fp32.
 void raymarch_lanes(const RaymarchLayout& c, const float* volume, const hd::V4<float>* tf,
-                    const hd::V4<float>* bricks, uint64_t begin, uint64_t end, double* image);
+                    const hd::V4<float>* bricks, uint64_t begin, uint64_t end, double* image,
+                    RayLanes lanes = RayLanes::best);
 
 }  // namespace masav::cpu
 
