@@ -2,8 +2,8 @@
 // shared body's march of one pixel in fp32 (KernelBody<raymarch>::pixel<float>, what CUDA runs):
 // the same image, pixel for pixel, over views from outside and inside the box, steps whose
 // opacity correction is a square root or a pow, early termination on and off, skipping on and off
-// with bricks whose index is a shift or a division, clipping and shading, and images whose size
-// leaves lanes idle at the end.
+// with bricks whose index is a shift or a division, clipping, gradient shading (inside the volume
+// and at its faces, headlight or fixed light), and images whose size leaves lanes idle at the end.
 #include <doctest/doctest.h>
 
 #include <algorithm>
@@ -179,6 +179,40 @@ void check_lanes(cpu::RayLanes lanes, const char* name) {
     worst = std::max(worst, r.max_diff);
     ++cases;
   }
+  // Gradient shading: lanes inside the volume (32 voxels of the cell's edges) and near its faces
+  // (six trilinear lookups), the light at the camera or fixed, from outside and inside the box.
+  const Scene shaded[] = {sparse_cloud(), smooth_field()};
+  for (int si = 0; si < 2; ++si)
+    for (const Vec3f& eye : {Vec3f{2.1f, -1.7f, 1.3f}, Vec3f{0.05f, -0.1f, 0.02f}})
+      for (bool headlight : {true, false}) {
+        const Scene& s = shaded[si];
+        const float voxel = (s.desc.box_max.x - s.desc.box_min.x) / float(s.desc.dims.x);
+        RaymarchParams rp;
+        rp.volume = s.desc;
+        rp.width = 29;
+        rp.height = 19;
+        rp.eye = eye;
+        rp.up = {0, 0, 1};
+        rp.fov_y_deg = 60.0f;
+        rp.reference_step = voxel;
+        rp.step = 0.5f * voxel;
+        rp.tf_size = uint32_t(s.tf.size());
+        rp.shading.enabled = true;
+        rp.shading.headlight = headlight;
+        rp.shading.light_dir = {0.3f, -1.0f, 0.5f};
+        rp.shading.specular = 0.6f;
+        rp.shading.shininess = 12.0f;
+        CAPTURE(si);
+        CAPTURE(eye.x);
+        CAPTURE(headlight);
+        const Compared r = compare(s, rp, lanes);
+        CHECK(r.max_alpha > 0.2);
+        CHECK(r.max_diff <= 1e-6);
+        identical += r.identical;
+        pixels += r.pixels;
+        worst = std::max(worst, r.max_diff);
+        ++cases;
+      }
   std::printf(
       "raymarch lanes (%s): %zu cases, %zu of %zu pixels bit-identical, largest difference "
       "%.3g\n",
