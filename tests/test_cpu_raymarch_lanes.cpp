@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "engine/atom/brick_skip.h"
+#include "engine/atom/preintegration.h"
 #include "engine/cpu/cpu_backend.h"
 #include "engine/cpu/cpu_raymarch_lanes.h"
 #include "engine/kernels/atom_body.h"
@@ -85,6 +86,7 @@ Compared compare(const Scene& s, const RaymarchParams& rp, cpu::RayLanes lanes) 
   auto bricks = b.create<Real4>(size_t(nb.x) * nb.y * nb.z, "bricks");
   atom::fill_bricks(b, {rp.volume, rp.brick, rp.tf_size}, vol, tf, bricks);
   const std::vector<hd::V4<float>> tf32 = to_float4(s.tf), bricks32 = to_float4(b.download(bricks));
+  const std::vector<hd::V4<float>> integral32 = to_float4(atom::preintegrate_transfer(s.tf));
   std::vector<float> vol32(s.values.begin(), s.values.end());
   const UVec3 d = rp.volume.dims;
   std::vector<float> padded(size_t(d.x + 1) * (d.y + 1) * (d.z + 1));
@@ -93,13 +95,13 @@ Compared compare(const Scene& s, const RaymarchParams& rp, cpu::RayLanes lanes) 
   const RaymarchLayout c = raymarch_layout(rp);
   REQUIRE(cpu::raymarch_lanes_apply(c));
   std::vector<double> image(4 * size_t(rp.width) * rp.height, -1.0);
-  cpu::raymarch_lanes(c, padded.data(), tf32.data(), bricks32.data(), 0,
+  cpu::raymarch_lanes(c, padded.data(), tf32.data(), bricks32.data(), integral32.data(), 0,
                       volume::tiled_pixel_count(rp.width, rp.height), image.data(), lanes);
   Compared out;
   for (uint32_t y = 0; y < rp.height; ++y)
     for (uint32_t x = 0; x < rp.width; ++x) {
       const volume::V4<float> want = KernelBody<KernelId::raymarch>::pixel<float>(
-          c, x, y, vol32.data(), tf32.data(), bricks32.data(), nullptr);
+          c, x, y, vol32.data(), tf32.data(), bricks32.data(), integral32.data());
       const double* got = &image[4 * (size_t(y) * rp.width + x)];
       const double w[4] = {want.r, want.g, want.b, want.a};
       bool same = true;
@@ -126,34 +128,37 @@ void check_lanes(cpu::RayLanes lanes, const char* name) {
       for (float step_voxels : {0.5f, 1.0f, 0.37f})
         for (uint32_t brick : {2u, 3u})
           for (bool skip : {true, false})
-            for (float termination : {0.99f, 1.0f}) {
-              RaymarchParams rp;
-              rp.volume = s.desc;
-              rp.width = 29;  // 4 tiles across, the last one partly outside: idle lanes
-              rp.height = 19;
-              rp.eye = eye;
-              rp.up = {0, 0, 1};
-              rp.fov_y_deg = 60.0f;
-              rp.reference_step = voxel;
-              rp.step = step_voxels * voxel;
-              rp.tf_size = uint32_t(s.tf.size());
-              rp.brick = brick;
-              rp.skip_empty = skip;
-              rp.termination_alpha = termination;
-              CAPTURE(si);
-              CAPTURE(eye.x);
-              CAPTURE(step_voxels);
-              CAPTURE(brick);
-              CAPTURE(skip);
-              CAPTURE(termination);
-              const Compared r = compare(s, rp, lanes);
-              CHECK(r.max_alpha > 0.2);
-              CHECK(r.max_diff <= 1e-6);
-              identical += r.identical;
-              pixels += r.pixels;
-              worst = std::max(worst, r.max_diff);
-              ++cases;
-            }
+            for (float termination : {0.99f, 1.0f})
+              for (bool pre : {false, true}) {
+                RaymarchParams rp;
+                rp.volume = s.desc;
+                rp.width = 29;  // 4 tiles across, the last one partly outside: idle lanes
+                rp.height = 19;
+                rp.eye = eye;
+                rp.up = {0, 0, 1};
+                rp.fov_y_deg = 60.0f;
+                rp.reference_step = voxel;
+                rp.step = step_voxels * voxel;
+                rp.tf_size = uint32_t(s.tf.size());
+                rp.brick = brick;
+                rp.skip_empty = skip;
+                rp.termination_alpha = termination;
+                rp.preintegrate = pre;
+                CAPTURE(si);
+                CAPTURE(eye.x);
+                CAPTURE(step_voxels);
+                CAPTURE(brick);
+                CAPTURE(skip);
+                CAPTURE(termination);
+                CAPTURE(pre);
+                const Compared r = compare(s, rp, lanes);
+                CHECK(r.max_alpha > 0.2);
+                CHECK(r.max_diff <= 1e-6);
+                identical += r.identical;
+                pixels += r.pixels;
+                worst = std::max(worst, r.max_diff);
+                ++cases;
+              }
   }
   // Clipping and shading (per lane, on the samples that are visible).
   for (bool shade : {false, true}) {
@@ -184,35 +189,38 @@ void check_lanes(cpu::RayLanes lanes, const char* name) {
   const Scene shaded[] = {sparse_cloud(), smooth_field()};
   for (int si = 0; si < 2; ++si)
     for (const Vec3f& eye : {Vec3f{2.1f, -1.7f, 1.3f}, Vec3f{0.05f, -0.1f, 0.02f}})
-      for (bool headlight : {true, false}) {
-        const Scene& s = shaded[si];
-        const float voxel = (s.desc.box_max.x - s.desc.box_min.x) / float(s.desc.dims.x);
-        RaymarchParams rp;
-        rp.volume = s.desc;
-        rp.width = 29;
-        rp.height = 19;
-        rp.eye = eye;
-        rp.up = {0, 0, 1};
-        rp.fov_y_deg = 60.0f;
-        rp.reference_step = voxel;
-        rp.step = 0.5f * voxel;
-        rp.tf_size = uint32_t(s.tf.size());
-        rp.shading.enabled = true;
-        rp.shading.headlight = headlight;
-        rp.shading.light_dir = {0.3f, -1.0f, 0.5f};
-        rp.shading.specular = 0.6f;
-        rp.shading.shininess = 12.0f;
-        CAPTURE(si);
-        CAPTURE(eye.x);
-        CAPTURE(headlight);
-        const Compared r = compare(s, rp, lanes);
-        CHECK(r.max_alpha > 0.2);
-        CHECK(r.max_diff <= 1e-6);
-        identical += r.identical;
-        pixels += r.pixels;
-        worst = std::max(worst, r.max_diff);
-        ++cases;
-      }
+      for (bool headlight : {true, false})
+        for (bool pre : {false, true}) {
+          const Scene& s = shaded[si];
+          const float voxel = (s.desc.box_max.x - s.desc.box_min.x) / float(s.desc.dims.x);
+          RaymarchParams rp;
+          rp.volume = s.desc;
+          rp.width = 29;
+          rp.height = 19;
+          rp.eye = eye;
+          rp.up = {0, 0, 1};
+          rp.fov_y_deg = 60.0f;
+          rp.reference_step = voxel;
+          rp.step = 0.5f * voxel;
+          rp.tf_size = uint32_t(s.tf.size());
+          rp.shading.enabled = true;
+          rp.shading.headlight = headlight;
+          rp.shading.light_dir = {0.3f, -1.0f, 0.5f};
+          rp.shading.specular = 0.6f;
+          rp.shading.shininess = 12.0f;
+          rp.preintegrate = pre;
+          CAPTURE(pre);
+          CAPTURE(si);
+          CAPTURE(eye.x);
+          CAPTURE(headlight);
+          const Compared r = compare(s, rp, lanes);
+          CHECK(r.max_alpha > 0.2);
+          CHECK(r.max_diff <= 1e-6);
+          identical += r.identical;
+          pixels += r.pixels;
+          worst = std::max(worst, r.max_diff);
+          ++cases;
+        }
   std::printf(
       "raymarch lanes (%s): %zu cases, %zu of %zu pixels bit-identical, largest difference "
       "%.3g\n",

@@ -51,7 +51,7 @@ constexpr int kRayLanes = 8;
 }  // namespace
 
 bool raymarch_lanes_apply(const RaymarchLayout& c) {
-  return (c.bits & (kRayLerp | kRayPreintegrate)) == 0u;
+  return (c.bits & kRayLerp) == 0u;
 }
 
 bool ray_lanes_avx2_available() {
@@ -80,20 +80,29 @@ void pad_volume(const double* volume, UVec3 dims, uint32_t z_begin, uint32_t z_e
 // Outside the class so that the target attribute applies to this one entry point alone.
 __attribute__((target("avx2"))) static void march8(const RaymarchLayout& c, const float* volume,
                                                    const hd::V4<float>* tf,
-                                                   const hd::V4<float>* bricks, uint64_t begin,
+                                                   const hd::V4<float>* bricks,
+                                                   const hd::V4<float>* tf_integral, uint64_t begin,
                                                    uint64_t end, double* image) {
-  lanes8::LaneMarch(c, volume, tf, bricks, image).run(begin, end);
+  lanes8::LaneMarch m(c, volume, tf, bricks, tf_integral, image);
+  if (c.bits & kRayPreintegrate)
+    m.run_preintegrated(begin, end);
+  else
+    m.run(begin, end);
 }
 #endif
 
 void raymarch_lanes(const RaymarchLayout& c, const float* volume, const hd::V4<float>* tf,
-                    const hd::V4<float>* bricks, uint64_t begin, uint64_t end, double* image,
-                    RayLanes lanes) {
+                    const hd::V4<float>* bricks, const hd::V4<float>* tf_integral, uint64_t begin,
+                    uint64_t end, double* image, RayLanes lanes) {
 #if MASAV_RAY_LANES_HAVE_AVX2
   if (lanes != RayLanes::four && ray_lanes_avx2_available())
-    return march8(c, volume, tf, bricks, begin, end, image);
+    return march8(c, volume, tf, bricks, tf_integral, begin, end, image);
 #endif
-  lanes4::LaneMarch(c, volume, tf, bricks, image).run(begin, end);
+  lanes4::LaneMarch m(c, volume, tf, bricks, tf_integral, image);
+  if (c.bits & kRayPreintegrate)
+    m.run_preintegrated(begin, end);
+  else
+    m.run(begin, end);
 }
 
 }  // namespace masav::cpu

@@ -15,8 +15,8 @@
 
 namespace masav::cpu {
 
-// Whether raymarch_lanes renders layout c: front-to-back compositing sampled at segment midpoints
-// (not lerp, not pre-integrated); shading and clipping included.
+// Whether raymarch_lanes renders layout c: front-to-back compositing, sampled at segment
+// midpoints or pre-integrated (not lerp); shading and clipping included.
 bool raymarch_lanes_apply(const RaymarchLayout& c);
 
 // The volume in fp32 with one more voxel on each axis, a copy of the last (padded[(k * (dims.y + 1)
@@ -29,11 +29,12 @@ enum class RayLanes { best, four };
 bool ray_lanes_avx2_available();
 
 // Marches invocations [begin, end) of volume::tile_pixel's order and writes each pixel's RGBA to
-// image[4 * (y * width + x) ...] (padding invocations write nothing). volume from pad_volume; tf
-// and bricks as the raymarch kernel reads them, in fp32.
+// image[4 * (y * width + x) ...] (padding invocations write nothing). volume from pad_volume; tf,
+// bricks and tf_integral (read where c is pre-integrated) as the raymarch kernel reads them, in
+// fp32.
 void raymarch_lanes(const RaymarchLayout& c, const float* volume, const hd::V4<float>* tf,
-                    const hd::V4<float>* bricks, uint64_t begin, uint64_t end, double* image,
-                    RayLanes lanes = RayLanes::best);
+                    const hd::V4<float>* bricks, const hd::V4<float>* tf_integral, uint64_t begin,
+                    uint64_t end, double* image, RayLanes lanes = RayLanes::best);
 
 }  // namespace masav::cpu
 

@@ -88,8 +88,8 @@ void CpuBackend::raymarch_fp32(const RaymarchParams& p, const Buffer<Real>& volu
   const uint32_t tile_rows = (p.height + volume::kRayTile - 1) / volume::kRayTile;
   pool_.run_chunks(tile_rows, tile_rows, [&](size_t, size_t b, size_t e) {
     if (lanes) {
-      raymarch_lanes(c, vol.data(), tf32.data(), bricks32.data(), b * tiles_x * tile_px,
-                     e * tiles_x * tile_px, out);
+      raymarch_lanes(c, vol.data(), tf32.data(), bricks32.data(), integral32.data(),
+                     b * tiles_x * tile_px, e * tiles_x * tile_px, out);
       return;
     }
     for (size_t id = b * tiles_x * tile_px; id < e * tiles_x * tile_px; ++id) {
