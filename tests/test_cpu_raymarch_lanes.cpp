@@ -120,6 +120,14 @@ void check_lanes(cpu::RayLanes lanes, const char* name) {
   const Scene scenes[] = {sparse_cloud(), smooth_field()};
   size_t identical = 0, pixels = 0, cases = 0;
   double worst = 0;
+  auto check = [&](const Compared& r) {
+    CHECK(r.max_alpha > 0.2);  // something is in view
+    CHECK(r.max_diff <= 1e-6);
+    identical += r.identical;
+    pixels += r.pixels;
+    worst = std::max(worst, r.max_diff);
+    ++cases;
+  };
   for (int si = 0; si < 2; ++si) {
     const Scene& s = scenes[si];
     const float voxel = (s.desc.box_max.x - s.desc.box_min.x) / float(s.desc.dims.x);
@@ -151,13 +159,7 @@ void check_lanes(cpu::RayLanes lanes, const char* name) {
                 CAPTURE(skip);
                 CAPTURE(termination);
                 CAPTURE(pre);
-                const Compared r = compare(s, rp, lanes);
-                CHECK(r.max_alpha > 0.2);
-                CHECK(r.max_diff <= 1e-6);
-                identical += r.identical;
-                pixels += r.pixels;
-                worst = std::max(worst, r.max_diff);
-                ++cases;
+                check(compare(s, rp, lanes));
               }
   }
   // Clipping and shading (per lane, on the samples that are visible).
@@ -176,22 +178,15 @@ void check_lanes(cpu::RayLanes lanes, const char* name) {
     rp.clip.position = 0.4f;
     rp.shading.enabled = shade;
     CAPTURE(shade);
-    const Compared r = compare(s, rp, lanes);
-    CHECK(r.max_alpha > 0.2);
-    CHECK(r.max_diff <= 1e-6);
-    identical += r.identical;
-    pixels += r.pixels;
-    worst = std::max(worst, r.max_diff);
-    ++cases;
+    check(compare(s, rp, lanes));
   }
   // Gradient shading: lanes inside the volume (32 voxels of the cell's edges) and near its faces
   // (six trilinear lookups), the light at the camera or fixed, from outside and inside the box.
-  const Scene shaded[] = {sparse_cloud(), smooth_field()};
   for (int si = 0; si < 2; ++si)
     for (const Vec3f& eye : {Vec3f{2.1f, -1.7f, 1.3f}, Vec3f{0.05f, -0.1f, 0.02f}})
       for (bool headlight : {true, false})
         for (bool pre : {false, true}) {
-          const Scene& s = shaded[si];
+          const Scene& s = scenes[si];
           const float voxel = (s.desc.box_max.x - s.desc.box_min.x) / float(s.desc.dims.x);
           RaymarchParams rp;
           rp.volume = s.desc;
@@ -213,13 +208,7 @@ void check_lanes(cpu::RayLanes lanes, const char* name) {
           CAPTURE(si);
           CAPTURE(eye.x);
           CAPTURE(headlight);
-          const Compared r = compare(s, rp, lanes);
-          CHECK(r.max_alpha > 0.2);
-          CHECK(r.max_diff <= 1e-6);
-          identical += r.identical;
-          pixels += r.pixels;
-          worst = std::max(worst, r.max_diff);
-          ++cases;
+          check(compare(s, rp, lanes));
         }
   std::printf(
       "raymarch lanes (%s): %zu cases, %zu of %zu pixels bit-identical, largest difference "
