@@ -2,9 +2,12 @@
 // dependent operations (position, trilinear gather, transfer lookup, opacity, compositing) about
 // a hundred cycles long, of which an out-of-order core overlaps little; marching 4 or 8 rays side
 // by side gives it independent chains and lets the arithmetic run as SIMD across rays.
-// Each lane follows volume::raymarch_pixel's march exactly (the same segments, skips and
-// termination, and per sample the same operations in the same order), and takes the next pixel
-// as soon as its ray ends, so lanes stay busy whatever their rays' lengths.
+// Each lane takes the samples of volume::raymarch_pixel's march (or the pre-integrated one) whose
+// value could be visible, with the same operations in the same order and the same termination, so
+// the image is that march's bit for bit; it looks its brick up at every sample instead of once per
+// cube of occupied bricks, and may take a transparent sample more after a skip (it composites
+// exactly 0). A lane takes the next pixel as soon as its ray ends, so lanes stay busy whatever
+// their rays' lengths.
 #ifndef MASAV_ENGINE_CPU_CPU_RAYMARCH_LANES_H
 #define MASAV_ENGINE_CPU_CPU_RAYMARCH_LANES_H
 
