@@ -2,6 +2,7 @@
 // A scalar volume and one raymarched frame of it on a backend: what the raymarch test files
 // (test_volume.cpp, test_volume_clip_shade.cpp) render with.
 #include <cmath>
+#include <random>
 #include <vector>
 
 #include "engine/atom/brick_skip.h"
@@ -30,6 +31,24 @@ inline std::vector<Vec4d> render(Backend& b, const RaymarchParams& rp, const Vol
   const Buffer<Real4> table = atom::upload_preintegrated(b, tf);
   b.raymarch(rp, v, t, bricks, img, &table);
   return b.download(img);
+}
+
+// A sparse cloud as voxelized particles leave it, 27 x 22 x 25 voxels: most 0, the rest scattered
+// with values in [0, 1), a voxel being nonzero with probability `fill` at the centre falling off
+// as a Gaussian (seeded: the same volume every run).
+inline Volume sparse_cloud(double fill) {
+  const UVec3 dims{27, 22, 25};
+  Volume vol{make_volume_desc(dims, {-1, -0.8f, -0.9f}, {1, 0.8f, 0.9f}, 0.0f, 1.0f), {}};
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> u01(0.0, 1.0);
+  for (uint32_t k = 0; k < dims.z; ++k)
+    for (uint32_t j = 0; j < dims.y; ++j)
+      for (uint32_t i = 0; i < dims.x; ++i) {
+        const double dx = i - 13.0, dy = j - 11.0, dz = k - 12.0;
+        const double r2 = (dx * dx + dy * dy + dz * dz) / 60.0;
+        vol.values.push_back(u01(rng) < fill * std::exp(-r2) ? u01(rng) : 0.0);
+      }
+  return vol;
 }
 
 // A smooth 20 x 24 x 16 volume, a 128-entry transfer function and a 40 x 30 view of it at a

@@ -9,7 +9,6 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <random>
 #include <vector>
 
 #include "engine/atom/brick_skip.h"
@@ -18,32 +17,21 @@
 #include "engine/cpu/cpu_raymarch_lanes.h"
 #include "engine/kernels/atom_body.h"
 #include "engine/kernels/atom_checks.h"
+#include "tests/raymarch_render.h"
 
 using namespace masav;
 
 namespace {
 
 struct Scene {
-  VolumeDesc desc;
-  std::vector<double> values;
+  test::Volume vol;
   std::vector<Vec4d> tf;
 };
 
-// A sparse cloud (most voxels 0, as voxelized particles leave it) under a transfer function that
-// is transparent at 0: empty bricks between occupied ones.
+// A sparse cloud under a transfer function that is transparent at 0: empty bricks between
+// occupied ones.
 Scene sparse_cloud() {
-  const UVec3 dims{27, 22, 25};
-  Scene s{make_volume_desc(dims, {-1, -0.8f, -0.9f}, {1, 0.8f, 0.9f}, 0.0f, 1.0f), {}, {}};
-  std::mt19937 rng(11);
-  std::uniform_real_distribution<double> u01(0.0, 1.0);
-  for (uint32_t k = 0; k < dims.z; ++k)
-    for (uint32_t j = 0; j < dims.y; ++j)
-      for (uint32_t i = 0; i < dims.x; ++i) {
-        const double dx = i - 13.0, dy = j - 11.0, dz = k - 12.0;
-        const double r2 = (dx * dx + dy * dy + dz * dz) / 60.0;
-        s.values.push_back(u01(rng) < 0.4 * std::exp(-r2) ? u01(rng) : 0.0);
-      }
-  s.tf.resize(64);
+  Scene s{test::sparse_cloud(0.4), std::vector<Vec4d>(64)};
   for (uint32_t k = 0; k < 64; ++k) {
     const double v = k / 63.0;
     s.tf[k] = {v, 1 - v, 0.5, v < 0.1 ? 0.0 : 0.6 * v};
@@ -51,16 +39,10 @@ Scene sparse_cloud() {
   return s;
 }
 
-// A smooth field, opaque enough for early termination, over a two-entry transfer function.
+// The smooth field of the cross-backend comparisons, opaque enough for early termination, over a
+// two-entry transfer function.
 Scene smooth_field() {
-  const UVec3 dims{20, 24, 16};
-  Scene s{make_volume_desc(dims, {-1, -1.2f, -0.8f}, {1, 1.2f, 0.8f}, -0.2f, 1.1f), {}, {}};
-  for (uint32_t k = 0; k < dims.z; ++k)
-    for (uint32_t j = 0; j < dims.y; ++j)
-      for (uint32_t i = 0; i < dims.x; ++i)
-        s.values.push_back(std::sin(0.4 * i) * std::cos(0.3 * j) + 0.05 * k);
-  s.tf = {{0.1, 0.2, 0.9, 0.0}, {1.0, 0.6, 0.1, 0.9}};
-  return s;
+  return {test::smooth_case().vol, {{0.1, 0.2, 0.9, 0.0}, {1.0, 0.6, 0.1, 0.9}}};
 }
 
 std::vector<hd::V4<float>> to_float4(const std::vector<Vec4d>& v) {
@@ -78,8 +60,8 @@ struct Compared {
 
 Compared compare(const Scene& s, const RaymarchParams& rp, cpu::RayLanes lanes) {
   cpu::CpuBackend b(2);
-  auto vol = b.create<Real>(s.values.size(), "volume");
-  b.upload(vol, s.values);
+  auto vol = b.create<Real>(s.vol.values.size(), "volume");
+  b.upload(vol, s.vol.values);
   auto tf = b.create<Real4>(s.tf.size(), "tf");
   b.upload(tf, s.tf);
   const UVec3 nb = brick_dims(rp.volume, rp.brick);
@@ -87,10 +69,10 @@ Compared compare(const Scene& s, const RaymarchParams& rp, cpu::RayLanes lanes) 
   atom::fill_bricks(b, {rp.volume, rp.brick, rp.tf_size}, vol, tf, bricks);
   const std::vector<hd::V4<float>> tf32 = to_float4(s.tf), bricks32 = to_float4(b.download(bricks));
   const std::vector<hd::V4<float>> integral32 = to_float4(atom::preintegrate_transfer(s.tf));
-  std::vector<float> vol32(s.values.begin(), s.values.end());
+  std::vector<float> vol32(s.vol.values.begin(), s.vol.values.end());
   const UVec3 d = rp.volume.dims;
   std::vector<float> padded(size_t(d.x + 1) * (d.y + 1) * (d.z + 1));
-  cpu::pad_volume(s.values.data(), d, 0, d.z + 1, padded.data());
+  cpu::pad_volume(s.vol.values.data(), d, 0, d.z + 1, padded.data());
 
   const RaymarchLayout c = raymarch_layout(rp);
   REQUIRE(cpu::raymarch_lanes_apply(c));
@@ -130,7 +112,7 @@ void check_lanes(cpu::RayLanes lanes, const char* name) {
   };
   for (int si = 0; si < 2; ++si) {
     const Scene& s = scenes[si];
-    const float voxel = (s.desc.box_max.x - s.desc.box_min.x) / float(s.desc.dims.x);
+    const float voxel = (s.vol.desc.box_max.x - s.vol.desc.box_min.x) / float(s.vol.desc.dims.x);
     const Vec3f eyes[] = {{2.1f, -1.7f, 1.3f}, {0.05f, -0.1f, 0.02f}, {0.0f, -3.0f, 0.0f}};
     for (const Vec3f& eye : eyes)
       for (float step_voxels : {0.5f, 1.0f, 0.37f})
@@ -139,7 +121,7 @@ void check_lanes(cpu::RayLanes lanes, const char* name) {
             for (float termination : {0.99f, 1.0f})
               for (bool pre : {false, true}) {
                 RaymarchParams rp;
-                rp.volume = s.desc;
+                rp.volume = s.vol.desc;
                 rp.width = 29;  // 4 tiles across, the last one partly outside: idle lanes
                 rp.height = 19;
                 rp.eye = eye;
@@ -166,7 +148,7 @@ void check_lanes(cpu::RayLanes lanes, const char* name) {
   for (bool shade : {false, true}) {
     const Scene s = smooth_field();
     RaymarchParams rp;
-    rp.volume = s.desc;
+    rp.volume = s.vol.desc;
     rp.width = 23;
     rp.height = 17;
     rp.eye = {2.5f, -1.5f, 2.0f};
@@ -187,9 +169,10 @@ void check_lanes(cpu::RayLanes lanes, const char* name) {
       for (bool headlight : {true, false})
         for (bool pre : {false, true}) {
           const Scene& s = scenes[si];
-          const float voxel = (s.desc.box_max.x - s.desc.box_min.x) / float(s.desc.dims.x);
+          const float voxel =
+              (s.vol.desc.box_max.x - s.vol.desc.box_min.x) / float(s.vol.desc.dims.x);
           RaymarchParams rp;
-          rp.volume = s.desc;
+          rp.volume = s.vol.desc;
           rp.width = 29;
           rp.height = 19;
           rp.eye = eye;

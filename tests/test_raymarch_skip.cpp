@@ -59,18 +59,7 @@ TEST_CASE("raymarch: the segment after a skip is the first whose midpoint is pas
 }
 
 TEST_CASE("raymarch: skipping with bricks of 3, 4 and 5 voxels keeps the image") {
-  // A sparse cloud as voxelized particles leave it: most voxels 0, the rest scattered.
-  const UVec3 dims{27, 22, 25};
-  test::Volume vol{make_volume_desc(dims, {-1, -0.8f, -0.9f}, {1, 0.8f, 0.9f}, 0.0f, 1.0f), {}};
-  std::mt19937 rng(11);
-  std::uniform_real_distribution<double> u01(0.0, 1.0);
-  for (uint32_t k = 0; k < dims.z; ++k)
-    for (uint32_t j = 0; j < dims.y; ++j)
-      for (uint32_t i = 0; i < dims.x; ++i) {
-        const double dx = i - 13.0, dy = j - 11.0, dz = k - 12.0;
-        const double r2 = (dx * dx + dy * dy + dz * dz) / 60.0;
-        vol.values.push_back(u01(rng) < 0.25 * std::exp(-r2) ? u01(rng) : 0.0);
-      }
+  const test::Volume vol = test::sparse_cloud(0.25);
   std::vector<Vec4d> tf(64);
   for (uint32_t k = 0; k < 64; ++k) {
     const double v = k / 63.0;
