@@ -183,15 +183,17 @@ void VulkanBackend::run(const KernelSpec& spec,
 
 void VulkanBackend::dispatch_kernel(KernelId kernel, std::span<const BufferImpl* const> buffers,
                                     const void* push, uint32_t push_bytes, uint64_t items,
-                                    uint32_t written, std::span<const uint32_t> constants) {
+                                    uint32_t written, std::span<const uint32_t> constants,
+                                    std::span<const Texels> texels) {
   const std::string_view name = kernel_name(kernel);
   const BufferImpl* any = nullptr;
   for (const BufferImpl* b : buffers) any = any ? any : b;
   std::vector<std::shared_ptr<Allocation>> allocs;
   for (const BufferImpl* b : buffers) allocs.push_back(alloc(b ? *b : *any, name));
   const uint32_t wg = options_.workgroup_size;
-  const KernelSpec spec{name.data(), uint32_t(allocs.size()), push_bytes,
-                        std::vector<uint32_t>(constants.begin(), constants.end())};
+  const KernelSpec spec{name.data(), uint32_t(allocs.size()),
+                        push_bytes,  std::vector<uint32_t>(constants.begin(), constants.end()),
+                        0,           std::vector<Texels>(texels.begin(), texels.end())};
   stream_.dispatch(pipelines_.get(spec), diag_, allocs, push, (items + wg - 1) / wg, written);
 }
 

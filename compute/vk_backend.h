@@ -78,10 +78,12 @@ class VulkanBackend final : public Backend, public VulkanInterop {
   // One dispatch of shaders/<kernel>.comp over `items` invocations: `buffers` bound at 1..n in
   // the order of kernels.inc (a null one, unused by the call, gets the first non-null one's
   // memory), `push` the kernel's layout, `written` the buffers it writes (bit i: buffers[i]),
-  // `constants` its specialization constants from 3 on.
+  // `constants` its specialization constants from 3 on, `texels` how it reads each buffer (empty:
+  // every one a storage buffer).
   void dispatch_kernel(KernelId kernel, std::span<const BufferImpl* const> buffers,
                        const void* push, uint32_t push_bytes, uint64_t items, uint32_t written,
-                       std::span<const uint32_t> constants = {});
+                       std::span<const uint32_t> constants = {},
+                       std::span<const Texels> texels = {});
   // In-place exclusive prefix sum of data[0..count) for `kernel` (its scratch and its errors).
   void exclusive_scan(const std::shared_ptr<Allocation>& data, uint32_t count,
                       std::string_view kernel, uint32_t level = 0);

@@ -71,6 +71,7 @@ const Kernel& Pipelines::get(const KernelSpec& spec) {
   const uint32_t wg = spec.workgroup_size ? spec.workgroup_size : workgroup_size_;
   std::string key = fmt::format("{}/{}", spec.shader, wg);
   for (uint32_t c : spec.constants) key += fmt::format(":{}", c);
+  for (const Texels& t : spec.texels) key += fmt::format("/t{}", uint32_t(t.format));
   if (auto it = kernels_.find(key); it != kernels_.end()) return *it->second;
 
   const auto words = shaders::find(spec.shader);
@@ -82,10 +83,13 @@ const Kernel& Pipelines::get(const KernelSpec& spec) {
   k->name = spec.shader;
   k->buffers = spec.buffers;
   k->push_bytes = spec.push_bytes;
+  k->texels = spec.texels;
+  if (!k->texels.empty() && k->texels.size() != spec.buffers)
+    throw Error("vulkan", spec.shader, "texel formats given for some buffers only",
+                "internal error: report it");
   std::vector<::vk::DescriptorSetLayoutBinding> bindings;
   for (uint32_t b = 0; b <= spec.buffers; ++b)
-    bindings.emplace_back(b, ::vk::DescriptorType::eStorageBuffer, 1,
-                          ::vk::ShaderStageFlagBits::eCompute);
+    bindings.emplace_back(b, descriptor_type(*k, b), 1, ::vk::ShaderStageFlagBits::eCompute);
   k->set_layout = ::vk::raii::DescriptorSetLayout(
       ctx_.device(), ::vk::DescriptorSetLayoutCreateInfo({}, bindings));
   ::vk::PushConstantRange range(::vk::ShaderStageFlagBits::eCompute, 0, spec.push_bytes);

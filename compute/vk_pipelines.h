@@ -11,9 +11,17 @@
 
 namespace masav::vk {
 
+// How a kernel reads the buffer at a binding: as a storage buffer, or as a uniform texel buffer
+// of one format (texelFetch, which lavapipe compiles to a gather rather than a per-lane loop).
+struct Texels {
+  ::vk::Format format = ::vk::Format::eUndefined;  // eUndefined: a storage buffer
+  uint32_t bytes = 0;                              // per texel
+};
+
 struct Kernel {
   std::string name;
-  uint32_t buffers = 0;  // storage buffers at bindings 1..buffers (binding 0: diagnostics)
+  uint32_t buffers = 0;        // buffers at bindings 1..buffers (binding 0: diagnostics)
+  std::vector<Texels> texels;  // per buffer; empty: all storage buffers
   uint32_t push_bytes = 0;
   ::vk::raii::DescriptorSetLayout set_layout = nullptr;
   ::vk::raii::PipelineLayout layout = nullptr;
@@ -26,7 +34,15 @@ struct KernelSpec {
   uint32_t push_bytes;
   std::vector<uint32_t> constants;  // specialization constants 3, 4, ...
   uint32_t workgroup_size = 0;      // 0: the backend's default
+  std::vector<Texels> texels = {};  // per buffer; empty: all storage buffers
 };
+
+// The descriptor type of binding b (0: diagnostics) of kernel k.
+inline ::vk::DescriptorType descriptor_type(const Kernel& k, uint32_t binding) {
+  const bool texel = binding > 0 && binding <= k.texels.size() &&
+                     k.texels[binding - 1].format != ::vk::Format::eUndefined;
+  return texel ? ::vk::DescriptorType::eUniformTexelBuffer : ::vk::DescriptorType::eStorageBuffer;
+}
 
 class Pipelines {
  public:

@@ -14,8 +14,10 @@ constexpr uint32_t kBuffersPerSet = 16;
 constexpr uint32_t kCachedSets = 1024;
 
 ::vk::raii::DescriptorPool make_pool(const Context& ctx, uint32_t sets) {
-  ::vk::DescriptorPoolSize size(::vk::DescriptorType::eStorageBuffer, sets * kBuffersPerSet);
-  return ::vk::raii::DescriptorPool(ctx.device(), ::vk::DescriptorPoolCreateInfo({}, sets, size));
+  const ::vk::DescriptorPoolSize sizes[] = {
+      {::vk::DescriptorType::eStorageBuffer, sets * kBuffersPerSet},
+      {::vk::DescriptorType::eUniformTexelBuffer, sets * kBuffersPerSet}};
+  return ::vk::raii::DescriptorPool(ctx.device(), ::vk::DescriptorPoolCreateInfo({}, sets, sizes));
 }
 
 }  // namespace
@@ -138,11 +140,20 @@ void Stream::dispatch(const Kernel& k, const std::shared_ptr<Allocation>& diag,
     set = allocate_set(k);  // the cache is full until the next submission: a transient set
   }
   std::vector<::vk::DescriptorBufferInfo> infos;
+  std::vector<::vk::BufferView> views(buffers.size());
   infos.reserve(buffers.size());
   for (const auto& b : buffers) infos.emplace_back(*b->buffer, 0, VK_WHOLE_SIZE);
   std::vector<::vk::WriteDescriptorSet> writes;
-  for (uint32_t i = 0; i < infos.size(); ++i)
-    writes.emplace_back(set, i, 0, 1, ::vk::DescriptorType::eStorageBuffer, nullptr, &infos[i]);
+  for (uint32_t i = 0; i < infos.size(); ++i) {
+    const ::vk::DescriptorType type = descriptor_type(k, i);
+    if (type == ::vk::DescriptorType::eUniformTexelBuffer) {
+      const Texels& t = k.texels[i - 1];
+      views[i] = texel_view(ctx_, *buffers[i], t.format, t.bytes, k.name);
+      writes.emplace_back(set, i, 0, 1, type, nullptr, nullptr, &views[i]);
+    } else {
+      writes.emplace_back(set, i, 0, 1, type, nullptr, &infos[i]);
+    }
+  }
   ctx_.device().updateDescriptorSets(writes, {});
   if (cacheable) set_cache_.emplace(std::move(key), set);
   return set;

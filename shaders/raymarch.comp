@@ -8,12 +8,21 @@
 #include "slab.glsl"
 #include "engine/kernels/atom_params.h"
 
-layout(std430, binding = 1) readonly buffer Volume { float volume_data[]; };
-layout(std430, binding = 2) readonly buffer Tf { vec4 tf[]; };
-layout(std430, binding = 3) readonly buffer Bricks { vec4 bricks[]; };
+// What the kernel only reads are uniform texel buffers (compute/vk_kernels.cpp: lavapipe fetches a
+// texel with a gather, where it loads a storage buffer's element in a loop over the lanes).
+layout(binding = 1) uniform samplerBuffer volume_texels;      // r32f
+layout(binding = 2) uniform samplerBuffer tf_texels;          // rgba32f
+layout(binding = 3) uniform samplerBuffer brick_texels;       // rgba32f
 layout(std430, binding = 4) writeonly buffer Image { vec4 image[]; };
-layout(std430, binding = 5) readonly buffer TfIntegral { vec4 tf_integral[]; };
+layout(binding = 5) uniform samplerBuffer tf_integral_texels;  // rgba32f
 MASAV_PUSH(RaymarchLayout);
+float volume_at(uint index) { return texelFetch(volume_texels, int(index)).r; }
+vec4 tf_at(uint entry) { return texelFetch(tf_texels, int(entry)); }
+vec4 tf_integral_at(uint index) { return texelFetch(tf_integral_texels, int(index)); }
+// bits & kRayModeFlags, as a constant: the paths a pipeline does not take compile out (lavapipe
+// would otherwise run each branch that no lane takes, its loads included).
+layout(constant_id = 3) const uint RAY_MODES = 0u;
+bool ray_mode(uint flag) { return (RAY_MODES & flag) != 0u; }
 
 #include "volume.glsl"
 #include "preintegration.glsl"
@@ -26,7 +35,7 @@ uint ray_tf_size() { return (p.bits >> kRayTfSizeShift) & 8191u; }
 
 // The ray's span clipped by the plane, where kRayClip asks for it (volume::voxel_ray).
 bool clip_ray(vec3 eye, vec3 dir, inout float tn, inout float tfar) {
-  if ((p.bits & kRayClip) == 0u) return true;
+  if (!ray_mode(kRayClip)) return true;
   return clip_span(eye, dir, (p.bits >> kRayClipAxisShift) & 3u, p.clip_position,
                    (p.bits & kRayClipKeepAbove) != 0u, tn, tfar);
 }
@@ -95,9 +104,9 @@ uint brick_shift() {
 vec4 march(uint px, uint py) {
   vec4 acc = vec4(0.0);
   const uint width = ray_width(), height = ray_height();
-  const bool lerp_mode = (p.bits & kRayLerp) != 0u;
-  const bool skip = (p.bits & kRaySkipEmpty) != 0u && !lerp_mode;
-  const bool shade = (p.bits & kRayShade) != 0u;
+  const bool lerp_mode = ray_mode(kRayLerp);
+  const bool skip = ray_mode(kRaySkipEmpty) && !lerp_mode;
+  const bool shade = ray_mode(kRayShade);
   const vec3 eye = p.eye;
   const float nx = (float(px) + 0.5) / float(width) * 2.0 - 1.0;
   const float ny = 1.0 - (float(py) + 0.5) / float(height) * 2.0;
@@ -135,7 +144,7 @@ vec4 march(uint px, uint py) {
     bool skipped = false;
     if (skip && tm >= occupied_until) {
       const uvec3 bi = brick_of(u, shift, nb);
-      const vec4 b = bricks[(bi.z * nb.y + bi.y) * nb.x + bi.x];
+      const vec4 b = texelFetch(brick_texels, int((bi.z * nb.y + bi.y) * nb.x + bi.x));
       // One exit either way, empty or occupied (lanes that disagree run one, not two).
       const float exit = skip_exit(u0, du, inv_du, bi, b, nb, brick);
       if (b.z <= 0.0) {
@@ -180,8 +189,8 @@ TfPos value_at(vec3 u0, vec3 du, float t, uvec3 dims) {
 // cube of empty bricks skipped.
 vec4 march_preintegrated(uint px, uint py) {
   vec4 acc = vec4(0.0);
-  const bool skip = (p.bits & kRaySkipEmpty) != 0u;
-  const bool shade = (p.bits & kRayShade) != 0u;
+  const bool skip = ray_mode(kRaySkipEmpty);
+  const bool shade = ray_mode(kRayShade);
   const vec3 eye = p.eye;
   const float nx = (float(px) + 0.5) / float(ray_width()) * 2.0 - 1.0;
   const float ny = 1.0 - (float(py) + 0.5) / float(ray_height()) * 2.0;
@@ -219,7 +228,7 @@ vec4 march_preintegrated(uint px, uint py) {
     if (skip && s0 >= occupied_until) {
       const vec3 u = u0 + du * s0;
       const uvec3 bi = brick_of(u, shift, nb);
-      const vec4 b = bricks[(bi.z * nb.y + bi.y) * nb.x + bi.x];
+      const vec4 b = texelFetch(brick_texels, int((bi.z * nb.y + bi.y) * nb.x + bi.x));
       const float exit = skip_exit(u0, du, inv_du, bi, b, nb, brick);
       float empty_until = -1.0;
       if (b.z <= 0.0) {
@@ -268,7 +277,7 @@ void run() {
   const uint tile = id / 64u, in_tile = id % 64u;
   const uint x = tile % tiles_x * 8u + in_tile % 8u, y = tile / tiles_x * 8u + in_tile / 8u;
   if (x >= width || y >= ray_height()) return;
-  const bool preintegrated = (p.bits & kRayPreintegrate) != 0u;
+  const bool preintegrated = ray_mode(kRayPreintegrate);
   image[y * width + x] = preintegrated ? march_preintegrated(x, y) : march(x, y);
 }
 

@@ -423,6 +423,7 @@ Context::Context(const ContextOptions& options) {
                                version_string(props.apiVersion));
   }
   caps_.max_workgroup_size = props.limits.maxComputeWorkGroupInvocations;
+  max_texel_buffer_elements_ = props.limits.maxTexelBufferElements;
   caps_.max_workgroups_x = props.limits.maxComputeWorkGroupCount[0];
   caps_.shared_memory_bytes = props.limits.maxComputeSharedMemorySize;
   caps_.max_buffer_bytes =

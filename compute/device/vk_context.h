@@ -69,6 +69,8 @@ class Context {
   float max_point_size() const { return max_point_size_; }
   // Fragment shaders may write storage buffers (graphics contexts; the fluid surface needs it).
   bool fragment_stores() const { return fragment_stores_; }
+  // The most texels a uniform texel buffer's view may span.
+  uint64_t max_texel_buffer_elements() const { return max_texel_buffer_elements_; }
 
  private:
   std::unique_ptr<::vk::raii::Context> context_;
@@ -83,6 +85,7 @@ class Context {
   bool graphics_ = false;
   float max_point_size_ = 1.0f;
   bool fragment_stores_ = false;
+  uint64_t max_texel_buffer_elements_ = 0;
   std::array<uint8_t, VK_UUID_SIZE> cache_uuid_{};
   Capabilities caps_;
 };

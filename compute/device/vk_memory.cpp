@@ -29,8 +29,9 @@ std::shared_ptr<Allocation> allocate(const Context& ctx, ::vk::DeviceSize bytes,
   a->label = label;
   a->bytes = std::max<::vk::DeviceSize>(bytes, 16);  // Vulkan has no empty buffers
   using BU = ::vk::BufferUsageFlagBits;
-  ::vk::BufferCreateInfo info({}, a->bytes,
-                              BU::eStorageBuffer | BU::eTransferSrc | BU::eTransferDst);
+  ::vk::BufferCreateInfo info(
+      {}, a->bytes,
+      BU::eStorageBuffer | BU::eUniformTexelBuffer | BU::eTransferSrc | BU::eTransferDst);
   try {
     a->buffer = ::vk::raii::Buffer(ctx.device(), info);
     const auto req = a->buffer.getMemoryRequirements();
@@ -73,6 +74,21 @@ std::shared_ptr<Allocation> allocate(const Context& ctx, ::vk::DeviceSize bytes,
                 "use fewer elements");
   }
   return a;
+}
+
+::vk::BufferView texel_view(const Context& ctx, Allocation& a, ::vk::Format format,
+                            uint32_t texel_bytes, std::string_view kernel) {
+  for (const auto& [f, view] : a.views)
+    if (f == format) return *view;
+  const uint64_t texels = a.bytes / texel_bytes;
+  if (texels > ctx.max_texel_buffer_elements())
+    throw Error("vulkan", std::string(kernel),
+                fmt::format("buffer '{}' holds {} texels; {} reads at most {} per buffer", a.label,
+                            texels, ctx.caps().device_name, ctx.max_texel_buffer_elements()),
+                "use a smaller volume (fewer voxels)");
+  ::vk::BufferViewCreateInfo info({}, *a.buffer, format, 0, texels * texel_bytes);
+  a.views.emplace_back(format, ::vk::raii::BufferView(ctx.device(), info));
+  return *a.views.back().second;
 }
 
 void invalidate_for_host(const Context& ctx, const Allocation& a) {

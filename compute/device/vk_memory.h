@@ -3,6 +3,8 @@
 // Allocations are shared_ptr so that recorded work keeps them alive until its fence signals.
 #include <memory>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "compute/device/vk_context.h"
 #include "engine/core/buffer.h"
@@ -25,10 +27,17 @@ struct Allocation {
   // Unique for the process's lifetime (addresses and handles of freed buffers are reused), so
   // that what was bound to it can be cached under it.
   uint64_t serial = 0;
+  // Views of the whole buffer as a uniform texel buffer, one per format asked for (texel_view).
+  std::vector<std::pair<::vk::Format, ::vk::raii::BufferView>> views;
 };
 
 std::shared_ptr<Allocation> allocate(const Context& ctx, ::vk::DeviceSize bytes, MemoryUse use,
                                      const std::string& label);
+// The buffer as a uniform texel buffer of `format` (`texel_bytes` per texel), made on first use
+// and kept with the allocation. Throws, naming `kernel`, where the buffer holds more texels than
+// the device's maxTexelBufferElements.
+::vk::BufferView texel_view(const Context& ctx, Allocation& a, ::vk::Format format,
+                            uint32_t texel_bytes, std::string_view kernel);
 // Makes device writes to a non-coherent mapped allocation visible to the host.
 void invalidate_for_host(const Context& ctx, const Allocation& a);
 

@@ -209,6 +209,8 @@ MASAV_CONSTANT(kRayClipKeepAbove, 16)
 MASAV_CONSTANT(kRayShade, 32)
 // The light sits at the camera (else it shines from shade_light).
 MASAV_CONSTANT(kRayHeadlight, 64)
+// The flags that choose a raymarch's code paths (the rest are values it reads).
+MASAV_CONSTANT(kRayModeFlags, kRaySkipEmpty | kRayPreintegrate | kRayLerp | kRayClip | kRayShade)
 MASAV_CONSTANT(kRayClipAxisShift, 8)  // 2 bits: 0 x, 1 y, 2 z
 MASAV_CONSTANT(kRayBrickShift, 10)    // 5 bits: 2 .. 16
 MASAV_CONSTANT(kRayTfSizeShift, 16)   // 13 bits: 2 .. 4096

@@ -1,6 +1,6 @@
 // Pre-integrated transfer function: the GLSL twin of volume::tf_pos and volume::segment_mean
-// (engine/kernels/volume_math.h, which describes the table). The including kernel declares
-// `tf_integral[]`.
+// (engine/kernels/volume_math.h, which describes the table). The including kernel defines
+// `vec4 tf_integral_at(uint index)`.
 struct TfPos {
   uint k;   // the piece, <= size - 2
   float w;  // where in it, [0, 1]
@@ -29,18 +29,18 @@ vec4 segment_mean(TfPos a, TfPos b) {
       k = e.k;
       w -= 1.0;
     }
-    return mix(tf_integral[3u * k], tf_integral[3u * k + 3u], w);
+    return mix(tf_integral_at(3u * k), tf_integral_at(3u * k + 3u), w);
   }
-  const vec4 p0 = tf_integral[3u * f.k], p1 = tf_integral[3u * f.k + 3u];
+  const vec4 p0 = tf_integral_at(3u * f.k), p1 = tf_integral_at(3u * f.k + 3u);
   const float inv = 1.0 / len;
   if (e.k == f.k + 1u) {
-    const vec4 p2 = tf_integral[3u * e.k + 3u];
+    const vec4 p2 = tf_integral_at(3u * e.k + 3u);
     return (mix(p0, p1, 0.5 * (1.0 + f.w)) * (1.0 - f.w) + mix(p1, p2, 0.5 * e.w) * e.w) * inv;
   }
   // The integral from entry k to k + w: w times the value at k + w/2.
   const vec4 pf = mix(p0, p1, 0.5 * f.w);
-  const vec4 pe = mix(tf_integral[3u * e.k], tf_integral[3u * e.k + 3u], 0.5 * e.w);
-  const vec4 sums = (tf_integral[3u * e.k + 1u] - tf_integral[3u * f.k + 1u]) +
-                    (tf_integral[3u * e.k + 2u] - tf_integral[3u * f.k + 2u]);
+  const vec4 pe = mix(tf_integral_at(3u * e.k), tf_integral_at(3u * e.k + 3u), 0.5 * e.w);
+  const vec4 sums = (tf_integral_at(3u * e.k + 1u) - tf_integral_at(3u * f.k + 1u)) +
+                    (tf_integral_at(3u * e.k + 2u) - tf_integral_at(3u * f.k + 2u));
   return (sums + pe * e.w - pf * f.w) * inv;
 }

@@ -1,8 +1,8 @@
 // Ray casting pieces: the GLSL twin of engine/kernels/volume_math.h (trilinear sampling,
 // transfer function, the clipping plane, gradient shading; the slab test is in slab.glsl). The
-// including kernel declares `volume_data[]` and `tf[]`. No loops: raymarch calls these inside its
-// sample loop (see slab.glsl).
-float voxel(uvec3 i, uvec3 dims) { return volume_data[(i.z * dims.y + i.y) * dims.x + i.x]; }
+// including kernel defines `float volume_at(uint index)` and `vec4 tf_at(uint entry)`. No loops:
+// raymarch calls these inside its sample loop (see slab.glsl).
+float voxel(uvec3 i, uvec3 dims) { return volume_at((i.z * dims.y + i.y) * dims.x + i.x); }
 
 float trilinear(vec3 u, uvec3 dims) {
   const vec3 c = clamp(u, vec3(0.0), vec3(dims - 1u));
@@ -24,7 +24,7 @@ vec4 transfer(float v, uint size) {
   uint k = uint(x);
   if (k > size - 2u) k = size - 2u;
   const float w = x - float(k);
-  const vec4 a = tf[k], b = tf[k + 1u];
+  const vec4 a = tf_at(k), b = tf_at(k + 1u);
   return a + (b - a) * w;
 }
 
