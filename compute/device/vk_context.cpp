@@ -241,19 +241,31 @@ uint64_t validation_message_count() {
   return g_validation_messages.load();
 }
 
-// MASAV_VK_MAX_BUFFER_MIB lowers (never raises) the largest buffer a kernel may bind, so that
-// the refusal of a count too large for a device is tested the same on every device (the tests
-// set lavapipe's 128 MiB). 0 when unset.
-static uint64_t max_buffer_from_env() {
-  const char* v = std::getenv("MASAV_VK_MAX_BUFFER_MIB");
+// A device limit lowered (never raised) from the environment, so that the refusal of a size too
+// large for a device is tested the same on every device: `name` as a whole number of `unit`s
+// from 1 to `most`; 0 when unset.
+static uint64_t limit_from_env(const char* name, const char* unit, uint64_t most) {
+  const char* v = std::getenv(name);
   if (!v || !*v) return 0;
   char* end = nullptr;
   errno = 0;
-  const unsigned long long mib = std::strtoull(v, &end, 10);
-  if (errno || *end || v[0] == '-' || mib < 1 || mib > (1ull << 20))
-    throw Error("", "environment", fmt::format("invalid MASAV_VK_MAX_BUFFER_MIB = {}", v),
-                "MASAV_VK_MAX_BUFFER_MIB must be a whole number of MiB from 1 to 1048576");
-  return uint64_t(mib) << 20;
+  const unsigned long long n = std::strtoull(v, &end, 10);
+  if (errno || *end || v[0] == '-' || n < 1 || n > most)
+    throw Error("", "environment", fmt::format("invalid {} = {}", name, v),
+                fmt::format("{} must be a whole number of {} from 1 to {}", name, unit, most));
+  return n;
+}
+
+// MASAV_VK_MAX_BUFFER_MIB: the largest buffer a kernel may bind (the tests set lavapipe's
+// 128 MiB).
+static uint64_t max_buffer_from_env() {
+  return limit_from_env("MASAV_VK_MAX_BUFFER_MIB", "MiB", uint64_t(1) << 20) << 20;
+}
+
+// MASAV_VK_MAX_TEXELS: the most texels a uniform texel buffer may span (maxTexelBufferElements,
+// 2^27 on lavapipe and NVIDIA: a test could not otherwise reach it within 128 MiB buffers).
+static uint64_t max_texels_from_env() {
+  return limit_from_env("MASAV_VK_MAX_TEXELS", "texels", uint64_t(1) << 32);
 }
 
 ContextOptions options_from_env() {
@@ -424,6 +436,8 @@ Context::Context(const ContextOptions& options) {
   }
   caps_.max_workgroup_size = props.limits.maxComputeWorkGroupInvocations;
   max_texel_buffer_elements_ = props.limits.maxTexelBufferElements;
+  if (const uint64_t cap = max_texels_from_env(); cap && cap < max_texel_buffer_elements_)
+    max_texel_buffer_elements_ = cap;
   caps_.max_workgroups_x = props.limits.maxComputeWorkGroupCount[0];
   caps_.shared_memory_bytes = props.limits.maxComputeSharedMemorySize;
   caps_.max_buffer_bytes =
