@@ -29,13 +29,15 @@ void VulkanBackend::run_kernel(const Params& p, uint64_t items, Buffers&... buff
       constants.push_back(uint32_t(layout.model));
       constants.push_back(sph_coop_walk_ ? 1u : 0u);
     }
-    // raymarch is specialised on the flags that choose its code paths (shaders/raymarch.comp):
-    // lavapipe runs a branch that no lane takes, loads and all, unless the branch is compiled
-    // out. It reads what it only reads as texel buffers: lavapipe fetches a texel with a gather,
-    // an element of a storage buffer with a loop over the lanes.
+    // raymarch is specialised on the flags that choose its code paths and on the brick size
+    // (shaders/raymarch.comp): lavapipe runs a branch that no lane takes, loads and all, unless
+    // the branch is compiled out, and divides by a brick size it does not know lane by lane. It
+    // reads what it only reads as texel buffers: lavapipe fetches a texel with a gather, an element
+    // of a storage buffer with a loop over the lanes.
     std::vector<Texels> texels;
     if constexpr (std::is_same_v<std::decay_t<decltype(layout)>, RaymarchLayout>) {
       constants.push_back(layout.bits & kRayModeFlags);
+      constants.push_back((layout.bits >> kRayBrickShift) & 31u);
       const Texels r32{::vk::Format::eR32Sfloat, 4}, rgba32{::vk::Format::eR32G32B32A32Sfloat, 16};
       texels = {r32, rgba32, rgba32, Texels{}, rgba32};  // volume, tf, bricks, image, tf_integral
     }

@@ -23,6 +23,9 @@ vec4 tf_integral_at(uint index) { return texelFetch(tf_integral_texels, int(inde
 // would otherwise run each branch that no lane takes, its loads included).
 layout(constant_id = 3) const uint RAY_MODES = 0u;
 bool ray_mode(uint flag) { return (RAY_MODES & flag) != 0u; }
+// The brick size (bits >> kRayBrickShift & 31), as a constant: the brick of a sample is then a
+// shift or a multiplication, where lavapipe divided each lane's three coordinates one by one.
+layout(constant_id = 4) const uint RAY_BRICK = 4u;
 
 #include "volume.glsl"
 #include "preintegration.glsl"
@@ -30,7 +33,7 @@ bool ray_mode(uint flag) { return (RAY_MODES & flag) != 0u; }
 // The twins of volume::ray_width and its neighbours: RaymarchLayout's packed small integers.
 uint ray_width() { return p.image_size & 0xffffu; }
 uint ray_height() { return p.image_size >> 16; }
-uint ray_brick() { return (p.bits >> kRayBrickShift) & 31u; }
+uint ray_brick() { return RAY_BRICK; }
 uint ray_tf_size() { return (p.bits >> kRayTfSizeShift) & 8191u; }
 
 // The ray's span clipped by the plane, where kRayClip asks for it (volume::voxel_ray).
