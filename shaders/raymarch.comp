@@ -219,17 +219,17 @@ vec4 march_preintegrated(uint px, uint py) {
   float occupied_until = -1.0;  // the ray is in an occupied brick for t < occupied_until
   TfPos front = TfPos(0u, 0.0);
   bool have_front = false;  // front holds the value at boundary i
-  // No loop may nest in this one (see slab.glsl).
+  // No loop may nest in this one (see slab.glsl). lavapipe runs the whole loop body in every
+  // pass, whatever its lanes take, so a pass looks up one value: at the segment's start where
+  // there is none yet (the ray's start, or just past a skip), else at its end, compositing the
+  // segment. Every pass but the first moves i on, so n + 1 passes reach the end.
   uint i = 0u;
   bool done = false;
-  for (uint it = 0u; it < n; ++it) {
+  for (uint it = 0u; it <= n; ++it) {
     if (i >= n || done) break;
     LOOP_TICK();
-    const float s0 = tn + float(i) * step_len;
-    const float s1 = min(s0 + step_len, tfar);
-    bool skipped = false;
-    if (skip && s0 >= occupied_until) {
-      const vec3 u = u0 + du * s0;
+    if (skip && tn + float(i) * step_len >= occupied_until) {
+      const vec3 u = u0 + du * (tn + float(i) * step_len);
       const uvec3 bi = brick_of(u, shift, nb);
       const vec4 b = texelFetch(brick_texels, int((bi.z * nb.y + bi.y) * nb.x + bi.x));
       const float exit = skip_exit(u0, du, inv_du, bi, b, nb, brick);
@@ -243,30 +243,32 @@ vec4 march_preintegrated(uint px, uint py) {
       if (j > i) {  // segments i .. j-1 end inside the empty cell
         i = j;
         have_front = false;
-        skipped = true;
       }
     }
-    if (!skipped) {
-      if (!have_front) front = value_at(u0, du, s0, dims);
-      const TfPos back = value_at(u0, du, s1, dims);
-      const vec4 m = segment_mean(front, back);
-      front = back;
-      have_front = true;
-      if (m.w > 0.0) {  // alpha = 1 - exp(-depth); colour = emission / depth per unit alpha
-        const float alpha = 1.0 - exp(-m.w * (s1 - s0) * inv_ref);
-        const float w = (1.0 - acc.a) * alpha;
-        if (shade) {  // the segment's mean colour, lit at its midpoint
-          const float inv = 1.0 / m.w;
-          const vec4 col = shade_at(vec4(m.rgb * inv, m.w), u0 + du * (0.5 * (s0 + s1)), dims,
-                                    spacing, p.value_scale, light);
-          acc.rgb += w * col.rgb;
-        } else {
-          acc.rgb += (w / m.w) * m.rgb;
+    if (i < n) {
+      const float s0 = tn + float(i) * step_len;
+      const float s1 = min(s0 + step_len, tfar);
+      const TfPos value = value_at(u0, du, have_front ? s1 : s0, dims);
+      if (have_front) {
+        const vec4 m = segment_mean(front, value);
+        if (m.w > 0.0) {  // alpha = 1 - exp(-depth); colour = emission / depth per unit alpha
+          const float alpha = 1.0 - exp(-m.w * (s1 - s0) * inv_ref);
+          const float w = (1.0 - acc.a) * alpha;
+          if (shade) {  // the segment's mean colour, lit at its midpoint
+            const float inv = 1.0 / m.w;
+            const vec4 col = shade_at(vec4(m.rgb * inv, m.w), u0 + du * (0.5 * (s0 + s1)), dims,
+                                      spacing, p.value_scale, light);
+            acc.rgb += w * col.rgb;
+          } else {
+            acc.rgb += (w / m.w) * m.rgb;
+          }
+          acc.a += w;
+          done = acc.a >= p.termination_alpha;
         }
-        acc.a += w;
-        done = acc.a >= p.termination_alpha;
+        ++i;
       }
-      ++i;
+      front = value;  // the value at boundary i
+      have_front = true;
     }
   }
   return acc;
