@@ -79,42 +79,14 @@ Lighting lighting(vec3 dir, bool headlight, uint light_bits, uint ambient_diffus
   return L;
 }
 
-// One edge of volume::central_gradient's shared-cell path: the difference along `axis` (a unit
-// step in voxels) on the cell edge through corner e, whose corners c0 (at e) and c1 (one step on)
-// the caller read; w the cell weights along the axis.
-float edge_difference(uvec3 e, uvec3 axis, float c0, float c1, vec2 w, uvec3 dims) {
-  return w.x * (c1 - voxel(e - axis, dims)) + w.y * (voxel(e + 2u * axis, dims) - c0);
-}
-
-// The twin of volume::central_gradient, unrolled (no loop: raymarch calls it in its sample loop).
+// The twin of volume::central_gradient, as six trilinear lookups everywhere: the shared body's
+// path for a cell well inside the volume reads the same field (32 voxels, once), but lavapipe
+// runs both sides of a branch, and the two paths together cost it more than six lookups alone.
 vec3 central_gradient(vec3 u, uvec3 dims) {
-  if (!(all(greaterThanEqual(u, vec3(1.0))) && all(lessThan(u, vec3(dims - 2u))))) {
-    return vec3(trilinear(u + vec3(1.0, 0.0, 0.0), dims) - trilinear(u - vec3(1.0, 0.0, 0.0), dims),
-                trilinear(u + vec3(0.0, 1.0, 0.0), dims) - trilinear(u - vec3(0.0, 1.0, 0.0), dims),
-                trilinear(u + vec3(0.0, 0.0, 1.0), dims) - trilinear(u - vec3(0.0, 0.0, 1.0), dims));
-  }
-  const uvec3 i = uvec3(u);  // u >= 1: the floor
-  const vec3 f = u - vec3(i);
-  const vec2 wx = vec2(1.0 - f.x, f.x), wy = vec2(1.0 - f.y, f.y), wz = vec2(1.0 - f.z, f.z);
-  const uvec3 X = uvec3(1u, 0u, 0u), Y = uvec3(0u, 1u, 0u), Z = uvec3(0u, 0u, 1u);
-  // The cell's corners, cZYX = voxel(i + (X, Y, Z)).
-  const float c000 = voxel(i, dims), c001 = voxel(i + X, dims);
-  const float c010 = voxel(i + Y, dims), c011 = voxel(i + X + Y, dims);
-  const float c100 = voxel(i + Z, dims), c101 = voxel(i + X + Z, dims);
-  const float c110 = voxel(i + Y + Z, dims), c111 = voxel(i + X + Y + Z, dims);
-  const float gx = wy.x * wz.x * edge_difference(i, X, c000, c001, wx, dims) +
-                   wy.y * wz.x * edge_difference(i + Y, X, c010, c011, wx, dims) +
-                   wy.x * wz.y * edge_difference(i + Z, X, c100, c101, wx, dims) +
-                   wy.y * wz.y * edge_difference(i + Y + Z, X, c110, c111, wx, dims);
-  const float gy = wx.x * wz.x * edge_difference(i, Y, c000, c010, wy, dims) +
-                   wx.y * wz.x * edge_difference(i + X, Y, c001, c011, wy, dims) +
-                   wx.x * wz.y * edge_difference(i + Z, Y, c100, c110, wy, dims) +
-                   wx.y * wz.y * edge_difference(i + X + Z, Y, c101, c111, wy, dims);
-  const float gz = wx.x * wy.x * edge_difference(i, Z, c000, c100, wz, dims) +
-                   wx.y * wy.x * edge_difference(i + X, Z, c001, c101, wz, dims) +
-                   wx.x * wy.y * edge_difference(i + Y, Z, c010, c110, wz, dims) +
-                   wx.y * wy.y * edge_difference(i + X + Y, Z, c011, c111, wz, dims);
-  return vec3(gx, gy, gz);
+  const vec3 X = vec3(1.0, 0.0, 0.0), Y = vec3(0.0, 1.0, 0.0), Z = vec3(0.0, 0.0, 1.0);
+  return vec3(trilinear(u + X, dims) - trilinear(u - X, dims),
+              trilinear(u + Y, dims) - trilinear(u - Y, dims),
+              trilinear(u + Z, dims) - trilinear(u - Z, dims));
 }
 
 // The twin of volume::shade_at: Blinn-Phong from the central-difference gradient.
