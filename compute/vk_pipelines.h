@@ -8,15 +8,9 @@
 #include <vector>
 
 #include "compute/device/vk_context.h"
+#include "compute/device/vk_memory.h"
 
 namespace masav::vk {
-
-// How a kernel reads the buffer at a binding: as a storage buffer, or as a uniform texel buffer
-// of one format (texelFetch, which lavapipe compiles to a gather rather than a per-lane loop).
-struct Texels {
-  ::vk::Format format = ::vk::Format::eUndefined;  // eUndefined: a storage buffer
-  uint32_t bytes = 0;                              // per texel
-};
 
 struct Kernel {
   std::string name;
@@ -39,9 +33,8 @@ struct KernelSpec {
 
 // The descriptor type of binding b (0: diagnostics) of kernel k.
 inline ::vk::DescriptorType descriptor_type(const Kernel& k, uint32_t binding) {
-  const bool texel = binding > 0 && binding <= k.texels.size() &&
-                     k.texels[binding - 1].format != ::vk::Format::eUndefined;
-  return texel ? ::vk::DescriptorType::eUniformTexelBuffer : ::vk::DescriptorType::eStorageBuffer;
+  return binding > 0 && binding <= k.texels.size() ? k.texels[binding - 1].descriptor_type()
+                                                   : ::vk::DescriptorType::eStorageBuffer;
 }
 
 class Pipelines {

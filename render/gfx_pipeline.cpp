@@ -28,10 +28,11 @@ std::unique_ptr<GraphicsPipeline> make_graphics_pipeline(const vk::Context& ctx,
   auto p = std::make_unique<GraphicsPipeline>();
   p->buffers = spec.buffers;
   p->push_bytes = spec.push_bytes;
+  p->texels = spec.texels;
+  p->texels.resize(spec.buffers);  // the rest storage buffers
   std::vector<::vk::DescriptorSetLayoutBinding> bindings;
   for (uint32_t b = 0; b < spec.buffers; ++b)
-    bindings.emplace_back(b, ::vk::DescriptorType::eStorageBuffer, 1,
-                          Stage::eVertex | Stage::eFragment);
+    bindings.emplace_back(b, p->texels[b].descriptor_type(), 1, Stage::eVertex | Stage::eFragment);
   p->set_layout = ::vk::raii::DescriptorSetLayout(
       ctx.device(), ::vk::DescriptorSetLayoutCreateInfo({}, bindings));
   const ::vk::PushConstantRange range(Stage::eVertex | Stage::eFragment, 0, spec.push_bytes);

@@ -4,8 +4,10 @@
 // push constants, so the compute kernels' buffers can be drawn without vertex-buffer usage.
 #include <cstdint>
 #include <memory>
+#include <vector>
 
 #include "compute/device/vk_context.h"
+#include "compute/device/vk_memory.h"
 
 namespace masav::render {
 
@@ -20,12 +22,14 @@ struct GraphicsSpec {
   bool depth_test = false;
   bool depth_write = false;
   Blend blend = Blend::none;
-  bool color_write = true;  // false: a pass that only writes storage buffers (or depth)
+  bool color_write = true;              // false: a pass that only writes storage buffers (or depth)
+  std::vector<vk::Texels> texels = {};  // per binding; empty: all storage buffers
 };
 
 struct GraphicsPipeline {
   uint32_t buffers = 0;
   uint32_t push_bytes = 0;
+  std::vector<vk::Texels> texels;  // per binding; empty: all storage buffers
   ::vk::raii::DescriptorSetLayout set_layout = nullptr;
   ::vk::raii::PipelineLayout layout = nullptr;
   ::vk::raii::Pipeline pipeline = nullptr;

@@ -122,15 +122,28 @@ Renderer::Renderer(RenderDevice& dev, const UiContext& ui, uint32_t width, uint3
   axes_ = make_graphics_pipeline(ctx, *pass_,
                                  {"render/lines.vert", "render/lines.frag", 1, sizeof(glm::mat4),
                                   T::eLineList, false, false, Blend::alpha});
-  image_ = make_graphics_pipeline(ctx, *pass_,
-                                  {"render/image.vert", "render/image.frag", 1, sizeof(ImagePush),
-                                   T::eTriangleList, false, false, Blend::none});
+  // The image as texel buffers (rgba8 words, rgba32f pixels): lavapipe fetches a texel with a
+  // gather, where it loads a storage buffer's element in a loop over the lanes.
+  image_ = make_graphics_pipeline(
+      ctx, *pass_,
+      {"render/image.vert",
+       "render/image.frag",
+       2,
+       sizeof(ImagePush),
+       T::eTriangleList,
+       false,
+       false,
+       Blend::none,
+       true,
+       {{::vk::Format::eR32Uint, 4}, {::vk::Format::eR32G32B32A32Sfloat, 16}}});
   ui_pipe_ = make_graphics_pipeline(ctx, *pass_,
                                     {"render/ui.vert", "render/ui.frag", 3, sizeof(UiPush),
                                      T::eTriangleList, false, false, Blend::alpha});
-  const ::vk::DescriptorPoolSize size(::vk::DescriptorType::eStorageBuffer, 4 * kSetsPerFrame);
+  const ::vk::DescriptorPoolSize sizes[] = {
+      {::vk::DescriptorType::eStorageBuffer, 4 * kSetsPerFrame},
+      {::vk::DescriptorType::eUniformTexelBuffer, 2 * kSetsPerFrame}};
   pool_ = ::vk::raii::DescriptorPool(ctx.device(),
-                                     ::vk::DescriptorPoolCreateInfo({}, kSetsPerFrame, size));
+                                     ::vk::DescriptorPoolCreateInfo({}, kSetsPerFrame, sizes));
   dummy_ = vk::allocate(ctx, 16, vk::MemoryUse::upload, "render placeholder");
   std::memset(dummy_->mapped, 0, 16);
   atlas_ = vk::allocate(ctx, ui.atlas().size() * 4, vk::MemoryUse::upload, "font atlas");
@@ -162,13 +175,23 @@ std::shared_ptr<vk::Allocation> Renderer::host_buffer(std::shared_ptr<vk::Alloca
                                   *dev_.device().getDispatcher())
           .front();
   std::vector<::vk::DescriptorBufferInfo> infos;
+  std::vector<::vk::BufferView> views(buffers.size());
   for (const auto& b : buffers) {
     infos.emplace_back(*b->buffer, 0, VK_WHOLE_SIZE);
     frame_buffers_.push_back(b);
   }
   std::vector<::vk::WriteDescriptorSet> writes;
-  for (uint32_t i = 0; i < infos.size(); ++i)
-    writes.emplace_back(set, i, 0, 1, ::vk::DescriptorType::eStorageBuffer, nullptr, &infos[i]);
+  uint32_t i = 0;
+  for (const auto& b : buffers) {
+    const vk::Texels t = i < p.texels.size() ? p.texels[i] : vk::Texels{};
+    if (t.descriptor_type() == ::vk::DescriptorType::eUniformTexelBuffer) {
+      views[i] = vk::texel_view(dev_.ctx(), *b, t.format, t.bytes, "render");
+      writes.emplace_back(set, i, 0, 1, t.descriptor_type(), nullptr, nullptr, &views[i]);
+    } else {
+      writes.emplace_back(set, i, 0, 1, t.descriptor_type(), nullptr, &infos[i]);
+    }
+    ++i;
+  }
   dev_.device().updateDescriptorSets(writes, {});
   return set;
 }
@@ -186,7 +209,9 @@ void Renderer::draw_background(const ::vk::raii::CommandBuffer& cmd, const scene
                             size_t(img.width) * img.height * per_pixel),
                 "internal error: the scene's image layer does not match its buffer");
   const auto pixels = bridge_.words("background", *img.pixels, img.version);
-  const ::vk::DescriptorSet set = bind(*image_, {pixels});
+  // The binding of the other format gets the placeholder (image.frag reads only the one).
+  const bool rgba8 = img.format == scene::ImageLayer::Format::rgba8;
+  const ::vk::DescriptorSet set = bind(*image_, {rgba8 ? pixels : dummy_, rgba8 ? dummy_ : pixels});
   const ImagePush push{
       {img.width, img.height, img.format == scene::ImageLayer::Format::rgba8 ? 0u : 1u,
        img.mono ? 1u : 0u},

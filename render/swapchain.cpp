@@ -89,8 +89,11 @@ void Swapchain::record_blit(const ::vk::raii::CommandBuffer& cmd, ::vk::Image sr
       layers, {::vk::Offset3D{0, 0, 0}, ::vk::Offset3D{int32_t(src_w), int32_t(src_h), 1}}, layers,
       {::vk::Offset3D{0, 0, 0},
        ::vk::Offset3D{int32_t(extent_.width), int32_t(extent_.height), 1}});
+  // Linear filtering only where the sizes differ: at the same size it would return each texel
+  // anyway, and lavapipe blits nearest texels far faster.
+  const bool same_size = src_w == extent_.width && src_h == extent_.height;
   cmd.blitImage(src, L::eTransferSrcOptimal, images_[index_], L::eTransferDstOptimal, blit,
-                ::vk::Filter::eLinear);
+                same_size ? ::vk::Filter::eNearest : ::vk::Filter::eLinear);
   const ::vk::ImageMemoryBarrier to_present(
       ::vk::AccessFlagBits::eTransferWrite, {}, L::eTransferDstOptimal, L::ePresentSrcKHR,
       VK_QUEUE_FAMILY_IGNORED, VK_QUEUE_FAMILY_IGNORED, images_[index_], range);

@@ -33,6 +33,18 @@ struct Allocation {
 
 std::shared_ptr<Allocation> allocate(const Context& ctx, ::vk::DeviceSize bytes, MemoryUse use,
                                      const std::string& label);
+// How a shader reads the buffer at a binding: as a storage buffer, or as a uniform texel buffer
+// of one format (texelFetch, which lavapipe compiles to a gather rather than a per-lane loop).
+struct Texels {
+  ::vk::Format format = ::vk::Format::eUndefined;  // eUndefined: a storage buffer
+  uint32_t bytes = 0;                              // per texel
+
+  ::vk::DescriptorType descriptor_type() const {
+    return format == ::vk::Format::eUndefined ? ::vk::DescriptorType::eStorageBuffer
+                                              : ::vk::DescriptorType::eUniformTexelBuffer;
+  }
+};
+
 // The buffer as a uniform texel buffer of `format` (`texel_bytes` per texel), made on first use
 // and kept with the allocation. Throws, naming `kernel`, where the buffer holds more texels than
 // the device's maxTexelBufferElements.
