@@ -136,9 +136,18 @@ Renderer::Renderer(RenderDevice& dev, const UiContext& ui, uint32_t width, uint3
        Blend::none,
        true,
        {{::vk::Format::eR32Uint, 4}, {::vk::Format::eR32G32B32A32Sfloat, 16}}});
+  // The font atlas, read by every fragment of the panel and the overlay, as a texel buffer too.
   ui_pipe_ = make_graphics_pipeline(ctx, *pass_,
-                                    {"render/ui.vert", "render/ui.frag", 3, sizeof(UiPush),
-                                     T::eTriangleList, false, false, Blend::alpha});
+                                    {"render/ui.vert",
+                                     "render/ui.frag",
+                                     3,
+                                     sizeof(UiPush),
+                                     T::eTriangleList,
+                                     false,
+                                     false,
+                                     Blend::alpha,
+                                     true,
+                                     {{}, {}, {::vk::Format::eR32Uint, 4}}});
   const ::vk::DescriptorPoolSize sizes[] = {
       {::vk::DescriptorType::eStorageBuffer, 4 * kSetsPerFrame},
       {::vk::DescriptorType::eUniformTexelBuffer, 2 * kSetsPerFrame}};

@@ -1,6 +1,6 @@
 #version 450
-// ImGui's font atlas (RGBA8, one u32 per texel) sampled bilinearly from a buffer.
-layout(std430, set = 0, binding = 2) readonly buffer Atlas { uint atlas[]; };
+// ImGui's font atlas (RGBA8, one u32 per texel) sampled bilinearly from a texel buffer.
+layout(set = 0, binding = 2) uniform usamplerBuffer atlas;  // r32ui
 layout(push_constant) uniform Push {
   vec4 transform;
   uvec4 offsets;
@@ -13,7 +13,7 @@ layout(location = 0) out vec4 out_color;
 vec4 texel(ivec2 p) {
   const ivec2 size = ivec2(pc.offsets.zw);
   p = clamp(p, ivec2(0), size - 1);
-  return unpackUnorm4x8(atlas[uint(p.y) * uint(size.x) + uint(p.x)]);
+  return unpackUnorm4x8(texelFetch(atlas, p.y * size.x + p.x).r);
 }
 
 void main() {
