@@ -22,13 +22,7 @@ void VulkanBackend::run_kernel(const Params& p, uint64_t items, Buffers&... buff
     uint32_t written = 0;
     for (size_t i = 0; i < sizeof...(Buffers); ++i) written |= writes[i] ? 1u << i : 0u;
     if (const uint32_t limit = diag_limit(layout)) pending_diag_limit_ = limit;
-    // sph_density and sph_forces are specialised on the pressure model (shaders/common/sph.glsl)
-    // and on whether rows are walked cooperatively (shaders/common/sph_coop.glsl).
     std::vector<uint32_t> constants;
-    if constexpr (std::is_same_v<std::decay_t<decltype(layout)>, SphStepLayout<float>>) {
-      constants.push_back(uint32_t(layout.model));
-      constants.push_back(sph_coop_walk_ ? 1u : 0u);
-    }
     // raymarch is specialised on the flags that choose its code paths and on the brick size
     // (shaders/raymarch.comp): lavapipe runs a branch that no lane takes, loads and all, unless
     // the branch is compiled out, and divides by a brick size it does not know lane by lane. It
@@ -40,6 +34,19 @@ void VulkanBackend::run_kernel(const Params& p, uint64_t items, Buffers&... buff
       constants.push_back((layout.bits >> kRayBrickShift) & 31u);
       const Texels r32{::vk::Format::eR32Sfloat, 4}, rgba32{::vk::Format::eR32G32B32A32Sfloat, 16};
       texels = {r32, rgba32, rgba32, Texels{}, rgba32};  // volume, tf, bricks, image, tf_integral
+    }
+    // sph_density and sph_forces are specialised on the pressure model (shaders/common/sph.glsl)
+    // and on whether rows are walked cooperatively (shaders/common/sph_coop.glsl), and read their
+    // inputs as texel buffers too.
+    if constexpr (std::is_same_v<std::decay_t<decltype(layout)>, SphStepLayout<float>>) {
+      constants.push_back(uint32_t(layout.model));
+      constants.push_back(sph_coop_walk_ ? 1u : 0u);
+      const Texels rgba32{::vk::Format::eR32G32B32A32Sfloat, 16}, r32f{::vk::Format::eR32Sfloat, 4},
+          r32u{::vk::Format::eR32Uint, 4}, none{};
+      if constexpr (K == KernelId::sph_density)  // positions, cells, cell_start, cell_end
+        texels = {rgba32, r32u, r32u, r32u, none, none, none, none};
+      if constexpr (K == KernelId::sph_forces)  // ... velocities, density, pressure; neighbor_rows
+        texels = {rgba32, rgba32, r32f, r32f, r32u, r32u, r32u, none, none, r32u};
     }
     dispatch_kernel(K, impls, &layout, sizeof(layout), items, written, constants, texels);
   }

@@ -12,6 +12,8 @@ layout(std430, binding = 2) readonly buffer Kappa { float kappa[]; };
 layout(std430, binding = 3) readonly buffer Cells { uint cells[]; };
 layout(std430, binding = 4) readonly buffer Start { uint cell_start[]; };
 layout(std430, binding = 5) readonly buffer End { uint cell_end[]; };
+uint cell_start_at(uint cell) { return cell_start[cell]; }
+uint cell_end_at(uint cell) { return cell_end[cell]; }
 layout(std430, binding = 6) buffer Velocities { vec4 velocities[]; };
 layout(std430, binding = 7) buffer Stats { uint stats[]; };
 layout(std430, binding = 8) readonly buffer NeighborRows { uint neighbor_rows[]; };

@@ -10,6 +10,8 @@ layout(std430, binding = 1) readonly buffer Positions { vec4 positions[]; };
 layout(std430, binding = 2) readonly buffer Cells { uint cells[]; };
 layout(std430, binding = 3) readonly buffer Start { uint cell_start[]; };
 layout(std430, binding = 4) readonly buffer End { uint cell_end[]; };
+uint cell_start_at(uint cell) { return cell_start[cell]; }
+uint cell_end_at(uint cell) { return cell_end[cell]; }
 layout(std430, binding = 5) writeonly buffer Factor { float factor[]; };
 layout(std430, binding = 6) buffer Stats { uint stats[]; };
 layout(std430, binding = 7) readonly buffer NeighborRows { uint neighbor_rows[]; };

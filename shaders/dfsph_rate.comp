@@ -15,6 +15,8 @@ layout(std430, binding = 4) readonly buffer Factor { float factor[]; };
 layout(std430, binding = 5) readonly buffer Cells { uint cells[]; };
 layout(std430, binding = 6) readonly buffer Start { uint cell_start[]; };
 layout(std430, binding = 7) readonly buffer End { uint cell_end[]; };
+uint cell_start_at(uint cell) { return cell_start[cell]; }
+uint cell_end_at(uint cell) { return cell_end[cell]; }
 layout(std430, binding = 8) writeonly buffer Kappa { float kappa[]; };
 layout(std430, binding = 9) buffer KappaSum { float kappa_sum[]; };
 layout(std430, binding = 10) buffer Residual { uint residual[]; };

@@ -12,10 +12,16 @@
 // engine/kernels/sph_kernel_params.h). Twin of sph::density_at (engine/kernels/sph_kernels.h).
 #include "kernel_base.glsl"
 
-layout(std430, binding = 1) readonly buffer Positions { vec4 positions[]; };
-layout(std430, binding = 2) readonly buffer Cells { uint cells[]; };
-layout(std430, binding = 3) readonly buffer Start { uint cell_start[]; };
-layout(std430, binding = 4) readonly buffer End { uint cell_end[]; };
+// What the kernel only reads are uniform texel buffers (compute/vk_kernels.cpp): lavapipe fetches
+// a texel with a gather, where it loads a storage buffer's element in a loop over the lanes.
+layout(binding = 1) uniform samplerBuffer position_texels;     // rgba32f
+layout(binding = 2) uniform usamplerBuffer cell_texels;        // r32ui
+layout(binding = 3) uniform usamplerBuffer cell_start_texels;  // r32ui
+layout(binding = 4) uniform usamplerBuffer cell_end_texels;    // r32ui
+vec4 position_at(uint i) { return texelFetch(position_texels, int(i)); }
+uint cell_at(uint i) { return texelFetch(cell_texels, int(i)).r; }
+uint cell_start_at(uint cell) { return texelFetch(cell_start_texels, int(cell)).r; }
+uint cell_end_at(uint cell) { return texelFetch(cell_end_texels, int(cell)).r; }
 layout(std430, binding = 5) writeonly buffer Density { float density[]; };
 layout(std430, binding = 6) writeonly buffer Pressure { float pressure[]; };
 layout(std430, binding = 7) buffer Stats { uint stats[]; };
@@ -41,8 +47,8 @@ void main() {
   vec3 xi = vec3(0.0);
   ivec3 cc = ivec3(-4);
   if (live) {
-    xi = positions[i].xyz;
-    cc = sph_cell_coords(cells[i], p.dims);
+    xi = position_at(i).xyz;
+    cc = sph_cell_coords(cell_at(i), p.dims);
   }
   SphMirrors mirrors = sph_wall_mirrors(xi, p);
   if (!live) mirrors.axes = 0u;
@@ -60,7 +66,7 @@ void main() {
         for (uint base = u.x; base < u.y; base += kSphCoop) {
           LOOP_TICK();
           const uint mine = base + sph_coop_lane();
-          const vec3 xc = mine < u.y ? positions[mine].xyz : vec3(0.0);
+          const vec3 xc = mine < u.y ? position_at(mine).xyz : vec3(0.0);
           for (uint k = 0u; k < kSphCoop; ++k) {
             LOOP_TICK();
             const vec3 xj = subgroupShuffle(xc, sph_coop_source(k));
@@ -79,7 +85,7 @@ void main() {
       } else {
         for (uint j = r.x; j < r.y; ++j) {
           LOOP_TICK();
-          const vec3 xj = positions[j].xyz;
+          const vec3 xj = position_at(j).xyz;
           const vec3 d = xi - xj;
           const float r2 = dot(d, d);
           const bool near = r2 < p.h2;

@@ -13,16 +13,26 @@
 // sph::force_at (engine/kernels/sph_kernels.h).
 #include "kernel_base.glsl"
 
-layout(std430, binding = 1) readonly buffer Positions { vec4 positions[]; };
-layout(std430, binding = 2) readonly buffer Velocities { vec4 velocities[]; };
-layout(std430, binding = 3) readonly buffer Density { float density[]; };
-layout(std430, binding = 4) readonly buffer Pressure { float pressure[]; };
-layout(std430, binding = 5) readonly buffer Cells { uint cells[]; };
-layout(std430, binding = 6) readonly buffer Start { uint cell_start[]; };
-layout(std430, binding = 7) readonly buffer End { uint cell_end[]; };
+// What the kernel only reads are uniform texel buffers (compute/vk_kernels.cpp): lavapipe fetches
+// a texel with a gather, where it loads a storage buffer's element in a loop over the lanes.
+layout(binding = 1) uniform samplerBuffer position_texels;       // rgba32f
+layout(binding = 2) uniform samplerBuffer velocity_texels;       // rgba32f
+layout(binding = 3) uniform samplerBuffer density_texels;        // r32f
+layout(binding = 4) uniform samplerBuffer pressure_texels;       // r32f
+layout(binding = 5) uniform usamplerBuffer cell_texels;          // r32ui
+layout(binding = 6) uniform usamplerBuffer cell_start_texels;    // r32ui
+layout(binding = 7) uniform usamplerBuffer cell_end_texels;      // r32ui
 layout(std430, binding = 8) writeonly buffer Accel { vec4 accel[]; };
 layout(std430, binding = 9) buffer Stats { uint stats[]; };
-layout(std430, binding = 10) readonly buffer NeighborRows { uint neighbor_rows[]; };
+layout(binding = 10) uniform usamplerBuffer neighbor_row_texels;  // r32ui
+vec4 position_at(uint i) { return texelFetch(position_texels, int(i)); }
+vec4 velocity_at(uint i) { return texelFetch(velocity_texels, int(i)); }
+float density_at(uint i) { return texelFetch(density_texels, int(i)).r; }
+float pressure_at(uint i) { return texelFetch(pressure_texels, int(i)).r; }
+uint cell_at(uint i) { return texelFetch(cell_texels, int(i)).r; }
+uint cell_start_at(uint cell) { return texelFetch(cell_start_texels, int(cell)).r; }
+uint cell_end_at(uint cell) { return texelFetch(cell_end_texels, int(cell)).r; }
+uint neighbor_row_at(uint word) { return texelFetch(neighbor_row_texels, int(word)).r; }
 
 #define SPH_MODEL_SPECIALIZED
 #include "sph.glsl"
@@ -50,13 +60,13 @@ struct Sum {
 // Candidate j's pair term, if it is another particle within h (the per-lane test), and the
 // terms of its wall images (also of the particle's own).
 void add_candidate(Me me, uint j, inout Sum s) {
-  const vec3 xj = positions[j].xyz;
+  const vec3 xj = position_at(j).xyz;
   const vec3 d = me.x - xj;
   const float r2 = dot(d, d);
   if (!(r2 < p.h2) || (j == me.i && me.mirrors.axes == 0u)) return;
-  const float rho_j = density[j];
-  const float q_j = pressure[j] / (rho_j * rho_j);
-  const vec3 vj = velocities[j].xyz;
+  const float rho_j = density_at(j);
+  const float q_j = pressure_at(j) / (rho_j * rho_j);
+  const vec3 vj = velocity_at(j).xyz;
   if (me.mirrors.axes != 0u)
     s.acc += sph_wall_image_accel(me.x, me.v, me.rho, me.p_rho2, xj, vj, rho_j, q_j, me.mirrors, p);
   if (j == me.i) return;
@@ -83,10 +93,10 @@ void walk_cooperative(bool live, ivec3 cc, Me me, inout Sum s) {
           vec3 xc = vec3(0.0), vc = vec3(0.0);
           float rc = 1.0, qc = 0.0;
           if (mine < u.y) {
-            xc = positions[mine].xyz;
-            vc = velocities[mine].xyz;
-            rc = density[mine];
-            qc = pressure[mine] / (rc * rc);
+            xc = position_at(mine).xyz;
+            vc = velocity_at(mine).xyz;
+            rc = density_at(mine);
+            qc = pressure_at(mine) / (rc * rc);
           }
           for (uint k = 0u; k < kSphCoop; ++k) {
             LOOP_TICK();
@@ -134,8 +144,8 @@ void walk_masked(bool live, ivec3 cc, Me me, inout Sum s) {
       uvec2 bits = uvec2(0u);
       if (!whole && r.y > r.x) {
         const uint row = sph_row_index(dx, dy);
-        bits = uvec2(neighbor_rows[sph_mask_word(row, 0u, me.i, p.n)],
-                     neighbor_rows[sph_mask_word(row, 1u, me.i, p.n)]);
+        bits = uvec2(neighbor_row_at(sph_mask_word(row, 0u, me.i, p.n)),
+                     neighbor_row_at(sph_mask_word(row, 1u, me.i, p.n)));
       }
       uint next = r.x;
       while (whole ? next < r.y : (bits.x | bits.y) != 0u) {
@@ -164,12 +174,12 @@ void main() {
   Me me = Me(i, vec3(0.0), vec3(0.0), 1.0, 0.0, SphMirrors(vec3(0.0), 0u));
   ivec3 cc = ivec3(-4);
   if (live) {
-    pw = positions[i];
+    pw = position_at(i);
     me.x = pw.xyz;
-    me.v = velocities[i].xyz;
-    me.rho = density[i];
-    me.p_rho2 = pressure[i] / (me.rho * me.rho);
-    cc = sph_cell_coords(cells[i], p.dims);
+    me.v = velocity_at(i).xyz;
+    me.rho = density_at(i);
+    me.p_rho2 = pressure_at(i) / (me.rho * me.rho);
+    cc = sph_cell_coords(cell_at(i), p.dims);
     me.mirrors = sph_wall_mirrors(me.x, p);
   }
   Sum s = Sum(vec3(0.0), 0u, 0u, false);

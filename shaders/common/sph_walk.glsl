@@ -1,6 +1,6 @@
 // The 27-cell neighbour walk of the SPH kernels, by rows, and the neighbour row masks: the GLSL
 // twin of sph::row_range, sph::walk_rows and sph::RowMasks (engine/kernels/sph_kernels.h). The
-// including kernel declares cell_start[] and cell_end[].
+// including kernel defines `uint cell_start_at(uint cell)` and `uint cell_end_at(uint cell)`.
 // Sorted range of the row (x, y, z-1 .. z+1): 3 consecutive cell ids, contiguous points.
 uvec2 sph_row_range(int x, int y, int z, uvec3 dims) {
   const int z0 = max(z - 1, 0);
@@ -11,7 +11,7 @@ uvec2 sph_row_range(int x, int y, int z, uvec3 dims) {
   for (int k = z0; k <= z1; ++k) {
     LOOP_TICK();
     const uint id = base + uint(k);
-    const uint s = cell_start[id], e = cell_end[id];
+    const uint s = cell_start_at(id), e = cell_end_at(id);
     if (e > s) {
       if (!found) first = s;
       found = true;
