@@ -48,6 +48,14 @@ void VulkanBackend::run_kernel(const Params& p, uint64_t items, Buffers&... buff
       if constexpr (K == KernelId::sph_forces)  // ... velocities, density, pressure; neighbor_rows
         texels = {rgba32, rgba32, r32f, r32f, r32u, r32u, r32u, none, none, r32u};
     }
+    // The nebula kernels' per-particle paths through the density grid read it as texels too.
+    if constexpr (K == KernelId::nebula_illuminate || K == KernelId::nebula_view) {
+      const Texels rgba32{::vk::Format::eR32G32B32A32Sfloat, 16}, r32f{::vk::Format::eR32Sfloat, 4};
+      if constexpr (K == KernelId::nebula_illuminate)  // positions, density; illumination
+        texels = {rgba32, r32f, Texels{}};
+      else  // positions, density, table, illumination; light
+        texels = {rgba32, r32f, r32f, r32f, Texels{}};
+    }
     dispatch_kernel(K, impls, &layout, sizeof(layout), items, written, constants, texels);
   }
 }

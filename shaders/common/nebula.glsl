@@ -1,7 +1,7 @@
 // Nebula lighting: the GLSL twin of engine/kernels/nebula_math.h (see there for the two
 // discretisations of the optical-depth path integral and their errors). Needs slab.glsl and
-// grid_cell.glsl; the including kernel declares `density[]`, and with NEBULA_TABLE defined
-// `table_data[]` for nebula_phase().
+// grid_cell.glsl; the including kernel defines `float density_at(uint cell)`, and with NEBULA_TABLE defined
+// `float table_at(uint index)` for nebula_phase().
 const float NEBULA_PI = 3.14159265358979323846;
 
 struct NebulaGrid {
@@ -34,7 +34,7 @@ float path_integral(NebulaGrid g, vec3 a, vec3 b, uint mode, float step_len) {
       LOOP_TICK();
       const vec3 q = a + dir * (t0 + (float(i) + 0.5) * h);
       const ivec3 c = ivec3(nebula_cell_of(g, q, 0), nebula_cell_of(g, q, 1), nebula_cell_of(g, q, 2));
-      sum += density[nebula_id(g, c)] * h;
+      sum += density_at(nebula_id(g, c)) * h;
     }
     return sum;
   }
@@ -61,7 +61,7 @@ float path_integral(NebulaGrid g, vec3 a, vec3 b, uint mode, float step_len) {
     LOOP_TICK();
     const int ax = tnext.x < tnext.y ? (tnext.x < tnext.z ? 0 : 2) : (tnext.y < tnext.z ? 1 : 2);
     const float tn = min(tnext[ax], t1);
-    if (tn > t) sum += density[nebula_id(g, c)] * (tn - t);
+    if (tn > t) sum += density_at(nebula_id(g, c)) * (tn - t);
     if (tnext[ax] >= t1) break;
     t = tn;
     c[ax] += stepc[ax];
@@ -79,8 +79,8 @@ float nebula_phase(uint rows, uint bins, float tau_step, float tau, float mu) {
   const float fb = clamp((mu + 1.0) * float(bins) * 0.5 - 0.5, 0.0, float(bins - 1u));
   const uint b0 = uint(fb), b1 = b0 + 1u < bins ? b0 + 1u : b0;
   const float wb = fb - float(b0);
-  const float v0 = table_data[r0 * bins + b0] * (1.0 - wb) + table_data[r0 * bins + b1] * wb;
-  const float v1 = table_data[r1 * bins + b0] * (1.0 - wb) + table_data[r1 * bins + b1] * wb;
+  const float v0 = table_at(r0 * bins + b0) * (1.0 - wb) + table_at(r0 * bins + b1) * wb;
+  const float v1 = table_at(r1 * bins + b0) * (1.0 - wb) + table_at(r1 * bins + b1) * wb;
   return (v0 * (1.0 - wr) + v1 * wr) / (2.0 * NEBULA_PI * (2.0 / float(bins)));
 }
 #endif
