@@ -56,6 +56,18 @@ void VulkanBackend::run_kernel(const Params& p, uint64_t items, Buffers&... buff
       else  // positions, density, table, illumination; light
         texels = {rgba32, r32f, r32f, r32f, Texels{}};
     }
+    // The DFSPH solves' neighbour walks, as sph_density's and sph_forces'.
+    if constexpr (K == KernelId::dfsph_factor || K == KernelId::dfsph_rate ||
+                  K == KernelId::dfsph_correct) {
+      const Texels rgba32{::vk::Format::eR32G32B32A32Sfloat, 16}, r32f{::vk::Format::eR32Sfloat, 4},
+          r32u{::vk::Format::eR32Uint, 4}, none{};
+      if constexpr (K == KernelId::dfsph_factor)  // positions, cells, ranges; factor, stats; rows
+        texels = {rgba32, r32u, r32u, r32u, none, none, r32u};
+      if constexpr (K == KernelId::dfsph_rate)  // + velocities, density, factor; kappa, sums
+        texels = {rgba32, rgba32, r32f, r32f, r32u, r32u, r32u, none, none, none, r32u};
+      if constexpr (K == KernelId::dfsph_correct)  // positions, kappa, cells, ranges; v, stats
+        texels = {rgba32, r32f, r32u, r32u, r32u, none, none, r32u};
+    }
     dispatch_kernel(K, impls, &layout, sizeof(layout), items, written, constants, texels);
   }
 }

@@ -7,16 +7,22 @@
 // non-finite velocities. Twin of sph::dfsph_correction_of (engine/kernels/dfsph_kernels.h).
 #include "kernel_base.glsl"
 
-layout(std430, binding = 1) readonly buffer Positions { vec4 positions[]; };
-layout(std430, binding = 2) readonly buffer Kappa { float kappa[]; };
-layout(std430, binding = 3) readonly buffer Cells { uint cells[]; };
-layout(std430, binding = 4) readonly buffer Start { uint cell_start[]; };
-layout(std430, binding = 5) readonly buffer End { uint cell_end[]; };
-uint cell_start_at(uint cell) { return cell_start[cell]; }
-uint cell_end_at(uint cell) { return cell_end[cell]; }
+// What the kernel only reads are uniform texel buffers (compute/vk_kernels.cpp): lavapipe fetches
+// a texel with a gather, where it loads a storage buffer's element in a loop over the lanes.
+layout(binding = 1) uniform samplerBuffer positions_texels;  // rgba32f
+vec4 position_at(uint i) { return texelFetch(positions_texels, int(i)); }
+layout(binding = 2) uniform samplerBuffer kappa_texels;  // r32f
+float kappa_at(uint i) { return texelFetch(kappa_texels, int(i)).r; }
+layout(binding = 3) uniform usamplerBuffer cells_texels;  // r32ui
+uint cell_at(uint i) { return texelFetch(cells_texels, int(i)).r; }
+layout(binding = 4) uniform usamplerBuffer cell_start_texels;  // r32ui
+uint cell_start_at(uint i) { return texelFetch(cell_start_texels, int(i)).r; }
+layout(binding = 5) uniform usamplerBuffer cell_end_texels;  // r32ui
+uint cell_end_at(uint i) { return texelFetch(cell_end_texels, int(i)).r; }
 layout(std430, binding = 6) buffer Velocities { vec4 velocities[]; };
 layout(std430, binding = 7) buffer Stats { uint stats[]; };
-layout(std430, binding = 8) readonly buffer NeighborRows { uint neighbor_rows[]; };
+layout(binding = 8) uniform usamplerBuffer neighbor_rows_texels;  // r32ui
+uint neighbor_row_at(uint i) { return texelFetch(neighbor_rows_texels, int(i)).r; }
 
 #include "sph.glsl"
 #include "sph_walk.glsl"
@@ -38,11 +44,11 @@ void add_image(vec3 xj, float k, uint s) {
   if (dfsph_image(g_xi, xj, g_m, s, p.h2, d, r2)) g_acc += k * dfsph_gradient(d, r2, p);
 }
 void dfsph_visit(uint j) {
-  const vec3 xj = positions[j].xyz;
+  const vec3 xj = position_at(j).xyz;
   const vec3 d = g_xi - xj;
   const float r2 = dot(d, d);
   if (!(r2 < p.h2)) return;
-  const float k = g_ki + (j == g_self ? g_ki : kappa[j]);
+  const float k = g_ki + (j == g_self ? g_ki : kappa_at(j));
   if (j != g_self) g_acc += k * dfsph_gradient(d, r2, p);
   if (g_m.axes != 0u) {
     add_image(xj, k, 1u);
@@ -58,14 +64,14 @@ void dfsph_visit(uint j) {
 void main() {
   const uint i = flat_invocation_id();
   vec4 pw = vec4(0.0);
-  if (i < p.n) pw = positions[i];
+  if (i < p.n) pw = position_at(i);
   // Pinned particles never move: their lanes walk nothing.
   const bool live = i < p.n && pw.w > 0.0;
   g_self = i;
   g_xi = pw.xyz;
-  g_ki = live ? kappa[i] : 0.0;
+  g_ki = live ? kappa_at(i) : 0.0;
   ivec3 cc = ivec3(-4);
-  if (live) cc = sph_cell_coords(cells[i], p.dims);
+  if (live) cc = sph_cell_coords(cell_at(i), p.dims);
   g_m = dfsph_mirrors(g_xi, p);
   uint candidates = 0u;
   bool overflow = false, bad = false;

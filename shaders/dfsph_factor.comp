@@ -6,15 +6,20 @@
 // sph::dfsph_factor_of (engine/kernels/dfsph_kernels.h).
 #include "kernel_base.glsl"
 
-layout(std430, binding = 1) readonly buffer Positions { vec4 positions[]; };
-layout(std430, binding = 2) readonly buffer Cells { uint cells[]; };
-layout(std430, binding = 3) readonly buffer Start { uint cell_start[]; };
-layout(std430, binding = 4) readonly buffer End { uint cell_end[]; };
-uint cell_start_at(uint cell) { return cell_start[cell]; }
-uint cell_end_at(uint cell) { return cell_end[cell]; }
+// What the kernel only reads are uniform texel buffers (compute/vk_kernels.cpp): lavapipe fetches
+// a texel with a gather, where it loads a storage buffer's element in a loop over the lanes.
+layout(binding = 1) uniform samplerBuffer positions_texels;  // rgba32f
+vec4 position_at(uint i) { return texelFetch(positions_texels, int(i)); }
+layout(binding = 2) uniform usamplerBuffer cells_texels;  // r32ui
+uint cell_at(uint i) { return texelFetch(cells_texels, int(i)).r; }
+layout(binding = 3) uniform usamplerBuffer cell_start_texels;  // r32ui
+uint cell_start_at(uint i) { return texelFetch(cell_start_texels, int(i)).r; }
+layout(binding = 4) uniform usamplerBuffer cell_end_texels;  // r32ui
+uint cell_end_at(uint i) { return texelFetch(cell_end_texels, int(i)).r; }
 layout(std430, binding = 5) writeonly buffer Factor { float factor[]; };
 layout(std430, binding = 6) buffer Stats { uint stats[]; };
-layout(std430, binding = 7) readonly buffer NeighborRows { uint neighbor_rows[]; };
+layout(binding = 7) uniform usamplerBuffer neighbor_rows_texels;  // r32ui
+uint neighbor_row_at(uint i) { return texelFetch(neighbor_rows_texels, int(i)).r; }
 
 #include "sph.glsl"
 #include "sph_walk.glsl"
@@ -47,7 +52,7 @@ void add_image(vec3 xj, bool own, uint s) {
     add_gradient(d, r2);
 }
 void dfsph_visit(uint j) {
-  const vec3 xj = positions[j].xyz;
+  const vec3 xj = position_at(j).xyz;
   const vec3 d = g_xi - xj;
   const float r2 = dot(d, d);
   if (!(r2 < p.h2)) return;
@@ -71,8 +76,8 @@ void main() {
   g_xi = vec3(0.0);
   ivec3 cc = ivec3(-4);
   if (live) {
-    g_xi = positions[i].xyz;
-    cc = sph_cell_coords(cells[i], p.dims);
+    g_xi = position_at(i).xyz;
+    cc = sph_cell_coords(cell_at(i), p.dims);
   }
   g_m = dfsph_mirrors(g_xi, p);
   uint candidates = 0u;

@@ -8,19 +8,27 @@
 // (engine/kernels/dfsph_kernels.h).
 #include "kernel_base.glsl"
 
-layout(std430, binding = 1) readonly buffer Positions { vec4 positions[]; };
-layout(std430, binding = 2) readonly buffer Velocities { vec4 velocities[]; };
-layout(std430, binding = 3) readonly buffer Density { float density[]; };
-layout(std430, binding = 4) readonly buffer Factor { float factor[]; };
-layout(std430, binding = 5) readonly buffer Cells { uint cells[]; };
-layout(std430, binding = 6) readonly buffer Start { uint cell_start[]; };
-layout(std430, binding = 7) readonly buffer End { uint cell_end[]; };
-uint cell_start_at(uint cell) { return cell_start[cell]; }
-uint cell_end_at(uint cell) { return cell_end[cell]; }
+// What the kernel only reads are uniform texel buffers (compute/vk_kernels.cpp): lavapipe fetches
+// a texel with a gather, where it loads a storage buffer's element in a loop over the lanes.
+layout(binding = 1) uniform samplerBuffer positions_texels;  // rgba32f
+vec4 position_at(uint i) { return texelFetch(positions_texels, int(i)); }
+layout(binding = 2) uniform samplerBuffer velocities_texels;  // rgba32f
+vec4 velocity_at(uint i) { return texelFetch(velocities_texels, int(i)); }
+layout(binding = 3) uniform samplerBuffer density_texels;  // r32f
+float density_at(uint i) { return texelFetch(density_texels, int(i)).r; }
+layout(binding = 4) uniform samplerBuffer factor_texels;  // r32f
+float factor_at(uint i) { return texelFetch(factor_texels, int(i)).r; }
+layout(binding = 5) uniform usamplerBuffer cells_texels;  // r32ui
+uint cell_at(uint i) { return texelFetch(cells_texels, int(i)).r; }
+layout(binding = 6) uniform usamplerBuffer cell_start_texels;  // r32ui
+uint cell_start_at(uint i) { return texelFetch(cell_start_texels, int(i)).r; }
+layout(binding = 7) uniform usamplerBuffer cell_end_texels;  // r32ui
+uint cell_end_at(uint i) { return texelFetch(cell_end_texels, int(i)).r; }
 layout(std430, binding = 8) writeonly buffer Kappa { float kappa[]; };
 layout(std430, binding = 9) buffer KappaSum { float kappa_sum[]; };
 layout(std430, binding = 10) buffer Residual { uint residual[]; };
-layout(std430, binding = 11) readonly buffer NeighborRows { uint neighbor_rows[]; };
+layout(binding = 11) uniform usamplerBuffer neighbor_rows_texels;  // r32ui
+uint neighbor_row_at(uint i) { return texelFetch(neighbor_rows_texels, int(i)).r; }
 
 #include "sph.glsl"
 #include "sph_walk.glsl"
@@ -43,12 +51,12 @@ void add_image(vec3 xj, vec3 vj, uint s) {
     g_div += dot(dfsph_gradient(d, r2, p), g_vi - dfsph_mirror_velocity(vj, s));
 }
 void dfsph_visit(uint j) {
-  const vec3 xj = positions[j].xyz;
+  const vec3 xj = position_at(j).xyz;
   const vec3 d = g_xi - xj;
   const float r2 = dot(d, d);
   if (!(r2 < p.h2)) return;
   ++g_neighbors;
-  const vec3 vj = j == g_self ? g_vi : velocities[j].xyz;
+  const vec3 vj = j == g_self ? g_vi : velocity_at(j).xyz;
   if (j != g_self) g_div += dot(dfsph_gradient(d, r2, p), g_vi - vj);
   if (g_m.axes != 0u) {
     add_image(xj, vj, 1u);
@@ -70,11 +78,11 @@ void main() {
   ivec3 cc = ivec3(-4);
   float w = 0.0;
   if (live) {
-    const vec4 pw = positions[i];
+    const vec4 pw = position_at(i);
     g_xi = pw.xyz;
     w = pw.w;
-    g_vi = velocities[i].xyz;
-    cc = sph_cell_coords(cells[i], p.dims);
+    g_vi = velocity_at(i).xyz;
+    cc = sph_cell_coords(cell_at(i), p.dims);
   }
   g_m = dfsph_mirrors(g_xi, p);
   uint candidates = 0u;
@@ -84,12 +92,12 @@ void main() {
   if (live) {
     float k, res;
     if (p.solve == DfsphSolve_density) {
-      const float excess = max(density[i] + p.dt * g_div - p.rest_density, 0.0);
-      k = excess * factor[i] / (p.dt * p.dt);
+      const float excess = max(density_at(i) + p.dt * g_div - p.rest_density, 0.0);
+      k = excess * factor_at(i) / (p.dt * p.dt);
       res = excess * p.inv_rest_density;
     } else {
       const float rate = max(g_neighbors >= p.min_neighbors ? g_div : 0.0, 0.0);
-      k = rate * factor[i] / p.dt;
+      k = rate * factor_at(i) / p.dt;
       res = p.dt * rate * p.inv_rest_density;
     }
     kappa[i] = k;

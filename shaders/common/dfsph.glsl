@@ -1,7 +1,7 @@
 // DFSPH math: the GLSL twin of engine/kernels/dfsph_kernels.h (the spiky gradient, mirrored
 // velocities, residual units) and the candidate walk the three DFSPH kernels share. Formulas and
-// conventions are documented there; keep the two in step. The including shader declares
-// positions[], cell_start[], cell_end[], neighbor_rows[], the push block `p` (DfsphLayout) and
+// conventions are documented there; keep the two in step. The including shader defines
+// position_at, cell_start_at, cell_end_at and neighbor_row_at, the push block `p` (DfsphLayout) and
 // defines dfsph_visit(j), which the walk calls for each candidate (it tests the distance).
 
 #include "engine/kernels/dfsph_params.h"
@@ -55,8 +55,8 @@ void dfsph_walk(bool live, uint i, ivec3 cc, inout uint candidates, inout bool o
       uvec2 bits = uvec2(0u);
       if (!whole && r.y > r.x) {
         const uint row = sph_row_index(dx, dy);
-        bits = uvec2(neighbor_rows[sph_mask_word(row, 0u, i, p.n)],
-                     neighbor_rows[sph_mask_word(row, 1u, i, p.n)]);
+        bits = uvec2(neighbor_row_at(sph_mask_word(row, 0u, i, p.n)),
+                     neighbor_row_at(sph_mask_word(row, 1u, i, p.n)));
       }
       uint next = r.x;
       while (whole ? next < r.y : (bits.x | bits.y) != 0u) {
