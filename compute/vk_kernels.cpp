@@ -29,11 +29,12 @@ void VulkanBackend::run_kernel(const Params& p, uint64_t items, Buffers&... buff
     // reads what it only reads as texel buffers: lavapipe fetches a texel with a gather, an element
     // of a storage buffer with a loop over the lanes.
     std::vector<Texels> texels;
+    const Texels rgba32 = kTexelsRgba32f, r32f = kTexelsR32f, r32u = kTexelsR32u,
+                 none = kStorageBuffer;
     if constexpr (std::is_same_v<std::decay_t<decltype(layout)>, RaymarchLayout>) {
       constants.push_back(layout.bits & kRayModeFlags);
       constants.push_back((layout.bits >> kRayBrickShift) & 31u);
-      const Texels r32{::vk::Format::eR32Sfloat, 4}, rgba32{::vk::Format::eR32G32B32A32Sfloat, 16};
-      texels = {r32, rgba32, rgba32, Texels{}, rgba32};  // volume, tf, bricks, image, tf_integral
+      texels = {r32f, rgba32, rgba32, none, rgba32};  // volume, tf, bricks, image, tf_integral
     }
     // sph_density and sph_forces are specialised on the pressure model (shaders/common/sph.glsl)
     // and on whether rows are walked cooperatively (shaders/common/sph_coop.glsl), and read their
@@ -41,33 +42,23 @@ void VulkanBackend::run_kernel(const Params& p, uint64_t items, Buffers&... buff
     if constexpr (std::is_same_v<std::decay_t<decltype(layout)>, SphStepLayout<float>>) {
       constants.push_back(uint32_t(layout.model));
       constants.push_back(sph_coop_walk_ ? 1u : 0u);
-      const Texels rgba32{::vk::Format::eR32G32B32A32Sfloat, 16}, r32f{::vk::Format::eR32Sfloat, 4},
-          r32u{::vk::Format::eR32Uint, 4}, none{};
       if constexpr (K == KernelId::sph_density)  // positions, cells, cell_start, cell_end
         texels = {rgba32, r32u, r32u, r32u, none, none, none, none};
       if constexpr (K == KernelId::sph_forces)  // ... velocities, density, pressure; neighbor_rows
         texels = {rgba32, rgba32, r32f, r32f, r32u, r32u, r32u, none, none, r32u};
     }
-    // The nebula kernels' per-particle paths through the density grid read it as texels too.
-    if constexpr (K == KernelId::nebula_illuminate || K == KernelId::nebula_view) {
-      const Texels rgba32{::vk::Format::eR32G32B32A32Sfloat, 16}, r32f{::vk::Format::eR32Sfloat, 4};
-      if constexpr (K == KernelId::nebula_illuminate)  // positions, density; illumination
-        texels = {rgba32, r32f, Texels{}};
-      else  // positions, density, table, illumination; light
-        texels = {rgba32, r32f, r32f, r32f, Texels{}};
-    }
-    // The DFSPH solves' neighbour walks, as sph_density's and sph_forces'.
-    if constexpr (K == KernelId::dfsph_factor || K == KernelId::dfsph_rate ||
-                  K == KernelId::dfsph_correct) {
-      const Texels rgba32{::vk::Format::eR32G32B32A32Sfloat, 16}, r32f{::vk::Format::eR32Sfloat, 4},
-          r32u{::vk::Format::eR32Uint, 4}, none{};
-      if constexpr (K == KernelId::dfsph_factor)  // positions, cells, ranges; factor, stats; rows
-        texels = {rgba32, r32u, r32u, r32u, none, none, r32u};
-      if constexpr (K == KernelId::dfsph_rate)  // + velocities, density, factor; kappa, sums
-        texels = {rgba32, rgba32, r32f, r32f, r32u, r32u, r32u, none, none, none, r32u};
-      if constexpr (K == KernelId::dfsph_correct)  // positions, kappa, cells, ranges; v, stats
-        texels = {rgba32, r32f, r32u, r32u, r32u, none, none, r32u};
-    }
+    // The nebula kernels' paths through the density grid and the DFSPH solves' neighbour walks
+    // read their inputs as texel buffers too.
+    if constexpr (K == KernelId::nebula_illuminate)  // positions, density; illumination
+      texels = {rgba32, r32f, none};
+    if constexpr (K == KernelId::nebula_view)  // positions, density, table, illumination; light
+      texels = {rgba32, r32f, r32f, r32f, none};
+    if constexpr (K == KernelId::dfsph_factor)  // positions, cells, ranges; factor, stats; rows
+      texels = {rgba32, r32u, r32u, r32u, none, none, r32u};
+    if constexpr (K == KernelId::dfsph_rate)  // + velocities, density, factor; kappa, sums
+      texels = {rgba32, rgba32, r32f, r32f, r32u, r32u, r32u, none, none, none, r32u};
+    if constexpr (K == KernelId::dfsph_correct)  // positions, kappa, cells, ranges; v, stats
+      texels = {rgba32, r32f, r32u, r32u, r32u, none, none, r32u};
     dispatch_kernel(K, impls, &layout, sizeof(layout), items, written, constants, texels);
   }
 }

@@ -124,18 +124,17 @@ Renderer::Renderer(RenderDevice& dev, const UiContext& ui, uint32_t width, uint3
                                   T::eLineList, false, false, Blend::alpha});
   // The image as texel buffers (rgba8 words, rgba32f pixels): lavapipe fetches a texel with a
   // gather, where it loads a storage buffer's element in a loop over the lanes.
-  image_ = make_graphics_pipeline(
-      ctx, *pass_,
-      {"render/image.vert",
-       "render/image.frag",
-       2,
-       sizeof(ImagePush),
-       T::eTriangleList,
-       false,
-       false,
-       Blend::none,
-       true,
-       {{::vk::Format::eR32Uint, 4}, {::vk::Format::eR32G32B32A32Sfloat, 16}}});
+  image_ = make_graphics_pipeline(ctx, *pass_,
+                                  {"render/image.vert",
+                                   "render/image.frag",
+                                   2,
+                                   sizeof(ImagePush),
+                                   T::eTriangleList,
+                                   false,
+                                   false,
+                                   Blend::none,
+                                   true,
+                                   {vk::kTexelsR32u, vk::kTexelsRgba32f}});
   // The font atlas, read by every fragment of the panel and the overlay, as a texel buffer too.
   ui_pipe_ = make_graphics_pipeline(ctx, *pass_,
                                     {"render/ui.vert",
@@ -147,7 +146,7 @@ Renderer::Renderer(RenderDevice& dev, const UiContext& ui, uint32_t width, uint3
                                      false,
                                      Blend::alpha,
                                      true,
-                                     {{}, {}, {::vk::Format::eR32Uint, 4}}});
+                                     {vk::kStorageBuffer, vk::kStorageBuffer, vk::kTexelsR32u}});
   const ::vk::DescriptorPoolSize sizes[] = {
       {::vk::DescriptorType::eStorageBuffer, 4 * kSetsPerFrame},
       {::vk::DescriptorType::eUniformTexelBuffer, 2 * kSetsPerFrame}};

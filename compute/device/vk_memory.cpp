@@ -85,7 +85,7 @@ std::shared_ptr<Allocation> allocate(const Context& ctx, ::vk::DeviceSize bytes,
     throw Error("vulkan", std::string(kernel),
                 fmt::format("buffer '{}' holds {} texels; {} reads at most {} per buffer", a.label,
                             texels, ctx.caps().device_name, ctx.max_texel_buffer_elements()),
-                "use a smaller volume (fewer voxels), or --backend cpu or cuda");
+                "use fewer elements (voxels, particles), or --backend cpu or cuda");
   ::vk::BufferViewCreateInfo info({}, *a.buffer, format, 0, texels * texel_bytes);
   a.views.emplace_back(format, ::vk::raii::BufferView(ctx.device(), info));
   return *a.views.back().second;
