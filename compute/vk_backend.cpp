@@ -5,6 +5,7 @@
 #include <cstdlib>
 #include <cstring>
 
+#include "compute/raymarch_quads_choice.h"
 #include "compute/sph_walk_choice.h"
 #include "engine/core/error.h"
 #include "engine/kernels/kernel_checks.h"
@@ -72,6 +73,7 @@ VulkanBackend::VulkanBackend(const BackendOptions& options)
                   fmt::format("a multiple of 64 up to {}", ctx_.caps().max_workgroup_size));
   scatter_ = choose_sort_scatter(options.sort_scatter);
   sph_coop_walk_ = sph_coop_walk(ctx_.caps().device_type);
+  ray_quads_ = raymarch_quads_wanted(ctx_.caps().device_type);
   diag_ = allocate(ctx_, sizeof(Diagnostics), MemoryUse::readback, "diagnostics");
   std::memcpy(diag_->mapped, &kCleanDiagnostics, sizeof(Diagnostics));
 }
@@ -116,6 +118,7 @@ void VulkanBackend::write_bytes(BufferImpl& dst, const void* src, size_t bytes, 
   if (a->mapped) {
     stream_.submit_and_wait();  // earlier recorded work may still read the old contents
     std::memcpy(static_cast<uint8_t*>(a->mapped) + offset, src, bytes);
+    ++a->writes;
     return;
   }
   auto staging = allocate(ctx_, bytes, MemoryUse::upload, "upload staging");
@@ -184,12 +187,14 @@ void VulkanBackend::run(const KernelSpec& spec,
 void VulkanBackend::dispatch_kernel(KernelId kernel, std::span<const BufferImpl* const> buffers,
                                     const void* push, uint32_t push_bytes, uint64_t items,
                                     uint32_t written, std::span<const uint32_t> constants,
-                                    std::span<const Texels> texels) {
+                                    std::span<const Texels> texels,
+                                    std::shared_ptr<Allocation> extra) {
   const std::string_view name = kernel_name(kernel);
   const BufferImpl* any = nullptr;
   for (const BufferImpl* b : buffers) any = any ? any : b;
   std::vector<std::shared_ptr<Allocation>> allocs;
   for (const BufferImpl* b : buffers) allocs.push_back(alloc(b ? *b : *any, name));
+  if (extra) allocs.push_back(std::move(extra));
   const uint32_t wg = options_.workgroup_size;
   const KernelSpec spec{name.data(), uint32_t(allocs.size()),
                         push_bytes,  std::vector<uint32_t>(constants.begin(), constants.end()),

@@ -80,10 +80,17 @@ class VulkanBackend final : public Backend, public VulkanInterop {
   // memory), `push` the kernel's layout, `written` the buffers it writes (bit i: buffers[i]),
   // `constants` its specialization constants from 3 on, `texels` how it reads each buffer (empty:
   // every one a storage buffer).
+  // `extra`, if any, binds after them (a buffer of the backend's own, read only).
   void dispatch_kernel(KernelId kernel, std::span<const BufferImpl* const> buffers,
                        const void* push, uint32_t push_bytes, uint64_t items, uint32_t written,
                        std::span<const uint32_t> constants = {},
-                       std::span<const Texels> texels = {});
+                       std::span<const Texels> texels = {},
+                       std::shared_ptr<Allocation> extra = nullptr);
+  // raymarch's first pass where ray_quads_ asks for it and the quads fit (vk_volume.cpp): the
+  // volume's trilinear corners four to a texel (shaders/raymarch_quads.comp), made again only
+  // when the volume or its contents changed; null where not used.
+  std::shared_ptr<Allocation> raymarch_quads(const RaymarchLayout& layout,
+                                             const BufferImpl& volume);
   // In-place exclusive prefix sum of data[0..count) for `kernel` (its scratch and its errors).
   void exclusive_scan(const std::shared_ptr<Allocation>& data, uint32_t count,
                       std::string_view kernel, uint32_t level = 0);
@@ -101,6 +108,14 @@ class VulkanBackend final : public Backend, public VulkanInterop {
   SortScatter scatter_ = SortScatter::tiled;
   // The SPH neighbour rows walked by subgroup clusters (compute/sph_walk_choice.h).
   bool sph_coop_walk_ = true;
+  // raymarch reads its volume four voxels to a texel (compute/raymarch_quads_choice.h).
+  bool ray_quads_ = false;
+  std::shared_ptr<Allocation> quads_;  // raymarch_quads' output, of the volume below
+  struct QuadSource {
+    uint64_t serial = 0, writes = 0;  // the volume's Allocation::serial and ::writes
+    uint32_t dims[3] = {0, 0, 0};
+    bool operator==(const QuadSource&) const = default;
+  } quads_of_;
 };
 
 }  // namespace masav::vk

@@ -6,6 +6,7 @@
 
 #include "compute/vk_backend.h"
 #include "engine/kernels/kernel_body.h"
+#include "engine/kernels/volume_math.h"
 
 namespace masav::vk {
 template <KernelId K, class Params, class... Buffers>
@@ -23,18 +24,25 @@ void VulkanBackend::run_kernel(const Params& p, uint64_t items, Buffers&... buff
     for (size_t i = 0; i < sizeof...(Buffers); ++i) written |= writes[i] ? 1u << i : 0u;
     if (const uint32_t limit = diag_limit(layout)) pending_diag_limit_ = limit;
     std::vector<uint32_t> constants;
-    // raymarch is specialised on the flags that choose its code paths and on the brick size
+    // raymarch is specialised on the flags that choose its code paths, on the brick size, on
+    // the form of its opacity correction's power and on reading the volume as quads
     // (shaders/raymarch.comp): lavapipe runs a branch that no lane takes, loads and all, unless
     // the branch is compiled out, and divides by a brick size it does not know lane by lane. It
     // reads what it only reads as texel buffers: lavapipe fetches a texel with a gather, an element
     // of a storage buffer with a loop over the lanes.
     std::vector<Texels> texels;
+    std::shared_ptr<Allocation> extra;  // bound after the kernel's buffers
     const Texels rgba32 = kTexelsRgba32f, r32f = kTexelsR32f, r32u = kTexelsR32u,
                  none = kStorageBuffer;
     if constexpr (std::is_same_v<std::decay_t<decltype(layout)>, RaymarchLayout>) {
       constants.push_back(layout.bits & kRayModeFlags);
       constants.push_back((layout.bits >> kRayBrickShift) & 31u);
-      texels = {r32f, rgba32, rgba32, none, rgba32};  // volume, tf, bricks, image, tf_integral
+      constants.push_back(volume::pow_step_form(layout.step / layout.reference_step));
+      extra = raymarch_quads(layout, *impls[0]);
+      constants.push_back(extra ? 1u : 0u);
+      if (!extra) extra = alloc(*impls[1], "raymarch");  // unread: the quads' binding needs one
+      // volume, tf, bricks, image, tf_integral; the quads
+      texels = {r32f, rgba32, rgba32, none, rgba32, rgba32};
     }
     // sph_density and sph_forces are specialised on the pressure model (shaders/common/sph.glsl)
     // and on whether rows are walked cooperatively (shaders/common/sph_coop.glsl), and read their
@@ -59,7 +67,7 @@ void VulkanBackend::run_kernel(const Params& p, uint64_t items, Buffers&... buff
       texels = {rgba32, rgba32, r32f, r32f, r32u, r32u, r32u, none, none, none, r32u};
     if constexpr (K == KernelId::dfsph_correct)  // positions, kappa, cells, ranges; v, stats
       texels = {rgba32, r32f, r32u, r32u, r32u, none, none, r32u};
-    dispatch_kernel(K, impls, &layout, sizeof(layout), items, written, constants, texels);
+    dispatch_kernel(K, impls, &layout, sizeof(layout), items, written, constants, texels, extra);
   }
 }
 

@@ -64,7 +64,10 @@ void Stream::order(std::span<const Allocation* const> reads,
   };
   bool depends = false;
   for (const Allocation* r : reads) depends = depends || in(written_, r);
-  for (const Allocation* w : writes) depends = depends || in(written_, w) || in(read_, w);
+  for (const Allocation* w : writes) {
+    depends = depends || in(written_, w) || in(read_, w);
+    ++w->writes;
+  }
   if (depends && commands_recorded_) record_barrier();
   commands_recorded_ = true;
   read_.insert(read_.end(), reads.begin(), reads.end());

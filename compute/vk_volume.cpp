@@ -1,6 +1,12 @@
 // voxelize on Vulkan: an accumulate pass per particle into per-cell integer tallies, then a
-// finalize pass per cell (shaders/voxelize_*.comp), both on VoxelizeParams.
+// finalize pass per cell (shaders/voxelize_*.comp), both on VoxelizeParams. raymarch's first
+// pass on a CPU device: its volume four voxels to a texel (shaders/raymarch_quads.comp).
+#include <cstdlib>
+#include <string>
+
+#include "compute/raymarch_quads_choice.h"
 #include "compute/vk_backend.h"
+#include "engine/core/error.h"
 
 namespace masav::vk {
 
@@ -16,6 +22,39 @@ void VulkanBackend::run_own(const KernelArgs<KernelId::voxelize>& a) {
   run({"voxelize_finalize", 4, sizeof p, {}},
       {tallies, alloc(probability.impl(), k), alloc(mean_light.impl(), k), alloc(sample.impl(), k)},
       &p, (cells + wg - 1) / wg);
+}
+
+bool raymarch_quads_wanted(std::string_view device_type) {
+  if (const char* env = std::getenv("MASAV_VK_RAY_QUADS")) {
+    const std::string v = env;
+    if (v == "on") return true;
+    if (v == "off") return false;
+    if (!v.empty() && v != "auto")
+      throw_invalid("vulkan", "MASAV_VK_RAY_QUADS", v, "auto, on or off");
+  }
+  return device_type == "cpu";
+}
+
+std::shared_ptr<Allocation> VulkanBackend::raymarch_quads(const RaymarchLayout& layout,
+                                                          const BufferImpl& volume) {
+  const uint64_t voxels = uint64_t(layout.dims.x) * layout.dims.y * layout.dims.z;
+  const uint64_t bytes = voxels * 16;
+  if (!ray_quads_ || voxels == 0 || bytes > kMaxRayQuadBytes) return nullptr;
+  // Exactly the volume's size: the texel view spans the whole allocation, and its texel count is
+  // then the volume's, under the same device limit.
+  if (!quads_ || quads_->bytes != bytes) {
+    quads_ = allocate(ctx_, bytes, MemoryUse::device, "raymarch quads");
+    quads_of_ = {};
+  }
+  const auto& source = alloc(volume, "raymarch");
+  const QuadSource of{
+      source->serial, source->writes, {layout.dims.x, layout.dims.y, layout.dims.z}};
+  if (of == quads_of_) return quads_;
+  const uint32_t wg = options_.workgroup_size;
+  run({"raymarch_quads", 2, sizeof layout, {}, 0, {kTexelsR32f, kStorageBuffer}}, {source, quads_},
+      &layout, (voxels + wg - 1) / wg, 0b10);
+  quads_of_ = of;
+  return quads_;
 }
 
 }  // namespace masav::vk

@@ -15,6 +15,7 @@ layout(binding = 2) uniform samplerBuffer tf_texels;          // rgba32f
 layout(binding = 3) uniform samplerBuffer brick_texels;       // rgba32f
 layout(std430, binding = 4) writeonly buffer Image { vec4 image[]; };
 layout(binding = 5) uniform samplerBuffer tf_integral_texels;  // rgba32f
+layout(binding = 6) uniform samplerBuffer quad_texels;  // rgba32f: raymarch_quads' output
 MASAV_PUSH(RaymarchLayout);
 float volume_at(uint index) { return texelFetch(volume_texels, int(index)).r; }
 vec4 tf_at(uint entry) { return texelFetch(tf_texels, int(entry)); }
@@ -26,6 +27,13 @@ bool ray_mode(uint flag) { return (RAY_MODES & flag) != 0u; }
 // The brick size (bits >> kRayBrickShift & 31), as a constant: the brick of a sample is then a
 // shift or a multiplication, where lavapipe divided each lane's three coordinates one by one.
 layout(constant_id = 4) const uint RAY_BRICK = 4u;
+// The form of x^(step / reference_step) (kRayPow*: volume::pow_step_form, on the host), as a
+// constant: lavapipe would otherwise compute all five forms, pow's logarithm and exponential
+// included, for every sample.
+layout(constant_id = 5) const uint RAY_POW = 0u;
+// Whether the trilinear corners come four to a texel from quad_texels (compute/vk_volume.cpp).
+layout(constant_id = 6) const bool VOLUME_QUADS = false;
+vec4 volume_quad_at(uint index) { return texelFetch(quad_texels, int(index)); }
 
 #include "volume.glsl"
 #include "preintegration.glsl"
@@ -77,6 +85,15 @@ float pow_step(float x, float e) {
   if (e == 0.25) return sqrt(sqrt(x));
   if (e == 2.0) return x * x;
   return pow(x, e);
+}
+
+// pow_step(x, exponent) for the dispatch's full-step exponent, in the form RAY_POW names.
+float pow_full_step(float x, float exponent) {
+  if (RAY_POW == kRayPowOne) return x;
+  if (RAY_POW == kRayPowHalf) return sqrt(x);
+  if (RAY_POW == kRayPowQuarter) return sqrt(sqrt(x));
+  if (RAY_POW == kRayPowTwo) return x * x;
+  return pow(x, exponent);
 }
 
 // The twin of volume::first_segment_after (inv_step = 1 / step).
@@ -136,6 +153,9 @@ vec4 march(uint px, uint py) {
   // No loop may nest in this one (see slab.glsl): lavapipe would count each sample twice.
   uint i = 0u;
   bool done = false;
+  // The last segment, shorter than a step, is composited after the loop (it is the last one
+  // composited either way), so that the loop takes the full step's form of the power only.
+  vec4 last = vec4(0.0);
   for (uint it = 0u; it < n; ++it) {
     if (i >= n || done) break;
     LOOP_TICK();
@@ -164,9 +184,10 @@ vec4 march(uint px, uint py) {
       if (lerp_mode) {
         acc.rgb += (col.rgb - acc.rgb) * col.a;
         acc.a += (1.0 - acc.a) * col.a;
+      } else if (seg + 1u == n) {
+        last = col;
       } else if (col.a > 0.0) {  // a transparent sample adds nothing: 1 - 1^e = 0
-        const float e = seg + 1u == n ? (s1 - s0) / p.reference_step : exponent;
-        const float alpha = 1.0 - pow_step(max(0.0, 1.0 - col.a), e);
+        const float alpha = 1.0 - pow_full_step(max(0.0, 1.0 - col.a), exponent);
         const float w = (1.0 - acc.a) * alpha;
         acc.rgb += w * col.rgb;
         acc.a += w;
@@ -174,6 +195,14 @@ vec4 march(uint px, uint py) {
       }
       ++i;
     }
+  }
+  if (last.a > 0.0) {
+    const float s0 = tn + float(n - 1u) * step_len;
+    const float alpha =
+        1.0 - pow_step(max(0.0, 1.0 - last.a), (min(s0 + step_len, tfar) - s0) / p.reference_step);
+    const float w = (1.0 - acc.a) * alpha;
+    acc.rgb += w * last.rgb;
+    acc.a += w;
   }
   return acc;
 }

@@ -455,6 +455,48 @@ TEST_CASE("raymarch: skipping empty bricks and early termination keep the image"
     }
 }
 
+// A backend may keep what it derives from a volume between frames (Vulkan on a CPU device: its
+// voxels four to a texel, compute/vk_volume.cpp); a volume rewritten in place, by an upload or
+// by a command, must then render as a fresh one does.
+TEST_CASE("raymarch: a volume rewritten between frames renders as a fresh volume") {
+  Backend& b = test::backend();
+  auto same = [](const std::vector<Vec4d>& x, const std::vector<Vec4d>& y) {
+    if (x.size() != y.size()) return false;
+    for (size_t i = 0; i < x.size(); ++i)
+      if (x[i].x != y[i].x || x[i].y != y[i].y || x[i].z != y[i].z || x[i].w != y[i].w)
+        return false;
+    return true;
+  };
+  SmoothCase c = smooth_case();
+  const Volume first = c.vol;
+  Volume second = c.vol, third = c.vol;
+  for (size_t i = 0; i < c.vol.values.size(); ++i) {
+    second.values[i] = 0.9 - 0.8 * c.vol.values[i];
+    third.values[i] = 0.5 * c.vol.values[i] + 0.3 * std::cos(0.7 * double(i));
+  }
+  auto v = b.create<Real>(first.values.size(), "volume");
+  auto t = b.create<Real4>(c.tf.size(), "tf");
+  b.upload(t, c.tf);
+  const UVec3 nb = brick_dims(c.rp.volume, c.rp.brick);
+  auto bricks = b.create<Real4>(size_t(nb.x) * nb.y * nb.z, "bricks");
+  auto img = b.create<Real4>(size_t(c.rp.width) * c.rp.height, "image");
+  auto frame = [&] {
+    atom::fill_bricks(b, {c.rp.volume, c.rp.brick, c.rp.tf_size}, v, t, bricks);
+    b.raymarch(c.rp, v, t, bricks, img, nullptr);
+    return b.download(img);
+  };
+  b.upload(v, first.values);
+  CHECK(same(frame(), render(b, c.rp, first, c.tf)));
+  b.upload(v, second.values);  // the same buffer, new contents from the host
+  const auto from_upload = frame();
+  CHECK(same(from_upload, render(b, c.rp, second, c.tf)));
+  CHECK(!same(from_upload, render(b, c.rp, first, c.tf)));
+  auto other = b.create<Real>(third.values.size(), "other volume");
+  b.upload(other, third.values);
+  b.copy(other, v);  // new contents from a command
+  CHECK(same(frame(), render(b, c.rp, third, c.tf)));
+}
+
 TEST_CASE("raymarch: the thesis's lerp compositing of n samples of a uniform volume") {
   Volume vol{make_volume_desc({8, 8, 8}, {-1, -1, -1}, {1, 1, 1}, 0.0f, 1.0f),
              std::vector<double>(512, 0.5)};

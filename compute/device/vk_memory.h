@@ -27,6 +27,9 @@ struct Allocation {
   // Unique for the process's lifetime (addresses and handles of freed buffers are reused), so
   // that what was bound to it can be cached under it.
   uint64_t serial = 0;
+  // Counts the commands recorded that write it (Stream::order) and the host's writes to its
+  // mapping: what is derived from its contents (raymarch's quads) is current while this holds.
+  mutable uint64_t writes = 0;
   // Views of the whole buffer as a uniform texel buffer, one per format asked for (texel_view).
   std::vector<std::pair<::vk::Format, ::vk::raii::BufferView>> views;
 };

@@ -215,6 +215,14 @@ MASAV_CONSTANT(kRayClipAxisShift, 8)  // 2 bits: 0 x, 1 y, 2 z
 MASAV_CONSTANT(kRayBrickShift, 10)    // 5 bits: 2 .. 16
 MASAV_CONSTANT(kRayTfSizeShift, 16)   // 13 bits: 2 .. 4096
 MASAV_CONSTANT(kRayMaxShininess, 256)
+// Which of volume::pow_step's forms the opacity correction's exponent step / reference_step takes
+// (volume::pow_step_form): a Vulkan raymarch is specialised on it, so that lavapipe, which runs
+// every branch of a sample, computes one form per sample instead of all five.
+MASAV_CONSTANT(kRayPowGeneral, 0)  // pow(x, e)
+MASAV_CONSTANT(kRayPowOne, 1)      // e = 1: x
+MASAV_CONSTANT(kRayPowHalf, 2)     // e = 1/2: sqrt(x)
+MASAV_CONSTANT(kRayPowQuarter, 3)  // e = 1/4: sqrt(sqrt(x))
+MASAV_CONSTANT(kRayPowTwo, 4)      // e = 2: x * x
 // The pre-integrated table holds this many Real4 per transfer-function entry
 // (volume::segment_mean describes them).
 MASAV_CONSTANT(kPreintegratedPerEntry, 3)

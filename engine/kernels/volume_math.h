@@ -420,6 +420,16 @@ MASAV_HD inline T pow_step(T x, T e) {
   return hd::pow_t(x, e);
 }
 
+// Which form pow_step takes for exponent e (kRayPow*).
+template <class T>
+MASAV_HD inline uint32_t pow_step_form(T e) {
+  if (e == T(1)) return kRayPowOne;
+  if (e == T(0.5)) return kRayPowHalf;
+  if (e == T(0.25)) return kRayPowQuarter;
+  if (e == T(2)) return kRayPowTwo;
+  return kRayPowGeneral;
+}
+
 // The last segment boundary at or before t (segments of `step` from tn, n of them), as a segment
 // index in [0, n].
 // A pixel's ray clipped to the volume's box, in voxel coordinates (voxel centres at integers),

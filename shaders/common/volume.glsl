@@ -1,19 +1,37 @@
 // Ray casting pieces: the GLSL twin of engine/kernels/volume_math.h (trilinear sampling,
 // transfer function, the clipping plane, gradient shading; the slab test is in slab.glsl). The
-// including kernel defines `float volume_at(uint index)` and `vec4 tf_at(uint entry)`. No loops:
+// including kernel defines `float volume_at(uint index)`, `vec4 tf_at(uint entry)`, the constant
+// `bool VOLUME_QUADS` and `vec4 volume_quad_at(uint index)` (raymarch_quads.comp's texels). No loops:
 // raymarch calls these inside its sample loop (see slab.glsl).
 float voxel(uvec3 i, uvec3 dims) { return volume_at((i.z * dims.y + i.y) * dims.x + i.x); }
 
+// The eight corners' indices as one base index plus offsets: lavapipe multiplies each lane's
+// 32-bit integers with a slow vector instruction, so a sample multiplies twice, not sixteen times.
+// With VOLUME_QUADS, the corners come four to a texel from volume_quad_at (raymarch_quads.comp),
+// in the same order and arithmetic.
 float trilinear(vec3 u, uvec3 dims) {
   const vec3 c = clamp(u, vec3(0.0), vec3(dims - 1u));
   const vec3 fl = floor(c);
   const uvec3 i0 = uvec3(fl);
-  const uvec3 i1 = min(i0 + 1u, dims - 1u);
+  const uvec3 up = min(i0 + 1u, dims - 1u) - i0;  // 0 on the last voxel of an axis
+  const uint row = dims.x, slice = dims.x * dims.y;
+  const uint b = (i0.z * dims.y + i0.y) * dims.x + i0.x;
+  const uint x1 = up.x, y1 = up.y != 0u ? row : 0u, z1 = up.z != 0u ? slice : 0u;
   const vec3 f = c - fl;
-  const float c00 = voxel(uvec3(i0.x, i0.y, i0.z), dims) * (1.0 - f.x) + voxel(uvec3(i1.x, i0.y, i0.z), dims) * f.x;
-  const float c10 = voxel(uvec3(i0.x, i1.y, i0.z), dims) * (1.0 - f.x) + voxel(uvec3(i1.x, i1.y, i0.z), dims) * f.x;
-  const float c01 = voxel(uvec3(i0.x, i0.y, i1.z), dims) * (1.0 - f.x) + voxel(uvec3(i1.x, i0.y, i1.z), dims) * f.x;
-  const float c11 = voxel(uvec3(i0.x, i1.y, i1.z), dims) * (1.0 - f.x) + voxel(uvec3(i1.x, i1.y, i1.z), dims) * f.x;
+  if (VOLUME_QUADS) {
+    const vec4 q0 = volume_quad_at(b), q1 = volume_quad_at(b + z1);
+    const float c00 = q0.x * (1.0 - f.x) + q0.y * f.x;
+    const float c10 = q0.z * (1.0 - f.x) + q0.w * f.x;
+    const float c01 = q1.x * (1.0 - f.x) + q1.y * f.x;
+    const float c11 = q1.z * (1.0 - f.x) + q1.w * f.x;
+    const float c0 = c00 * (1.0 - f.y) + c10 * f.y;
+    const float c1 = c01 * (1.0 - f.y) + c11 * f.y;
+    return c0 * (1.0 - f.z) + c1 * f.z;
+  }
+  const float c00 = volume_at(b) * (1.0 - f.x) + volume_at(b + x1) * f.x;
+  const float c10 = volume_at(b + y1) * (1.0 - f.x) + volume_at(b + y1 + x1) * f.x;
+  const float c01 = volume_at(b + z1) * (1.0 - f.x) + volume_at(b + z1 + x1) * f.x;
+  const float c11 = volume_at(b + z1 + y1) * (1.0 - f.x) + volume_at(b + z1 + y1 + x1) * f.x;
   const float c0 = c00 * (1.0 - f.y) + c10 * f.y;
   const float c1 = c01 * (1.0 - f.y) + c11 * f.y;
   return c0 * (1.0 - f.z) + c1 * f.z;
