@@ -34,6 +34,47 @@ layout(std430, binding = 8) writeonly buffer NeighborRows { uint neighbor_rows[]
 
 MASAV_PUSH(SphStepLayout);
 
+// What a walk adds up: the kernel sum, the neighbours within h, and the row's mask.
+struct Walk {
+  float sum;
+  uint within;
+  uvec2 bits;
+};
+
+// Candidate j's term at squared distance r2 (near: within h and in this lane's row), and those of
+// its wall images when `images` (a constant at each call: the copy without them has none).
+void add_candidate(inout Walk w, uint i, uint j, vec3 xi, vec3 xj, float r2, bool in_row,
+                   uint first, SphMirrors mirrors, bool images) {
+  const bool near = in_row && r2 < p.h2;
+  w.sum += in_row ? sph_density_term(r2, p) : 0.0;
+  if (images && near && mirrors.axes != 0u && j != i)
+    w.sum += sph_wall_image_density(xi, xj, mirrors, p);
+  w.within += near ? 1u : 0u;
+  w.bits = sph_mask_set(w.bits, j - first, near);
+}
+
+// One chunk of a cooperative row: the cluster's kSphCoop candidates from `base`, rotated through
+// its lanes.
+void coop_chunk(inout Walk w, uint i, vec3 xi, uint base, uvec2 u, uvec2 r, SphMirrors mirrors,
+                bool images) {
+  const uint mine = base + sph_coop_lane();
+  const vec3 xc = mine < u.y ? position_at(mine).xyz : vec3(0.0);
+  for (uint k = 0u; k < kSphCoop; ++k) {
+    LOOP_TICK();
+    const vec3 xj = subgroupShuffle(xc, sph_coop_source(k));
+    const uint j = base + ((sph_coop_lane() + k) & (kSphCoop - 1u));
+    const vec3 d = xi - xj;
+    add_candidate(w, i, j, xi, xj, dot(d, d), j >= r.x && j < r.y, r.x, mirrors, images);
+  }
+}
+
+void lane_candidate(inout Walk w, uint i, vec3 xi, uint j, uvec2 r, SphMirrors mirrors,
+                    bool images) {
+  const vec3 xj = position_at(j).xyz;
+  const vec3 d = xi - xj;
+  add_candidate(w, i, j, xi, xj, dot(d, d), true, r.x, mirrors, images);
+}
+
 void main() {
   // The range computed, [first, end) of the n (a rank's own particles); the others are only
   // read as neighbours.
@@ -53,57 +94,50 @@ void main() {
   SphMirrors mirrors = sph_wall_mirrors(xi, p);
   if (!live) mirrors.axes = 0u;
   const uvec3 dims = p.dims;
+  // lavapipe runs every statement of a loop body in every pass, whatever its lanes take, and the
+  // seven wall images cost a pass several times the pair's: each walk below is written twice,
+  // with and without the images, and a subgroup with no lane within h of a wall takes the second
+  // (the first then makes one empty pass). (A third copy with one wall's image alone, for
+  // subgroups along a single wall, measured slower.)
+  const bool walls_near = subgroupMax(mirrors.axes) != 0u;
   uint spent = 0u;
-  float sum = 0.0;
+  Walk w = Walk(0.0, 0u, uvec2(0u));
   for (int dx = -1; dx <= 1; ++dx) {
     LOOP_TICK();
     for (int dy = -1; dy <= 1; ++dy) {
       LOOP_TICK();
       const uvec2 r = sph_lane_row(live, cc, dx, dy, dims, p.max_candidates, candidates, overflow);
-      uvec2 bits = uvec2(0u);  // this row's mask, in both walks
+      w.bits = uvec2(0u);  // this row's mask, in both walks
       uvec2 u;
       if (sph_coop_row(r, spent, u)) {
-        for (uint base = u.x; base < u.y; base += kSphCoop) {
+        for (uint base = u.x; walls_near && base < u.y; base += kSphCoop) {
           LOOP_TICK();
-          const uint mine = base + sph_coop_lane();
-          const vec3 xc = mine < u.y ? position_at(mine).xyz : vec3(0.0);
-          for (uint k = 0u; k < kSphCoop; ++k) {
-            LOOP_TICK();
-            const vec3 xj = subgroupShuffle(xc, sph_coop_source(k));
-            const uint j = base + ((sph_coop_lane() + k) & (kSphCoop - 1u));
-            const vec3 d = xi - xj;
-            const float r2 = dot(d, d);
-            const bool in_row = j >= r.x && j < r.y;
-            const bool near = in_row && r2 < p.h2;
-            sum += in_row ? sph_density_term(r2, p) : 0.0;
-            if (near && mirrors.axes != 0u && j != i)
-              sum += sph_wall_image_density(xi, xj, mirrors, p);
-            within += near ? 1u : 0u;
-            bits = sph_mask_set(bits, j - r.x, near);
-          }
+          coop_chunk(w, i, xi, base, u, r, mirrors, true);
+        }
+        for (uint base = u.x; !walls_near && base < u.y; base += kSphCoop) {
+          LOOP_TICK();
+          coop_chunk(w, i, xi, base, u, r, mirrors, false);
         }
       } else {
-        for (uint j = r.x; j < r.y; ++j) {
+        for (uint j = r.x; walls_near && j < r.y; ++j) {
           LOOP_TICK();
-          const vec3 xj = position_at(j).xyz;
-          const vec3 d = xi - xj;
-          const float r2 = dot(d, d);
-          const bool near = r2 < p.h2;
-          sum += sph_density_term(r2, p);
-          if (near && mirrors.axes != 0u && j != i)
-            sum += sph_wall_image_density(xi, xj, mirrors, p);
-          within += near ? 1u : 0u;
-          bits = sph_mask_set(bits, j - r.x, near);
+          lane_candidate(w, i, xi, j, r, mirrors, true);
+        }
+        for (uint j = r.x; !walls_near && j < r.y; ++j) {
+          LOOP_TICK();
+          lane_candidate(w, i, xi, j, r, mirrors, false);
         }
       }
       if (p.neighbor_rows != 0u && live) {
         const uint row = sph_row_index(dx, dy);
-        if (!sph_row_fits_mask(r)) bits = uvec2(0u);
+        const uvec2 bits = sph_row_fits_mask(r) ? w.bits : uvec2(0u);
         neighbor_rows[sph_mask_word(row, 0u, i, p.n)] = bits.x;
         neighbor_rows[sph_mask_word(row, 1u, i, p.n)] = bits.y;
       }
     }
   }
+  const float sum = w.sum;
+  within = w.within;
   if (live) {
     const float rho =
         p.density * sum + (mirrors.axes != 0u ? sph_own_image_density(xi, mirrors, p) : 0.0);

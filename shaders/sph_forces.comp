@@ -57,9 +57,9 @@ struct Sum {
   bool overflow;
 };
 
-// Candidate j's pair term, if it is another particle within h (the per-lane test), and the
-// terms of its wall images (also of the particle's own).
-void add_candidate(Me me, uint j, inout Sum s) {
+// Candidate j's pair term, if it is another particle within h (the per-lane test), and, when
+// `images` (a constant at each call), the terms of its wall images (also of the particle's own).
+void add_candidate(Me me, uint j, inout Sum s, bool images) {
   const vec3 xj = position_at(j).xyz;
   const vec3 d = me.x - xj;
   const float r2 = dot(d, d);
@@ -67,16 +67,54 @@ void add_candidate(Me me, uint j, inout Sum s) {
   const float rho_j = density_at(j);
   const float q_j = pressure_at(j) / (rho_j * rho_j);
   const vec3 vj = velocity_at(j).xyz;
-  if (me.mirrors.axes != 0u)
+  if (images && me.mirrors.axes != 0u)
     s.acc += sph_wall_image_accel(me.x, me.v, me.rho, me.p_rho2, xj, vj, rho_j, q_j, me.mirrors, p);
   if (j == me.i) return;
   ++s.neighbors;
   s.acc += sph_pair_accel(me.v, me.rho, me.p_rho2, vj, rho_j, q_j, d, r2, p);
 }
 
+// One chunk of a cooperative row: the cluster's kSphCoop candidates from `base` (position,
+// velocity, density and p / rho^2 loaded once each), rotated through its lanes; their wall images
+// when `images` (a constant at each call).
+void coop_chunk(Me me, uint base, uvec2 u, uvec2 r, inout Sum s, bool images) {
+  const uint mine = base + sph_coop_lane();
+  vec3 xc = vec3(0.0), vc = vec3(0.0);
+  float rc = 1.0, qc = 0.0;
+  if (mine < u.y) {
+    xc = position_at(mine).xyz;
+    vc = velocity_at(mine).xyz;
+    rc = density_at(mine);
+    qc = pressure_at(mine) / (rc * rc);
+  }
+  for (uint k = 0u; k < kSphCoop; ++k) {
+    LOOP_TICK();
+    const uint src = sph_coop_source(k);
+    const vec3 xj = subgroupShuffle(xc, src);
+    const vec3 vj = subgroupShuffle(vc, src);
+    const float rho_j = subgroupShuffle(rc, src);
+    const float q_j = subgroupShuffle(qc, src);
+    const uint j = base + ((sph_coop_lane() + k) & (kSphCoop - 1u));
+    const vec3 d = me.x - xj;
+    const float r2 = dot(d, d);
+    const bool near = j >= r.x && j < r.y && r2 < p.h2;
+    if (images && near && me.mirrors.axes != 0u)
+      s.acc += sph_wall_image_accel(me.x, me.v, me.rho, me.p_rho2, xj, vj, rho_j, q_j,
+                                    me.mirrors, p);
+    if (near && j != me.i) {
+      ++s.neighbors;
+      s.acc += sph_pair_accel(me.v, me.rho, me.p_rho2, vj, rho_j, q_j, d, r2, p);
+    }
+  }
+}
+
 // Every lane runs the row loops (the cooperative rows need the whole subgroup); dead lanes have
-// empty rows.
-void walk_cooperative(bool live, ivec3 cc, Me me, inout Sum s) {
+// empty rows. Each loop over candidates is written twice, with and without the wall images
+// (walls_near: some lane of the subgroup is within h of a wall): lavapipe runs every statement of
+// a loop body in every pass, whatever its lanes take, and the seven images cost a pass several
+// times the pair's, so a subgroup away from the walls takes the copy without them (the other then
+// makes one empty pass).
+void walk_cooperative(bool live, ivec3 cc, Me me, bool walls_near, inout Sum s) {
   uint spent = 0u;
   for (int dx = -1; dx <= 1; ++dx) {
     LOOP_TICK();
@@ -86,46 +124,32 @@ void walk_cooperative(bool live, ivec3 cc, Me me, inout Sum s) {
                                    s.overflow);
       uvec2 u;
       if (sph_coop_row(r, spent, u)) {
-        for (uint base = u.x; base < u.y; base += kSphCoop) {
+        for (uint base = u.x; walls_near && base < u.y; base += kSphCoop) {
           LOOP_TICK();
-          // One candidate per lane: position, velocity, density and p / rho^2.
-          const uint mine = base + sph_coop_lane();
-          vec3 xc = vec3(0.0), vc = vec3(0.0);
-          float rc = 1.0, qc = 0.0;
-          if (mine < u.y) {
-            xc = position_at(mine).xyz;
-            vc = velocity_at(mine).xyz;
-            rc = density_at(mine);
-            qc = pressure_at(mine) / (rc * rc);
-          }
-          for (uint k = 0u; k < kSphCoop; ++k) {
-            LOOP_TICK();
-            const uint src = sph_coop_source(k);
-            const vec3 xj = subgroupShuffle(xc, src);
-            const vec3 vj = subgroupShuffle(vc, src);
-            const float rho_j = subgroupShuffle(rc, src);
-            const float q_j = subgroupShuffle(qc, src);
-            const uint j = base + ((sph_coop_lane() + k) & (kSphCoop - 1u));
-            const vec3 d = me.x - xj;
-            const float r2 = dot(d, d);
-            const bool near = j >= r.x && j < r.y && r2 < p.h2;
-            if (near && me.mirrors.axes != 0u)
-              s.acc += sph_wall_image_accel(me.x, me.v, me.rho, me.p_rho2, xj, vj, rho_j, q_j,
-                                            me.mirrors, p);
-            if (near && j != me.i) {
-              ++s.neighbors;
-              s.acc += sph_pair_accel(me.v, me.rho, me.p_rho2, vj, rho_j, q_j, d, r2, p);
-            }
-          }
+          coop_chunk(me, base, u, r, s, true);
+        }
+        for (uint base = u.x; !walls_near && base < u.y; base += kSphCoop) {
+          LOOP_TICK();
+          coop_chunk(me, base, u, r, s, false);
         }
       } else {
-        for (uint j = r.x; j < r.y; ++j) {
+        for (uint j = r.x; walls_near && j < r.y; ++j) {
           LOOP_TICK();
-          add_candidate(me, j, s);
+          add_candidate(me, j, s, true);
+        }
+        for (uint j = r.x; !walls_near && j < r.y; ++j) {
+          LOOP_TICK();
+          add_candidate(me, j, s, false);
         }
       }
     }
   }
+}
+
+// The next candidate of a row walked whole (from `next`) or by its mask (`bits`'s lowest).
+uint next_candidate(bool whole, uvec2 r, inout uint next, inout uvec2 bits) {
+  if (whole) return next++;
+  return r.x + sph_mask_take(bits);
 }
 
 // Per lane, each row's set mask bits in ascending order, or every candidate of a row too long
@@ -133,7 +157,8 @@ void walk_cooperative(bool live, ivec3 cc, Me me, inout Sum s) {
 // of rows iterates at most as often as its longest row (lavapipe's loop cap counts the passes).
 // The distance test is repeated: a compiler that rounds r2 differently here than in sph_density
 // can then drop a pair but never sum one beyond h.
-void walk_masked(bool live, ivec3 cc, Me me, inout Sum s) {
+// Its candidate loop is written twice too, as walk_cooperative's.
+void walk_masked(bool live, ivec3 cc, Me me, bool walls_near, inout Sum s) {
   for (int dx = -1; dx <= 1; ++dx) {
     LOOP_TICK();
     for (int dy = -1; dy <= 1; ++dy) {
@@ -148,16 +173,13 @@ void walk_masked(bool live, ivec3 cc, Me me, inout Sum s) {
                      neighbor_row_at(sph_mask_word(row, 1u, me.i, p.n)));
       }
       uint next = r.x;
-      while (whole ? next < r.y : (bits.x | bits.y) != 0u) {
+      while (walls_near && (whole ? next < r.y : (bits.x | bits.y) != 0u)) {
         LOOP_TICK();
-        uint j;
-        if (whole) {
-          j = next;
-          ++next;
-        } else {
-          j = r.x + sph_mask_take(bits);
-        }
-        add_candidate(me, j, s);
+        add_candidate(me, next_candidate(whole, r, next, bits), s, true);
+      }
+      while (!walls_near && (whole ? next < r.y : (bits.x | bits.y) != 0u)) {
+        LOOP_TICK();
+        add_candidate(me, next_candidate(whole, r, next, bits), s, false);
       }
     }
   }
@@ -183,10 +205,11 @@ void main() {
     me.mirrors = sph_wall_mirrors(me.x, p);
   }
   Sum s = Sum(vec3(0.0), 0u, 0u, false);
+  const bool walls_near = subgroupMax(me.mirrors.axes) != 0u;
   if (p.neighbor_rows != 0u) {
-    walk_masked(live, cc, me, s);
+    walk_masked(live, cc, me, walls_near, s);
   } else {
-    walk_cooperative(live, cc, me, s);
+    walk_cooperative(live, cc, me, walls_near, s);
   }
   if (live) {
     const vec3 a = sph_total_accel(s.acc, pw.w, p);
