@@ -47,7 +47,13 @@ void VulkanBackend::run_own(const KernelArgs<KernelId::gather>& a) {
                 "internal error: report it");
   const GatherLayout push = device_params<float>(p, order, src, dst);
   const uint32_t wg = options_.workgroup_size;
-  run({eb == 16 ? "gather_u32x4" : "gather_u32", 3, sizeof push, {}},
+  const Texels words = eb == 16 ? kTexelsRgba32u : kTexelsR32u;
+  run({eb == 16 ? "gather_u32x4" : "gather_u32",
+       3,
+       sizeof push,
+       {},
+       0,
+       {kTexelsR32u, words, kStorageBuffer}},
       {alloc(order.impl(), "gather"), alloc(src, "gather"), alloc(dst, "gather")}, &push,
       (p.n + wg - 1) / wg, /*written: dst*/ 1u << 2);
 }

@@ -55,8 +55,20 @@ void VulkanBackend::run_kernel(const Params& p, uint64_t items, Buffers&... buff
       if constexpr (K == KernelId::sph_forces)  // ... velocities, density, pressure; neighbor_rows
         texels = {rgba32, rgba32, r32f, r32f, r32u, r32u, r32u, none, none, r32u};
     }
-    // The nebula kernels' paths through the density grid and the DFSPH solves' neighbour walks
-    // read their inputs as texel buffers too.
+    // The nebula kernels' paths through the density grid, the DFSPH solves' neighbour walks, the
+    // grid build's passes and the SPH integrator read their inputs as texel buffers too.
+    if constexpr (K == KernelId::grid_count_neighbors)  // positions, ranges; counts
+      texels = {rgba32, r32u, r32u, none};
+    if constexpr (K == KernelId::grid_assign_count)  // positions; cells, counts
+      texels = {rgba32, none, none};
+    if constexpr (K == KernelId::grid_scatter_cells)  // cells, cell_end; counts, unsorted
+      texels = {r32u, r32u, none, none};
+    if constexpr (K == KernelId::grid_rank_in_cell)  // cells, unsorted, ranges; sorted cells, index
+      texels = {r32u, r32u, r32u, r32u, none, none};
+    if constexpr (K == KernelId::grid_rank_and_move)  // as above; a, b and ids, each + sorted
+      texels = {r32u, r32u, r32u, r32u, none, none, rgba32, none, rgba32, none, r32u, none};
+    if constexpr (K == KernelId::sph_integrate)  // x0, v0, vk, accel; outputs, sums, stats
+      texels = {rgba32, rgba32, rgba32, rgba32, none, none, none, none, none};
     if constexpr (K == KernelId::nebula_illuminate)  // positions, density; illumination
       texels = {rgba32, r32f, none};
     if constexpr (K == KernelId::nebula_view)  // positions, density, table, illumination; light

@@ -8,7 +8,9 @@
 #include "grid_cell.glsl"
 #include "engine/kernels/grid_params.h"
 
-layout(std430, binding = 1) readonly buffer Positions { vec4 positions[]; };
+// The positions are a uniform texel buffer (compute/vk_kernels.cpp): lavapipe loads a storage
+// buffer's element in a loop over the lanes.
+layout(binding = 1) uniform samplerBuffer position_texels;  // rgba32f
 layout(std430, binding = 2) writeonly buffer Cells { uint cells[]; };
 layout(std430, binding = 3) buffer Counts { uint counts[]; };
 MASAV_PUSH(CellAssignCountParams);
@@ -16,7 +18,7 @@ MASAV_PUSH(CellAssignCountParams);
 void run() {
   const uint i = flat_invocation_id();
   if (i >= p.grid.n) return;
-  const uvec3 c = grid_point_cell(positions[i].xyz, p.grid.origin, p.grid.inv_cell, p.grid.dims);
+  const uvec3 c = grid_point_cell(texelFetch(position_texels, int(i)).xyz, p.grid.origin, p.grid.inv_cell, p.grid.dims);
   const uint cell = grid_cell_id(c, p.grid.dims);
   cells[i] = cell;
   atomicAdd(counts[cell], 1u);

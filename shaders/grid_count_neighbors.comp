@@ -7,16 +7,19 @@
 #include "grid_cell.glsl"
 #include "engine/kernels/grid_params.h"
 
-layout(std430, binding = 1) readonly buffer Positions { vec4 positions[]; };
-layout(std430, binding = 2) readonly buffer Start { uint cell_start[]; };
-layout(std430, binding = 3) readonly buffer End { uint cell_end[]; };
+// What the kernel only reads are uniform texel buffers (compute/vk_kernels.cpp): lavapipe fetches
+// a texel with a gather, where it loads a storage buffer's element in a loop over the lanes.
+layout(binding = 1) uniform samplerBuffer position_texels;     // rgba32f
+layout(binding = 2) uniform usamplerBuffer cell_start_texels;  // r32ui
+layout(binding = 3) uniform usamplerBuffer cell_end_texels;    // r32ui
+vec3 position_at(uint i) { return texelFetch(position_texels, int(i)).xyz; }
 layout(std430, binding = 4) writeonly buffer Counts { uint counts[]; };
 MASAV_PUSH(NeighborParams);
 
 void run() {
   const uint i = flat_invocation_id();
   if (i >= p.grid.n) return;
-  const vec3 x = positions[i].xyz;
+  const vec3 x = position_at(i);
   const uvec3 c = grid_point_cell(x, p.grid.origin, p.grid.inv_cell, p.grid.dims);
   uint count = 0u, candidates = 0u;
   bool over = false;
@@ -24,14 +27,14 @@ void run() {
     LOOP_TICK();
     uint id;
     if (!grid_neighbor_cell(c, p.grid.dims, k, id)) continue;
-    const uint last = cell_end[id];
-    for (uint j = cell_start[id]; j < last; ++j) {
+    const uint last = texelFetch(cell_end_texels, int(id)).r;
+    for (uint j = texelFetch(cell_start_texels, int(id)).r; j < last; ++j) {
       LOOP_TICK();
       if (++candidates > p.max_candidates) {
         over = true;
         break;
       }
-      if (grid_distance2(x, positions[j].xyz) <= p.radius2) ++count;
+      if (grid_distance2(x, position_at(j)) <= p.radius2) ++count;
     }
   }
   counts[i] = count;

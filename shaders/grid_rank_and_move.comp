@@ -6,17 +6,23 @@
 #include "kernel_base.glsl"
 #include "engine/kernels/grid_params.h"
 
-layout(std430, binding = 1) readonly buffer Cells { uint cells[]; };
-layout(std430, binding = 2) readonly buffer Unsorted { uint unsorted[]; };
-layout(std430, binding = 3) readonly buffer Start { uint cell_start[]; };
-layout(std430, binding = 4) readonly buffer End { uint cell_end[]; };
+// What the kernel only reads are uniform texel buffers (compute/vk_kernels.cpp): lavapipe fetches
+// a texel with a gather, where it loads a storage buffer's element in a loop over the lanes.
+layout(binding = 1) uniform usamplerBuffer cell_texels;        // r32ui
+layout(binding = 2) uniform usamplerBuffer unsorted_texels;    // r32ui
+layout(binding = 3) uniform usamplerBuffer cell_start_texels;  // r32ui
+layout(binding = 4) uniform usamplerBuffer cell_end_texels;    // r32ui
+uint cell_at(uint i) { return texelFetch(cell_texels, int(i)).r; }
+uint unsorted_at(uint s) { return texelFetch(unsorted_texels, int(s)).r; }
+uint cell_start_at(uint c) { return texelFetch(cell_start_texels, int(c)).r; }
+uint cell_end_at(uint c) { return texelFetch(cell_end_texels, int(c)).r; }
 layout(std430, binding = 5) writeonly buffer SortedCells { uint sorted_cells[]; };
 layout(std430, binding = 6) writeonly buffer SortedIndex { uint sorted_index[]; };
-layout(std430, binding = 7) readonly buffer A { vec4 a[]; };
+layout(binding = 7) uniform samplerBuffer a_texels;  // rgba32f
 layout(std430, binding = 8) writeonly buffer ASorted { vec4 a_sorted[]; };
-layout(std430, binding = 9) readonly buffer B { vec4 b[]; };
+layout(binding = 9) uniform samplerBuffer b_texels;  // rgba32f
 layout(std430, binding = 10) writeonly buffer BSorted { vec4 b_sorted[]; };
-layout(std430, binding = 11) readonly buffer Ids { uint ids[]; };
+layout(binding = 11) uniform usamplerBuffer id_texels;  // r32ui
 layout(std430, binding = 12) writeonly buffer IdsSorted { uint ids_sorted[]; };
 MASAV_PUSH(CellRankParams);
 
@@ -29,9 +35,9 @@ void run() {
   if (!rank_slot(s, kDiagMoveOutsideCell, kDiagMoveCellOverfull, i, c, d)) return;
   sorted_cells[d] = c;
   sorted_index[d] = i;
-  a_sorted[d] = a[i];
-  b_sorted[d] = b[i];
-  ids_sorted[d] = ids[i];
+  a_sorted[d] = texelFetch(a_texels, int(i));
+  b_sorted[d] = texelFetch(b_texels, int(i));
+  ids_sorted[d] = texelFetch(id_texels, int(i)).r;
 }
 
 void main() {

@@ -6,8 +6,10 @@
 #include "kernel_base.glsl"
 #include "engine/kernels/grid_params.h"
 
-layout(std430, binding = 1) readonly buffer Cells { uint cells[]; };
-layout(std430, binding = 2) readonly buffer End { uint cell_end[]; };
+// What the kernel only reads are uniform texel buffers (compute/vk_kernels.cpp): lavapipe fetches
+// a texel with a gather, where it loads a storage buffer's element in a loop over the lanes.
+layout(binding = 1) uniform usamplerBuffer cell_texels;      // r32ui
+layout(binding = 2) uniform usamplerBuffer cell_end_texels;  // r32ui
 layout(std430, binding = 3) buffer Counts { uint counts[]; };
 layout(std430, binding = 4) writeonly buffer Unsorted { uint unsorted[]; };
 MASAV_PUSH(CellScatterParams);
@@ -15,7 +17,7 @@ MASAV_PUSH(CellScatterParams);
 void run() {
   const uint i = flat_invocation_id();
   if (i >= p.n) return;
-  const uint c = cells[i];
+  const uint c = texelFetch(cell_texels, int(i)).r;
   if (c >= p.cell_count) {
     report_diagnostic(kDiagScatterNoSlot, i);
     return;
@@ -26,7 +28,7 @@ void run() {
     report_diagnostic(kDiagScatterNoSlot, i);
     return;
   }
-  const uint end = cell_end[c];
+  const uint end = texelFetch(cell_end_texels, int(c)).r;
   if (left > end || end > p.n) {  // the slot end - left would lie outside [0, n)
     report_diagnostic(kDiagScatterNoSlot, i);
     return;

@@ -7,10 +7,12 @@
 // may alias inputs: each invocation reads its own element before writing it (no `restrict`).
 #include "kernel_base.glsl"
 
-layout(std430, binding = 1) readonly buffer X0 { vec4 x0[]; };
-layout(std430, binding = 2) readonly buffer V0 { vec4 v0[]; };
-layout(std430, binding = 3) readonly buffer Vk { vec4 vk[]; };
-layout(std430, binding = 4) readonly buffer Accel { vec4 accel[]; };
+// What the kernel only reads are uniform texel buffers (compute/vk_kernels.cpp): lavapipe loads
+// a storage buffer's element in a loop over the lanes, a texel with plain loads.
+layout(binding = 1) uniform samplerBuffer x0_texels;     // rgba32f
+layout(binding = 2) uniform samplerBuffer v0_texels;     // rgba32f
+layout(binding = 3) uniform samplerBuffer vk_texels;     // rgba32f
+layout(binding = 4) uniform samplerBuffer accel_texels;  // rgba32f
 layout(std430, binding = 5) writeonly buffer XOut { vec4 x_out[]; };
 layout(std430, binding = 6) writeonly buffer VOut { vec4 v_out[]; };
 layout(std430, binding = 7) buffer SumX { vec4 sum_x[]; };
@@ -32,11 +34,11 @@ void main() {
   float speed2 = 0.0, disp2 = 0.0;
   bool bad = false, outside = false;
   if (live) {
-    const vec4 xw = kick ? vec4(0.0) : x0[i];
+    const vec4 xw = kick ? vec4(0.0) : texelFetch(x0_texels, int(i));
     const vec3 x = xw.xyz;
-    const vec3 v = v0[i].xyz;
-    const vec3 kv = rk4 && op != SphStageOp_rk4_stage1 ? vk[i].xyz : v;
-    const vec3 a = accel[i].xyz;
+    const vec3 v = texelFetch(v0_texels, int(i)).xyz;
+    const vec3 kv = rk4 && op != SphStageOp_rk4_stage1 ? texelFetch(vk_texels, int(i)).xyz : v;
+    const vec3 a = texelFetch(accel_texels, int(i)).xyz;
     vec3 sx = rk4 ? sum_x[i].xyz : vec3(0.0);
     vec3 sv = rk4 ? sum_v[i].xyz : vec3(0.0);
     vec3 xn, vn;

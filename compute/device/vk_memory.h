@@ -47,11 +47,12 @@ struct Texels {
                                               : ::vk::DescriptorType::eUniformTexelBuffer;
   }
 };
-// The formats the kernels and the renderer read: four floats, one float, one u32; and no texel
-// buffer at all (a storage buffer).
+// The formats the kernels and the renderer read: four floats, one float, one u32, four u32; and no
+// texel buffer at all (a storage buffer).
 inline constexpr Texels kTexelsRgba32f{::vk::Format::eR32G32B32A32Sfloat, 16};
 inline constexpr Texels kTexelsR32f{::vk::Format::eR32Sfloat, 4};
 inline constexpr Texels kTexelsR32u{::vk::Format::eR32Uint, 4};
+inline constexpr Texels kTexelsRgba32u{::vk::Format::eR32G32B32A32Uint, 16};
 inline constexpr Texels kStorageBuffer{};
 
 // The buffer as a uniform texel buffer of `format` (`texel_bytes` per texel), made on first use
