@@ -43,14 +43,14 @@ void add_image(vec3 xj, float k, uint s) {
   float r2;
   if (dfsph_image(g_xi, xj, g_m, s, p.h2, d, r2)) g_acc += k * dfsph_gradient(d, r2, p);
 }
-void dfsph_visit(uint j) {
+void dfsph_visit(uint j, bool images) {
   const vec3 xj = position_at(j).xyz;
   const vec3 d = g_xi - xj;
   const float r2 = dot(d, d);
   if (!(r2 < p.h2)) return;
   const float k = g_ki + (j == g_self ? g_ki : kappa_at(j));
   if (j != g_self) g_acc += k * dfsph_gradient(d, r2, p);
-  if (g_m.axes != 0u) {
+  if (images && g_m.axes != 0u) {
     add_image(xj, k, 1u);
     add_image(xj, k, 2u);
     add_image(xj, k, 3u);
@@ -75,7 +75,7 @@ void main() {
   g_m = dfsph_mirrors(g_xi, p);
   uint candidates = 0u;
   bool overflow = false, bad = false;
-  dfsph_walk(live, i, cc, candidates, overflow);
+  dfsph_walk(live, i, cc, subgroupMax(g_m.axes) != 0u, candidates, overflow);
   float speed2 = 0.0;
   if (live) {
     const vec3 dv = (p.first != 0u ? -p.dt * p.warm_scale : -p.dt) * g_acc;

@@ -51,13 +51,13 @@ void add_image(vec3 xj, bool own, uint s) {
   else
     add_gradient(d, r2);
 }
-void dfsph_visit(uint j) {
+void dfsph_visit(uint j, bool images) {
   const vec3 xj = position_at(j).xyz;
   const vec3 d = g_xi - xj;
   const float r2 = dot(d, d);
   if (!(r2 < p.h2)) return;
   if (j != g_self) add_gradient(d, r2);
-  if (g_m.axes != 0u) {
+  if (images && g_m.axes != 0u) {
     const bool own = j == g_self;
     add_image(xj, own, 1u);
     add_image(xj, own, 2u);
@@ -82,7 +82,7 @@ void main() {
   g_m = dfsph_mirrors(g_xi, p);
   uint candidates = 0u;
   bool overflow = false, bad = false;
-  dfsph_walk(live, i, cc, candidates, overflow);
+  dfsph_walk(live, i, cc, subgroupMax(g_m.axes) != 0u, candidates, overflow);
   if (live) {
     const float den = dot(g_sum, g_sum) + g_sum2;
     const float f = den > 0.0 ? 1.0 / den : 0.0;

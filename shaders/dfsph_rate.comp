@@ -50,7 +50,7 @@ void add_image(vec3 xj, vec3 vj, uint s) {
   if (dfsph_image(g_xi, xj, g_m, s, p.h2, d, r2))
     g_div += dot(dfsph_gradient(d, r2, p), g_vi - dfsph_mirror_velocity(vj, s));
 }
-void dfsph_visit(uint j) {
+void dfsph_visit(uint j, bool images) {
   const vec3 xj = position_at(j).xyz;
   const vec3 d = g_xi - xj;
   const float r2 = dot(d, d);
@@ -58,7 +58,7 @@ void dfsph_visit(uint j) {
   ++g_neighbors;
   const vec3 vj = j == g_self ? g_vi : velocity_at(j).xyz;
   if (j != g_self) g_div += dot(dfsph_gradient(d, r2, p), g_vi - vj);
-  if (g_m.axes != 0u) {
+  if (images && g_m.axes != 0u) {
     add_image(xj, vj, 1u);
     add_image(xj, vj, 2u);
     add_image(xj, vj, 3u);
@@ -87,7 +87,7 @@ void main() {
   g_m = dfsph_mirrors(g_xi, p);
   uint candidates = 0u;
   bool overflow = false;
-  dfsph_walk(live, i, cc, candidates, overflow);
+  dfsph_walk(live, i, cc, subgroupMax(g_m.axes) != 0u, candidates, overflow);
   uint units = 0u;
   if (live) {
     float k, res;

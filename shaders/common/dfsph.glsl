@@ -2,7 +2,8 @@
 // velocities, residual units) and the candidate walk the three DFSPH kernels share. Formulas and
 // conventions are documented there; keep the two in step. The including shader defines
 // position_at, cell_start_at, cell_end_at and neighbor_row_at, the push block `p` (DfsphLayout) and
-// defines dfsph_visit(j), which the walk calls for each candidate (it tests the distance).
+// defines dfsph_visit(j, images), which the walk calls for each candidate (it tests the distance;
+// `images`, a constant at each call: whether to add the wall images' terms).
 
 #include "engine/kernels/dfsph_params.h"
 
@@ -39,12 +40,23 @@ uint dfsph_residual_units(float r) {
   return uint(r * float(kDfsphResidualScale));
 }
 
-void dfsph_visit(uint j);
+void dfsph_visit(uint j, bool images);
+
+// The next candidate of a row walked whole (from `next`) or by its mask (`bits`'s lowest).
+uint dfsph_next(bool whole, uvec2 r, inout uint next, inout uvec2 bits) {
+  if (whole) return next++;
+  return r.x + sph_mask_take(bits);
+}
 
 // Per lane, each row's neighbours from sph_density's masks (p.neighbor_rows != 0), or every
 // candidate of a row too long for its mask or when there are no masks: one loop per row, so a
 // subgroup iterates at most as often as its longest row (lavapipe's loop cap counts passes).
-void dfsph_walk(bool live, uint i, ivec3 cc, inout uint candidates, inout bool overflow) {
+// The candidate loop is written twice, with and without the wall images (walls_near: some lane of
+// the subgroup is within h of a wall): lavapipe runs every statement of a loop body in every pass,
+// whatever its lanes take, so a subgroup away from the walls takes the copy without them (the
+// other then makes one empty pass).
+void dfsph_walk(bool live, uint i, ivec3 cc, bool walls_near, inout uint candidates,
+                inout bool overflow) {
   for (int dx = -1; dx <= 1; ++dx) {
     LOOP_TICK();
     for (int dy = -1; dy <= 1; ++dy) {
@@ -59,16 +71,13 @@ void dfsph_walk(bool live, uint i, ivec3 cc, inout uint candidates, inout bool o
                      neighbor_row_at(sph_mask_word(row, 1u, i, p.n)));
       }
       uint next = r.x;
-      while (whole ? next < r.y : (bits.x | bits.y) != 0u) {
+      while (walls_near && (whole ? next < r.y : (bits.x | bits.y) != 0u)) {
         LOOP_TICK();
-        uint j;
-        if (whole) {
-          j = next;
-          ++next;
-        } else {
-          j = r.x + sph_mask_take(bits);
-        }
-        dfsph_visit(j);
+        dfsph_visit(dfsph_next(whole, r, next, bits), true);
+      }
+      while (!walls_near && (whole ? next < r.y : (bits.x | bits.y) != 0u)) {
+        LOOP_TICK();
+        dfsph_visit(dfsph_next(whole, r, next, bits), false);
       }
     }
   }
