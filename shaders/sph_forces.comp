@@ -38,6 +38,7 @@ uint neighbor_row_at(uint word) { return texelFetch(neighbor_row_texels, int(wor
 #include "sph.glsl"
 #include "sph_walk.glsl"
 #include "sph_coop.glsl"
+#include "sph_row_walk.glsl"
 
 MASAV_PUSH(SphStepLayout);
 
@@ -146,61 +147,30 @@ void walk_cooperative(bool live, ivec3 cc, Me me, bool walls_near, inout Sum s) 
   }
 }
 
-// One row's walk state: the candidates [next, end) taken in order (a row too long for its mask),
-// then the set bits of `bits` from `first` (sph_density's mask).
-struct RowWalk {
-  uint first, next, end;
-  uvec2 bits;
-};
-bool row_left(RowWalk w) { return w.next < w.end || (w.bits.x | w.bits.y) != 0u; }
-uint row_take(inout RowWalk w) {
-  if (w.next < w.end) return w.next++;
-  return w.first + sph_mask_take(w.bits);
-}
-
 // Per lane, each row's set mask bits in ascending order, or every candidate of a row too long
-// for its mask. The rows are gathered first; then one loop walks them all, each lane moving to its
-// next non-empty row as it finishes one, so that a subgroup iterates as often as its lane with
-// the most neighbours, not the sum over rows of each row's longest lane (lavapipe's loop cap
-// counts the passes, and each pass costs the whole body). The order per lane is the rows'
-// order, so the sums are those of a row-by-row walk. The distance test is repeated: a compiler
-// that rounds r2 differently here than in sph_density can then drop a pair but never sum one
-// beyond h. The loop is written twice too, as walk_cooperative's.
+// for its mask, in one loop over the nine rows (sph_row_walk.glsl). The distance test is
+// repeated: a compiler that rounds r2 differently here than in sph_density can then drop a pair
+// but never sum one beyond h. The loop is written twice too, as walk_cooperative's.
 void walk_masked(bool live, ivec3 cc, Me me, bool walls_near, inout Sum s) {
-  RowWalk rows[9];
-  uint pending = 0u;  // bit k: row k has candidates
-  for (int dx = -1; dx <= 1; ++dx) {
+  SphRowWalk rows[9];
+  uint pending = sph_gather_rows(live, cc, me.i, true, p.dims, p.n, p.max_candidates,
+                                 s.candidates, s.overflow, rows);
+  SphRowWalk w = kSphNoRow;
+  while (walls_near && (pending != 0u || sph_row_left(w))) {
     LOOP_TICK();
-    for (int dy = -1; dy <= 1; ++dy) {
-      LOOP_TICK();
-      const uvec2 r = sph_lane_row(live, cc, dx, dy, p.dims, p.max_candidates, s.candidates,
-                                   s.overflow);
-      const bool whole = !sph_row_fits_mask(r);
-      const uint row = sph_row_index(dx, dy);
-      RowWalk w = RowWalk(r.x, r.x, whole ? r.y : r.x, uvec2(0u));
-      if (!whole && r.y > r.x)
-        w.bits = uvec2(neighbor_row_at(sph_mask_word(row, 0u, me.i, p.n)),
-                       neighbor_row_at(sph_mask_word(row, 1u, me.i, p.n)));
-      rows[row] = w;
-      if (row_left(w)) pending |= 1u << row;
-    }
-  }
-  RowWalk w = RowWalk(0u, 0u, 0u, uvec2(0u));
-  while (walls_near && (pending != 0u || row_left(w))) {
-    LOOP_TICK();
-    if (!row_left(w)) {
+    if (!sph_row_left(w)) {
       w = rows[findLSB(pending)];
       pending &= pending - 1u;
     }
-    add_candidate(me, row_take(w), s, true);
+    add_candidate(me, sph_row_take(w), s, true);
   }
-  while (!walls_near && (pending != 0u || row_left(w))) {
+  while (!walls_near && (pending != 0u || sph_row_left(w))) {
     LOOP_TICK();
-    if (!row_left(w)) {
+    if (!sph_row_left(w)) {
       w = rows[findLSB(pending)];
       pending &= pending - 1u;
     }
-    add_candidate(me, row_take(w), s, false);
+    add_candidate(me, sph_row_take(w), s, false);
   }
 }
 

@@ -1,0 +1,47 @@
+// The walk over sph_density's neighbour row masks (engine/kernels/sph_kernel_params.h,
+// kSphRowMaskBits) that sph_forces and the DFSPH solves share. A lane first gathers its nine rows
+// (sph_gather_rows); then one loop walks them all, the lane moving to its next non-empty row as it
+// finishes one, so that a subgroup iterates as often as its lane with the most candidates, not the
+// sum over rows of each row's longest lane (lavapipe's loop cap counts the passes, and each pass
+// costs the whole body). The order per lane is the rows' order, ascending within a row, as in a
+// row-by-row walk. The includer includes sph_walk.glsl first and defines
+// `uint neighbor_row_at(uint word)`.
+
+// One row's walk state: the candidates [next, end) in order (a row too long for its mask, or a
+// walk without masks), then the set bits of `bits` from `first`.
+struct SphRowWalk {
+  uint first, next, end;
+  uvec2 bits;
+};
+const SphRowWalk kSphNoRow = SphRowWalk(0u, 0u, 0u, uvec2(0u));
+
+bool sph_row_left(SphRowWalk w) { return w.next < w.end || (w.bits.x | w.bits.y) != 0u; }
+uint sph_row_take(inout SphRowWalk w) {
+  if (w.next < w.end) return w.next++;
+  return w.first + sph_mask_take(w.bits);
+}
+
+// This lane's nine rows around cell coordinates cc (sph_lane_row: counted against the candidate
+// cap), each by its mask where `masks` and the row fits one; returns the set of rows (bit k: row
+// k) with candidates.
+uint sph_gather_rows(bool live, ivec3 cc, uint i, bool masks, uvec3 dims, uint n,
+                     uint max_candidates, inout uint candidates, inout bool overflow,
+                     out SphRowWalk rows[9]) {
+  uint pending = 0u;
+  for (int dx = -1; dx <= 1; ++dx) {
+    LOOP_TICK();
+    for (int dy = -1; dy <= 1; ++dy) {
+      LOOP_TICK();
+      const uvec2 r = sph_lane_row(live, cc, dx, dy, dims, max_candidates, candidates, overflow);
+      const bool whole = !masks || !sph_row_fits_mask(r);
+      const uint row = sph_row_index(dx, dy);
+      SphRowWalk w = SphRowWalk(r.x, r.x, whole ? r.y : r.x, uvec2(0u));
+      if (!whole && r.y > r.x)
+        w.bits = uvec2(neighbor_row_at(sph_mask_word(row, 0u, i, n)),
+                       neighbor_row_at(sph_mask_word(row, 1u, i, n)));
+      rows[row] = w;
+      if (sph_row_left(w)) pending |= 1u << row;
+    }
+  }
+  return pending;
+}
