@@ -5,6 +5,7 @@
 #include <cstdlib>
 #include <cstring>
 
+#include "compute/env_switch.h"
 #include "compute/raymarch_quads_choice.h"
 #include "compute/sph_walk_choice.h"
 #include "engine/core/error.h"
@@ -49,15 +50,18 @@ SortScatter VulkanBackend::choose_sort_scatter(SortScatter wanted) const {
   return wanted;
 }
 
-bool sph_coop_walk(std::string_view device_type) {
-  if (const char* env = std::getenv("MASAV_VK_SPH_COOP")) {
+bool env_switch(const char* name, bool automatic) {
+  if (const char* env = std::getenv(name)) {
     const std::string v = env;
     if (v == "on") return true;
     if (v == "off") return false;
-    if (!v.empty() && v != "auto")
-      throw_invalid("vulkan", "MASAV_VK_SPH_COOP", v, "auto, on or off");
+    if (!v.empty() && v != "auto") throw_invalid("vulkan", name, v, "auto, on or off");
   }
-  return device_type == "cpu";
+  return automatic;
+}
+
+bool sph_coop_walk(std::string_view device_type) {
+  return env_switch("MASAV_VK_SPH_COOP", device_type == "cpu");
 }
 
 VulkanBackend::VulkanBackend(const BackendOptions& options)

@@ -1,12 +1,9 @@
 // voxelize on Vulkan: an accumulate pass per particle into per-cell integer tallies, then a
 // finalize pass per cell (shaders/voxelize_*.comp), both on VoxelizeParams. raymarch's first
 // pass on a CPU device: its volume four voxels to a texel (shaders/raymarch_quads.comp).
-#include <cstdlib>
-#include <string>
-
+#include "compute/env_switch.h"
 #include "compute/raymarch_quads_choice.h"
 #include "compute/vk_backend.h"
-#include "engine/core/error.h"
 
 namespace masav::vk {
 
@@ -25,14 +22,7 @@ void VulkanBackend::run_own(const KernelArgs<KernelId::voxelize>& a) {
 }
 
 bool raymarch_quads_wanted(std::string_view device_type) {
-  if (const char* env = std::getenv("MASAV_VK_RAY_QUADS")) {
-    const std::string v = env;
-    if (v == "on") return true;
-    if (v == "off") return false;
-    if (!v.empty() && v != "auto")
-      throw_invalid("vulkan", "MASAV_VK_RAY_QUADS", v, "auto, on or off");
-  }
-  return device_type == "cpu";
+  return env_switch("MASAV_VK_RAY_QUADS", device_type == "cpu");
 }
 
 std::shared_ptr<Allocation> VulkanBackend::raymarch_quads(const RaymarchLayout& layout,
