@@ -68,6 +68,7 @@ void coop_chunk(inout Walk w, uint i, vec3 xi, uint base, uvec2 u, uvec2 r, SphM
   }
 }
 
+// Candidate j of a row walked per lane (r: the row).
 void lane_candidate(inout Walk w, uint i, vec3 xi, uint j, uvec2 r, SphMirrors mirrors,
                     bool images) {
   const vec3 xj = position_at(j).xyz;
