@@ -78,23 +78,23 @@ float skip_exit(vec3 u0, vec3 du, vec3 inv_du, uvec3 bi, vec4 b, uvec3 nb, float
   return axis_exit(u0.z, du.z, inv_du.z, lo.z, hi.z, nb.z, size, exit);
 }
 
-// The twin of volume::pow_step: x^e, with a square root or product for e = 1/4, 1/2, 1, 2.
-float pow_step(float x, float e) {
-  if (e == 1.0) return x;
-  if (e == 0.5) return sqrt(x);
-  if (e == 0.25) return sqrt(sqrt(x));
-  if (e == 2.0) return x * x;
+// The twins of volume::pow_step_form, volume::pow_in_form and volume::pow_step: x^e, with a
+// square root or product for e = 1/4, 1/2, 1, 2.
+uint pow_step_form(float e) {
+  if (e == 1.0) return kRayPowOne;
+  if (e == 0.5) return kRayPowHalf;
+  if (e == 0.25) return kRayPowQuarter;
+  if (e == 2.0) return kRayPowTwo;
+  return kRayPowGeneral;
+}
+float pow_in_form(float x, float e, uint form) {
+  if (form == kRayPowOne) return x;
+  if (form == kRayPowHalf) return sqrt(x);
+  if (form == kRayPowQuarter) return sqrt(sqrt(x));
+  if (form == kRayPowTwo) return x * x;
   return pow(x, e);
 }
-
-// pow_step(x, exponent) for the dispatch's full-step exponent, in the form RAY_POW names.
-float pow_full_step(float x, float exponent) {
-  if (RAY_POW == kRayPowOne) return x;
-  if (RAY_POW == kRayPowHalf) return sqrt(x);
-  if (RAY_POW == kRayPowQuarter) return sqrt(sqrt(x));
-  if (RAY_POW == kRayPowTwo) return x * x;
-  return pow(x, exponent);
-}
+float pow_step(float x, float e) { return pow_in_form(x, e, pow_step_form(e)); }
 
 // The twin of volume::first_segment_after (inv_step = 1 / step).
 uint first_segment_after(float t, float tn, float inv_step, uint i, uint n) {
@@ -187,7 +187,8 @@ vec4 march(uint px, uint py) {
       } else if (seg + 1u == n) {
         last = col;
       } else if (col.a > 0.0) {  // a transparent sample adds nothing: 1 - 1^e = 0
-        const float alpha = 1.0 - pow_full_step(max(0.0, 1.0 - col.a), exponent);
+        // The dispatch's full-step exponent, in the form RAY_POW names (a constant).
+        const float alpha = 1.0 - pow_in_form(max(0.0, 1.0 - col.a), exponent, RAY_POW);
         const float w = (1.0 - acc.a) * alpha;
         acc.rgb += w * col.rgb;
         acc.a += w;

@@ -408,19 +408,10 @@ MASAV_HD inline uint32_t first_segment_after(T t, T tn, T inv_step, uint32_t i, 
   return next;
 }
 
-// x^e for the opacity correction. The step is usually a power-of-two fraction or multiple of the
-// reference step (1/2 voxel against 1: e = 0.5 exactly), and those exponents take a square root
-// or a product instead of pow, the costliest call of a sample (a fifth of the CPU's time).
-template <class T>
-MASAV_HD inline T pow_step(T x, T e) {
-  if (e == T(1)) return x;
-  if (e == T(0.5)) return hd::sqrt_t(x);
-  if (e == T(0.25)) return hd::sqrt_t(hd::sqrt_t(x));
-  if (e == T(2)) return x * x;
-  return hd::pow_t(x, e);
-}
-
-// Which form pow_step takes for exponent e (kRayPow*).
+// Which form pow_step takes for exponent e (kRayPow*). The step is usually a power-of-two
+// fraction or multiple of the reference step (1/2 voxel against 1: e = 0.5 exactly), and those
+// exponents take a square root or a product instead of pow, the costliest call of a sample (a
+// fifth of the CPU's time).
 template <class T>
 MASAV_HD inline uint32_t pow_step_form(T e) {
   if (e == T(1)) return kRayPowOne;
@@ -428,6 +419,22 @@ MASAV_HD inline uint32_t pow_step_form(T e) {
   if (e == T(0.25)) return kRayPowQuarter;
   if (e == T(2)) return kRayPowTwo;
   return kRayPowGeneral;
+}
+
+// x^e in the form `form` (pow_step_form(e)).
+template <class T>
+MASAV_HD inline T pow_in_form(T x, T e, uint32_t form) {
+  if (form == kRayPowOne) return x;
+  if (form == kRayPowHalf) return hd::sqrt_t(x);
+  if (form == kRayPowQuarter) return hd::sqrt_t(hd::sqrt_t(x));
+  if (form == kRayPowTwo) return x * x;
+  return hd::pow_t(x, e);
+}
+
+// x^e for the opacity correction.
+template <class T>
+MASAV_HD inline T pow_step(T x, T e) {
+  return pow_in_form(x, e, pow_step_form(e));
 }
 
 // The last segment boundary at or before t (segments of `step` from tn, n of them), as a segment

@@ -3,7 +3,6 @@
 // including kernel defines `float volume_at(uint index)`, `vec4 tf_at(uint entry)`, the constant
 // `bool VOLUME_QUADS` and `vec4 volume_quad_at(uint index)` (raymarch_quads.comp's texels). No loops:
 // raymarch calls these inside its sample loop (see slab.glsl).
-float voxel(uvec3 i, uvec3 dims) { return volume_at((i.z * dims.y + i.y) * dims.x + i.x); }
 
 // The eight corners' indices as one base index plus offsets: lavapipe multiplies each lane's
 // 32-bit integers with a slow vector instruction, so a sample multiplies twice, not sixteen times.
