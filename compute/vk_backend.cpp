@@ -148,6 +148,24 @@ void VulkanBackend::read_bytes(const BufferImpl& src, void* dst, size_t bytes, s
   std::memcpy(dst, readback_->mapped, bytes);
 }
 
+void VulkanBackend::start_read(uint32_t slot, const BufferImpl& src, size_t bytes) {
+  AsyncRead& r = async_reads_[slot];
+  // The slot is free: the read that last used its buffer was taken, so no copy still writes it.
+  if (!r.staging || r.staging->bytes < bytes)
+    r.staging = allocate(ctx_, bytes, MemoryUse::readback, "asynchronous read staging");
+  stream_.copy(alloc(src, "asynchronous read"), 0, r.staging, 0, bytes);
+  r.serial = stream_.flush();
+}
+
+bool VulkanBackend::end_read(uint32_t slot, void* dst, size_t bytes) {
+  AsyncRead& r = async_reads_[slot];
+  const bool later_work = stream_.wait_for(r.serial);
+  invalidate_for_host(ctx_, *r.staging);
+  std::memcpy(dst, r.staging->mapped, bytes);
+  check_diagnostics();  // what the kernels up to the copy flagged
+  return later_work;
+}
+
 void VulkanBackend::copy_buffer(const BufferImpl& src, BufferImpl& dst, size_t bytes) {
   stream_.copy(alloc(src, "copy"), 0, alloc(dst, "copy"), 0, bytes);
 }

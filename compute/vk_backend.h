@@ -1,5 +1,6 @@
 #pragma once
 // The Vulkan compute backend: the kernel set as GLSL compute shaders, on any Vulkan 1.1 device.
+#include <array>
 #include <map>
 #include <memory>
 #include <span>
@@ -68,6 +69,10 @@ class VulkanBackend final : public Backend, public VulkanInterop {
   void write_bytes(BufferImpl& dst, const void* src, size_t bytes, size_t offset) override;
   void read_bytes(const BufferImpl& src, void* dst, size_t bytes, size_t offset) override;
   void copy_buffer(const BufferImpl& src, BufferImpl& dst, size_t bytes) override;
+  // Asynchronous reads: a copy into the slot's host-visible buffer, submitted (Stream::flush),
+  // and waited for by its submission's fence.
+  void start_read(uint32_t slot, const BufferImpl& src, size_t bytes) override;
+  bool end_read(uint32_t slot, void* dst, size_t bytes) override;
 
  private:
   const std::shared_ptr<Allocation>& alloc(const BufferImpl& b, std::string_view kernel) const;
@@ -104,7 +109,12 @@ class VulkanBackend final : public Backend, public VulkanInterop {
   std::shared_ptr<Allocation> diag_;
   std::map<std::string, std::shared_ptr<Allocation>> scratch_;
   std::shared_ptr<Allocation> readback_;  // staging of downloads from device-only memory
-  uint32_t pending_diag_limit_ = 0;       // the limit a pending diagnostic's message names
+  struct AsyncRead {
+    std::shared_ptr<Allocation> staging;  // host-visible, grown as needed
+    uint64_t serial = 0;                  // the submission that copies into it
+  };
+  std::array<AsyncRead, kMaxPendingReads> async_reads_;
+  uint32_t pending_diag_limit_ = 0;  // the limit a pending diagnostic's message names
   SortScatter scatter_ = SortScatter::tiled;
   // The SPH neighbour rows walked by subgroup clusters (compute/sph_walk_choice.h).
   bool sph_coop_walk_ = true;

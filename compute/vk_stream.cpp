@@ -23,17 +23,53 @@ constexpr uint32_t kCachedSets = 1024;
 }  // namespace
 
 Stream::Stream(const Context& ctx, uint32_t max_timestamps, DeviceCounters& counters)
-    : ctx_(ctx), counters_(counters), cmds_(ctx), max_timestamps_(max_timestamps) {
+    : ctx_(ctx), counters_(counters), max_timestamps_(max_timestamps) {
+  ring_.resize(kInFlight);
+  for (Slot& s : ring_) s.cmds = std::make_unique<Commands>(ctx_);
   queries_ = ::vk::raii::QueryPool(
       ctx_.device(), ::vk::QueryPoolCreateInfo({}, ::vk::QueryType::eTimestamp, max_timestamps_));
 }
 
+Stream::~Stream() {
+  for (Slot& s : ring_) {
+    try {
+      retire(s);
+    } catch (...) {  // a lost device: nothing left running
+    }
+  }
+}
+
+bool Stream::any_in_flight() const {
+  for (const Slot& s : ring_)
+    if (s.in_flight) return true;
+  return false;
+}
+
+void Stream::retire(Slot& s) {
+  if (!s.in_flight) return;
+  s.in_flight = false;
+  s.cmds->wait("vulkan", "the GPU reset or a kernel faulted; restart masav, and report the scene");
+  s.alive.clear();
+}
+
 void Stream::begin() {
-  if (cmds_.recording()) return;
-  cmds_.begin();
-  commands_recorded_ = false;
+  if (cmds().recording()) return;
+  Slot& slot = ring_[current_];
+  if (slot.in_flight) {
+    // Every buffer of the ring is queued: wait for the oldest, this one.
+    retire(slot);
+    if (!any_in_flight()) ++counters_.host_syncs;
+  }
+  // Work still in flight may have written what the next commands read: the barrier rules of
+  // order() carry over from it (submission order makes a barrier cover earlier buffers too).
+  if (!any_in_flight()) {
+    commands_recorded_ = false;
+    read_.clear();
+    written_.clear();
+  }
+  cmds().begin();
   if (queries_need_reset_) {
-    cmds_.cmd().resetQueryPool(*queries_, 0, max_timestamps_);
+    cmds().cmd().resetQueryPool(*queries_, 0, max_timestamps_);
     queries_need_reset_ = false;
   }
 }
@@ -43,8 +79,8 @@ void Stream::record_barrier() {
   using A = ::vk::AccessFlagBits;
   ::vk::MemoryBarrier mb(A::eShaderWrite | A::eTransferWrite,
                          A::eShaderRead | A::eShaderWrite | A::eTransferRead | A::eTransferWrite);
-  cmds_.cmd().pipelineBarrier(S::eComputeShader | S::eTransfer, S::eComputeShader | S::eTransfer,
-                              {}, mb, {}, {});
+  cmds().cmd().pipelineBarrier(S::eComputeShader | S::eTransfer, S::eComputeShader | S::eTransfer,
+                               {}, mb, {}, {});
   ++counters_.barriers;
   read_.clear();
   written_.clear();
@@ -112,13 +148,13 @@ void Stream::dispatch(const Kernel& k, const std::shared_ptr<Allocation>& diag,
   bound.insert(bound.end(), buffers.begin(), buffers.end());
   for (const auto& b : bound) keep(b);
   const ::vk::DescriptorSet set = set_for(k, bound);
-  cmds_.cmd().bindPipeline(::vk::PipelineBindPoint::eCompute, *k.pipeline);
-  cmds_.cmd().bindDescriptorSets(::vk::PipelineBindPoint::eCompute, *k.layout, 0, set, {});
+  cmds().cmd().bindPipeline(::vk::PipelineBindPoint::eCompute, *k.pipeline);
+  cmds().cmd().bindDescriptorSets(::vk::PipelineBindPoint::eCompute, *k.layout, 0, set, {});
   if (k.push_bytes)
-    cmds_.cmd().pushConstants<uint8_t>(
+    cmds().cmd().pushConstants<uint8_t>(
         *k.layout, ::vk::ShaderStageFlagBits::eCompute, 0,
         ::vk::ArrayProxy<const uint8_t>(k.push_bytes, static_cast<const uint8_t*>(push)));
-  cmds_.cmd().dispatch(gx, uint32_t(gy), 1);
+  cmds().cmd().dispatch(gx, uint32_t(gy), 1);
   ++counters_.launches;
 }
 
@@ -169,8 +205,8 @@ void Stream::copy(const std::shared_ptr<Allocation>& src, ::vk::DeviceSize src_o
   const Allocation* read[] = {src.get()};
   const Allocation* write[] = {dst.get()};
   order(read, write);
-  cmds_.cmd().copyBuffer(*src->buffer, *dst->buffer,
-                         ::vk::BufferCopy(src_offset, dst_offset, bytes));
+  cmds().cmd().copyBuffer(*src->buffer, *dst->buffer,
+                          ::vk::BufferCopy(src_offset, dst_offset, bytes));
   keep(src);
   keep(dst);
 }
@@ -178,7 +214,7 @@ void Stream::copy(const std::shared_ptr<Allocation>& src, ::vk::DeviceSize src_o
 void Stream::fill(const std::shared_ptr<Allocation>& dst, uint32_t value) {
   const Allocation* write[] = {dst.get()};
   order({}, write);
-  cmds_.cmd().fillBuffer(*dst->buffer, 0, VK_WHOLE_SIZE, value);
+  cmds().cmd().fillBuffer(*dst->buffer, 0, VK_WHOLE_SIZE, value);
   keep(dst);
   ++counters_.fills;
 }
@@ -188,8 +224,8 @@ uint32_t Stream::timestamp() {
     throw Error("vulkan", "timestamp", fmt::format("more than {} timestamps", max_timestamps_),
                 "call reset_timestamps() between measurements");
   barrier();
-  cmds_.cmd().writeTimestamp(::vk::PipelineStageFlagBits::eBottomOfPipe, *queries_,
-                             timestamps_used_);
+  cmds().cmd().writeTimestamp(::vk::PipelineStageFlagBits::eBottomOfPipe, *queries_,
+                              timestamps_used_);
   return timestamps_used_++;
 }
 
@@ -198,17 +234,56 @@ void Stream::reset_timestamps() {
   queries_need_reset_ = true;
 }
 
-void Stream::submit_and_wait() {
-  if (!cmds_.recording()) return;
+void Stream::end_for_host() {
   // Make device writes visible to the host's mapped reads after the fence.
   ::vk::MemoryBarrier to_host(
       ::vk::AccessFlagBits::eShaderWrite | ::vk::AccessFlagBits::eTransferWrite,
       ::vk::AccessFlagBits::eHostRead);
-  cmds_.cmd().pipelineBarrier(
+  cmds().cmd().pipelineBarrier(
       ::vk::PipelineStageFlagBits::eComputeShader | ::vk::PipelineStageFlagBits::eTransfer,
       ::vk::PipelineStageFlagBits::eHost, {}, to_host, {}, {});
-  cmds_.submit_and_wait("vulkan",
-                        "the GPU reset or a kernel faulted; restart masav, and report the scene");
+}
+
+uint64_t Stream::submit_recording() {
+  end_for_host();
+  Slot& slot = ring_[current_];
+  slot.cmds->submit("vulkan",
+                    "the GPU reset or a kernel faulted; restart masav, and report the scene");
+  slot.serial = ++last_serial_;
+  slot.in_flight = true;
+  slot.alive = std::move(alive_);
+  alive_.clear();
+  current_ = (current_ + 1) % kInFlight;
+  return slot.serial;
+}
+
+uint64_t Stream::flush() {
+  if (!cmds().recording()) return last_serial_;
+  // Transient descriptor sets (the cache was full) are freed only when the device is idle.
+  if (sets_in_last_pool_ > 0 || descriptor_pools_.size() > 1 || cached_sets_ >= kCachedSets) {
+    submit_and_wait();
+    return last_serial_;
+  }
+  return submit_recording();
+}
+
+bool Stream::wait_for(uint64_t serial) {
+  bool waited = false;
+  for (Slot& s : ring_) {
+    if (s.in_flight && s.serial <= serial) {
+      retire(s);
+      waited = true;
+    }
+  }
+  const bool later = any_in_flight();
+  if (waited && !later) ++counters_.host_syncs;
+  return later;
+}
+
+void Stream::submit_and_wait() {
+  if (!cmds().recording() && !any_in_flight()) return;
+  if (cmds().recording()) submit_recording();
+  for (Slot& s : ring_) retire(s);
   ++counters_.host_syncs;
   for (auto& p : descriptor_pools_) p.reset();
   if (descriptor_pools_.size() > 1)
@@ -222,7 +297,6 @@ void Stream::submit_and_wait() {
     cache_pool_.reset();
     cached_sets_ = 0;
   }
-  alive_.clear();
 }
 
 double Stream::timestamp_ns(uint32_t id) {

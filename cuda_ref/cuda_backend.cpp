@@ -80,6 +80,10 @@ CudaBackend::~CudaBackend() {
   if (stream_) cudaStreamSynchronize(stream_);
   scratch_.clear();
   for (cudaEvent_t e : events_) cudaEventDestroy(e);
+  for (AsyncRead& r : async_reads_) {
+    if (r.done) cudaEventDestroy(r.done);
+    if (r.pinned) cudaFreeHost(r.pinned);
+  }
   if (diag_) cudaFree(diag_);
   if (stream_) cudaStreamDestroy(stream_);
 }

@@ -5,6 +5,7 @@
 // it needs data (downloads, finish()), and finish() also reads the kernels' diagnostics.
 #include <cuda_runtime_api.h>
 
+#include <array>
 #include <map>
 #include <memory>
 #include <string>
@@ -58,6 +59,10 @@ class CudaBackend final : public Backend {
   void write_bytes(BufferImpl& dst, const void* src, size_t bytes, size_t offset) override;
   void read_bytes(const BufferImpl& src, void* dst, size_t bytes, size_t offset) override;
   void copy_buffer(const BufferImpl& src, BufferImpl& dst, size_t bytes) override;
+  // Asynchronous reads: the bytes and the diagnostics words copied into the slot's pinned host
+  // memory on the stream, then an event; end_read waits for that event alone.
+  void start_read(uint32_t slot, const BufferImpl& src, size_t bytes) override;
+  bool end_read(uint32_t slot, void* dst, size_t bytes) override;
 
  private:
   void* ptr(const BufferImpl& b, const char* kernel) const;
@@ -96,6 +101,15 @@ class CudaBackend final : public Backend {
   uint32_t events_used_ = 0;
   uint32_t pending_diag_limit_ = 0;
   std::map<std::string, DeviceScratch> scratch_;
+  struct AsyncRead {
+    void* pinned = nullptr;  // cudaMallocHost: the bytes, then the diagnostics words
+    size_t bytes = 0;        // room for the bytes
+    cudaEvent_t done = nullptr;
+    uint64_t work_mark = 0;  // the stream's work count when the read was queued
+  };
+  std::array<AsyncRead, kMaxPendingReads> async_reads_;
+  // Launches, fills and copies queued so far: whether work followed a read (end_read).
+  uint64_t work_count() const;
   bool sync_each_launch_ = false;      // MASAV_CUDA_SYNC=1 at creation
   const char* last_kernel_ = nullptr;  // the last launch (static strings), for fault messages
   const char* last_step_ = nullptr;

@@ -1,8 +1,11 @@
 // CUDA backend, host side: what is queued on the stream and where the host waits for it. Every
 // launch, copy and memset is ordered on stream_ (a non-blocking stream, so nothing may go to the
-// legacy default stream); the host waits only for downloads and finish(). Each is counted in
+// legacy default stream); the host waits only for downloads, finish() and the asynchronous
+// reads it takes (each for its own event, with later work still queued). Each is counted in
 // counters_, and a fault CUDA reports late is traced to the last kernel launched.
 #include <fmt/format.h>
+
+#include <cstring>
 
 #include "cuda_ref/cuda_backend.h"
 #include "cuda_ref/cuda_check.h"
@@ -80,6 +83,57 @@ void CudaBackend::read_bytes(const BufferImpl& src, void* dst, size_t bytes, siz
                                cudaMemcpyDeviceToHost, stream_),
                "download", "cudaMemcpyAsync");
   settle("download");
+}
+
+uint64_t CudaBackend::work_count() const {
+  return counters_.launches + counters_.fills + counters_.device_copies + counters_.bytes_to_device;
+}
+
+void CudaBackend::start_read(uint32_t slot, const BufferImpl& src, size_t bytes) {
+  AsyncRead& r = async_reads_[slot];
+  constexpr size_t kDiagBytes = launch::kDiagWords * sizeof(uint32_t);
+  const size_t room = (bytes + 15) / 16 * 16;  // the diagnostics words after the bytes, aligned
+  if (r.bytes < room) {
+    // The slot is free: no copy still writes its memory (its read was taken, with its event).
+    if (r.pinned) check(cudaFreeHost(r.pinned), "asynchronous read", "cudaFreeHost");
+    r.pinned = nullptr;
+    r.bytes = 0;
+    check(cudaMallocHost(&r.pinned, room + kDiagBytes), "asynchronous read", "cudaMallocHost");
+    r.bytes = room;
+  }
+  if (!r.done)
+    check(cudaEventCreateWithFlags(&r.done, cudaEventDisableTiming), "asynchronous read",
+          "cudaEventCreate");
+  auto* host = static_cast<char*>(r.pinned);
+  check_stream(
+      cudaMemcpyAsync(host, ptr(src, "asynchronous read"), bytes, cudaMemcpyDeviceToHost, stream_),
+      "asynchronous read", "cudaMemcpyAsync");
+  check_stream(cudaMemcpyAsync(host + r.bytes, diag_, kDiagBytes, cudaMemcpyDeviceToHost, stream_),
+               "asynchronous read", "cudaMemcpyAsync(diagnostics)");
+  check_stream(cudaEventRecord(r.done, stream_), "asynchronous read", "cudaEventRecord");
+  r.work_mark = work_count();
+}
+
+bool CudaBackend::end_read(uint32_t slot, void* dst, size_t bytes) {
+  AsyncRead& r = async_reads_[slot];
+  // Counted as DeviceApi::take_read says: with later work queued an asynchronous read, else a
+  // host sync where it has to wait (nothing, where the copy is done already).
+  const cudaError_t ready = cudaEventQuery(r.done);
+  const bool waits = ready == cudaErrorNotReady;
+  if (!waits) check_stream(ready, "asynchronous read", "cudaEventQuery");
+  const bool later_work = work_count() != r.work_mark;
+  if (waits && !later_work) ++counters_.host_syncs;
+  if (waits)
+    check_stream(cudaEventSynchronize(r.done), "asynchronous read", "cudaEventSynchronize");
+  const auto* host = static_cast<const char*>(r.pinned);
+  std::memcpy(dst, host, bytes);
+  uint32_t d[launch::kDiagWords];
+  std::memcpy(d, host + r.bytes, sizeof d);
+  if (d[1] != 0) {
+    clear_diagnostics("asynchronous read");
+    raise_diagnostics(*this, d[1], d[2], pending_diag_limit_);
+  }
+  return later_work;
 }
 
 void CudaBackend::copy_buffer(const BufferImpl& src, BufferImpl& dst, size_t bytes) {

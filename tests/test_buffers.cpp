@@ -3,6 +3,7 @@
 #include <doctest/doctest.h>
 #include <fmt/format.h>
 
+#include <cstring>
 #include <numeric>
 #include <vector>
 
@@ -177,4 +178,63 @@ TEST_CASE("independent commands are not ordered against each other; dependent on
   for (uint32_t i = 0; i < n; ++i)
     same = same && got[i] == a[order[order[i]]] && got_c[i] == c[order[i]];
   CHECK(same);
+}
+
+TEST_CASE("an asynchronous read returns the bytes of its copy while later work runs") {
+  Backend& b = test::backend();
+  const uint32_t n = 3000;
+  std::vector<uint32_t> a(n), z(n), order(n);
+  for (uint32_t i = 0; i < n; ++i) {
+    a[i] = i + 1;
+    z[i] = 7 * i + 3;
+    order[i] = (i * 17) % n;
+  }
+  auto x = b.create<uint32_t>(n, "x");
+  auto src = b.create<uint32_t>(n, "z");
+  auto o = b.create<uint32_t>(n, "order");
+  auto y = b.create<uint32_t>(n, "y");
+  b.upload(x, a);
+  b.upload(src, z);
+  b.upload(o, order);
+  b.finish();
+  b.reset_counters();
+  const uint64_t first = b.read_async(x.impl(), n * 4);
+  // Recorded after the read: x is overwritten, then read by a gather whose output is read too.
+  b.copy(src, x);
+  b.gather({n}, o, x.impl(), y.impl());
+  const uint64_t second = b.read_async(y.impl(), n * 4);
+  auto words = [](const std::vector<uint8_t>& bytes) {
+    std::vector<uint32_t> w(bytes.size() / 4);
+    std::memcpy(w.data(), bytes.data(), bytes.size());
+    return w;
+  };
+  CHECK(words(b.take_read(first)) == a);  // as it was when the copy ran
+  std::vector<uint32_t> gathered(n);
+  for (uint32_t i = 0; i < n; ++i) gathered[i] = z[order[i]];
+  CHECK(words(b.take_read(second)) == gathered);
+  const DeviceCounters& c = b.counters();
+  CHECK(c.bytes_to_host == 2 * n * 4);
+  if (b.name() == "cpu") {
+    // Its work is done when recorded: nothing to wait for, nothing queued.
+    CHECK(c.async_reads == 0);
+  } else {
+    // The first take waits for its copy with the gather still queued; the second drains.
+    CHECK(c.async_reads == 1);
+    CHECK(c.host_syncs == 1);
+  }
+  CHECK(b.download(x) == z);
+
+  // Out of order, and each ticket once.
+  const uint64_t t1 = b.read_async(x.impl(), 8), t2 = b.read_async(y.impl(), 4);
+  CHECK(words(b.take_read(t2)) == std::vector<uint32_t>{gathered[0]});
+  CHECK(words(b.take_read(t1)) == std::vector<uint32_t>{z[0], z[1]});
+  CHECK_THROWS_WITH_AS(b.take_read(t1), doctest::Contains("no outstanding read"), Error);
+  CHECK_THROWS_WITH_AS(b.take_read(0), doctest::Contains("no outstanding read"), Error);
+  CHECK_THROWS_WITH_AS(b.read_async(x.impl(), n * 4 + 4), doctest::Contains("overrun"), Error);
+  CHECK_THROWS_WITH_AS(b.read_async(x.impl(), 0), doctest::Contains("0 bytes"), Error);
+  std::vector<uint64_t> held;
+  for (uint32_t k = 0; k < DeviceApi::kMaxPendingReads; ++k)
+    held.push_back(b.read_async(x.impl(), 4));
+  CHECK_THROWS_WITH_AS(b.read_async(x.impl(), 4), doctest::Contains("reads outstanding"), Error);
+  for (uint64_t t : held) CHECK(words(b.take_read(t)) == std::vector<uint32_t>{z[0]});
 }

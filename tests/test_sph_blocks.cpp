@@ -156,3 +156,26 @@ TEST_CASE("[sph-physics] reading the state inside a block leaves the trajectory 
     CHECK(test::same_state(sim.download(), whole.state));
   }
 }
+
+TEST_CASE("[sph-physics] run() takes each block's stats while the next block runs") {
+  // Eight blocks of 8 steps: the host waits for the device once, at the end of run(); every other
+  // block's stats are taken while the block after it is queued (DeviceApi::read_async), and
+  // nothing but the stats words travels between host and device.
+  Backend& b = test::backend();
+  SphSimulation sim(b, make_preset("water", 1000));
+  sim.set_block_steps(8);
+  REQUIRE(sim.run(8) == 8);
+  b.finish();
+  b.reset_counters();
+  CHECK(sim.run(64) == 64);
+  const DeviceCounters& c = b.counters();
+  CHECK(c.bytes_to_device == 0);
+  CHECK(c.bytes_to_host == 8 * kSphStatWords * sizeof(uint32_t));
+  if (b.name() == "cpu") {
+    CHECK(c.async_reads == 0);  // its work is done when recorded
+  } else {
+    CHECK(c.host_syncs == 1);
+    CHECK(c.async_reads == 7);
+  }
+  CHECK(sim.block_replays() == 0);
+}

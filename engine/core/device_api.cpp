@@ -63,6 +63,50 @@ void DeviceApi::download_bytes(const BufferImpl& src, void* dst, size_t bytes, s
   counters_.bytes_to_host += bytes;
 }
 
+uint64_t DeviceApi::read_async(const BufferImpl& src, size_t bytes) {
+  check_range(src, bytes, 0, "asynchronous read");
+  if (bytes == 0)
+    throw Error(name(), "asynchronous read", fmt::format("0 bytes of '{}'", src.label()),
+                "read at least one byte");
+  PendingRead* free_slot = nullptr;
+  for (PendingRead& r : reads_)
+    if (!free_slot && r.ticket == 0) free_slot = &r;
+  if (!free_slot)
+    throw Error(name(), "asynchronous read",
+                fmt::format("more than {} reads outstanding", kMaxPendingReads),
+                "take the earlier reads first (internal error: report it)");
+  const uint32_t slot = uint32_t(free_slot - reads_.data());
+  start_read(slot, src, bytes);
+  free_slot->ticket = next_ticket_++;
+  free_slot->bytes = bytes;
+  counters_.bytes_to_host += bytes;
+  return free_slot->ticket;
+}
+
+std::vector<uint8_t> DeviceApi::take_read(uint64_t ticket) {
+  PendingRead* r = nullptr;
+  for (PendingRead& p : reads_)
+    if (ticket != 0 && p.ticket == ticket) r = &p;
+  if (!r)
+    throw Error(name(), "asynchronous read", fmt::format("no outstanding read {}", ticket),
+                "take each ticket of read_async once (internal error: report it)");
+  std::vector<uint8_t> out(r->bytes);
+  const uint32_t slot = uint32_t(r - reads_.data());
+  r->ticket = 0;  // free, whatever end_read throws
+  if (end_read(slot, out.data(), out.size())) ++counters_.async_reads;
+  return out;
+}
+
+void DeviceApi::start_read(uint32_t slot, const BufferImpl& src, size_t bytes) {
+  reads_[slot].data.resize(bytes);
+  read_bytes(src, reads_[slot].data.data(), bytes, 0);
+}
+
+bool DeviceApi::end_read(uint32_t slot, void* dst, size_t bytes) {
+  std::memcpy(dst, reads_[slot].data.data(), bytes);
+  return false;
+}
+
 void DeviceApi::copy_bytes(const BufferImpl& src, BufferImpl& dst, size_t bytes) {
   check_owner(*this, src, "copy");
   check_owner(*this, dst, "copy");

@@ -1,6 +1,7 @@
 #pragma once
 // Buffers, ordering and device timestamps: what every backend provides besides its kernels
 // (the kernels are listed in backend.h). Work is recorded in order; downloads wait for it.
+#include <array>
 #include <cstdint>
 #include <span>
 #include <string_view>
@@ -24,6 +25,7 @@ struct DeviceCounters {
   uint64_t device_copies = 0;    // device-to-device copies
   uint64_t bytes_to_device = 0;  // host -> device (uploads)
   uint64_t bytes_to_host = 0;    // device -> host (downloads, including asynchronous reads)
+  uint64_t async_reads = 0;      // reads taken while the device still had later work to run
 };
 
 class DeviceApi {
@@ -46,6 +48,17 @@ class DeviceApi {
   void download_bytes(const BufferImpl& src, void* dst, size_t bytes, size_t offset);
   void copy_bytes(const BufferImpl& src, BufferImpl& dst, size_t bytes);
   virtual void fill_u32(BufferImpl& dst, uint32_t value) = 0;
+
+  // ---- asynchronous reads
+  // read_async queues a copy of the first `bytes` of `src` behind the work recorded so far,
+  // submits that work without waiting for it, and returns a ticket. take_read(ticket) waits for
+  // that copy alone -- work recorded after it keeps the device busy meanwhile -- and returns the
+  // bytes as they were when the copy ran. Each ticket is taken once, in any order; at most
+  // kMaxPendingReads are outstanding. A take with later work still queued counts as an
+  // asynchronous read; one that waits and leaves nothing queued, as a host sync.
+  static constexpr uint32_t kMaxPendingReads = 4;
+  uint64_t read_async(const BufferImpl& src, size_t bytes);
+  std::vector<uint8_t> take_read(uint64_t ticket);
 
   // ---- ordering and timing
   virtual void finish() = 0;            // submit what is recorded and wait for it
@@ -87,6 +100,12 @@ class DeviceApi {
   virtual void read_bytes(const BufferImpl& src, void* dst, size_t bytes, size_t offset) = 0;
   virtual void copy_buffer(const BufferImpl& src, BufferImpl& dst, size_t bytes) = 0;
 
+  // A backend's side of read_async / take_read, in slot `slot` (< kMaxPendingReads, free until
+  // end_read returns). end_read returns whether later work is still queued. The defaults
+  // read at start_read (a backend whose work is done when it is recorded: the CPU reference).
+  virtual void start_read(uint32_t slot, const BufferImpl& src, size_t bytes);
+  virtual bool end_read(uint32_t slot, void* dst, size_t bytes);
+
   void check_upload(const BufferImpl& dst, size_t count) const;
   // `b` is this backend's and [offset, offset + bytes) lies in it (`what`: upload, download).
   void check_range(const BufferImpl& b, size_t bytes, size_t offset, const char* what) const;
@@ -95,6 +114,15 @@ class DeviceApi {
   std::vector<double> download_reals(const BufferImpl& src, size_t scalars);
 
   DeviceCounters counters_;
+
+ private:
+  struct PendingRead {
+    uint64_t ticket = 0;  // 0: the slot is free
+    size_t bytes = 0;
+    std::vector<uint8_t> data;  // the default start_read's copy
+  };
+  std::array<PendingRead, kMaxPendingReads> reads_;
+  uint64_t next_ticket_ = 1;
 };
 
 // Checks every backend runs the same way: `b` was created by `dev`; `count` elements of `kind`

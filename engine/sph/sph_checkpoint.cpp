@@ -280,6 +280,7 @@ std::vector<uint8_t> state_bytes(const SphResumeState& r) {
   o.put(r.retries);
   o.put(r.block_replays);
   put_stats(o, r.stats);
+  put_stats(o, r.lag_stats);
   const SphSolveStats& ss = r.solve_stats;
   o.put(ss.steps);
   o.put(ss.density_iterations);
@@ -531,6 +532,7 @@ SphCheckpoint read_sph_checkpoint(const std::string& path) {
   r.retries = s.get<uint64_t>("retries");
   r.block_replays = s.get<uint64_t>("block_replays");
   r.stats = get_stats(s, "stats");
+  r.lag_stats = get_stats(s, "lag_stats");
   SphSolveStats& ss = r.solve_stats;
   ss.steps = s.get<uint64_t>("solve_stats");
   ss.density_iterations = s.get<uint64_t>("solve_stats");

@@ -21,7 +21,8 @@
 
 namespace masav {
 
-inline constexpr uint32_t kSphCheckpointVersion = 2;  // 2: the open block of run()
+// 2: the open block of run(); 3: the stats the next block's dt comes from (lag_stats).
+inline constexpr uint32_t kSphCheckpointVersion = 3;
 inline constexpr uint32_t kSphCheckpointMaxParticles = 1u << 30;  // the scene's own bound
 
 struct SphCheckpoint {

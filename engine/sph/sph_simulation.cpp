@@ -124,6 +124,7 @@ SphSimulation::SphSimulation(Backend& backend, const SphScene& scene, SphComm* c
   double vmax = 0;
   for (const auto& v : layout_.velocities) vmax = std::max(vmax, std::hypot(v.x, v.y, v.z));
   stats_.max_speed = vmax;
+  lag_stats_ = stats_;
   accel_valid_ = !dfsph();  // dfsph's first step adds its factor
   fields_current_ = true;
   adaptive_dt_ = std::min(scene_.dt_max, dt_limit());
@@ -326,6 +327,10 @@ void SphSimulation::step_leapfrog(double dt) {
 SphStepStats SphSimulation::read_stats(uint32_t w[kSphStatWords]) {
   const std::vector<uint32_t> words = backend_.download(stats_buf_);
   std::copy(words.begin(), words.begin() + kSphStatWords, w);
+  return stats_from_words(w);
+}
+
+SphStepStats SphSimulation::stats_from_words(uint32_t w[kSphStatWords]) {
   if (ranks_) ranks_->reduce_stats(w);
   SphStepStats s;
   s.max_speed = std::sqrt(double(bits_to_float(w[kSphStatMaxSpeed2])));
@@ -581,6 +586,7 @@ void SphSimulation::step() {
     adaptive_dt_ = last_dt_;
   }
   ++steps_;
+  lag_stats_ = stats_;  // a block after a step takes its limit from the step's stats
   watch_energy();
 }
 
@@ -601,6 +607,7 @@ void SphSimulation::set_velocities(const std::vector<Vec4d>& by_id) {
   for (const auto& v : by_id) vmax = std::max(vmax, std::hypot(v.x, v.y, v.z));
   if (std::isfinite(vmax)) {
     stats_.max_speed = std::max(stats_.max_speed, vmax);
+    lag_stats_.max_speed = std::max(lag_stats_.max_speed, vmax);
     // Energy the caller adds is the new baseline; speeds up to twice the fastest given are legal.
     watchdog_.max_speed = std::max(watchdog_.max_speed, 2 * vmax);
     set_watchdog_baseline(download());

@@ -30,14 +30,20 @@
 // Blocks. step() reads the stats back after every step: one host wait per step, which on a GPU
 // leaves the device idle while the host decides. run() instead records up to block_steps()
 // steps (default 8) with the stats accumulated on the device (maxima over the block) and reads
-// them once at the block's end. The block's dt is chosen from the stats before it, as step()
-// would choose it for the block's first step. A block whose stats the guard would not accept
-// (NaN/Inf, an overflow, an RK4 drift past the skin, a Courant number over twice the limit at
-// the block's largest dt) is rolled back to a device-side checkpoint taken at its start (copies
-// of positions, velocities, ids and, for leapfrog, accelerations) and replayed with step(), so
-// the guard retries or stops at the very step it would have without blocks: detection is
-// bounded by the block length, the message names the step. Where the checkpoint does not fit
-// the device's memory, run() steps one at a time.
+// them asynchronously (DeviceApi::read_async): block b is submitted, then the host takes block
+// b-1's stats, which the device finished while b was queued, and records block b+1 while b
+// runs. So a block's dt cannot come from the block just before it: block b's dt limit is the
+// one of block b-2's stats (the block before the last, whatever run()'s calls or a replay left
+// settled), its adaptive dt growing at most 25% per step from there. A block whose stats the
+// guard would not accept (NaN/Inf, an overflow, an RK4 drift past the skin, a Courant number
+// over twice the limit at the block's largest dt) is rolled back to a device-side checkpoint
+// taken at its start (copies of positions, velocities, ids and, for leapfrog, accelerations;
+// two of them, the pending block's and the one after it, which the rollback drops) and replayed
+// with step(), so the guard retries or stops at the very step it would have without blocks:
+// detection is bounded by two blocks, the message names the step. Where the second checkpoint
+// does not fit the device's memory, and on several ranks (whose rebuilds exchange particles
+// through the host every step), each block's stats are taken as soon as it is submitted; where
+// none fits, run() steps one at a time. run() returns with every block it recorded settled.
 //
 // Blocks fall on fixed steps, multiples of block_steps() from step 0, however the calls to run()
 // split them (a CSV row, a snapshot or a checkpoint every few steps): a block's later parts keep
@@ -57,6 +63,7 @@
 #include <cstdint>
 #include <limits>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -113,7 +120,8 @@ struct SphResumeState {
   std::vector<double> kappa_density, kappa_divergence;  // dfsph's warm starts; empty otherwise
   double time = 0, last_dt = 0, adaptive_dt = 0;
   uint64_t steps = 0, substeps = 0, retries = 0, block_replays = 0;
-  SphStepStats stats;  // the last read: the next dt's CFL limit
+  SphStepStats stats;      // the last read: the next dt's CFL limit (step())
+  SphStepStats lag_stats;  // the read before it: the next block's CFL limit (run())
   SphSolveStats solve_stats;
   bool accel_valid = false, fields_current = false, kappa_warm = false;
   uint32_t block_steps = 8;
@@ -211,10 +219,28 @@ class SphSimulation {
     std::string reason;
   };
   static constexpr uint64_t kMaxSubsteps = 1u << 20;  // of one fixed-dt step (CFL guard)
-  struct HostState;
+  // What a rolled-back block restores on the host.
+  struct HostState {
+    double time, last_dt, adaptive_dt;
+    uint64_t steps, substeps;
+    SphStepStats stats, lag_stats;
+    bool accel_valid, fields_current, block_open;
+    double block_limit;
+    SphRankLayout ranks;  // the committed layout, on several ranks
+  };
   struct Checkpoint {
     Buffer<Real4> pos, vel, accel;
     Buffer<uint32_t> ids;
+  };
+  // A block run() submitted and whose stats it has not taken yet (see the header, "Blocks").
+  struct PendingBlock {
+    uint64_t ticket = 0;  // DeviceApi::read_async of its stats
+    HostState start;      // the host state at its start; its state on the device: checkpoint
+    int checkpoint = 0;   // checkpoints_[checkpoint]
+    uint64_t taken = 0;   // steps recorded
+    double max_dt = 0;
+    bool continuing = false;  // a later part of a block run() left open
+    double t_end = 0;         // run()'s, for a replay
   };
   void rebuild_moving(const Buffer<Real4>& x, Buffer<Real4>& x_sorted, const Buffer<Real4>& v,
                       Buffer<Real4>& v_sorted, const Buffer<uint32_t>& ids,
@@ -260,15 +286,25 @@ class SphSimulation {
   Attempt judge(const uint32_t w[kSphStatWords], const SphStepStats& s, double dt) const;
   void commit(double dt);      // the recorded step's results become the state
   Attempt attempt(double dt);  // one integrator step, committed if accepted
-  uint64_t run_block(uint64_t k, double t_end);
+  // Records up to k steps of the block the current step falls in and submits them (see the
+  // header, "Blocks"); settles the block before it.
+  void record_block(uint64_t k, double t_end);
+  // Takes the pending block's stats: accepts it, or rolls it back and replays it step by step.
+  void settle_block();
+  // Settles `p`; `later`: the block recorded after it, not yet pending, or null. False: `p` was
+  // rolled back and replayed, and `later` dropped with it (its read taken unseen).
+  bool settle(PendingBlock& p, PendingBlock* later);
+  void drop_read(uint64_t& ticket);  // takes a read whose bytes nobody needs; ticket = 0
+  // Whether run() keeps one block pending while it records the next.
+  bool pipelines_blocks() const;
   HostState save_host_state() const;
   void restore_host_state(const HostState& h);
   // The watchdog's energy check, every SphWatchdog::kEnergyEvery steps (see sph_watchdog.h).
   void watch_energy();
   void set_watchdog_baseline(const SphState& s);
   bool leapfrog_accel() const;  // accel_ is part of the state (leapfrog's carried force)
-  void take_checkpoint();
-  void restore_checkpoint(const HostState& h);
+  void take_checkpoint(Checkpoint& c);
+  void restore_checkpoint(const Checkpoint& c, const HostState& h);
   // attempt() with the guard's retries at half the step; `whole` covers all of dt.
   void advance(double dt, int depth, bool whole);
   void step_euler(double dt, SphStageOp op);
@@ -284,6 +320,8 @@ class SphSimulation {
   void step_dfsph(double dt);
   bool dfsph() const { return scene_.model == SphPressureModel::dfsph; }
   SphStepStats read_stats(uint32_t words[kSphStatWords]);
+  // The stats of the words just read (reduced over the ranks first, in place).
+  SphStepStats stats_from_words(uint32_t words[kSphStatWords]);
   [[noreturn]] void fail_non_finite(double dt);
   // The error naming particle `id` (UINT32_MAX: unknown) that entered the step non-finite
   // (`origin`) or got so in it.
@@ -323,7 +361,10 @@ class SphSimulation {
   bool kappa_warm_ = false;  // the kappa sums hold a previous step's (in pos_'s order)
   uint32_t min_neighbors_ = 0;
   SphSolveStats solve_stats_;
-  Checkpoint checkpoint_;  // the state at the start of run()'s block; empty where it does not fit
+  // The states at the start of run()'s pending block and of the one after it; empty where they
+  // do not fit (the second: where it does not, or on several ranks).
+  std::array<Checkpoint, 2> checkpoints_;
+  std::optional<PendingBlock> pending_;
   uint32_t block_steps_ = 8;
   // The block of the fixed schedule that run() left open: its dt limit (see the header).
   bool block_open_ = false;
@@ -343,6 +384,7 @@ class SphSimulation {
   double time_ = 0, last_dt_ = 0, adaptive_dt_ = 0;
   uint64_t steps_ = 0, substeps_ = 0, retries_ = 0;
   SphStepStats stats_;
+  SphStepStats lag_stats_;  // the stats before stats_' block (see the header, "Blocks")
 
   bool profiling_ = false;
   std::vector<std::pair<TimestampId, SphStage>> marks_;

@@ -14,8 +14,8 @@ namespace {
 
 // Device memory the simulation needs per particle: 10 Real4 arrays, 2 Real (8 with dfsph's
 // factor and kappas), 2 ids, the grid's 4 words (cells, order, and the counting build's counts
-// and ranks), the neighbour row masks where they are kept, and run()'s checkpoint (3 Real4 and
-// ids) where it is kept.
+// and ranks), the neighbour row masks where they are kept, and with `checkpoint` one of
+// run()'s checkpoints (3 Real4 and ids).
 uint64_t bytes_per_particle(const Backend& b, bool neighbor_rows, bool checkpoint = false,
                             bool dfsph = false) {
   return 10 * 4 * b.real_bytes() + (dfsph ? 8 : 2) * b.real_bytes() + 6 * 4 +
@@ -23,12 +23,17 @@ uint64_t bytes_per_particle(const Backend& b, bool neighbor_rows, bool checkpoin
          (checkpoint ? 3 * 4 * b.real_bytes() + 4 : 0);
 }
 
-// Whether run() keeps a checkpoint for its blocks: where it fits the memory budget
+// How many of the checkpoints run() keeps for its blocks (up to `wanted`) fit the memory budget
 // check_capacity applies (with the row masks, when they are kept).
-bool keeps_checkpoint(const Backend& b, uint64_t n, bool neighbor_rows) {
+int keeps_checkpoints(const Backend& b, uint64_t n, bool neighbor_rows, int wanted) {
   const Capabilities& caps = b.caps();
-  return !caps.device_memory_bytes ||
-         n * bytes_per_particle(b, neighbor_rows, true) <= caps.device_memory_bytes / 2;
+  const uint64_t base = bytes_per_particle(b, neighbor_rows);
+  const uint64_t each = bytes_per_particle(b, neighbor_rows, true) - base;
+  int k = 0;
+  while (k < wanted && (!caps.device_memory_bytes ||
+                        n * (base + uint64_t(k + 1) * each) <= caps.device_memory_bytes / 2))
+    ++k;
+  return k;
 }
 
 // Whether sph_density records neighbour row masks for sph_forces, which then visits only the
@@ -120,11 +125,16 @@ void SphSimulation::allocate_particle_buffers() {
         backend_.create<uint32_t>(size_t(kSphRowMaskWords) * c, "sph neighbour row masks");
   if (dfsph()) allocate_dfsph();
   // dfsph reads its solves' residuals every iteration: it steps one at a time (no blocks).
-  if (!dfsph() && keeps_checkpoint(backend_, c, neighbor_rows_.valid())) {
-    checkpoint_.pos = real4("sph checkpoint positions");
-    checkpoint_.vel = real4("sph checkpoint velocities");
-    checkpoint_.accel = real4("sph checkpoint accelerations");
-    checkpoint_.ids = backend_.create<uint32_t>(c, "sph checkpoint ids");
+  // The second checkpoint lets run() record a block while the one before it is pending: in one
+  // process, where both fit.
+  const int checkpoints =
+      dfsph() ? 0 : keeps_checkpoints(backend_, c, neighbor_rows_.valid(), ranks_ ? 1 : 2);
+  for (int k = 0; k < checkpoints; ++k) {
+    Checkpoint& cp = checkpoints_[size_t(k)];
+    cp.pos = real4("sph checkpoint positions");
+    cp.vel = real4("sph checkpoint velocities");
+    cp.accel = real4("sph checkpoint accelerations");
+    cp.ids = backend_.create<uint32_t>(c, "sph checkpoint ids");
   }
 }
 
@@ -147,12 +157,14 @@ void SphSimulation::reserve(uint32_t local) {
   capacity_ = uint32_t(std::min<uint64_t>(n_, uint64_t(local) + local / 4 + 1024));
   ++capacity_growths_;
   const size_t c = capacity_;
-  for (Buffer<Real4>* b : {&pos_, &vel_, &xs_, &vs_, &sum_x_, &sum_v_, &ta_, &tb_, &tc_, &accel_,
-                           &checkpoint_.pos, &checkpoint_.vel, &checkpoint_.accel})
+  for (Buffer<Real4>* b : {&pos_, &vel_, &xs_, &vs_, &sum_x_, &sum_v_, &ta_, &tb_, &tc_, &accel_})
     grow(backend_, *b, c);
+  for (Checkpoint& cp : checkpoints_) {
+    for (Buffer<Real4>* b : {&cp.pos, &cp.vel, &cp.accel}) grow(backend_, *b, c);
+    grow(backend_, cp.ids, c);
+  }
   for (Buffer<Real>* b : {&density_, &pressure_}) grow(backend_, *b, c);
-  for (Buffer<uint32_t>* b :
-       {&ids_, &ids_t_, &checkpoint_.ids, &grid_.sorted_cells, &grid_.sorted_index})
+  for (Buffer<uint32_t>* b : {&ids_, &ids_t_, &grid_.sorted_cells, &grid_.sorted_index})
     grow(backend_, *b, c);
   grow(backend_, neighbor_rows_, size_t(kSphRowMaskWords) * c);
 }

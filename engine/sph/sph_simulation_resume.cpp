@@ -51,6 +51,7 @@ SphResumeState SphSimulation::export_resume_state() {
   r.retries = retries_;
   r.block_replays = block_replays_;
   r.stats = stats_;
+  r.lag_stats = lag_stats_;
   r.solve_stats = solve_stats_;
   r.accel_valid = accel_valid_;
   r.fields_current = fields_current_;
@@ -134,6 +135,7 @@ void SphSimulation::restore_resume_state(const SphResumeState& r) {
   retries_ = r.retries;
   block_replays_ = r.block_replays;
   stats_ = r.stats;
+  lag_stats_ = r.lag_stats;
   solve_stats_ = r.solve_stats;
   accel_valid_ = r.accel_valid;
   fields_current_ = r.fields_current;

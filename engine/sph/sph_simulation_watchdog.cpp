@@ -48,6 +48,7 @@ void SphSimulation::watch_energy() {
   steps_ = good_.steps;
   substeps_ = good_.substeps;
   stats_ = good_.stats;
+  lag_stats_ = stats_;
   accel_valid_ = false;
   fields_current_ = false;
   fail_together(
