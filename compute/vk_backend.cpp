@@ -148,12 +148,12 @@ void VulkanBackend::read_bytes(const BufferImpl& src, void* dst, size_t bytes, s
   std::memcpy(dst, readback_->mapped, bytes);
 }
 
-void VulkanBackend::start_read(uint32_t slot, const BufferImpl& src, size_t bytes) {
+void VulkanBackend::start_read(uint32_t slot, const BufferImpl& src, size_t bytes, size_t offset) {
   AsyncRead& r = async_reads_[slot];
   // The slot is free: the read that last used its buffer was taken, so no copy still writes it.
   if (!r.staging || r.staging->bytes < bytes)
     r.staging = allocate(ctx_, bytes, MemoryUse::readback, "asynchronous read staging");
-  stream_.copy(alloc(src, "asynchronous read"), 0, r.staging, 0, bytes);
+  stream_.copy(alloc(src, "asynchronous read"), offset, r.staging, 0, bytes);
   r.serial = stream_.flush();
 }
 

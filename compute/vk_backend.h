@@ -71,7 +71,7 @@ class VulkanBackend final : public Backend, public VulkanInterop {
   void copy_buffer(const BufferImpl& src, BufferImpl& dst, size_t bytes) override;
   // Asynchronous reads: a copy into the slot's host-visible buffer, submitted (Stream::flush),
   // and waited for by its submission's fence.
-  void start_read(uint32_t slot, const BufferImpl& src, size_t bytes) override;
+  void start_read(uint32_t slot, const BufferImpl& src, size_t bytes, size_t offset) override;
   bool end_read(uint32_t slot, void* dst, size_t bytes) override;
 
  private:

@@ -61,7 +61,7 @@ class CudaBackend final : public Backend {
   void copy_buffer(const BufferImpl& src, BufferImpl& dst, size_t bytes) override;
   // Asynchronous reads: the bytes and the diagnostics words copied into the slot's pinned host
   // memory on the stream, then an event; end_read waits for that event alone.
-  void start_read(uint32_t slot, const BufferImpl& src, size_t bytes) override;
+  void start_read(uint32_t slot, const BufferImpl& src, size_t bytes, size_t offset) override;
   bool end_read(uint32_t slot, void* dst, size_t bytes) override;
 
  private:

@@ -89,7 +89,7 @@ uint64_t CudaBackend::work_count() const {
   return counters_.launches + counters_.fills + counters_.device_copies + counters_.bytes_to_device;
 }
 
-void CudaBackend::start_read(uint32_t slot, const BufferImpl& src, size_t bytes) {
+void CudaBackend::start_read(uint32_t slot, const BufferImpl& src, size_t bytes, size_t offset) {
   AsyncRead& r = async_reads_[slot];
   constexpr size_t kDiagBytes = launch::kDiagWords * sizeof(uint32_t);
   const size_t room = (bytes + 15) / 16 * 16;  // the diagnostics words after the bytes, aligned
@@ -105,9 +105,9 @@ void CudaBackend::start_read(uint32_t slot, const BufferImpl& src, size_t bytes)
     check(cudaEventCreateWithFlags(&r.done, cudaEventDisableTiming), "asynchronous read",
           "cudaEventCreate");
   auto* host = static_cast<char*>(r.pinned);
-  check_stream(
-      cudaMemcpyAsync(host, ptr(src, "asynchronous read"), bytes, cudaMemcpyDeviceToHost, stream_),
-      "asynchronous read", "cudaMemcpyAsync");
+  const char* from = static_cast<const char*>(ptr(src, "asynchronous read")) + offset;
+  check_stream(cudaMemcpyAsync(host, from, bytes, cudaMemcpyDeviceToHost, stream_),
+               "asynchronous read", "cudaMemcpyAsync");
   check_stream(cudaMemcpyAsync(host + r.bytes, diag_, kDiagBytes, cudaMemcpyDeviceToHost, stream_),
                "asynchronous read", "cudaMemcpyAsync(diagnostics)");
   check_stream(cudaEventRecord(r.done, stream_), "asynchronous read", "cudaEventRecord");

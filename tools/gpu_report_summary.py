@@ -356,7 +356,12 @@ def sph_table(bench):
                          "particles": r["particles"], "ms_per_step": r["device_ms_per_step"],
                          "steps_per_s": r["steps_per_s"],
                          "m_particle_steps_per_s": r["particle_steps_per_s"] / MILLION,
-                         "timed_steps": r["timed_steps"], "source": f})
+                         "timed_steps": r["timed_steps"],
+                         # What each step asked of the device (target: no host sync per step).
+                         "launches_per_step": r.get("per_step", {}).get("launches"),
+                         "host_syncs_per_step": r.get("per_step", {}).get("host_syncs"),
+                         "async_reads_per_step": r.get("per_step", {}).get("async_reads"),
+                         "source": f})
     rows.sort(key=lambda r: (r["particles"], r["integrator"], r["backend"]))
     return rows
 
@@ -449,9 +454,11 @@ def markdown(run, steps, targets, sph, verify, dambreak):
         lines += md_table(
             "## SPH throughput (`masav bench sph`, water preset)",
             ["particles", "integrator", "backend", "ms/step", "steps/s", "M particle-steps/s",
-             "timed steps", "source JSON"],
+             "timed steps", "launches / host syncs / asynchronous reads per step", "source JSON"],
             [[f"{r['particles']:,}", r['integrator'], r['backend'], fmt(r['ms_per_step']),
               fmt(r['steps_per_s']), fmt(r['m_particle_steps_per_s']), r['timed_steps'],
+              " / ".join(fmt(r[k]) for k in ("launches_per_step", "host_syncs_per_step",
+                                             "async_reads_per_step")),
               r['source']] for r in sph])
     if dambreak:
         lines += md_table(

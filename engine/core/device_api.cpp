@@ -63,8 +63,8 @@ void DeviceApi::download_bytes(const BufferImpl& src, void* dst, size_t bytes, s
   counters_.bytes_to_host += bytes;
 }
 
-uint64_t DeviceApi::read_async(const BufferImpl& src, size_t bytes) {
-  check_range(src, bytes, 0, "asynchronous read");
+uint64_t DeviceApi::read_async(const BufferImpl& src, size_t bytes, size_t offset) {
+  check_range(src, bytes, offset, "asynchronous read");
   if (bytes == 0)
     throw Error(name(), "asynchronous read", fmt::format("0 bytes of '{}'", src.label()),
                 "read at least one byte");
@@ -76,7 +76,7 @@ uint64_t DeviceApi::read_async(const BufferImpl& src, size_t bytes) {
                 fmt::format("more than {} reads outstanding", kMaxPendingReads),
                 "take the earlier reads first (internal error: report it)");
   const uint32_t slot = uint32_t(free_slot - reads_.data());
-  start_read(slot, src, bytes);
+  start_read(slot, src, bytes, offset);
   free_slot->ticket = next_ticket_++;
   free_slot->bytes = bytes;
   counters_.bytes_to_host += bytes;
@@ -97,9 +97,39 @@ std::vector<uint8_t> DeviceApi::take_read(uint64_t ticket) {
   return out;
 }
 
-void DeviceApi::start_read(uint32_t slot, const BufferImpl& src, size_t bytes) {
+std::vector<uint32_t> DeviceApi::take_u32s(uint64_t ticket) {
+  const std::vector<uint8_t> bytes = take_read(ticket);
+  std::vector<uint32_t> out(bytes.size() / 4);
+  std::memcpy(out.data(), bytes.data(), out.size() * 4);
+  return out;
+}
+
+std::vector<double> DeviceApi::take_reals(uint64_t ticket) {
+  const std::vector<uint8_t> bytes = take_read(ticket);
+  std::vector<double> out(bytes.size() / real_bytes());
+  if (real_bytes() == 8) {
+    std::memcpy(out.data(), bytes.data(), out.size() * 8);
+  } else {
+    for (size_t i = 0; i < out.size(); ++i) {
+      float f;
+      std::memcpy(&f, bytes.data() + 4 * i, 4);
+      out[i] = f;
+    }
+  }
+  return out;
+}
+
+std::vector<Vec4d> DeviceApi::take_real4s(uint64_t ticket) {
+  const std::vector<double> flat = take_reals(ticket);
+  std::vector<Vec4d> out(flat.size() / 4);
+  for (size_t i = 0; i < out.size(); ++i)
+    out[i] = {flat[4 * i], flat[4 * i + 1], flat[4 * i + 2], flat[4 * i + 3]};
+  return out;
+}
+
+void DeviceApi::start_read(uint32_t slot, const BufferImpl& src, size_t bytes, size_t offset) {
   reads_[slot].data.resize(bytes);
-  read_bytes(src, reads_[slot].data.data(), bytes, 0);
+  read_bytes(src, reads_[slot].data.data(), bytes, offset);
 }
 
 bool DeviceApi::end_read(uint32_t slot, void* dst, size_t bytes) {

@@ -50,15 +50,24 @@ class DeviceApi {
   virtual void fill_u32(BufferImpl& dst, uint32_t value) = 0;
 
   // ---- asynchronous reads
-  // read_async queues a copy of the first `bytes` of `src` behind the work recorded so far,
+  // read_async queues a copy of `bytes` of `src` (from `offset`) behind the work recorded so far,
   // submits that work without waiting for it, and returns a ticket. take_read(ticket) waits for
   // that copy alone -- work recorded after it keeps the device busy meanwhile -- and returns the
   // bytes as they were when the copy ran. Each ticket is taken once, in any order; at most
   // kMaxPendingReads are outstanding. A take with later work still queued counts as an
   // asynchronous read; one that waits and leaves nothing queued, as a host sync.
-  static constexpr uint32_t kMaxPendingReads = 4;
-  uint64_t read_async(const BufferImpl& src, size_t bytes);
+  static constexpr uint32_t kMaxPendingReads = 8;
+  uint64_t read_async(const BufferImpl& src, size_t bytes, size_t offset = 0);
   std::vector<uint8_t> take_read(uint64_t ticket);
+  // Whole buffers the same way, converted as download() converts them: several reads queued
+  // together and then taken cost one wait, where one download() each would cost one wait each.
+  template <class T>
+  uint64_t read_async(const Buffer<T>& b) {
+    return read_async(b.impl(), b.impl().bytes());
+  }
+  std::vector<uint32_t> take_u32s(uint64_t ticket);
+  std::vector<double> take_reals(uint64_t ticket);  // a Buffer<Real>
+  std::vector<Vec4d> take_real4s(uint64_t ticket);  // a Buffer<Real4>
 
   // ---- ordering and timing
   virtual void finish() = 0;            // submit what is recorded and wait for it
@@ -103,7 +112,7 @@ class DeviceApi {
   // A backend's side of read_async / take_read, in slot `slot` (< kMaxPendingReads, free until
   // end_read returns). end_read returns whether later work is still queued. The defaults
   // read at start_read (a backend whose work is done when it is recorded: the CPU reference).
-  virtual void start_read(uint32_t slot, const BufferImpl& src, size_t bytes);
+  virtual void start_read(uint32_t slot, const BufferImpl& src, size_t bytes, size_t offset);
   virtual bool end_read(uint32_t slot, void* dst, size_t bytes);
 
   void check_upload(const BufferImpl& dst, size_t count) const;

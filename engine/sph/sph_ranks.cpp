@@ -101,11 +101,45 @@ Pack deserialize(const Bytes& b, const Fields& f, int from) {
   return p;
 }
 
-void download_range(Backend& b, const BufferImpl& src, Bytes& dst, size_t first, size_t count,
-                    size_t elem) {
-  dst.resize(count * elem);
-  if (count) b.download_bytes(src, dst.data(), count * elem, first * elem);
-}
+// Ranges of device buffers read with one wait for all of them: each copy is queued
+// (DeviceApi::read_async) when added, and take() waits for them, where a download per range would
+// wait once per range.
+class RangeReads {
+ public:
+  explicit RangeReads(Backend& b) : b_(b) {}
+  RangeReads(const RangeReads&) = delete;
+  RangeReads& operator=(const RangeReads&) = delete;
+  ~RangeReads() {
+    for (const Read& r : reads_) {
+      try {
+        (void)b_.take_read(r.ticket);  // an error on the way: nobody reads these
+      } catch (...) {
+      }
+    }
+  }
+  // `count` elements of `elem` bytes of `src` from element `first` into `dst` at take().
+  void add(const BufferImpl& src, Bytes& dst, size_t first, size_t count, size_t elem) {
+    dst.clear();
+    if (count) reads_.push_back({b_.read_async(src, count * elem, first * elem), &dst});
+  }
+  void take() {
+    while (!reads_.empty()) {
+      const Read r = reads_.front();
+      reads_.erase(reads_.begin());
+      const std::vector<uint8_t> bytes = b_.take_read(r.ticket);
+      r.dst->resize(bytes.size());
+      std::memcpy(r.dst->data(), bytes.data(), bytes.size());
+    }
+  }
+
+ private:
+  struct Read {
+    uint64_t ticket;
+    Bytes* dst;
+  };
+  Backend& b_;
+  std::vector<Read> reads_;
+};
 
 void upload_range(Backend& b, BufferImpl& dst, const Bytes& src, size_t first) {
   if (!src.empty()) b.upload_bytes(dst, src.data(), src.size(), first);
@@ -247,10 +281,14 @@ const SphRankLayout& SphRanks::redistribute(const Buffer<Real4>& x, const Buffer
   const SphRankLayout& L = committed_;
   Pack own;
   own.count = L.own;
-  download_range(backend_, x.impl(), own.x, L.first, L.own, f.real4);
-  download_range(backend_, v.impl(), own.v, L.first, L.own, f.real4);
-  download_range(backend_, ids.impl(), own.ids, L.first, L.own, 4);
-  if (f.extra) download_range(backend_, extra->impl(), own.extra, L.first, L.own, f.real4);
+  {
+    RangeReads reads(backend_);
+    reads.add(x.impl(), own.x, L.first, L.own, f.real4);
+    reads.add(v.impl(), own.v, L.first, L.own, f.real4);
+    reads.add(ids.impl(), own.ids, L.first, L.own, 4);
+    if (f.extra) reads.add(extra->impl(), own.extra, L.first, L.own, f.real4);
+    reads.take();
+  }
   std::vector<uint32_t> cells(own.count);
   for (size_t i = 0; i < own.count; ++i) cells[i] = cell_of(&own.x[i * f.real4]);
   maybe_rebalance(cells);
@@ -387,20 +425,34 @@ void SphRanks::start_halos(HaloArrays arrays) {
   const SphRankLayout& L = staged_;
   std::vector<Bytes> out(static_cast<size_t>(count));
   std::vector<size_t> sizes(static_cast<size_t>(count), 0);
-  for (const auto& [b, elem] : arrays) {
-    // Only the own particles that go anywhere are read (see lo_end_, hi_begin_).
-    Bytes own(size_t(L.own) * elem), span;
-    auto read = [&](size_t from, size_t to) {
-      if (from >= to) return;
-      download_range(backend_, *b, span, L.first + from, to - from, elem);
-      std::copy(span.begin(), span.end(), own.begin() + std::ptrdiff_t(from * elem));
-    };
-    if (hi_begin_ <= lo_end_) {
-      read(0, L.own);
-    } else {
-      read(0, lo_end_);
-      read(hi_begin_, L.own);
+  // Only the own particles that go anywhere are read (see lo_end_, hi_begin_): every array's
+  // spans queued together, one wait for all.
+  struct Span {
+    size_t from, to;
+    Bytes data;
+  };
+  std::vector<std::vector<Span>> spans(arrays.size());
+  {
+    RangeReads reads(backend_);
+    for (size_t a = 0; a < arrays.size(); ++a) {
+      std::vector<Span>& sp = spans[a];
+      if (hi_begin_ <= lo_end_) {
+        sp.push_back({0, L.own, {}});
+      } else {
+        sp.push_back({0, lo_end_, {}});
+        sp.push_back({hi_begin_, L.own, {}});
+      }
+      const auto& [b, elem] = arrays[a];
+      for (Span& x : sp)
+        if (x.from < x.to) reads.add(*b, x.data, L.first + x.from, x.to - x.from, elem);
     }
+    reads.take();
+  }
+  for (size_t a = 0; a < arrays.size(); ++a) {
+    const size_t elem = arrays[a].second;
+    Bytes own(size_t(L.own) * elem);
+    for (const Span& x : spans[a])
+      std::copy(x.data.begin(), x.data.end(), own.begin() + std::ptrdiff_t(x.from * elem));
     for (int r = 0; r < count; ++r) {
       if (r == me) continue;
       Bytes& m = out[size_t(r)];

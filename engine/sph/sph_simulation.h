@@ -272,7 +272,7 @@ class SphSimulation {
 
    private:
     SphSimulation& sim_;
-    std::vector<uint32_t> block_;
+    uint64_t ticket_ = 0;  // the open block's stats words (DeviceApi::read_async)
   };
   void refresh_fields_ranks();  // density and pressure at the committed state's positions
   [[noreturn]] void fail_non_finite_ranks(double dt);

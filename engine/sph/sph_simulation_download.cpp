@@ -1,6 +1,8 @@
 // SphSimulation::download: the state in particle-id order, with density and pressure at its
 // positions (evaluated on a re-sorted scratch copy when the last fields belong to an older
 // state).
+#include <optional>
+
 #include "engine/sph/sph_kernel_calls.h"
 #include "engine/sph/sph_simulation.h"
 
@@ -17,12 +19,18 @@ SphState sized_state(size_t n) {
 }
 
 SphSimulation::StatsKeeper::StatsKeeper(SphSimulation& sim) : sim_(sim) {
-  if (sim_.block_open_) block_ = sim_.backend_.download(sim_.stats_buf_);
+  // Read behind the work so far, taken at the end of the scope (no wait of its own).
+  if (sim_.block_open_) ticket_ = sim_.backend_.read_async(sim_.stats_buf_);
   sim_.backend_.fill(sim_.stats_buf_, 0u);
 }
 
 SphSimulation::StatsKeeper::~StatsKeeper() {
-  if (!block_.empty()) sim_.backend_.upload(sim_.stats_buf_, block_);
+  if (!ticket_) return;
+  try {
+    const std::vector<uint32_t> block = sim_.backend_.take_u32s(ticket_);
+    sim_.backend_.upload(sim_.stats_buf_, block);
+  } catch (...) {  // a device error: the caller's next call reports it
+  }
 }
 
 SphState SphSimulation::download() {
@@ -30,11 +38,12 @@ SphState SphSimulation::download() {
   const Buffer<Real4>* px = &pos_;
   const Buffer<Real4>* pv = &vel_;
   const Buffer<uint32_t>* pid = &ids_;
+  std::optional<StatsKeeper> keep;  // to the end: its read is taken after the state's
   if (!fields_current_) {
     // Density at the current positions without touching the committed state: sort copies of
     // the positions, velocities and ids into a fresh grid (scratch buffers), evaluate there.
     rebuild_moving(pos_, ta_, vel_, tb_, ids_, ids_t_);
-    const StatsKeeper keep(*this);
+    keep.emplace(*this);
     const SphGridView view{&grid_.sorted_cells, &grid_.cell_start, &grid_.cell_end};
     sph_density(backend_, step_params_,
                 SphDensityIO{&ta_, view, &density_, &pressure_, &stats_buf_, neighbor_rows()});
@@ -48,20 +57,25 @@ SphState SphSimulation::download() {
     // dfsph's pressure, its density solve's kappa sum times rho^2, in the scratch order.
     if (dfsph()) reorder(backend_, grid_, kappa_density_.impl(), kappa_.impl());
   }
-  const auto pos = backend_.download(*px);
-  const auto vel = backend_.download(*pv);
-  const auto ids = backend_.download(*pid);
-  const auto rho = backend_.download(density_);
-  std::vector<double> pr = backend_.download(pressure_);
+  // Every array's copy queued behind the evaluation, then taken: one wait for all of them.
+  const uint64_t t_pos = backend_.read_async(*px), t_vel = backend_.read_async(*pv),
+                 t_ids = backend_.read_async(*pid), t_rho = backend_.read_async(density_),
+                 t_pr = backend_.read_async(dfsph() ? (fields_current_ ? kappa_density_ : kappa_)
+                                                    : pressure_),
+                 t_acc = backend_.read_async(accel_);
+  const auto pos = backend_.take_real4s(t_pos);
+  const auto vel = backend_.take_real4s(t_vel);
+  const auto ids = backend_.take_u32s(t_ids);
+  const auto rho = backend_.take_reals(t_rho);
+  std::vector<double> pr = backend_.take_reals(t_pr);
+  const auto acc = backend_.take_real4s(t_acc);
   if (dfsph()) {
     // p / rho^2 of the density solve, times rho^2 and the lattice's gradient moment: the SPH
     // gradient of a pressure field on the rest lattice is 1 / gradient_correction of its true
     // gradient (0.78 for the spiky density's lattice mass at h = 2 dx), so the pressure that
     // balances a force is that much larger than the physical one.
-    pr = backend_.download(fields_current_ ? kappa_density_ : kappa_);
     for (uint32_t i = 0; i < n_; ++i) pr[i] *= rho[i] * rho[i] / layout_.gradient_correction;
   }
-  const auto acc = backend_.download(accel_);
   SphState s = sized_state(n_);
   for (uint32_t i = 0; i < n_; ++i) {
     const uint32_t id = ids[i];
