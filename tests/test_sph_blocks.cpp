@@ -158,24 +158,28 @@ TEST_CASE("[sph-physics] reading the state inside a block leaves the trajectory 
 }
 
 TEST_CASE("[sph-physics] run() takes each block's stats while the next block runs") {
-  // Eight blocks of 8 steps: the host waits for the device once, at the end of run(); every other
-  // block's stats are taken while the block after it is queued (DeviceApi::read_async), and
-  // nothing but the stats words travels between host and device.
+  // Sixteen blocks of 8 steps, the energy watchdog's check due at step 128 among them: the host
+  // waits for the device once, at the end of run(); every other block's stats, and the state the
+  // check reads, are taken while a later block is queued (DeviceApi::read_async), and nothing
+  // else travels between host and device.
   Backend& b = test::backend();
   SphSimulation sim(b, make_preset("water", 1000));
   sim.set_block_steps(8);
   REQUIRE(sim.run(8) == 8);
   b.finish();
   b.reset_counters();
-  CHECK(sim.run(64) == 64);
+  CHECK(sim.run(128) == 128);
   const DeviceCounters& c = b.counters();
+  const size_t real = b.real_bytes();
+  const size_t state = 1000 * (3 * 4 * real + 2 * real + 4);  // positions, velocities, ..., ids
   CHECK(c.bytes_to_device == 0);
-  CHECK(c.bytes_to_host == 8 * kSphStatWords * sizeof(uint32_t));
+  CHECK(c.bytes_to_host == 16 * kSphStatWords * sizeof(uint32_t) + state);
   if (b.name() == "cpu") {
     CHECK(c.async_reads == 0);  // its work is done when recorded
   } else {
     CHECK(c.host_syncs == 1);
-    CHECK(c.async_reads == 7);
+    CHECK(c.async_reads >= 15);
   }
   CHECK(sim.block_replays() == 0);
+  CHECK(sim.export_resume_state().next_energy_check == 256);  // the check at step 128 passed
 }

@@ -56,7 +56,7 @@ class DeviceApi {
   // bytes as they were when the copy ran. Each ticket is taken once, in any order; at most
   // kMaxPendingReads are outstanding. A take with later work still queued counts as an
   // asynchronous read; one that waits and leaves nothing queued, as a host sync.
-  static constexpr uint32_t kMaxPendingReads = 8;
+  static constexpr uint32_t kMaxPendingReads = 16;
   uint64_t read_async(const BufferImpl& src, size_t bytes, size_t offset = 0);
   std::vector<uint8_t> take_read(uint64_t ticket);
   // Whole buffers the same way, converted as download() converts them: several reads queued

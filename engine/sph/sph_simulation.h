@@ -226,11 +226,16 @@ class SphSimulation {
     SphStepStats stats, lag_stats;
     bool accel_valid, fields_current, block_open;
     double block_limit;
+    uint64_t next_energy_check;
     SphRankLayout ranks;  // the committed layout, on several ranks
   };
   struct Checkpoint {
     Buffer<Real4> pos, vel, accel;
     Buffer<uint32_t> ids;
+  };
+  // A state's copies queued by queue_state_reads (read_async tickets; 0: taken).
+  struct StateReads {
+    uint64_t pos = 0, vel = 0, ids = 0, rho = 0, pr = 0, acc = 0;
   };
   // A block run() submitted and whose stats it has not taken yet (see the header, "Blocks").
   struct PendingBlock {
@@ -241,6 +246,8 @@ class SphSimulation {
     double max_dt = 0;
     bool continuing = false;  // a later part of a block run() left open
     double t_end = 0;         // run()'s, for a replay
+    // The energy watchdog's check of its end state, queued behind it where one is due there.
+    std::optional<StateReads> probe;
   };
   void rebuild_moving(const Buffer<Real4>& x, Buffer<Real4>& x_sorted, const Buffer<Real4>& v,
                       Buffer<Real4>& v_sorted, const Buffer<uint32_t>& ids,
@@ -274,6 +281,12 @@ class SphSimulation {
     SphSimulation& sim_;
     uint64_t ticket_ = 0;  // the open block's stats words (DeviceApi::read_async)
   };
+  // download() in two halves (one process): the state's copies queued behind the work so far
+  // (density evaluated first where the fields are stale, the open block's stats kept by `keep`),
+  // then taken with one wait. drop_state takes them unread.
+  StateReads queue_state_reads(std::optional<StatsKeeper>& keep);
+  SphState take_state(StateReads& r);
+  void drop_state(StateReads& r);
   void refresh_fields_ranks();  // density and pressure at the committed state's positions
   [[noreturn]] void fail_non_finite_ranks(double dt);
   void evaluate(const Buffer<Real4>& x, const Buffer<Real4>& v);
@@ -295,12 +308,17 @@ class SphSimulation {
   // rolled back and replayed, and `later` dropped with it (its read taken unseen).
   bool settle(PendingBlock& p, PendingBlock* later);
   void drop_read(uint64_t& ticket);  // takes a read whose bytes nobody needs; ticket = 0
+  void drop_block(PendingBlock& p);  // its reads, unread
   // Whether run() keeps one block pending while it records the next.
   bool pipelines_blocks() const;
   HostState save_host_state() const;
   void restore_host_state(const HostState& h);
   // The watchdog's energy check, every SphWatchdog::kEnergyEvery steps (see sph_watchdog.h).
   void watch_energy();
+  // The check of state `s`, taken at host state `at` (the current one, or a pending block's
+  // end): passes (the last good state, the next check's step) or restores the last good state
+  // and throws.
+  void check_energy(const SphState& s, const HostState& at);
   void set_watchdog_baseline(const SphState& s);
   bool leapfrog_accel() const;  // accel_ is part of the state (leapfrog's carried force)
   void take_checkpoint(Checkpoint& c);

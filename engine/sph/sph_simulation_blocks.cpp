@@ -11,10 +11,19 @@
 namespace masav {
 
 SphSimulation::HostState SphSimulation::save_host_state() const {
-  return {time_,       last_dt_,     adaptive_dt_,
-          steps_,      substeps_,    stats_,
-          lag_stats_,  accel_valid_, fields_current_,
-          block_open_, block_limit_, ranks_ ? ranks_->committed() : SphRankLayout{}};
+  return {time_,
+          last_dt_,
+          adaptive_dt_,
+          steps_,
+          substeps_,
+          stats_,
+          lag_stats_,
+          accel_valid_,
+          fields_current_,
+          block_open_,
+          block_limit_,
+          next_energy_check_,
+          ranks_ ? ranks_->committed() : SphRankLayout{}};
 }
 
 void SphSimulation::restore_host_state(const HostState& h) {
@@ -29,6 +38,7 @@ void SphSimulation::restore_host_state(const HostState& h) {
   fields_current_ = h.fields_current;
   block_open_ = h.block_open;
   block_limit_ = h.block_limit;
+  next_energy_check_ = h.next_energy_check;
   if (ranks_) ranks_->restore(h.ranks);
 }
 
@@ -71,7 +81,7 @@ uint64_t SphSimulation::run(uint64_t steps, double t_end) {
   } catch (...) {
     // An error while a block was pending (a device fault): its stats will not be taken.
     if (pending_) {
-      drop_read(pending_->ticket);
+      drop_block(*pending_);
       pending_.reset();
     }
     throw;
@@ -156,6 +166,13 @@ void SphSimulation::record_block(uint64_t k, double t_end) {
   block_open_ = steps_ % block_steps() != 0;  // until a rollback says otherwise
   p.t_end = t_end;
   p.ticket = backend_.read_async(stats_buf_.impl(), kSphStatWords * sizeof(uint32_t));
+  if (pipelines_blocks() && !block_open_ && steps_ >= next_energy_check_) {
+    // The energy check due at this block's end: its state queued behind it and checked when its
+    // stats are taken, so the check waits for nothing (a rollback restores the next check).
+    std::optional<StatsKeeper> none;  // no block is open: no stats to keep
+    p.probe = queue_state_reads(none);
+    next_energy_check_ = steps_ + SphWatchdog::kEnergyEvery;
+  }
   if (pending_) {
     // The block before this one, finished by now or soon: take its stats while this one runs.
     PendingBlock before = std::move(*pending_);
@@ -164,13 +181,19 @@ void SphSimulation::record_block(uint64_t k, double t_end) {
     try {
       kept = settle(before, &p);
     } catch (...) {
-      if (p.ticket) drop_read(p.ticket);
+      drop_block(p);
       throw;
     }
     if (!kept) return;  // rolled back and replayed, this block with it
   }
   pending_ = std::move(p);
   if (!pipelines_blocks()) settle_block();
+}
+
+void SphSimulation::drop_block(PendingBlock& p) {
+  if (p.ticket) drop_read(p.ticket);
+  if (p.probe) drop_state(*p.probe);
+  p.probe.reset();
 }
 
 void SphSimulation::drop_read(uint64_t& ticket) {
@@ -209,12 +232,23 @@ bool SphSimulation::settle(PendingBlock& p, PendingBlock* later) {
       later->start.stats = stats_;
       later->start.lag_stats = lag_stats_;
     }
+    if (p.probe) {
+      const SphState end = take_state(*p.probe);
+      p.probe.reset();
+      try {
+        check_energy(end, later ? later->start : save_host_state());
+      } catch (...) {
+        if (later) drop_block(*later);  // the state is back at the last good one
+        throw;
+      }
+    }
     return true;
   }
   // Something went wrong within the block: replay it step by step from its start, reading the
   // stats after every step, so the guard retries or stops at the very step, as step() does.
   // A block recorded after it started from its end: it goes too, its stats unread.
-  if (later) drop_read(later->ticket);
+  if (p.probe) drop_state(*p.probe);
+  if (later) drop_block(*later);
   restore_checkpoint(checkpoints_[size_t(p.checkpoint)], p.start);
   block_open_ = false;  // a replay ends the block where it stands
   ++block_replays_;

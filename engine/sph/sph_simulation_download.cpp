@@ -2,6 +2,7 @@
 // positions (evaluated on a re-sorted scratch copy when the last fields belong to an older
 // state).
 #include <optional>
+#include <utility>
 
 #include "engine/sph/sph_kernel_calls.h"
 #include "engine/sph/sph_simulation.h"
@@ -35,10 +36,15 @@ SphSimulation::StatsKeeper::~StatsKeeper() {
 
 SphState SphSimulation::download() {
   if (ranks_) return download_ranks();
+  std::optional<StatsKeeper> keep;  // to the end: its read is taken after the state's
+  StateReads reads = queue_state_reads(keep);
+  return take_state(reads);
+}
+
+SphSimulation::StateReads SphSimulation::queue_state_reads(std::optional<StatsKeeper>& keep) {
   const Buffer<Real4>* px = &pos_;
   const Buffer<Real4>* pv = &vel_;
   const Buffer<uint32_t>* pid = &ids_;
-  std::optional<StatsKeeper> keep;  // to the end: its read is taken after the state's
   if (!fields_current_) {
     // Density at the current positions without touching the committed state: sort copies of
     // the positions, velocities and ids into a fresh grid (scratch buffers), evaluate there.
@@ -57,18 +63,24 @@ SphState SphSimulation::download() {
     // dfsph's pressure, its density solve's kappa sum times rho^2, in the scratch order.
     if (dfsph()) reorder(backend_, grid_, kappa_density_.impl(), kappa_.impl());
   }
-  // Every array's copy queued behind the evaluation, then taken: one wait for all of them.
-  const uint64_t t_pos = backend_.read_async(*px), t_vel = backend_.read_async(*pv),
-                 t_ids = backend_.read_async(*pid), t_rho = backend_.read_async(density_),
-                 t_pr = backend_.read_async(dfsph() ? (fields_current_ ? kappa_density_ : kappa_)
-                                                    : pressure_),
-                 t_acc = backend_.read_async(accel_);
-  const auto pos = backend_.take_real4s(t_pos);
-  const auto vel = backend_.take_real4s(t_vel);
-  const auto ids = backend_.take_u32s(t_ids);
-  const auto rho = backend_.take_reals(t_rho);
-  std::vector<double> pr = backend_.take_reals(t_pr);
-  const auto acc = backend_.take_real4s(t_acc);
+  // Every array's copy queued behind the evaluation, taken together: one wait for all of them.
+  StateReads r;
+  r.pos = backend_.read_async(*px);
+  r.vel = backend_.read_async(*pv);
+  r.ids = backend_.read_async(*pid);
+  r.rho = backend_.read_async(density_);
+  r.pr = backend_.read_async(dfsph() ? (fields_current_ ? kappa_density_ : kappa_) : pressure_);
+  r.acc = backend_.read_async(accel_);
+  return r;
+}
+
+SphState SphSimulation::take_state(StateReads& r) {
+  const auto pos = backend_.take_real4s(std::exchange(r.pos, 0));
+  const auto vel = backend_.take_real4s(std::exchange(r.vel, 0));
+  const auto ids = backend_.take_u32s(std::exchange(r.ids, 0));
+  const auto rho = backend_.take_reals(std::exchange(r.rho, 0));
+  std::vector<double> pr = backend_.take_reals(std::exchange(r.pr, 0));
+  const auto acc = backend_.take_real4s(std::exchange(r.acc, 0));
   if (dfsph()) {
     // p / rho^2 of the density solve, times rho^2 and the lattice's gradient moment: the SPH
     // gradient of a pressure field on the rest lattice is 1 / gradient_correction of its true
@@ -86,6 +98,11 @@ SphState SphSimulation::download() {
     s.neighbors[id] = acc[i].w + 1.0;
   }
   return s;
+}
+
+void SphSimulation::drop_state(StateReads& r) {
+  for (uint64_t* t : {&r.pos, &r.vel, &r.ids, &r.rho, &r.pr, &r.acc})
+    if (*t) drop_read(*t);
 }
 
 }  // namespace masav

@@ -19,7 +19,10 @@ void SphSimulation::set_watchdog_baseline(const SphState& s) {
 
 void SphSimulation::watch_energy() {
   if (steps_ < next_energy_check_) return;
-  const SphState s = download();
+  check_energy(download(), save_host_state());
+}
+
+void SphSimulation::check_energy(const SphState& s, const HostState& at) {
   const double e = available_energy(s, *this);
   // Half the fluid's mass at 5% of c0: the scale below which a rise is noise.
   const double c = scene_.sound_speed;
@@ -27,12 +30,12 @@ void SphSimulation::watch_energy() {
   const double bound =
       watchdog_.energy0 + SphWatchdog::kEnergyMargin * std::max(std::abs(watchdog_.energy0), floor);
   if (e <= bound) {
-    good_ = {s.positions, s.velocities, time_, last_dt_, steps_, substeps_, stats_};
-    next_energy_check_ = steps_ + SphWatchdog::kEnergyEvery;
+    good_ = {s.positions, s.velocities, at.time, at.last_dt, at.steps, at.substeps, at.stats};
+    next_energy_check_ = at.steps + SphWatchdog::kEnergyEvery;
     return;
   }
-  const uint64_t bad_step = steps_;
-  const double bad_time = time_;
+  const uint64_t bad_step = at.steps;
+  const double bad_time = at.time;
   // Back to the last state that passed: positions and velocities by id, in id order.
   if (ranks_) {
     ranks_->scatter_by_id(good_.positions, good_.velocities, false, pos_, vel_, ids_);

@@ -11,8 +11,10 @@
 //  - energy above the floor (kinetic + internal + potential over the lowest potential the box
 //    allows) above its initial value by more than kEnergyMargin times that value (or times the
 //    energy of the fluid's mass at 5% of c0, if larger): checked every kEnergyEvery steps on a
-//    downloaded state; the run goes back to the last state that passed (at most kEnergyEvery
-//    steps earlier). Gravity's work is part of the potential energy; a scene has no inflow.
+//    downloaded state (in run()'s blocks, read behind the block it ends together with the
+//    block's stats, so the check waits for nothing); the run goes back to the last state that
+//    passed (at most kEnergyEvery steps earlier). Gravity's work is part of the potential energy; a
+//    scene has no inflow.
 //  - a NaN or Inf: the guard's own check (SphSimulation), which names the particle.
 #include <cstdint>
 #include <string>
