@@ -41,13 +41,12 @@ Stream::~Stream() {
 
 bool Stream::any_in_flight() const {
   for (const Slot& s : ring_)
-    if (s.in_flight) return true;
+    if (s.cmds->in_flight()) return true;
   return false;
 }
 
 void Stream::retire(Slot& s) {
-  if (!s.in_flight) return;
-  s.in_flight = false;
+  if (!s.cmds->in_flight()) return;
   s.cmds->wait("vulkan", "the GPU reset or a kernel faulted; restart masav, and report the scene");
   s.alive.clear();
 }
@@ -55,7 +54,7 @@ void Stream::retire(Slot& s) {
 void Stream::begin() {
   if (cmds().recording()) return;
   Slot& slot = ring_[current_];
-  if (slot.in_flight) {
+  if (slot.cmds->in_flight()) {
     // Every buffer of the ring is queued: wait for the oldest, this one.
     retire(slot);
     if (!any_in_flight()) ++counters_.host_syncs;
@@ -250,7 +249,6 @@ uint64_t Stream::submit_recording() {
   slot.cmds->submit("vulkan",
                     "the GPU reset or a kernel faulted; restart masav, and report the scene");
   slot.serial = ++last_serial_;
-  slot.in_flight = true;
   slot.alive = std::move(alive_);
   alive_.clear();
   current_ = (current_ + 1) % kInFlight;
@@ -270,7 +268,7 @@ uint64_t Stream::flush() {
 bool Stream::wait_for(uint64_t serial) {
   bool waited = false;
   for (Slot& s : ring_) {
-    if (s.in_flight && s.serial <= serial) {
+    if (s.cmds->in_flight() && s.serial <= serial) {
       retire(s);
       waited = true;
     }

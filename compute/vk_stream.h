@@ -4,10 +4,9 @@
 // while the device runs it: a ring of kInFlight command buffers, each with the allocations its
 // commands touch kept alive until its fence is waited for. A memory barrier goes only where a
 // command depends on one recorded since the last barrier (it reads or writes what was written, or
-// writes what was read), so independent commands (the gathers of a grid rebuild) may overlap. Every
-// allocation a recorded command touches is kept alive until the fence signals. A dispatch's
-// descriptor set is cached by (kernel, buffers): a simulation binds the same few buffer
-// combinations every step, so after the first step no set is allocated or written.
+// writes what was read), so independent commands (the gathers of a grid rebuild) may overlap. A
+// dispatch's descriptor set is cached by (kernel, buffers): a simulation binds the same few
+// buffer combinations every step, so after the first step no set is allocated or written.
 #include <map>
 #include <memory>
 #include <span>
@@ -58,7 +57,6 @@ class Stream {
   struct Slot {
     std::vector<std::shared_ptr<Allocation>> alive;  // what its commands touch
     uint64_t serial = 0;                             // of its last submission
-    bool in_flight = false;
     std::unique_ptr<Commands> cmds;  // last: destroyed first, waiting for its submission
   };
   Commands& cmds() { return *ring_[current_].cmds; }

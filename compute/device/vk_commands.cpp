@@ -47,8 +47,7 @@ void Commands::submit_and_wait(std::string_view who, std::string_view remedy, ::
 
 void Commands::submit(std::string_view who, std::string_view remedy, ::vk::Semaphore wait,
                       ::vk::PipelineStageFlags wait_stage, ::vk::Semaphore signal) {
-  if (!recording_) return;
-  this->wait(who, remedy);  // one submission of this buffer at a time
+  if (!recording_) return;  // recording: begin() waited for the last submission
   cmd_.end();
   recording_ = false;
   ::vk::CommandBuffer raw = *cmd_;

@@ -7,6 +7,29 @@
 #include "engine/core/error.h"
 
 namespace masav {
+namespace {
+
+// Reals as a backend stores them (fp32, or fp64 on the CPU reference), widened.
+std::vector<double> widen_reals(const void* bytes, size_t scalars, size_t real_bytes) {
+  std::vector<double> out(scalars);
+  if (real_bytes == 8) {
+    std::memcpy(out.data(), bytes, scalars * 8);
+  } else {
+    std::vector<float> narrow(scalars);
+    std::memcpy(narrow.data(), bytes, scalars * 4);
+    std::copy(narrow.begin(), narrow.end(), out.begin());
+  }
+  return out;
+}
+
+std::vector<Vec4d> as_vec4d(const std::vector<double>& flat) {
+  std::vector<Vec4d> out(flat.size() / 4);
+  for (size_t i = 0; i < out.size(); ++i)
+    out[i] = {flat[4 * i], flat[4 * i + 1], flat[4 * i + 2], flat[4 * i + 3]};
+  return out;
+}
+
+}  // namespace
 
 void check_owner(const DeviceApi& dev, const BufferImpl& b, std::string_view kernel) {
   if (b.owner() != &dev)
@@ -97,6 +120,14 @@ std::vector<uint8_t> DeviceApi::take_read(uint64_t ticket) {
   return out;
 }
 
+void DeviceApi::discard_read(uint64_t ticket) noexcept {
+  if (!ticket) return;
+  try {
+    (void)take_read(ticket);
+  } catch (...) {
+  }
+}
+
 std::vector<uint32_t> DeviceApi::take_u32s(uint64_t ticket) {
   const std::vector<uint8_t> bytes = take_read(ticket);
   std::vector<uint32_t> out(bytes.size() / 4);
@@ -106,25 +137,11 @@ std::vector<uint32_t> DeviceApi::take_u32s(uint64_t ticket) {
 
 std::vector<double> DeviceApi::take_reals(uint64_t ticket) {
   const std::vector<uint8_t> bytes = take_read(ticket);
-  std::vector<double> out(bytes.size() / real_bytes());
-  if (real_bytes() == 8) {
-    std::memcpy(out.data(), bytes.data(), out.size() * 8);
-  } else {
-    for (size_t i = 0; i < out.size(); ++i) {
-      float f;
-      std::memcpy(&f, bytes.data() + 4 * i, 4);
-      out[i] = f;
-    }
-  }
-  return out;
+  return widen_reals(bytes.data(), bytes.size() / real_bytes(), real_bytes());
 }
 
 std::vector<Vec4d> DeviceApi::take_real4s(uint64_t ticket) {
-  const std::vector<double> flat = take_reals(ticket);
-  std::vector<Vec4d> out(flat.size() / 4);
-  for (size_t i = 0; i < out.size(); ++i)
-    out[i] = {flat[4 * i], flat[4 * i + 1], flat[4 * i + 2], flat[4 * i + 3]};
-  return out;
+  return as_vec4d(take_reals(ticket));
 }
 
 void DeviceApi::start_read(uint32_t slot, const BufferImpl& src, size_t bytes, size_t offset) {
@@ -229,11 +246,7 @@ std::vector<double> DeviceApi::download(const Buffer<Real>& b) {
   return download_reals(b.impl(), b.size());
 }
 std::vector<Vec4d> DeviceApi::download(const Buffer<Real4>& b) {
-  std::vector<double> flat = download_reals(b.impl(), 4 * b.size());
-  std::vector<Vec4d> out(b.size());
-  for (size_t i = 0; i < b.size(); ++i)
-    out[i] = {flat[4 * i], flat[4 * i + 1], flat[4 * i + 2], flat[4 * i + 3]};
-  return out;
+  return as_vec4d(download_reals(b.impl(), 4 * b.size()));
 }
 std::vector<Vec4f> DeviceApi::download_f32(const Buffer<Real4>& b) {
   std::vector<double> flat = download_reals(b.impl(), 4 * b.size());

@@ -59,6 +59,9 @@ class DeviceApi {
   static constexpr uint32_t kMaxPendingReads = 16;
   uint64_t read_async(const BufferImpl& src, size_t bytes, size_t offset = 0);
   std::vector<uint8_t> take_read(uint64_t ticket);
+  // Takes a read nobody needs (a block rolled back, an error on the way); 0 is no read. A device
+  // error here is left to the call that reports errors.
+  void discard_read(uint64_t ticket) noexcept;
   // Whole buffers the same way, converted as download() converts them: several reads queued
   // together and then taken cost one wait, where one download() each would cost one wait each.
   template <class T>

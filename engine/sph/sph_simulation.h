@@ -286,6 +286,7 @@ class SphSimulation {
   // then taken with one wait. drop_state takes them unread.
   StateReads queue_state_reads(std::optional<StatsKeeper>& keep);
   SphState take_state(StateReads& r);
+  SphState take_state_reads(StateReads& r);  // take_state without the clean-up on an error
   void drop_state(StateReads& r);
   void refresh_fields_ranks();  // density and pressure at the committed state's positions
   [[noreturn]] void fail_non_finite_ranks(double dt);
@@ -307,7 +308,6 @@ class SphSimulation {
   // Settles `p`; `later`: the block recorded after it, not yet pending, or null. False: `p` was
   // rolled back and replayed, and `later` dropped with it (its read taken unseen).
   bool settle(PendingBlock& p, PendingBlock* later);
-  void drop_read(uint64_t& ticket);  // takes a read whose bytes nobody needs; ticket = 0
   void drop_block(PendingBlock& p);  // its reads, unread
   // Whether run() keeps one block pending while it records the next.
   bool pipelines_blocks() const;

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <utility>
 
 #include "engine/sph/sph_simulation.h"
 
@@ -191,18 +192,9 @@ void SphSimulation::record_block(uint64_t k, double t_end) {
 }
 
 void SphSimulation::drop_block(PendingBlock& p) {
-  if (p.ticket) drop_read(p.ticket);
+  backend_.discard_read(std::exchange(p.ticket, 0));
   if (p.probe) drop_state(*p.probe);
   p.probe.reset();
-}
-
-void SphSimulation::drop_read(uint64_t& ticket) {
-  const uint64_t t = ticket;
-  ticket = 0;
-  try {
-    (void)backend_.take_read(t);
-  } catch (...) {  // an error of the device: the one already being reported, or the next call's
-  }
 }
 
 void SphSimulation::settle_block() {

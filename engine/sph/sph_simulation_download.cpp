@@ -75,6 +75,15 @@ SphSimulation::StateReads SphSimulation::queue_state_reads(std::optional<StatsKe
 }
 
 SphState SphSimulation::take_state(StateReads& r) {
+  try {
+    return take_state_reads(r);
+  } catch (...) {
+    drop_state(r);  // the reads not taken yet: their slots stay free for the next run
+    throw;
+  }
+}
+
+SphState SphSimulation::take_state_reads(StateReads& r) {
   const auto pos = backend_.take_real4s(std::exchange(r.pos, 0));
   const auto vel = backend_.take_real4s(std::exchange(r.vel, 0));
   const auto ids = backend_.take_u32s(std::exchange(r.ids, 0));
@@ -102,7 +111,7 @@ SphState SphSimulation::take_state(StateReads& r) {
 
 void SphSimulation::drop_state(StateReads& r) {
   for (uint64_t* t : {&r.pos, &r.vel, &r.ids, &r.rho, &r.pr, &r.acc})
-    if (*t) drop_read(*t);
+    backend_.discard_read(std::exchange(*t, 0));
 }
 
 }  // namespace masav
