@@ -34,9 +34,9 @@ __global__ void factor_kernel(DfsphLayout<float> c, const V4* __restrict__ pos,
                               const uint32_t* __restrict__ start, const uint32_t* __restrict__ end,
                               float* factor, uint32_t* stats,
                               const uint32_t* __restrict__ neighbor_rows) {
-  const uint64_t i = particle_thread();
+  const uint64_t i = c.begin + particle_thread();  // the range computed: [begin, end)
   uint32_t over = 0, bad = 0;
-  if (i < c.n) {
+  if (i < c.end) {
     bool overflow = false;
     auto pos_at = [pos](uint32_t j) { return sph::xyz(pos[j]); };
     const float f = sph::dfsph_factor_of<float>(
@@ -60,9 +60,9 @@ __global__ void rate_kernel(DfsphLayout<float> c, const V4* __restrict__ pos,
                             const uint32_t* __restrict__ start, const uint32_t* __restrict__ end,
                             float* kappa, float* kappa_sum, uint32_t* residual,
                             const uint32_t* __restrict__ neighbor_rows) {
-  const uint64_t i = particle_thread();
+  const uint64_t i = c.begin + particle_thread();  // the range computed: [begin, end)
   uint32_t units = 0;
-  if (i < c.n) {
+  if (i < c.end) {
     bool overflow = false;
     auto pos_at = [pos](uint32_t j) { return sph::xyz(pos[j]); };
     auto vel_at = [vel](uint32_t j) { return sph::xyz(vel[j]); };
@@ -87,9 +87,9 @@ __global__ void correct_kernel(DfsphLayout<float> c, const V4* __restrict__ pos,
                                const uint32_t* __restrict__ start, const uint32_t* __restrict__ end,
                                V4* vel, uint32_t* stats,
                                const uint32_t* __restrict__ neighbor_rows) {
-  const uint64_t i = particle_thread();
+  const uint64_t i = c.begin + particle_thread();  // the range computed: [begin, end)
   uint32_t bad = 0, s2 = 0;
-  if (i < c.n) {
+  if (i < c.end) {
     const V4 pw = pos[i];
     if (pw.w > 0.0f) {
       bool overflow = false;

@@ -62,11 +62,12 @@ void dfsph_visit(uint j, bool images) {
 }
 
 void main() {
-  const uint i = flat_invocation_id();
+  // The range computed, [begin, end) of the n; the others are only read as neighbours.
+  const uint i = p.begin + flat_invocation_id();
   vec4 pw = vec4(0.0);
-  if (i < p.n) pw = position_at(i);
+  if (i < p.end) pw = position_at(i);
   // Pinned particles never move: their lanes walk nothing.
-  const bool live = i < p.n && pw.w > 0.0;
+  const bool live = i < p.end && pw.w > 0.0;
   g_self = i;
   g_xi = pw.xyz;
   g_ki = live ? kappa_at(i) : 0.0;

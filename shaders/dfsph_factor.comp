@@ -70,8 +70,9 @@ void dfsph_visit(uint j, bool images) {
 }
 
 void main() {
-  const uint i = flat_invocation_id();
-  const bool live = i < p.n;
+  // The range computed, [begin, end) of the n; the others are only read as neighbours.
+  const uint i = p.begin + flat_invocation_id();
+  const bool live = i < p.end;
   g_self = i;
   g_xi = vec3(0.0);
   ivec3 cc = ivec3(-4);

@@ -11,7 +11,9 @@
 #include <vector>
 
 #include "engine/core/error.h"
+#include "engine/sph/dfsph_case_buffers.h"
 #include "engine/sph/sph_kernel_calls.h"
+#include "engine/sph/sph_particles.h"
 #include "tests/backend_fixture.h"
 #include "tests/sph_fixture.h"
 
@@ -51,6 +53,17 @@ void check_range(size_t n, Range r, Get get, const char* what) {
 }
 
 }  // namespace
+
+namespace masav::test {
+namespace {
+
+// The residual dfsph_rate summed into slot `slot` (a 64-bit integer in two words).
+uint64_t residual_units(const std::vector<uint32_t>& words, uint32_t slot) {
+  return uint64_t(words[2 * slot + 1]) << 32 | words[2 * slot];
+}
+
+}  // namespace
+}  // namespace masav::test
 
 TEST_CASE("sph kernels over a particle range: the whole call's values inside, nothing outside") {
   Backend& b = test::backend();
@@ -206,6 +219,107 @@ TEST_CASE("sph kernels over two ranges that split the particles report the whole
   const auto none = stats_of(100, 0);
   CHECK(none[kSphStatMaxDensity] == 0);
   CHECK(none[kSphStatMaxSpeed2] == 0);
+}
+
+TEST_CASE("dfsph kernels over a particle range: the whole call's values inside, nothing outside") {
+  // A rank's solve (engine/sph/sph_simulation_dfsph.cpp) runs the three kernels over its own
+  // particles, the halos' factor, kappa and velocities coming from their owners.
+  Backend& b = test::backend();
+  test::SphCase c = test::make_sph_case(12, SphPressureModel::dfsph, 8);
+  c.params.mass = lattice_mass(1000.0, c.dx, c.params.h, true);
+  test::with_walls(c, true);
+  const uint32_t n = c.params.n;
+  const double dt = 2e-3;
+  // The whole call: factor, then one density-solve iteration (rate, correct) from kappa sums of 0.
+  test::SphBuffers all = test::upload_sph_case(b, c);
+  DfsphCaseBuffers dk = make_dfsph_buffers(b, n, "whole");
+  sph_density(b, c.params, {&all.sorted_pos, all.view(), &all.density, &all.pressure, &all.stats});
+  const DfsphIO whole = dfsph_io(all, dk);
+  dfsph_factor(b, DfsphParams{c.params}, whole);
+  const DfsphParams solve{c.params, DfsphSolve::density, dt};
+  dfsph_rate(b, solve, whole);
+  const auto f_all = b.download(dk.factor), k_all = b.download(dk.kappa),
+             sum_all = b.download(dk.kappa_sum);
+  const auto v0 = b.download(all.sorted_vel);
+  dfsph_correct(b, solve, whole);
+  const auto v_all = b.download(all.sorted_vel);
+  const uint64_t residual_all = test::residual_units(b.download(dk.residual), 0);
+  REQUIRE(residual_all > 0);  // the jittered lattice is compressed somewhere
+
+  uint64_t residual_split = 0;
+  for (const Range r : {Range{0, n}, Range{137, 1234}, Range{n - 1, 1}, Range{500, 0},
+                        Range{0, n / 2 + 5}, Range{n / 2 + 5, kSphAllParticles}}) {
+    CAPTURE(r.first);
+    CAPTURE(r.count);
+    const Range span{r.first, r.count == kSphAllParticles ? n - r.first : r.count};
+    auto inside = [&](size_t i) { return i >= span.first && i < size_t(span.first) + span.count; };
+    test::SphBuffers s = test::upload_sph_case(b, c);
+    DfsphCaseBuffers k = make_dfsph_buffers(b, n, "range");
+    b.upload(s.density, b.download(all.density));
+    DfsphParams p{c.params, DfsphSolve::density, dt};
+    p.step.first = r.first;
+    p.step.count = r.count;
+    const DfsphIO io = dfsph_io(s, k);
+    b.fill(k.factor, kUntouched);
+    dfsph_factor(b, p, io);
+    const auto f = b.download(k.factor);
+    check_range(
+        n, span,
+        [&](size_t i) {
+          return std::pair{f[i], f_all[i]};
+        },
+        "factor");
+
+    // The rate reads every particle's velocity and its own factor and kappa sum; it writes the
+    // range's kappa and kappa sums.
+    b.upload(k.factor, f_all);
+    std::vector<double> sums(n);
+    for (size_t i = 0; i < n; ++i) sums[i] = inside(i) ? 0.0 : std::bit_cast<float>(kUntouched);
+    b.upload(k.kappa_sum, sums);
+    b.fill(k.kappa, kUntouched);
+    dfsph_rate(b, p, io);
+    const auto kap = b.download(k.kappa), sum = b.download(k.kappa_sum);
+    check_range(
+        n, span,
+        [&](size_t i) {
+          return std::pair{kap[i], k_all[i]};
+        },
+        "kappa");
+    check_range(
+        n, span,
+        [&](size_t i) {
+          return std::pair{sum[i], sum_all[i]};
+        },
+        "kappa sum");
+    const uint64_t units = test::residual_units(b.download(k.residual), 0);
+    if (span.count == n) CHECK(units == residual_all);
+    if (r.count == n / 2 + 5 || (r.first == n / 2 + 5)) residual_split += units;
+
+    // The correction reads every particle's kappa (a halo's from its owner); it changes the
+    // range's velocities only.
+    b.upload(k.kappa, k_all);
+    dfsph_correct(b, p, io);
+    const auto v = b.download(s.sorted_vel);
+    const bool exact = !test::sph_sums_follow_lanes();
+    size_t wrong_inside = 0, touched_outside = 0;
+    for (size_t i = 0; i < n; ++i) {
+      if (!inside(i)) {
+        if (!same_bits(v[i].x, v0[i].x) || !same_bits(v[i].z, v0[i].z)) ++touched_outside;
+      } else if (exact ? !same_bits(v[i].x, v_all[i].x) || !same_bits(v[i].z, v_all[i].z)
+                       : std::abs(v[i].x - v_all[i].x) > 1e-5 ||
+                             std::abs(v[i].z - v_all[i].z) > 1e-5) {
+        ++wrong_inside;
+      }
+    }
+    CHECK(wrong_inside == 0);
+    CHECK(touched_outside == 0);
+  }
+  // Two ranges that split the particles: their residuals add up to the whole call's (integers;
+  // within a unit per particle where the lanes' sums round differently).
+  if (test::sph_sums_follow_lanes())
+    CHECK(double(residual_split) == doctest::Approx(double(residual_all)).epsilon(1e-3));
+  else
+    CHECK(residual_split == residual_all);
 }
 
 TEST_CASE("sph kernel ranges beyond the particles are rejected, naming the field") {

@@ -1,10 +1,11 @@
 // DFSPH kernels of the CPU reference: the shared per-particle bodies of
 // engine/kernels/dfsph_kernels.h in double precision over the neighbour lists sph_density left
-// (cpu_sph_lists.h; rebuilt where they do not match), one contiguous chunk of sorted particles
-// per task. Statistics and residual sums are gathered per chunk and merged once. By default the
-// solves' pair gradients are found once per list (cpu_dfsph_terms.h) and each call sums them in
-// the shared bodies' order, ending in the bodies' own tails (dfsph_*_from): the same bits as
-// the bodies, without a square root and a division per pair and iteration.
+// (cpu_sph_lists.h; rebuilt where they do not match), for the particles of the range computed
+// ([begin, end), a rank's own), one contiguous chunk of them per task. Statistics and residual sums
+// are gathered per chunk and merged once. By default the solves' pair gradients are found once per
+// list (cpu_dfsph_terms.h) and each call sums them in the shared bodies' order, ending in the
+// bodies' own tails (dfsph_*_from): the same bits as the bodies, without a square root and a
+// division per pair and iteration.
 #include <algorithm>
 #include <bit>
 #include <cmath>
@@ -66,10 +67,10 @@ bool CpuBackend::ensure_dfsph_terms(const double* pos, const DfsphLayout<double>
                                     double* factor) {
   const uint64_t generation = sph_lists_.generation();
   if (dfsph_terms_.matches(generation, c)) return false;
-  const size_t chunks = sph_chunks(c.n);
+  const size_t chunks = sph_chunks(c.end - c.begin);
   dfsph_terms_.reset(c.n, chunks);
-  pool_.run_chunks(c.n, chunks, [&](size_t chunk, size_t b, size_t e) {
-    for (size_t i = b; i < e; ++i) {
+  pool_.run_chunks(c.end - c.begin, chunks, [&](size_t chunk, size_t b, size_t e) {
+    for (size_t i = c.begin + b; i < c.begin + e; ++i) {
       const uint32_t self = uint32_t(i);
       const V xi = load3(pos, i);
       const sph::WallMirrors<double> m = sph::dfsph_mirrors(xi, c);
@@ -113,14 +114,14 @@ void CpuBackend::run_own(const KernelArgs<KernelId::dfsph_factor>& a) {
   in.positions = pos;
   double* f = own(factor.impl(), k).as<double>();
   ensure_sph_lists(in);
-  const size_t chunks = sph_chunks(p.step.n);
+  const size_t chunks = sph_chunks(c.end - c.begin);  // the range computed, [begin, end)
   std::vector<ChunkStats> st(chunks);
   auto pos_at = [pos](uint32_t j) { return load3(pos, j); };
   // A new build of the terms finds the factors on the way (dfsph_factor_of's sums).
   const bool found = dfsph_terms_on_ && ensure_dfsph_terms(pos, c, f);
-  pool_.run_chunks(p.step.n, chunks, [&](size_t chunk, size_t b, size_t e) {
+  pool_.run_chunks(c.end - c.begin, chunks, [&](size_t chunk, size_t b, size_t e) {
     ChunkStats& s = st[chunk];
-    for (size_t i = b; i < e; ++i) {
+    for (size_t i = c.begin + b; i < c.begin + e; ++i) {
       const uint32_t self = uint32_t(i);
       if (!dfsph_terms_on_) {
         f[i] = sph::dfsph_factor_of(self, load3(pos, i), c, ListWalk{sph_lists_, self}, pos_at);
@@ -149,7 +150,7 @@ void CpuBackend::run_own(const KernelArgs<KernelId::dfsph_rate>& a) {
   double* kap = own(kappa.impl(), k).as<double>();
   double* sum = own(kappa_sum.impl(), k).as<double>();
   ensure_sph_lists(in);
-  const size_t chunks = sph_chunks(p.step.n);
+  const size_t chunks = sph_chunks(c.end - c.begin);  // the range computed, [begin, end)
   std::vector<ChunkStats> st(chunks);
   auto pos_at = [pos](uint32_t j) { return load3(pos, j); };
   auto vel_at = [vel](uint32_t j) { return load3(vel, j); };
@@ -161,9 +162,9 @@ void CpuBackend::run_own(const KernelArgs<KernelId::dfsph_rate>& a) {
                          load3(vel, self), sph::dfsph_mirrors(xi, c), pos, vel);
     return sph::dfsph_rate_from(div, dfsph_terms_.neighbors(self), rho[self], f[self], c);
   };
-  pool_.run_chunks(p.step.n, chunks, [&](size_t chunk, size_t b, size_t e) {
+  pool_.run_chunks(c.end - c.begin, chunks, [&](size_t chunk, size_t b, size_t e) {
     ChunkStats& s = st[chunk];
-    for (size_t i = b; i < e; ++i) {
+    for (size_t i = c.begin + b; i < c.begin + e; ++i) {
       const uint32_t self = uint32_t(i);
       const auto r = dfsph_terms_on_
                          ? rate_of_terms(chunk, self)
@@ -193,7 +194,7 @@ void CpuBackend::run_own(const KernelArgs<KernelId::dfsph_correct>& a) {
   const double* kap = own(kappa.impl(), k).as<double>();
   double* vel = own(velocities.impl(), k).as<double>();
   ensure_sph_lists(in);
-  const size_t chunks = sph_chunks(p.step.n);
+  const size_t chunks = sph_chunks(c.end - c.begin);  // the range computed, [begin, end)
   std::vector<ChunkStats> st(chunks);
   auto pos_at = [pos](uint32_t j) { return load3(pos, j); };
   auto kappa_at = [kap](uint32_t j) { return kap[j]; };
@@ -205,9 +206,9 @@ void CpuBackend::run_own(const KernelArgs<KernelId::dfsph_correct>& a) {
                                  xi, kap[self], sph::dfsph_mirrors(xi, c), pos, kap),
         c);
   };
-  pool_.run_chunks(p.step.n, chunks, [&](size_t chunk, size_t b, size_t e) {
+  pool_.run_chunks(c.end - c.begin, chunks, [&](size_t chunk, size_t b, size_t e) {
     ChunkStats& s = st[chunk];
-    for (size_t i = b; i < e; ++i) {
+    for (size_t i = c.begin + b; i < c.begin + e; ++i) {
       const uint32_t self = uint32_t(i);
       const double w = pos[4 * i + 3];
       if (!(w > 0)) continue;  // pinned: never moves

@@ -24,7 +24,9 @@ V image_offset(V xi, V xj, const sph::WallMirrors<double>& m, uint32_t set) {
 
 // m grad W of term t: away from the walls (m.axes = 0) every term is a pair with a neighbour.
 // Inlined: it is the inner loop of every iteration near a wall.
-[[gnu::always_inline]] inline V term_gradient(const DfsphTerm& t, V xi, const sph::WallMirrors<double>& m, const double* pos) {
+[[gnu::always_inline]] inline V term_gradient(const DfsphTerm& t, V xi,
+                                              const sph::WallMirrors<double>& m,
+                                              const double* pos) {
   const V xj = load3(pos, t.j);
   return t.scale * (t.set == 0 ? xi - xj : image_offset(xi, xj, m, t.set));
 }
@@ -42,6 +44,8 @@ void DfsphTerms::reset(uint32_t n, size_t chunks) {
 
 void DfsphTerms::remember(uint64_t lists_generation, const DfsphLayout<double>& c) {
   generation_ = lists_generation;
+  begin_range_ = c.begin;
+  end_range_ = c.end;
   h2_ = c.h2;
   inv_h_ = c.inv_h;
   grad_ = c.grad;
@@ -52,9 +56,9 @@ void DfsphTerms::remember(uint64_t lists_generation, const DfsphLayout<double>& 
 }
 
 bool DfsphTerms::matches(uint64_t lists_generation, const DfsphLayout<double>& c) const {
-  return valid_ && lists_generation == generation_ && c.h2 == h2_ && c.inv_h == inv_h_ &&
-         c.grad == grad_ && c.walls == walls_ && std::equal(c.lo, c.lo + 3, lo_) &&
-         std::equal(c.hi, c.hi + 3, hi_);
+  return valid_ && lists_generation == generation_ && c.begin == begin_range_ &&
+         c.end == end_range_ && c.h2 == h2_ && c.inv_h == inv_h_ && c.grad == grad_ &&
+         c.walls == walls_ && std::equal(c.lo, c.lo + 3, lo_) && std::equal(c.hi, c.hi + 3, hi_);
 }
 
 void dfsph_gradient_sums(const DfsphTerm* t, uint32_t count, uint32_t self, V xi,

@@ -28,9 +28,11 @@ class DfsphTerms {
   // Forgets the old terms and sizes for `chunks` chunks of `n` particles.
   void reset(uint32_t n, size_t chunks);
   // Records what the terms now being built belong to: the neighbour lists' build (their
-  // generation) and the layout's gradient and walls.
+  // generation), the particles computed (their chunks index the terms) and the layout's
+  // gradient and walls.
   void remember(uint64_t lists_generation, const DfsphLayout<double>& c);
-  // True if the terms were built for lists `lists_generation` with the same gradient and walls.
+  // True if the terms were built for lists `lists_generation` with the same range, gradient and
+  // walls.
   bool matches(uint64_t lists_generation, const DfsphLayout<double>& c) const;
 
   // Chunk `chunk` starts particle i's terms (called for i in increasing order), then adds them.
@@ -51,6 +53,7 @@ class DfsphTerms {
  private:
   bool valid_ = false;
   uint64_t generation_ = 0;
+  uint32_t begin_range_ = 0, end_range_ = 0;
   double h2_ = 0, inv_h_ = 0, grad_ = 0, lo_[3] = {0, 0, 0}, hi_[3] = {0, 0, 0};
   uint32_t walls_ = 0;
   std::vector<std::vector<DfsphTerm>> terms_;  // per chunk: its particles' terms, concatenated

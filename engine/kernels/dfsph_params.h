@@ -44,6 +44,10 @@ MASAV_REAL_LAYOUT(DfsphLayout) {
   real_t warm_scale;  // kappa_sum's share kept as the first iteration's start (warm start)
   real_t lo[3];
   real_t hi[3];
+  // The particles computed: [begin, end) of the n (a rank's own particles; the others are only
+  // read, as neighbours). From DfsphParams::step's first and count.
+  uint begin;
+  uint end;
 };
 
 MASAV_NAMESPACE_END
@@ -54,10 +58,11 @@ MASAV_NAMESPACE_END
 
 namespace masav {
 
-MASAV_LAYOUT_CHECK(DfsphLayout<float>, 96, (dims, 0), (n, 12), (max_candidates, 16), (walls, 20),
+MASAV_LAYOUT_CHECK(DfsphLayout<float>, 112, (dims, 0), (n, 12), (max_candidates, 16), (walls, 20),
                    (solve, 24), (slot, 28), (first, 32), (min_neighbors, 36), (neighbor_rows, 40),
                    (h2, 44), (inv_h, 48), (grad, 52), (rest_density, 56), (inv_rest_density, 60),
                    (dt, 64), (warm_scale, 68), (lo, 72), (hi, 84))
+MASAV_LAYOUT_CHECK(DfsphLayout<float>, 112, (begin, 96), (end, 100))
 
 // One call of a DFSPH kernel. `step` gives the grid, particles, mass, h, rest density and box
 // (its model must be dfsph); the rest describes the solve.
@@ -94,6 +99,8 @@ DfsphLayout<F> device_params(const DfsphParams& p, const Buffers&... buffers) {
   DfsphLayout<F> c{};
   c.dims = s.grid.dims;
   c.n = s.n;
+  c.begin = s.first;
+  c.end = sph_range_end(s);
   c.max_candidates = s.max_candidates;
   c.walls = s.walls ? 1u : 0u;
   c.solve = p.solve;

@@ -100,11 +100,7 @@ void check_dfsph(const DeviceApi& dev, const DfsphParams& p, const Buffer<Real4>
                  const Buffer<uint32_t>& cells, const Buffer<uint32_t>& cell_start,
                  const Buffer<uint32_t>& cell_end, const Buffer<uint32_t>* neighbor_rows,
                  const char* kernel) {
-  check_sph_step(dev, p.step, kernel);
-  if (p.step.first != 0 || sph_range_end(p.step) != p.step.n)
-    throw_invalid(kernel, "first, count",
-                  fmt::format("{}, {}", p.step.first, sph_range_count(p.step)),
-                  "0 and every particle (the dfsph kernels compute all n)");
+  check_sph_step(dev, p.step, kernel);  // with the range computed, [first, first + count)
   if (p.step.model != SphPressureModel::dfsph)
     throw_invalid(kernel, "model", std::to_string(uint32_t(p.step.model)), "dfsph (2)");
   const uint32_t solve = uint32_t(p.solve);

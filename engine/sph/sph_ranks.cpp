@@ -16,8 +16,8 @@ namespace {
 
 // Particles in transit: the raw device bytes of each array, so that nothing is converted.
 struct Fields {
-  size_t real4 = 0;    // bytes of one Real4
-  bool extra = false;  // the optional array moves too
+  size_t real4 = 0;  // bytes of one Real4
+  size_t extra = 0;  // bytes per particle of the carried arrays, one after the other
 };
 
 struct Pack {
@@ -53,7 +53,7 @@ Pack pick(std::span<const Ref> refs, const Fields& f) {
   field_of(&Pack::x, f.real4);
   field_of(&Pack::v, f.real4);
   field_of(&Pack::ids, 4);
-  if (f.extra) field_of(&Pack::extra, f.real4);
+  if (f.extra) field_of(&Pack::extra, f.extra);
   return out;
 }
 
@@ -85,7 +85,7 @@ Pack deserialize(const Bytes& b, const Fields& f, int from) {
   uint64_t count = 0;
   if (b.size() < sizeof count) fail_message(from, b.size(), sizeof count);
   std::memcpy(&count, b.data(), sizeof count);
-  const size_t each = 2 * f.real4 + 4 + (f.extra ? f.real4 : 0);
+  const size_t each = 2 * f.real4 + 4 + f.extra;
   if (count > (b.size() - sizeof count) / each || b.size() != sizeof count + count * each)
     fail_message(from, b.size(), sizeof count + size_t(count) * each);
   Pack p;
@@ -97,7 +97,7 @@ Pack deserialize(const Bytes& b, const Fields& f, int from) {
   take(p.x, p.count * f.real4);
   take(p.v, p.count * f.real4);
   take(p.ids, p.count * 4);
-  if (f.extra) take(p.extra, p.count * f.real4);
+  take(p.extra, p.count * f.extra);
   return p;
 }
 
@@ -267,12 +267,18 @@ void SphRanks::restore(const SphRankLayout& committed) {
 }
 
 const SphRankLayout& SphRanks::redistribute(const Buffer<Real4>& x, const Buffer<Real4>& v,
-                                            const Buffer<uint32_t>& ids, const Buffer<Real4>* extra,
+                                            const Buffer<uint32_t>& ids,
+                                            std::span<const SphCarried> carried,
                                             Buffer<Real4>& x_out, Buffer<Real4>& v_out,
-                                            Buffer<uint32_t>& ids_out, Buffer<Real4>* extra_out) {
+                                            Buffer<uint32_t>& ids_out) {
   Timer timer(counters_.exchange_seconds);
   const int me = rank(), count = ranks();
-  const Fields f{4 * backend_.real_bytes(), extra != nullptr};
+  Fields f{4 * backend_.real_bytes(), 0};
+  std::vector<size_t> carried_at;  // each carried array's offset in a particle's extra bytes
+  for (const SphCarried& c : carried) {
+    carried_at.push_back(f.extra);
+    f.extra += c.bytes(backend_);
+  }
   const SphRankLayout& L = committed_;
   Pack own;
   own.count = L.own;
@@ -281,8 +287,18 @@ const SphRankLayout& SphRanks::redistribute(const Buffer<Real4>& x, const Buffer
     reads.add(x.impl(), own.x, L.first, L.own, f.real4);
     reads.add(v.impl(), own.v, L.first, L.own, f.real4);
     reads.add(ids.impl(), own.ids, L.first, L.own, 4);
-    if (f.extra) reads.add(extra->impl(), own.extra, L.first, L.own, f.real4);
+    std::vector<Bytes> parts(carried.size());
+    for (size_t a = 0; a < carried.size(); ++a)
+      reads.add(carried[a].from(), parts[a], L.first, L.own, carried[a].bytes(backend_));
     reads.take();
+    // Interleaved per particle, so that a particle's bytes move as one piece.
+    own.extra.resize(own.count * f.extra);
+    for (size_t a = 0; a < carried.size(); ++a) {
+      const size_t each = carried[a].bytes(backend_);
+      for (size_t i = 0; i < own.count; ++i)
+        std::memcpy(own.extra.data() + i * f.extra + carried_at[a], parts[a].data() + i * each,
+                    each);
+    }
   }
   std::vector<uint32_t> cells(own.count);
   for (size_t i = 0; i < own.count; ++i) cells[i] = cell_of(&own.x[i * f.real4]);
@@ -396,7 +412,13 @@ const SphRankLayout& SphRanks::redistribute(const Buffer<Real4>& x, const Buffer
   upload_range(backend_, x_out.impl(), local.x, 0);
   upload_range(backend_, v_out.impl(), local.v, 0);
   upload_range(backend_, ids_out.impl(), local.ids, 0);
-  if (f.extra && extra_out) upload_range(backend_, extra_out->impl(), local.extra, 0);
+  for (size_t a = 0; a < carried.size(); ++a) {
+    const size_t each = carried[a].bytes(backend_);
+    Bytes values(local.count * each);
+    for (size_t i = 0; i < local.count; ++i)
+      std::memcpy(values.data() + i * each, local.extra.data() + i * f.extra + carried_at[a], each);
+    upload_range(backend_, carried[a].to(), values, 0);
+  }
   staged_ = {uint32_t(local.count), first, uint32_t(sorted.count)};
   // The own particles that go to lower ranks lie before lo_end_, to higher ones from hi_begin_.
   lo_end_ = 0;
@@ -503,6 +525,16 @@ void SphRanks::exchange_halos(Buffer<Real4>& a, Buffer<Real4>& b) {
   finish_halos();
 }
 
+void SphRanks::exchange_halos(Buffer<Real4>& a) {
+  start_halos({{&a.impl(), 4 * backend_.real_bytes()}});
+  finish_halos();
+}
+
+void SphRanks::exchange_halos(Buffer<Real>& a) {
+  start_halos({{&a.impl(), backend_.real_bytes()}});
+  finish_halos();
+}
+
 void SphRanks::start_halos(Buffer<Real>& a, Buffer<Real>& b) {
   start_halos({{&a.impl(), backend_.real_bytes()}, {&b.impl(), backend_.real_bytes()}});
 }
@@ -530,6 +562,12 @@ uint32_t SphRanks::min(uint32_t value) {
   uint32_t inverted = ~value;
   comm_.max(std::span<uint32_t>(&inverted, 1));
   return ~inverted;
+}
+
+uint64_t SphRanks::sum(uint64_t value) {
+  Timer timer(counters_.reduce_seconds);
+  comm_.sum(std::span<uint64_t>(&value, 1));
+  return value;
 }
 
 Bytes SphRanks::gather(const Bytes& mine) {

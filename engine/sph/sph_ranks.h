@@ -23,6 +23,7 @@
 #include <cstdint>
 #include <functional>
 #include <memory>
+#include <span>
 #include <utility>
 #include <vector>
 
@@ -53,6 +54,24 @@ struct SphRankCounters {
   double reduce_seconds = 0;    // in the step statistics' reductions (every rank waits for all)
 };
 
+// A per-particle array that moves with the particles at a rebuild (SphRanks::redistribute): read
+// from `from` in the committed layout, written to `to` in the staged one, halos included.
+class SphCarried {
+ public:
+  SphCarried(const Buffer<Real4>& from, Buffer<Real4>& to) : from4_(&from), to4_(&to) {}
+  SphCarried(const Buffer<Real>& from, Buffer<Real>& to) : from1_(&from), to1_(&to) {}
+  const BufferImpl& from() const { return from4_ ? from4_->impl() : from1_->impl(); }
+  // Resolved when written: the rank's buffers may have grown (on_reserve) since the read.
+  BufferImpl& to() const { return to4_ ? to4_->impl() : to1_->impl(); }
+  size_t bytes(const Backend& b) const { return (from4_ ? 4 : 1) * b.real_bytes(); }
+
+ private:
+  const Buffer<Real4>* from4_ = nullptr;
+  Buffer<Real4>* to4_ = nullptr;
+  const Buffer<Real>* from1_ = nullptr;
+  Buffer<Real>* to1_ = nullptr;
+};
+
 class SphRanks {
  public:
   SphRanks(SphComm& comm, Backend& backend, const GridParams& grid);
@@ -79,16 +98,16 @@ class SphRanks {
   std::pair<size_t, size_t> share(size_t count) const;
 
   // The rebuild's exchange (see the header): the own particles of the committed layout of x,
-  // v, ids (and `extra`, a per-particle array that moves with them) go to their cells' owners,
+  // v, ids (and the `carried` arrays, which move with them) go to their cells' owners,
   // re-balancing first when the fullest rank holds more than kImbalance above the mean (and
   // kImbalance above what the last balance could reach); the result,
   // halos included, is written to the *_out buffers (which may not be the inputs) in the new,
   // staged layout. The inputs keep the committed layout until commit().
   static constexpr double kImbalance = 0.10;
   const SphRankLayout& redistribute(const Buffer<Real4>& x, const Buffer<Real4>& v,
-                                    const Buffer<uint32_t>& ids, const Buffer<Real4>* extra,
-                                    Buffer<Real4>& x_out, Buffer<Real4>& v_out,
-                                    Buffer<uint32_t>& ids_out, Buffer<Real4>* extra_out);
+                                    const Buffer<uint32_t>& ids,
+                                    std::span<const SphCarried> carried, Buffer<Real4>& x_out,
+                                    Buffer<Real4>& v_out, Buffer<uint32_t>& ids_out);
   const SphRankLayout& committed() const { return committed_; }
   const SphRankLayout& staged() const { return staged_; }  // the grid's: the last redistribute
   void commit() { committed_ = staged_; }                  // the staged arrays became the state
@@ -97,6 +116,8 @@ class SphRanks {
   // The staged layout's halo slots of `b` get their owners' values (whose own values a kernel
   // wrote since the rebuild).
   void exchange_halos(Buffer<Real4>& a, Buffer<Real4>& b);  // both arrays in one exchange
+  void exchange_halos(Buffer<Real4>& a);
+  void exchange_halos(Buffer<Real>& a);
   // The same for two arrays, started: the caller computes what needs no halo (interior()) while
   // the values travel, then calls finish_halos() before anything else of this object.
   void start_halos(Buffer<Real>& a, Buffer<Real>& b);
@@ -110,6 +131,8 @@ class SphRanks {
   void reduce_stats(uint32_t* words);
   // The smallest of the ranks' values.
   uint32_t min(uint32_t value);
+  // The sum of the ranks' values (integers: exact, in any order).
+  uint64_t sum(uint64_t value);
   // The ranks' `mine`, concatenated in rank order, on every rank.
   Bytes gather(const Bytes& mine);
 

@@ -3,9 +3,11 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <array>
 #include <bit>
 #include <cmath>
 #include <limits>
+#include <span>
 
 #include "engine/core/enum_names.h"
 #include "engine/core/error.h"
@@ -33,11 +35,6 @@ const char* to_string(SphStage s) {
 SphSimulation::SphSimulation(Backend& backend, const SphScene& scene, SphComm* comm)
     : backend_(backend), scene_(scene) {
   validate(scene_);
-  if (comm && comm->size() > 1 && scene_.model == SphPressureModel::dfsph)
-    throw_invalid("sph scene", "pressure", "dfsph",
-                  fmt::format("wcsph or thesis on {} ranks (dfsph runs in one process only, "
-                              "for now)",
-                              comm->size()));
   const int ranks = comm ? comm->size() : 1;
   check_capacity(backend_, scene_, ranks);
   layout_ = build_particles(scene_);
@@ -189,16 +186,25 @@ void SphSimulation::use_rank_layout(const Buffer<Real4>& x) {
 }
 
 void SphSimulation::sort_state() {
+  // dfsph's kappa sums (its warm starts, in pos_'s order) move with the particles.
+  const std::array<SphCarried, 2> kappa_sums = {SphCarried{kappa_density_, kappa_density_t_},
+                                                SphCarried{kappa_divergence_, kappa_divergence_t_}};
+  const std::span<const SphCarried> carried(kappa_sums.data(), dfsph() ? 2 : 0);
   if (ranks_) {
-    ranks_->redistribute(pos_, vel_, ids_, nullptr, ta_, tb_, ids_t_, nullptr);
+    ranks_->redistribute(pos_, vel_, ids_, carried, ta_, tb_, ids_t_);
     ranks_->commit();
     use_rank_layout(ta_);
   } else {
     rebuild_moving(pos_, ta_, vel_, tb_, ids_, ids_t_);
+    for (const SphCarried& c : carried) reorder(backend_, grid_, c.from(), c.to());
   }
   std::swap(pos_, ta_);
   std::swap(vel_, tb_);
   std::swap(ids_, ids_t_);
+  if (dfsph()) {
+    std::swap(kappa_density_, kappa_density_t_);
+    std::swap(kappa_divergence_, kappa_divergence_t_);
+  }
   mark(SphStage::grid);
 }
 
@@ -309,8 +315,8 @@ void SphSimulation::step_leapfrog(double dt) {
   const bool viscous = scene_.viscosity > 0;
   if (ranks_) {
     // The predicted velocities move with the particles (the halos' too).
-    ranks_->redistribute(xs_, vs_, ids_, viscous ? &sum_v_ : nullptr, ta_, tb_, ids_t_,
-                         viscous ? &tc_ : nullptr);
+    const SphCarried predicted[] = {{sum_v_, tc_}};
+    ranks_->redistribute(xs_, vs_, ids_, std::span(predicted, viscous ? 1 : 0), ta_, tb_, ids_t_);
     use_rank_layout(ta_);
   } else {
     rebuild_moving(xs_, ta_, vs_, tb_, ids_, ids_t_);

@@ -58,7 +58,7 @@
 // between ranks and bring halos, the stats are reduced over the ranks, and the trajectory is
 // the one process's, bit for bit. download() gathers the whole state on every rank, and a
 // checkpoint (export_resume_state) holds the one-process arrays, so a run restores on any
-// number of ranks. Not yet on several ranks: the dfsph model.
+// number of ranks. Every pressure model, dfsph's solves included (sph_simulation_dfsph.cpp).
 #include <array>
 #include <cstdint>
 #include <limits>
@@ -287,6 +287,8 @@ class SphSimulation {
   StateReads queue_state_reads(std::optional<StatsKeeper>& keep);
   SphState take_state(StateReads& r);
   SphState take_state_reads(StateReads& r);  // take_state without the clean-up on an error
+  // dfsph's pressure from its density solve's kappa sums (in place) and the densities.
+  void dfsph_pressure(std::vector<double>& kappa, const std::vector<double>& rho) const;
   void drop_state(StateReads& r);
   void refresh_fields_ranks();  // density and pressure at the committed state's positions
   [[noreturn]] void fail_non_finite_ranks(double dt);

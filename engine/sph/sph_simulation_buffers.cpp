@@ -163,7 +163,9 @@ void SphSimulation::reserve(uint32_t local) {
     for (Buffer<Real4>* b : {&cp.pos, &cp.vel, &cp.accel}) grow(backend_, *b, c);
     grow(backend_, cp.ids, c);
   }
-  for (Buffer<Real>* b : {&density_, &pressure_}) grow(backend_, *b, c);
+  for (Buffer<Real>* b : {&density_, &pressure_, &factor_, &kappa_, &kappa_density_,
+                          &kappa_divergence_, &kappa_density_t_, &kappa_divergence_t_})
+    grow(backend_, *b, c);
   for (Buffer<uint32_t>* b : {&ids_, &ids_t_, &grid_.sorted_cells, &grid_.sorted_index})
     grow(backend_, *b, c);
   grow(backend_, neighbor_rows_, size_t(kSphRowMaskWords) * c);

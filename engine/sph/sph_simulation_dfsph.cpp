@@ -11,6 +11,15 @@
 // least 2 (density) or 1 (divergence) iterations; after each from then on the host reads the
 // iteration's residual (one wait per iteration: the loop's length depends on it). The step
 // ends, like leapfrog's, with the fields at the new positions, so the next step starts there.
+//
+// On several ranks (sph_ranks.h) each kernel computes the rank's own particles, and what a
+// kernel reads of its neighbours comes from their owners first: the density and pressure after
+// each density pass (the viscosity reads them), the velocities before a solve's first rate,
+// after every correction that another iteration follows and at the end of the step (the next
+// step's viscosity reads them), each iteration's kappa before its correction. The residual is a sum
+// of integers over the ranks, so every rank sees the one process's and stops at the same iteration.
+// The kappa sums move with the particles at the rebuilds, the halos' included, which is all the
+// warm starts read of them.
 #include <algorithm>
 #include <cmath>
 
@@ -21,7 +30,7 @@ namespace masav {
 
 // The solves' buffers, and the neighbour count below which the divergence solve skips a particle.
 void SphSimulation::allocate_dfsph() {
-  auto real = [&](const char* label) { return backend_.create<Real>(n_, label); };
+  auto real = [&](const char* label) { return backend_.create<Real>(capacity_, label); };
   factor_ = real("dfsph factor");
   kappa_ = real("dfsph kappa");
   kappa_density_ = real("dfsph density kappa sums");
@@ -54,6 +63,10 @@ void SphSimulation::dfsph_fields(const Buffer<Real4>& x) {
   const SphGridView view{&grid_.sorted_cells, &grid_.cell_start, &grid_.cell_end};
   sph_density(backend_, step_params_,
               SphDensityIO{&x, view, &density_, &pressure_, &stats_buf_, neighbor_rows()});
+  if (ranks_) {
+    ranks_->start_halos(density_, pressure_);
+    ranks_->finish_halos();
+  }
   mark(SphStage::density);
   DfsphIO io;
   io.positions = &x;
@@ -89,6 +102,9 @@ void SphSimulation::dfsph_solve(DfsphSolve solve, double dt, const Buffer<Real4>
     io.kappa = &kappa_sum;
     dfsph_correct(backend_, p, io);
   }
+  // The halos' velocities: the density solve's come from the prediction v + dt a, computed for
+  // the own particles only; a warm start changed the own ones.
+  if (ranks_ && (density || kappa_warm_)) ranks_->exchange_halos(v);
   io.kappa = &kappa_;
   uint32_t done = 0;
   double error = 0;
@@ -97,6 +113,7 @@ void SphSimulation::dfsph_solve(DfsphSolve solve, double dt, const Buffer<Real4>
     p.slot = done;
     p.first = done == 0;
     dfsph_rate(backend_, p, io);
+    if (ranks_) ranks_->exchange_halos(kappa_);
     p.first = false;
     dfsph_correct(backend_, p, io);
     ++done;
@@ -104,11 +121,16 @@ void SphSimulation::dfsph_solve(DfsphSolve solve, double dt, const Buffer<Real4>
       uint32_t words[2];  // this iteration's slot only
       backend_.download_bytes(residual_.impl(), words, sizeof(words),
                               2 * size_t(p.slot) * sizeof(uint32_t));
-      const uint64_t units = uint64_t(words[1]) << 32 | words[0];
+      uint64_t units = uint64_t(words[1]) << 32 | words[0];
+      if (ranks_) units = ranks_->sum(units);
       error = double(units) / double(kDfsphResidualScale) / double(std::max(movers, 1u));
       converged = error <= target;
     }
+    if (ranks_ && !converged && done < max_iterations) ranks_->exchange_halos(v);
   }
+  // The divergence solve's velocities are the step's: the next step's viscosity reads the
+  // halos' (the density solve's move with the particles at the rebuild instead).
+  if (ranks_ && !density) ranks_->exchange_halos(v);
   mark(SphStage::solve);
   (density ? solve_stats_.density_iterations : solve_stats_.divergence_iterations) += done;
   (density ? solve_stats_.last_density_error : solve_stats_.last_divergence_error) = error;
@@ -132,9 +154,18 @@ void SphSimulation::step_dfsph(double dt) {
   integrate(SphStageOp::accelerate, dt, pos_, vel_, nullptr, nullptr, vs_, nullptr, nullptr);
   dfsph_solve(DfsphSolve::density, dt, pos_, vs_, kappa_density_);
   integrate(SphStageOp::drift, dt, pos_, vs_, nullptr, &xs_, vs_, nullptr, nullptr);
-  rebuild_moving(xs_, ta_, vs_, tb_, ids_, ids_t_);
-  reorder(backend_, grid_, kappa_density_.impl(), kappa_density_t_.impl());
-  reorder(backend_, grid_, kappa_divergence_.impl(), kappa_divergence_t_.impl());
+  // The kappa sums move with the particles (the warm starts), and so do the forces, whose w
+  // counts the neighbours that download() reports by particle.
+  const SphCarried carried[] = {
+      {kappa_density_, kappa_density_t_}, {kappa_divergence_, kappa_divergence_t_}, {accel_, tc_}};
+  if (ranks_) {
+    ranks_->redistribute(xs_, vs_, ids_, carried, ta_, tb_, ids_t_);
+    use_rank_layout(ta_);
+  } else {
+    rebuild_moving(xs_, ta_, vs_, tb_, ids_, ids_t_);
+    for (const SphCarried& c : carried) reorder(backend_, grid_, c.from(), c.to());
+  }
+  std::swap(accel_, tc_);
   mark(SphStage::grid);
   accel_valid_ = false;  // density_ and factor_ now belong to the new positions
   dfsph_fields(ta_);

@@ -90,13 +90,7 @@ SphState SphSimulation::take_state_reads(StateReads& r) {
   const auto rho = backend_.take_reals(std::exchange(r.rho, 0));
   std::vector<double> pr = backend_.take_reals(std::exchange(r.pr, 0));
   const auto acc = backend_.take_real4s(std::exchange(r.acc, 0));
-  if (dfsph()) {
-    // p / rho^2 of the density solve, times rho^2 and the lattice's gradient moment: the SPH
-    // gradient of a pressure field on the rest lattice is 1 / gradient_correction of its true
-    // gradient (0.78 for the spiky density's lattice mass at h = 2 dx), so the pressure that
-    // balances a force is that much larger than the physical one.
-    for (uint32_t i = 0; i < n_; ++i) pr[i] *= rho[i] * rho[i] / layout_.gradient_correction;
-  }
+  if (dfsph()) dfsph_pressure(pr, rho);
   SphState s = sized_state(n_);
   for (uint32_t i = 0; i < n_; ++i) {
     const uint32_t id = ids[i];
@@ -107,6 +101,16 @@ SphState SphSimulation::take_state_reads(StateReads& r) {
     s.neighbors[id] = acc[i].w + 1.0;
   }
   return s;
+}
+
+void SphSimulation::dfsph_pressure(std::vector<double>& kappa,
+                                   const std::vector<double>& rho) const {
+  // p / rho^2 of the density solve, times rho^2 and the lattice's gradient moment: the SPH
+  // gradient of a pressure field on the rest lattice is 1 / gradient_correction of its true
+  // gradient (0.78 for the spiky density's lattice mass at h = 2 dx), so the pressure that
+  // balances a force is that much larger than the physical one.
+  for (size_t i = 0; i < kappa.size(); ++i)
+    kappa[i] *= rho[i] * rho[i] / layout_.gradient_correction;
 }
 
 void SphSimulation::drop_state(StateReads& r) {

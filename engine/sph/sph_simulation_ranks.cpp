@@ -49,7 +49,8 @@ SphState SphSimulation::download_own(std::vector<uint32_t>& ids) {
   s.positions = own_values(backend_, *ranks_, pos_);
   s.velocities = own_values(backend_, *ranks_, vel_);
   s.density = own_values(backend_, *ranks_, density_);
-  s.pressure = own_values(backend_, *ranks_, pressure_);
+  s.pressure = own_values(backend_, *ranks_, dfsph() ? kappa_density_ : pressure_);
+  if (dfsph()) dfsph_pressure(s.pressure, s.density);
   for (const Vec4d& a : own_values(backend_, *ranks_, accel_)) s.neighbors.push_back(a.w + 1.0);
   return s;
 }
@@ -106,7 +107,7 @@ void SphSimulation::fail_non_finite_ranks(double dt) {
   uint32_t id = first_bad(pos_, vel_, ids_, ranks_->committed());
   const bool origin = id != UINT32_MAX;
   if (!origin) {
-    const bool lf = scene_.integrator == SphIntegrator::leapfrog;
+    const bool lf = scene_.integrator == SphIntegrator::leapfrog || dfsph();
     id = lf ? first_bad(ta_, tb_, ids_t_, ranks_->staged())
             : first_bad(xs_, vs_, ids_, ranks_->committed());
   }

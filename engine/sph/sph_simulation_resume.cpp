@@ -39,7 +39,10 @@ SphResumeState SphSimulation::export_resume_state() {
     r.density = backend_.download(density_);
     r.pressure = backend_.download(pressure_);
   }
-  if (dfsph()) {
+  if (dfsph() && ranks_) {
+    r.kappa_density = gather_own(backend_, *ranks_, kappa_density_);
+    r.kappa_divergence = gather_own(backend_, *ranks_, kappa_divergence_);
+  } else if (dfsph()) {
     r.kappa_density = backend_.download(kappa_density_);
     r.kappa_divergence = backend_.download(kappa_divergence_);
   }
@@ -116,6 +119,10 @@ void SphSimulation::restore_resume_state(const SphResumeState& r) {
     backend_.upload(ids_, piece(r.ids));
     backend_.upload(density_, piece(r.density));
     backend_.upload(pressure_, piece(r.pressure));
+    if (dfsph()) {
+      backend_.upload(kappa_density_, piece(r.kappa_density));
+      backend_.upload(kappa_divergence_, piece(r.kappa_divergence));
+    }
     ranks_->restore({uint32_t(e - b), 0, uint32_t(e - b)});
     // The open block's stats are maxima, except the outside count, a sum: rank 0 keeps it.
     if (!block_stats.empty() && ranks_->rank() != 0) block_stats[kSphStatOutside] = 0;
@@ -126,6 +133,10 @@ void SphSimulation::restore_resume_state(const SphResumeState& r) {
     backend_.upload(ids_, r.ids);
     backend_.upload(density_, r.density);
     backend_.upload(pressure_, r.pressure);
+    if (dfsph()) {
+      backend_.upload(kappa_density_, r.kappa_density);
+      backend_.upload(kappa_divergence_, r.kappa_divergence);
+    }
   }
   time_ = r.time;
   last_dt_ = r.last_dt;
@@ -148,20 +159,13 @@ void SphSimulation::restore_resume_state(const SphResumeState& r) {
   next_energy_check_ = r.next_energy_check;
   good_ = {r.good_positions, r.good_velocities, r.good_time, r.good_last_dt,
            r.good_steps,     r.good_substeps,   r.good_stats};
-  if (dfsph()) {
-    backend_.upload(kappa_density_, r.kappa_density);
-    backend_.upload(kappa_divergence_, r.kappa_divergence);
-    if (accel_valid_) {
-      // A dfsph step starts from the grid, density, factor and neighbour rows at pos_, which
-      // the step before left: rebuilt here. The positions are in the cell order of that
-      // step's rebuild, which the stable counting sort keeps, so the sums run in the same order.
-      sort_state();
-      reorder(backend_, grid_, kappa_density_.impl(), kappa_density_t_.impl());
-      reorder(backend_, grid_, kappa_divergence_.impl(), kappa_divergence_t_.impl());
-      std::swap(kappa_density_, kappa_density_t_);
-      std::swap(kappa_divergence_, kappa_divergence_t_);
-      dfsph_fields(pos_);
-    }
+  if (dfsph() && accel_valid_) {
+    // A dfsph step starts from the grid, density, factor and neighbour rows at pos_, which the
+    // step before left: rebuilt here (the kappa sums move with the particles; on several ranks
+    // this rebuild brings the halos). The positions are in the cell order of that step's
+    // rebuild, which the stable counting sort keeps, so the sums run in the same order.
+    sort_state();
+    dfsph_fields(pos_);
   }
 }
 
