@@ -174,8 +174,10 @@ void print_rank_table(SphSimulation& sim, const SphRankCounters& before, bool le
   append_bytes(bytes, std::span<const Row>(&mine, 1));
   const Bytes all = ranks.gather(bytes);
   if (!lead) return;
-  fmt::print("ranks: {} (cells split along x; {} re-balances; {} steps, {} grid rebuilds)\n",
-             ranks.ranks(), c.rebalances, steps, c.rebuilds);
+  fmt::print(
+      "ranks: {} (cells split along x; {} re-balances; {} steps, {} grid rebuilds; exchanges "
+      "{})\n",
+      ranks.ranks(), c.rebalances, steps, c.rebuilds, exchange_path());
   fmt::print(
       "  rank  own particles  halo particles  halo/own  buffers for  migrated/rebuild"
       "  KiB sent/step  exchange s  in MPI s  reduce s  compute s\n");

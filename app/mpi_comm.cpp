@@ -10,6 +10,9 @@
 
 #if MASAV_HAVE_MPI
 #include <mpi.h>
+#if __has_include(<mpi-ext.h>)
+#include <mpi-ext.h>  // OpenMPI's extensions: MPIX_CUDA_AWARE_SUPPORT, MPIX_Query_cuda_support
+#endif
 #endif
 
 namespace masav::app {
@@ -181,7 +184,20 @@ SphComm* world_comm() {
   return comm->size() > 1 ? comm.get() : nullptr;
 }
 
+std::string exchange_path() {
+#if defined(MPIX_CUDA_AWARE_SUPPORT) && MPIX_CUDA_AWARE_SUPPORT
+  if (MPIX_Query_cuda_support() == 1)
+    return "staged through host memory (this MPI is CUDA-aware; masav does not pass it GPU "
+           "memory)";
+#endif
+  return "staged through host memory (this MPI is not CUDA-aware)";
+}
+
 #else
+
+std::string exchange_path() {
+  return "none (no MPI)";
+}
 
 SphComm* world_comm() {
   const int n = launched_ranks();

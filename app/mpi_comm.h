@@ -3,6 +3,7 @@
 // processes (engine/sph/sph_ranks.h). MPI is optional at build time (CMake finds it, like CUDA);
 // a masav built without it refuses to run on several ranks rather than run N copies.
 #include <memory>
+#include <string>
 
 #include "engine/sph/sph_comm.h"
 
@@ -19,5 +20,9 @@ int local_rank();
 // finalised at exit); null when started alone. Throws masav::Error when started on several
 // ranks by a masav built without MPI.
 SphComm* world_comm();
+
+// How the ranks' exchanges reach MPI, for the run's report: staged through host memory, and
+// whether this MPI could read GPU memory itself (a CUDA-aware build, asked at run time).
+std::string exchange_path();
 
 }  // namespace masav::app

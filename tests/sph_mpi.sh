@@ -31,6 +31,8 @@ for n in 2 3 4; do
   log=$(run "$mpiexec" -np $n "$masav" "${scene[@]}" --steps 200 --checkpoint-dir "$dir/P$n" -q)
   grep -q " x $n ranks" <<<"$log" || fail "no ranks in the header on $n ranks: $log"
   grep -qE "^ +$((n - 1)) +[0-9]+ +[0-9]+ " <<<"$log" || fail "no rank table on $n ranks: $log"
+  grep -qE "^ranks: .*; exchanges staged through host memory \(this MPI is (not )?CUDA-aware" \
+    <<<"$log" || fail "no exchange path on $n ranks: $log"
   cmp "$dir/Q1/checkpoint.masav" "$dir/P$n/checkpoint.masav" \
     || fail "the state after 200 steps on $n ranks differs from one process's"
   printf '%d ranks: the same state as one process\n%s\n' $n "$(grep -A$((n + 1)) '^ranks:' <<<"$log")"

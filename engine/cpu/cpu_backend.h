@@ -79,8 +79,7 @@ class CpuBackend final : public Backend {
   // True if built anew, then with each particle's factor in `factor` where given.
   bool ensure_dfsph_terms(const double* pos, const DfsphLayout<double>& c,
                           double* factor = nullptr);
-  double factor_of_terms(size_t chunk, uint32_t self, sph::V3<double> xi,
-                         const sph::WallMirrors<double>& m, const double* pos) const;
+  double factor_of_terms(size_t chunk, uint32_t self) const;
   // raymarch in fp32 from fp32 copies of its inputs, a row of 8x8 tiles per task (cpu_volume.cpp).
   void raymarch_fp32(const RaymarchParams& p, const Buffer<Real>& volume, const Buffer<Real4>& tf,
                      const Buffer<Real4>& bricks, Buffer<Real4>& image,

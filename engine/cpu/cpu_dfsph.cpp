@@ -35,9 +35,9 @@ struct ListWalk {
   }
 };
 
-// The gradient factor of a term (sph::dfsph_gradient's, 0 at r = 0).
-double term_scale(double r2, const DfsphLayout<double>& c) {
-  return r2 > 0 ? sph::dfsph_gradient_scale(r2, c) : 0.0;
+// A term's gradient, as sph::dfsph_gradient forms it (0 at r = 0).
+V term_gradient(V d, double r2, const DfsphLayout<double>& c) {
+  return (r2 > 0 ? sph::dfsph_gradient_scale(r2, c) : 0.0) * d;
 }
 
 // Per chunk: the smallest sorted index with a non-finite result or an overflowed walk, the
@@ -82,26 +82,24 @@ bool CpuBackend::ensure_dfsph_terms(const double* pos, const DfsphLayout<double>
         const double r2 = sph::dot(d, d);
         if (!(r2 < c.h2)) return;
         ++neighbors;
-        if (j != self) dfsph_terms_.add(chunk, {term_scale(r2, c), j, 0u});
+        if (j != self) dfsph_terms_.add(chunk, {term_gradient(d, r2, c), j, 0u});
         if (m.axes)
-          sph::for_each_wall_image_set(xi, xj, m, c.h2, [&](V, double ri2, uint32_t set) {
-            dfsph_terms_.add(chunk, {term_scale(ri2, c), j, set});
+          sph::for_each_wall_image_set(xi, xj, m, c.h2, [&](V di, double ri2, uint32_t set) {
+            dfsph_terms_.add(chunk, {term_gradient(di, ri2, c), j, set});
           });
       });
       dfsph_terms_.end(chunk, self, neighbors);
-      if (factor) factor[i] = factor_of_terms(chunk, self, xi, m, pos);
+      if (factor) factor[i] = factor_of_terms(chunk, self);
     }
   });
   dfsph_terms_.remember(generation, c);
   return true;
 }
 
-double CpuBackend::factor_of_terms(size_t chunk, uint32_t self, sph::V3<double> xi,
-                                   const sph::WallMirrors<double>& m, const double* pos) const {
+double CpuBackend::factor_of_terms(size_t chunk, uint32_t self) const {
   V sum;
   double sum2;
-  dfsph_gradient_sums(dfsph_terms_.terms(chunk, self), dfsph_terms_.count(self), self, xi, m, pos,
-                      sum, sum2);
+  dfsph_gradient_sums(dfsph_terms_.terms(chunk, self), dfsph_terms_.count(self), self, sum, sum2);
   return sph::dfsph_factor_from(sum, sum2);
 }
 
@@ -126,8 +124,7 @@ void CpuBackend::run_own(const KernelArgs<KernelId::dfsph_factor>& a) {
       if (!dfsph_terms_on_) {
         f[i] = sph::dfsph_factor_of(self, load3(pos, i), c, ListWalk{sph_lists_, self}, pos_at);
       } else if (!found) {
-        const V xi = load3(pos, i);
-        f[i] = factor_of_terms(chunk, self, xi, sph::dfsph_mirrors(xi, c), pos);
+        f[i] = factor_of_terms(chunk, self);
       }
       if (!std::isfinite(f[i])) s.non_finite = std::min(s.non_finite, self);
       if (sph_lists_.overflow(self)) s.overflow = std::min(s.overflow, self);
@@ -156,10 +153,8 @@ void CpuBackend::run_own(const KernelArgs<KernelId::dfsph_rate>& a) {
   auto vel_at = [vel](uint32_t j) { return load3(vel, j); };
   if (dfsph_terms_on_) ensure_dfsph_terms(pos, c);
   auto rate_of_terms = [&](size_t chunk, uint32_t self) {
-    const V xi = load3(pos, self);
-    const double div =
-        dfsph_divergence(dfsph_terms_.terms(chunk, self), dfsph_terms_.count(self), self, xi,
-                         load3(vel, self), sph::dfsph_mirrors(xi, c), pos, vel);
+    const double div = dfsph_divergence(dfsph_terms_.terms(chunk, self), dfsph_terms_.count(self),
+                                        self, load3(vel, self), vel);
     return sph::dfsph_rate_from(div, dfsph_terms_.neighbors(self), rho[self], f[self], c);
   };
   pool_.run_chunks(c.end - c.begin, chunks, [&](size_t chunk, size_t b, size_t e) {
@@ -200,10 +195,9 @@ void CpuBackend::run_own(const KernelArgs<KernelId::dfsph_correct>& a) {
   auto kappa_at = [kap](uint32_t j) { return kap[j]; };
   if (dfsph_terms_on_) ensure_dfsph_terms(pos, c);
   auto correction_of_terms = [&](size_t chunk, uint32_t self) {
-    const V xi = load3(pos, self);
     return sph::dfsph_correction_from(
         dfsph_kappa_gradient_sum(dfsph_terms_.terms(chunk, self), dfsph_terms_.count(self), self,
-                                 xi, kap[self], sph::dfsph_mirrors(xi, c), pos, kap),
+                                 kap[self], kap),
         c);
   };
   pool_.run_chunks(c.end - c.begin, chunks, [&](size_t chunk, size_t b, size_t e) {

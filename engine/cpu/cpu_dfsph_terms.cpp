@@ -13,24 +13,6 @@ V load3(const double* a, uint32_t i) {
   return V{a[4 * i], a[4 * i + 1], a[4 * i + 2]};
 }
 
-// The offset d = x_i - image of x_j in mirror set `set` (> 0), as sph::for_each_wall_image_set
-// forms it.
-V image_offset(V xi, V xj, const sph::WallMirrors<double>& m, uint32_t set) {
-  const V direct = xi - xj;
-  return V{(set & 1u) ? (xi.x - m.plane[0]) + (xj.x - m.plane[0]) : direct.x,
-           (set & 2u) ? (xi.y - m.plane[1]) + (xj.y - m.plane[1]) : direct.y,
-           (set & 4u) ? (xi.z - m.plane[2]) + (xj.z - m.plane[2]) : direct.z};
-}
-
-// m grad W of term t: away from the walls (m.axes = 0) every term is a pair with a neighbour.
-// Inlined: it is the inner loop of every iteration near a wall.
-[[gnu::always_inline]] inline V term_gradient(const DfsphTerm& t, V xi,
-                                              const sph::WallMirrors<double>& m,
-                                              const double* pos) {
-  const V xj = load3(pos, t.j);
-  return t.scale * (t.set == 0 ? xi - xj : image_offset(xi, xj, m, t.set));
-}
-
 }  // namespace
 
 void DfsphTerms::reset(uint32_t n, size_t chunks) {
@@ -61,13 +43,11 @@ bool DfsphTerms::matches(uint64_t lists_generation, const DfsphLayout<double>& c
          c.walls == walls_ && std::equal(c.lo, c.lo + 3, lo_) && std::equal(c.hi, c.hi + 3, hi_);
 }
 
-void dfsph_gradient_sums(const DfsphTerm* t, uint32_t count, uint32_t self, V xi,
-                         const sph::WallMirrors<double>& m, const double* pos, V& sum,
-                         double& sum2) {
+void dfsph_gradient_sums(const DfsphTerm* t, uint32_t count, uint32_t self, V& sum, double& sum2) {
   sum = V{0, 0, 0};
   sum2 = 0;
   for (uint32_t k = 0; k < count; ++k) {
-    const V g = term_gradient(t[k], xi, m, pos);
+    const V g = t[k].gradient;
     if (t[k].j == self) {
       sum = sum + 2.0 * g;
     } else {
@@ -77,34 +57,22 @@ void dfsph_gradient_sums(const DfsphTerm* t, uint32_t count, uint32_t self, V xi
   }
 }
 
-double dfsph_divergence(const DfsphTerm* t, uint32_t count, uint32_t self, V xi, V vi,
-                        const sph::WallMirrors<double>& m, const double* pos, const double* vel) {
+double dfsph_divergence(const DfsphTerm* t, uint32_t count, uint32_t self, V vi,
+                        const double* vel) {
   double div = 0;
-  if (!m.axes) {  // pairs only
-    for (uint32_t k = 0; k < count; ++k)
-      div += sph::dot(t[k].scale * (xi - load3(pos, t[k].j)), vi - load3(vel, t[k].j));
-    return div;
-  }
   for (uint32_t k = 0; k < count; ++k) {
-    const V g = term_gradient(t[k], xi, m, pos);
     const V vj = t[k].j == self ? vi : load3(vel, t[k].j);
-    div += sph::dot(g, vi - (t[k].set == 0 ? vj : sph::mirror_velocity(vj, t[k].set)));
+    div += sph::dot(t[k].gradient, vi - (t[k].set == 0 ? vj : sph::mirror_velocity(vj, t[k].set)));
   }
   return div;
 }
 
-V dfsph_kappa_gradient_sum(const DfsphTerm* t, uint32_t count, uint32_t self, V xi, double kappa_i,
-                           const sph::WallMirrors<double>& m, const double* pos,
+V dfsph_kappa_gradient_sum(const DfsphTerm* t, uint32_t count, uint32_t self, double kappa_i,
                            const double* kappa) {
   V acc{0, 0, 0};
-  if (!m.axes) {  // pairs only
-    for (uint32_t k = 0; k < count; ++k)
-      acc = acc + (kappa_i + kappa[t[k].j]) * (t[k].scale * (xi - load3(pos, t[k].j)));
-    return acc;
-  }
   for (uint32_t k = 0; k < count; ++k) {
     const uint32_t j = t[k].j;
-    acc = acc + (kappa_i + (j == self ? kappa_i : kappa[j])) * term_gradient(t[k], xi, m, pos);
+    acc = acc + (kappa_i + (j == self ? kappa_i : kappa[j])) * t[k].gradient;
   }
   return acc;
 }

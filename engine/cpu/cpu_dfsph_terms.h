@@ -1,10 +1,11 @@
 #pragma once
 // The pair terms of the CPU reference's DFSPH kernels, kept between calls. Every dfsph_rate and
 // dfsph_correct of a solve walks the same neighbours at the same positions, and each pair's
-// spiky gradient m grad W_ij = s d_ij has a factor s (a square root and a division,
-// sph::dfsph_gradient_scale) that depends on the distance alone; so the factors are found once
-// per neighbour list and each iteration multiplies them by the offsets d again (from the
-// positions; a product, hence the same bits). A particle's terms are the ones the shared bodies
+// spiky gradient m grad W_ij = s d_ij (s: a square root and a division,
+// sph::dfsph_gradient_scale; d the offset to the neighbour or its image) depends on the positions
+// alone; so the gradients are found once per neighbour list, with the bodies' own operations
+// (the same bits), and each iteration reads them instead of the neighbours' positions. A
+// particle's terms are the ones the shared bodies
 // (engine/kernels/dfsph_kernels.h) visit, in the order they visit them -- itself, then its list;
 // for each candidate within h the pair, then its wall images by mirror set -- so the sums over
 // them are the same sums, bit for bit.
@@ -17,9 +18,10 @@
 
 namespace masav::cpu {
 
+// 32 bytes (about 60 per particle at h = 2 dx).
 struct DfsphTerm {
-  double scale;  // m grad_i W = scale d, d = x_i - x_j (or its image); 0 where r = 0
-  uint32_t j;    // sorted neighbour; j == i: one of the particle's own images
+  sph::V3<double> gradient;  // m grad_i W (sph::dfsph_gradient of x_i - x_j or of its image)
+  uint32_t j;                // sorted neighbour; j == i: one of the particle's own images
   uint32_t set;  // 0: the pair; else the image's mirror set (sph::for_each_wall_image_set)
 };
 
@@ -61,20 +63,17 @@ class DfsphTerms {
   std::vector<uint32_t> count_, neighbors_;
 };
 
-// The sums of the shared bodies over particle `self`'s `count` terms `t`, at x_i = xi with
-// walls m (sph::dfsph_mirrors), from sorted positions, velocities and kappas (x, y, z, w rows):
-// dfsph_factor_of's gradient sum (own images twice) and sum of squares ...
-void dfsph_gradient_sums(const DfsphTerm* t, uint32_t count, uint32_t self, sph::V3<double> xi,
-                         const sph::WallMirrors<double>& m, const double* pos, sph::V3<double>& sum,
+// The sums of the shared bodies over particle `self`'s `count` terms `t`, from sorted
+// velocities (x, y, z, w rows) and kappas: dfsph_factor_of's gradient sum (own images twice)
+// and sum of squares ...
+void dfsph_gradient_sums(const DfsphTerm* t, uint32_t count, uint32_t self, sph::V3<double>& sum,
                          double& sum2);
-// ... dfsph_rate_of's density change rate (an image moves with the mirrored velocity) ...
-double dfsph_divergence(const DfsphTerm* t, uint32_t count, uint32_t self, sph::V3<double> xi,
-                        sph::V3<double> vi, const sph::WallMirrors<double>& m, const double* pos,
+// ... dfsph_rate_of's density change rate at velocity vi (an image moves with the mirrored
+// velocity) ...
+double dfsph_divergence(const DfsphTerm* t, uint32_t count, uint32_t self, sph::V3<double> vi,
                         const double* vel);
 // ... and dfsph_correction_of's sum of (k_i + k_j) m grad W_ij (k_i + k_i for an own image).
 sph::V3<double> dfsph_kappa_gradient_sum(const DfsphTerm* t, uint32_t count, uint32_t self,
-                                         sph::V3<double> xi, double kappa_i,
-                                         const sph::WallMirrors<double>& m, const double* pos,
-                                         const double* kappa);
+                                         double kappa_i, const double* kappa);
 
 }  // namespace masav::cpu
