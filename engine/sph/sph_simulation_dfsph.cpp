@@ -9,17 +9,18 @@
 //   4. density and factor at x1, then the divergence solve: v1 corrected until drho/dt ~ 0.
 // Each solve starts from half of the previous step's kappa sum (the warm start) and runs at
 // least 2 (density) or 1 (divergence) iterations; after each from then on the host reads the
-// iteration's residual (one wait per iteration: the loop's length depends on it). The step
+// iteration's residual (one wait per iteration: the loop's length depends on it), queued right
+// behind the iteration's rate so that its correction runs while the host waits for it. The step
 // ends, like leapfrog's, with the fields at the new positions, so the next step starts there.
 //
 // On several ranks (sph_ranks.h) each kernel computes the rank's own particles, and what a
-// kernel reads of its neighbours comes from their owners first: the density and pressure after
-// each density pass (the viscosity reads them), the velocities before a solve's first rate,
-// after every correction that another iteration follows and at the end of the step (the next
-// step's viscosity reads them), each iteration's kappa before its correction. The residual is a sum
-// of integers over the ranks, so every rank sees the one process's and stops at the same iteration.
-// The kappa sums move with the particles at the rebuilds, the halos' included, which is all the
-// warm starts read of them.
+// kernel reads of its neighbours comes from their owners first: the density after each density
+// pass (the viscosity reads it; dfsph's force has no pressure term), the velocities before a
+// solve's first rate, after every correction that another iteration follows and at the end of the
+// step (the next step's viscosity reads them), each iteration's kappa before its correction. The
+// residual is a sum of integers over the ranks, so every rank sees the one process's and stops at
+// the same iteration. The kappa sums move with the particles at the rebuilds, the halos' included,
+// which is all the warm starts read of them.
 #include <algorithm>
 #include <cmath>
 
@@ -63,10 +64,7 @@ void SphSimulation::dfsph_fields(const Buffer<Real4>& x) {
   const SphGridView view{&grid_.sorted_cells, &grid_.cell_start, &grid_.cell_end};
   sph_density(backend_, step_params_,
               SphDensityIO{&x, view, &density_, &pressure_, &stats_buf_, neighbor_rows()});
-  if (ranks_) {
-    ranks_->start_halos(density_, pressure_);
-    ranks_->finish_halos();
-  }
+  if (ranks_) ranks_->exchange_halos(density_);  // dfsph's force reads no pressure
   mark(SphStage::density);
   DfsphIO io;
   io.positions = &x;
@@ -113,14 +111,23 @@ void SphSimulation::dfsph_solve(DfsphSolve solve, double dt, const Buffer<Real4>
     p.slot = done;
     p.first = done == 0;
     dfsph_rate(backend_, p, io);
-    if (ranks_) ranks_->exchange_halos(kappa_);
-    p.first = false;
-    dfsph_correct(backend_, p, io);
+    // This iteration's residual slot, read behind the rate: the correction runs meanwhile (and
+    // on several ranks the kappa exchange's wait covers it).
+    const uint64_t residual_read = done + 1 >= min_iterations
+                                       ? backend_.read_async(residual_.impl(), 2 * sizeof(uint32_t),
+                                                             2 * size_t(p.slot) * sizeof(uint32_t))
+                                       : 0;
+    try {
+      if (ranks_) ranks_->exchange_halos(kappa_);
+      p.first = false;
+      dfsph_correct(backend_, p, io);
+    } catch (...) {
+      backend_.discard_read(residual_read);
+      throw;
+    }
     ++done;
-    if (done >= min_iterations) {
-      uint32_t words[2];  // this iteration's slot only
-      backend_.download_bytes(residual_.impl(), words, sizeof(words),
-                              2 * size_t(p.slot) * sizeof(uint32_t));
+    if (residual_read) {
+      const std::vector<uint32_t> words = backend_.take_u32s(residual_read);
       uint64_t units = uint64_t(words[1]) << 32 | words[0];
       if (ranks_) units = ranks_->sum(units);
       error = double(units) / double(kDfsphResidualScale) / double(std::max(movers, 1u));
