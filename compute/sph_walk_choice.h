@@ -1,4 +1,7 @@
 #pragma once
+// How the Vulkan SPH kernels walk their neighbours: cooperatively or per lane, and split at the
+// walls or not (the device's automatic choices and the variables that override them).
+//
 // Which neighbour walk the Vulkan SPH kernels take (specialisation constant 4 of
 // shaders/common/sph_coop.glsl). The cooperative walk turns a SIMD CPU driver's per-lane gathers
 // into contiguous loads and register permutes: on lavapipe it is the faster one. On a GPU the
@@ -12,5 +15,21 @@ namespace masav::vk {
 // device_type as Capabilities::device_type ("cpu" for lavapipe). Throws on a bad
 // MASAV_VK_SPH_COOP.
 bool sph_coop_walk(std::string_view device_type);
+
+// Which Vulkan SPH walks are written twice, with and without the wall images, for subgroups
+// near and away from the walls (specialisation constant 5 of shaders/common/sph_walk.glsl).
+// lavapipe runs every statement of a loop body in every pass, so there every walk is split. A GPU
+// skips a branch that no lane of its subgroup takes, but its compiler may round the two copies
+// differently, and a particle's sums must not depend on which particles share its subgroup (a
+// rank's particles sit at other indices than in one process). sph_density's pair terms are
+// unfused (`precise`), so its copies agree and it stays split on a GPU: an H200 (2026-11-27,
+// 1,048,576 particles) took 0.266 ms split against 0.326 in one copy. sph_forces and the DFSPH
+// solves are not split there: unsplit, forces took 0.371 ms against 0.391, the solves the same.
+// MASAV_VK_SPH_WALL_SPLIT=on|off|auto overrides both. Throws on a bad value.
+struct SphWallSplit {
+  bool density = true;
+  bool others = true;  // sph_forces, dfsph_factor, dfsph_rate, dfsph_correct
+};
+SphWallSplit sph_wall_split(std::string_view device_type);
 
 }  // namespace masav::vk

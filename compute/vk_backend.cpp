@@ -64,6 +64,11 @@ bool sph_coop_walk(std::string_view device_type) {
   return env_switch("MASAV_VK_SPH_COOP", device_type == "cpu");
 }
 
+SphWallSplit sph_wall_split(std::string_view device_type) {
+  const char* name = "MASAV_VK_SPH_WALL_SPLIT";
+  return {env_switch(name, true), env_switch(name, device_type == "cpu")};
+}
+
 VulkanBackend::VulkanBackend(const BackendOptions& options)
     : options_(options),
       ctx_(options.context),
@@ -77,6 +82,7 @@ VulkanBackend::VulkanBackend(const BackendOptions& options)
                   fmt::format("a multiple of 64 up to {}", ctx_.caps().max_workgroup_size));
   scatter_ = choose_sort_scatter(options.sort_scatter);
   sph_coop_walk_ = sph_coop_walk(ctx_.caps().device_type);
+  sph_wall_split_ = sph_wall_split(ctx_.caps().device_type);
   ray_quads_ = raymarch_quads_wanted(ctx_.caps().device_type);
   diag_ = allocate(ctx_, sizeof(Diagnostics), MemoryUse::readback, "diagnostics");
   std::memcpy(diag_->mapped, &kCleanDiagnostics, sizeof(Diagnostics));

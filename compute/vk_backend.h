@@ -9,6 +9,7 @@
 
 #include "compute/device/vk_context.h"
 #include "compute/device/vk_memory.h"
+#include "compute/sph_walk_choice.h"
 #include "compute/vk_pipelines.h"
 #include "compute/vk_stream.h"
 #include "engine/kernels/backend.h"
@@ -118,6 +119,8 @@ class VulkanBackend final : public Backend, public VulkanInterop {
   SortScatter scatter_ = SortScatter::tiled;
   // The SPH neighbour rows walked by subgroup clusters (compute/sph_walk_choice.h).
   bool sph_coop_walk_ = true;
+  // The SPH walks written twice, with and without the wall images (compute/sph_walk_choice.h).
+  SphWallSplit sph_wall_split_;
   // raymarch reads its volume four voxels to a texel (compute/raymarch_quads_choice.h).
   bool ray_quads_ = false;
   std::shared_ptr<Allocation> quads_;  // raymarch_quads' output, of the volume below

@@ -44,12 +44,16 @@ void VulkanBackend::run_kernel(const Params& p, uint64_t items, Buffers&... buff
       // volume, tf, bricks, image, tf_integral; the quads
       texels = {r32f, rgba32, rgba32, none, rgba32, rgba32};
     }
-    // sph_density and sph_forces are specialised on the pressure model (shaders/common/sph.glsl)
-    // and on whether rows are walked cooperatively (shaders/common/sph_coop.glsl), and read their
-    // inputs as texel buffers too.
+    // sph_density and sph_forces are specialised on the pressure model (shaders/common/sph.glsl),
+    // on whether rows are walked cooperatively (shaders/common/sph_coop.glsl) and on whether the
+    // walks are split at the walls (shaders/common/sph_walk.glsl), and read their inputs as texel
+    // buffers too. The DFSPH solves take the last alone (constants 3 and 4 are not theirs).
     if constexpr (std::is_same_v<std::decay_t<decltype(layout)>, SphStepLayout<float>>) {
       constants.push_back(uint32_t(layout.model));
       constants.push_back(sph_coop_walk_ ? 1u : 0u);
+      const bool split =
+          K == KernelId::sph_density ? sph_wall_split_.density : sph_wall_split_.others;
+      constants.push_back(split ? 1u : 0u);
       if constexpr (K == KernelId::sph_density)  // positions, cells, cell_start, cell_end
         texels = {rgba32, r32u, r32u, r32u, none, none, none, none};
       if constexpr (K == KernelId::sph_forces)  // ... velocities, density, pressure; neighbor_rows
@@ -73,6 +77,8 @@ void VulkanBackend::run_kernel(const Params& p, uint64_t items, Buffers&... buff
       texels = {rgba32, r32f, none};
     if constexpr (K == KernelId::nebula_view)  // positions, density, table, illumination; light
       texels = {rgba32, r32f, r32f, r32f, none};
+    if constexpr (std::is_same_v<std::decay_t<decltype(layout)>, DfsphLayout<float>>)
+      constants = {0u, 0u, sph_wall_split_.others ? 1u : 0u};
     if constexpr (K == KernelId::dfsph_factor)  // positions, cells, ranges; factor, stats; rows
       texels = {rgba32, r32u, r32u, r32u, none, none, r32u};
     if constexpr (K == KernelId::dfsph_rate)  // + velocities, density, factor; kappa, sums

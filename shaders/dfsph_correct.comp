@@ -76,7 +76,7 @@ void main() {
   g_m = dfsph_mirrors(g_xi, p);
   uint candidates = 0u;
   bool overflow = false, bad = false;
-  dfsph_walk(live, i, cc, subgroupMax(g_m.axes) != 0u, candidates, overflow);
+  dfsph_walk(live, i, cc, sph_walls_near(g_m.axes), candidates, overflow);
   float speed2 = 0.0;
   if (live) {
     const vec3 dv = (p.first != 0u ? -p.dt * p.warm_scale : -p.dt) * g_acc;

@@ -83,7 +83,7 @@ void main() {
   g_m = dfsph_mirrors(g_xi, p);
   uint candidates = 0u;
   bool overflow = false, bad = false;
-  dfsph_walk(live, i, cc, subgroupMax(g_m.axes) != 0u, candidates, overflow);
+  dfsph_walk(live, i, cc, sph_walls_near(g_m.axes), candidates, overflow);
   if (live) {
     const float den = dot(g_sum, g_sum) + g_sum2;
     const float f = den > 0.0 ? 1.0 / den : 0.0;

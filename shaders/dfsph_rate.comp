@@ -89,7 +89,7 @@ void main() {
   g_m = dfsph_mirrors(g_xi, p);
   uint candidates = 0u;
   bool overflow = false;
-  dfsph_walk(live, i, cc, subgroupMax(g_m.axes) != 0u, candidates, overflow);
+  dfsph_walk(live, i, cc, sph_walls_near(g_m.axes), candidates, overflow);
   uint units = 0u;
   if (live) {
     float k, res;

@@ -64,7 +64,8 @@ void coop_chunk(inout Walk w, uint i, vec3 xi, uint base, uvec2 u, uvec2 r, SphM
     const vec3 xj = subgroupShuffle(xc, sph_coop_source(k));
     const uint j = base + ((sph_coop_lane() + k) & (kSphCoop - 1u));
     const vec3 d = xi - xj;
-    add_candidate(w, i, j, xi, xj, dot(d, d), j >= r.x && j < r.y, r.x, mirrors, images);
+    precise float r2 = d.x * d.x + d.y * d.y + d.z * d.z;  // unfused, as sph_density_term
+    add_candidate(w, i, j, xi, xj, r2, j >= r.x && j < r.y, r.x, mirrors, images);
   }
 }
 
@@ -73,7 +74,8 @@ void lane_candidate(inout Walk w, uint i, vec3 xi, uint j, uvec2 r, SphMirrors m
                     bool images) {
   const vec3 xj = position_at(j).xyz;
   const vec3 d = xi - xj;
-  add_candidate(w, i, j, xi, xj, dot(d, d), true, r.x, mirrors, images);
+  precise float r2 = d.x * d.x + d.y * d.y + d.z * d.z;  // unfused, as sph_density_term
+  add_candidate(w, i, j, xi, xj, r2, true, r.x, mirrors, images);
 }
 
 void main() {
@@ -97,10 +99,10 @@ void main() {
   const uvec3 dims = p.dims;
   // lavapipe runs every statement of a loop body in every pass, whatever its lanes take, and the
   // seven wall images cost a pass several times the pair's: each walk below is written twice,
-  // with and without the images, and a subgroup with no lane within h of a wall takes the second
-  // (the first then makes one empty pass). (A third copy with one wall's image alone, for
-  // subgroups along a single wall, measured slower.)
-  const bool walls_near = subgroupMax(mirrors.axes) != 0u;
+  // with and without the images, and where the backend splits them (sph_walls_near) a subgroup
+  // with no lane within h of a wall takes the second (the first then makes one empty pass). (A
+  // third copy with one wall's image alone, for subgroups along a single wall, measured slower.)
+  const bool walls_near = sph_walls_near(mirrors.axes);
   uint spent = 0u;
   Walk w = Walk(0.0, 0u, uvec2(0u));
   for (int dx = -1; dx <= 1; ++dx) {

@@ -113,8 +113,8 @@ void coop_chunk(Me me, uint base, uvec2 u, uvec2 r, inout Sum s, bool images) {
 // empty rows. Each loop over candidates is written twice, with and without the wall images
 // (walls_near: some lane of the subgroup is within h of a wall): lavapipe runs every statement of
 // a loop body in every pass, whatever its lanes take, and the seven images cost a pass several
-// times the pair's, so a subgroup away from the walls takes the copy without them (the other then
-// makes one empty pass).
+// times the pair's, so where the backend splits them (sph_walls_near) a subgroup away from the
+// walls takes the copy without them (the other then makes one empty pass).
 void walk_cooperative(bool live, ivec3 cc, Me me, bool walls_near, inout Sum s) {
   uint spent = 0u;
   for (int dx = -1; dx <= 1; ++dx) {
@@ -194,7 +194,7 @@ void main() {
     me.mirrors = sph_wall_mirrors(me.x, p);
   }
   Sum s = Sum(vec3(0.0), 0u, 0u, false);
-  const bool walls_near = subgroupMax(me.mirrors.axes) != 0u;
+  const bool walls_near = sph_walls_near(me.mirrors.axes);
   if (p.neighbor_rows != 0u) {
     walk_masked(live, cc, me, walls_near, s);
   } else {

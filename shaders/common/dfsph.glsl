@@ -47,8 +47,9 @@ void dfsph_visit(uint j, bool images);
 // candidate of a row too long for its mask or when there are no masks, in one loop over the nine
 // rows (sph_row_walk.glsl). The loop is written twice, with and without the wall images
 // (walls_near: some lane of the subgroup is within h of a wall): lavapipe runs every statement of
-// a loop body in every pass, whatever its lanes take, so a subgroup away from the walls takes the
-// copy without them (the other then makes one empty pass).
+// a loop body in every pass, whatever its lanes take, so where the backend splits them
+// (sph_walls_near) a subgroup away from the walls takes the copy without them (the other then
+// makes one empty pass).
 void dfsph_walk(bool live, uint i, ivec3 cc, bool walls_near, inout uint candidates,
                 inout bool overflow) {
   SphRowWalk rows[9];

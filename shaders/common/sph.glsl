@@ -31,11 +31,15 @@ ivec3 sph_cell_coords(uint id, uvec3 dims) {
   return ivec3(int(id / yz), int((id % yz) / dims.z), int(id % dims.z));
 }
 
+// precise: no multiply-add fused into the term or with the sum it joins. sph_density writes its
+// walk twice, with and without the wall images (sph_walk.glsl), and a GPU compiler fused the two
+// copies' operations differently; unfused, a particle's density has the same bits in either.
 float sph_density_term(float r2, SphStepLayout c) {
-  const float u = max(sph_model(c) != SphPressureModel_thesis ? 1.0 - sqrt(r2) * c.inv_h
-                                                              : 1.0 - r2 * c.inv_h2,
-                      0.0);
-  return u * u * u;
+  precise float u = max(sph_model(c) != SphPressureModel_thesis ? 1.0 - sqrt(r2) * c.inv_h
+                                                                : 1.0 - r2 * c.inv_h2,
+                        0.0);
+  precise float term = u * u * u;
+  return term;
 }
 
 // Pair acceleration from neighbour (xo, vo, rho_o, p_o / rho_o^2) on (xi, vi, rho_i), d = xi - xo.

@@ -1,6 +1,21 @@
 // The 27-cell neighbour walk of the SPH kernels, by rows, and the neighbour row masks: the GLSL
 // twin of sph::row_range, sph::walk_rows and sph::RowMasks (engine/kernels/sph_kernels.h). The
 // including kernel defines `uint cell_start_at(uint cell)` and `uint cell_end_at(uint cell)`.
+// The includer enables GL_KHR_shader_subgroup_arithmetic.
+
+// Whether a walk is written twice, with and without the wall images, and a subgroup with no lane
+// within h of a wall takes the copy without them (the backend's choice per kernel, specialisation
+// constant 5: compute/sph_walk_choice.h). lavapipe runs every statement of a loop body in every
+// pass, whatever its lanes take, so there the copy without the images saves their cost away from
+// the walls. A GPU skips a branch that no lane of the subgroup takes, but its compiler may round
+// the two copies differently: a particle's sums would then depend on which particles share its
+// subgroup, and a rank's particles, at other indices than in one process, would leave the
+// one-process trajectory. A kernel split on a GPU keeps its pair terms unfused (`precise`).
+layout(constant_id = 5) const bool SPH_WALL_SPLIT = true;
+
+// Whether a lane takes the walk's copy with the wall images (axes: its sph_wall_mirrors axes).
+bool sph_walls_near(uint axes) { return !SPH_WALL_SPLIT || subgroupMax(axes) != 0u; }
+
 // Sorted range of the row (x, y, z-1 .. z+1): 3 consecutive cell ids, contiguous points.
 uvec2 sph_row_range(int x, int y, int z, uvec3 dims) {
   const int z0 = max(z - 1, 0);
