@@ -41,8 +41,9 @@ V term_gradient(V d, double r2, const DfsphLayout<double>& c) {
 }
 
 // Per chunk: the smallest sorted index with a non-finite result or an overflowed walk, the
-// largest |v|^2, the residual units.
-struct ChunkStats {
+// largest |v|^2, the residual units. A cache line each: the threads update their chunks' stats
+// particle by particle, and neighbouring chunks in one line would pass it between the cores.
+struct alignas(64) ChunkStats {
   uint32_t non_finite = UINT32_MAX, overflow = UINT32_MAX;
   double max_speed2 = 0;
   uint64_t residual = 0;

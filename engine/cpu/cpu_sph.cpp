@@ -18,7 +18,9 @@ namespace {
 
 using V = sph::V3<double>;
 
-struct ChunkStats {
+// A chunk's statistics, a cache line each: the threads update their chunks' stats particle by
+// particle, and neighbouring chunks in one line would pass it between the cores.
+struct alignas(64) ChunkStats {
   uint32_t max_candidates = 0, max_neighbors = 0, outside = 0;
   uint32_t overflow = UINT32_MAX, non_finite = UINT32_MAX;  // smallest sorted index
   double max_speed2 = 0, max_accel2 = 0, max_disp2 = 0, max_density = 0;

@@ -9,6 +9,29 @@
 
 namespace masav::cpu {
 
+namespace {
+// About 50-100 microseconds of polling (a pause is tens of cycles): longer than a wake-up, short
+// enough that an idle pool, or one sharing its cores with other processes, soon sleeps.
+constexpr int kSpinIterations = 4000;
+
+void cpu_relax() {
+#if defined(__x86_64__) || defined(__i386__)
+  __builtin_ia32_pause();
+#elif defined(__aarch64__)
+  asm volatile("yield");
+#endif
+}
+}  // namespace
+
+template <class Ready>
+bool ThreadPool::spin_until(Ready&& ready) {
+  for (int i = 0; i < kSpinIterations; ++i) {
+    if (ready()) return true;
+    cpu_relax();
+  }
+  return ready();
+}
+
 ThreadPool::ThreadPool(unsigned threads) {
   for (unsigned i = 1; i < std::max(1u, threads); ++i)
     workers_.emplace_back([this] { worker_loop(); });
@@ -43,8 +66,14 @@ void ThreadPool::run_pending(std::unique_lock<std::mutex>& lock) {
 void ThreadPool::worker_loop() {
   std::unique_lock lock(mutex_);
   unsigned seen = generation_;
+  auto ready = [&] { return stop_ || generation_ != seen; };
   for (;;) {
-    wake_.wait(lock, [&] { return stop_ || generation_ != seen; });
+    if (!ready()) {
+      lock.unlock();
+      spin_until(ready);
+      lock.lock();
+    }
+    wake_.wait(lock, ready);
     if (stop_) return;
     seen = generation_;
     run_pending(lock);
@@ -68,7 +97,13 @@ void ThreadPool::run_chunks(size_t n, size_t chunks,
   ++generation_;
   wake_.notify_all();
   run_pending(lock);
-  done_.wait(lock, [&] { return finished_chunks_ == job_chunks_; });
+  auto done = [&] { return finished_chunks_ == chunks; };
+  if (!done()) {
+    lock.unlock();
+    spin_until(done);
+    lock.lock();
+  }
+  done_.wait(lock, done);
   job_ = nullptr;
   if (error_) std::rethrow_exception(std::exchange(error_, nullptr));
 }

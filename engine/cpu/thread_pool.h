@@ -1,6 +1,7 @@
 #pragma once
 // A fixed pool of worker threads for the CPU reference backend. parallel_for splits [0, n) into
 // contiguous chunks (chunk k before chunk k+1), which the stable sort relies on.
+#include <atomic>
 #include <condition_variable>
 #include <cstddef>
 #include <exception>
@@ -30,14 +31,22 @@ class ThreadPool {
   void worker_loop();
   void run_pending(std::unique_lock<std::mutex>& lock);
 
+  // Spins up to kSpinIterations on `ready` before the caller sleeps on the condition variable:
+  // a kernel's chunks often follow the last within microseconds (a DFSPH step runs some forty),
+  // and waking a sleeping thread costs tens of microseconds on a virtual machine.
+  template <class Ready>
+  static bool spin_until(Ready&& ready);
+
   std::vector<std::thread> workers_;
   std::mutex mutex_;
   std::condition_variable wake_, done_;
   const std::function<void(size_t, size_t, size_t)>* job_ = nullptr;
-  size_t job_n_ = 0, job_chunks_ = 0, next_chunk_ = 0, finished_chunks_ = 0;
+  size_t job_n_ = 0, job_chunks_ = 0, next_chunk_ = 0;
+  // Written under mutex_; read without it while spinning.
+  std::atomic<size_t> finished_chunks_ = 0;
+  std::atomic<bool> stop_ = false;
+  std::atomic<unsigned> generation_ = 0;
   std::exception_ptr error_;
-  bool stop_ = false;
-  unsigned generation_ = 0;
 };
 
 // Threads the CPU backend uses: MASAV_CPU_THREADS if set, else the hardware's.
