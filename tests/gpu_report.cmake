@@ -59,4 +59,9 @@ if(MASAV_WITH_APP)
            COMMAND ${CMAKE_CURRENT_LIST_DIR}/gpu_pack.sh ${PROJECT_SOURCE_DIR}/tools/gpu-pack
                    ${CMAKE_BINARY_DIR} ${CMAKE_CURRENT_BINARY_DIR}/out/gpu_pack)
   set_tests_properties(tools.gpu_pack PROPERTIES LABELS tools ENVIRONMENT "${test_env}")
+  # tools/gpu-unpack: such an archive extracted where it was built, run with its libraries.
+  add_test(NAME tools.gpu_unpack
+           COMMAND ${CMAKE_CURRENT_LIST_DIR}/gpu_unpack.sh ${PROJECT_SOURCE_DIR}/tools/gpu-unpack
+                   ${CMAKE_CURRENT_BINARY_DIR}/out/gpu_unpack)
+  set_tests_properties(tools.gpu_unpack PROPERTIES LABELS tools)
 endif()
