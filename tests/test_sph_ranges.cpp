@@ -52,6 +52,18 @@ void check_range(size_t n, Range r, Get get, const char* what) {
   CHECK(touched_outside == 0);
 }
 
+// The same for a per-particle array against the whole call's.
+template <class T>
+void check_range(size_t n, Range r, const std::vector<T>& got, const std::vector<T>& want,
+                 const char* what) {
+  check_range(
+      n, r,
+      [&](size_t i) {
+        return std::pair{double(got[i]), double(want[i])};
+      },
+      what);
+}
+
 }  // namespace
 
 namespace masav::test {
@@ -104,18 +116,8 @@ TEST_CASE("sph kernels over a particle range: the whole call's values inside, no
     sph_density(b, p,
                 {&s.sorted_pos, s.view(), &s.density, &s.pressure, &s.stats, &s.neighbor_rows});
     const auto d = b.download(s.density), q = b.download(s.pressure);
-    check_range(
-        n, span,
-        [&](size_t i) {
-          return std::pair{d[i], rho[i]};
-        },
-        "density");
-    check_range(
-        n, span,
-        [&](size_t i) {
-          return std::pair{q[i], pr[i]};
-        },
-        "pressure");
+    check_range(n, span, d, rho, "density");
+    check_range(n, span, q, pr, "pressure");
 
     // Forces read every particle's density and pressure (a halo's come from its owner).
     b.upload(s.density, rho);
@@ -263,12 +265,7 @@ TEST_CASE("dfsph kernels over a particle range: the whole call's values inside, 
     b.fill(k.factor, kUntouched);
     dfsph_factor(b, p, io);
     const auto f = b.download(k.factor);
-    check_range(
-        n, span,
-        [&](size_t i) {
-          return std::pair{f[i], f_all[i]};
-        },
-        "factor");
+    check_range(n, span, f, f_all, "factor");
 
     // The rate reads every particle's velocity and its own factor and kappa sum; it writes the
     // range's kappa and kappa sums.
@@ -279,18 +276,8 @@ TEST_CASE("dfsph kernels over a particle range: the whole call's values inside, 
     b.fill(k.kappa, kUntouched);
     dfsph_rate(b, p, io);
     const auto kap = b.download(k.kappa), sum = b.download(k.kappa_sum);
-    check_range(
-        n, span,
-        [&](size_t i) {
-          return std::pair{kap[i], k_all[i]};
-        },
-        "kappa");
-    check_range(
-        n, span,
-        [&](size_t i) {
-          return std::pair{sum[i], sum_all[i]};
-        },
-        "kappa sum");
+    check_range(n, span, kap, k_all, "kappa");
+    check_range(n, span, sum, sum_all, "kappa sum");
     const uint64_t units = test::residual_units(b.download(k.residual), 0);
     if (span.count == n) CHECK(units == residual_all);
     if (r.count == n / 2 + 5 || (r.first == n / 2 + 5)) residual_split += units;

@@ -10,8 +10,8 @@
 namespace masav::cpu {
 
 namespace {
-// About 50-100 microseconds of polling (a pause is tens of cycles): longer than a wake-up, short
-// enough that an idle pool, or one sharing its cores with other processes, soon sleeps.
+// About 0.1 ms of polling (a pause takes tens to a hundred and more cycles, by processor): longer
+// than a wake-up, short enough that an idle pool, or one sharing its cores, soon sleeps.
 constexpr int kSpinIterations = 4000;
 
 void cpu_relax() {
@@ -24,12 +24,8 @@ void cpu_relax() {
 }  // namespace
 
 template <class Ready>
-bool ThreadPool::spin_until(Ready&& ready) {
-  for (int i = 0; i < kSpinIterations; ++i) {
-    if (ready()) return true;
-    cpu_relax();
-  }
-  return ready();
+void ThreadPool::spin_until(Ready&& ready) {
+  for (int i = 0; i < kSpinIterations && !ready(); ++i) cpu_relax();
 }
 
 ThreadPool::ThreadPool(unsigned threads) {

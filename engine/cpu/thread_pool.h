@@ -35,7 +35,7 @@ class ThreadPool {
   // a kernel's chunks often follow the last within microseconds (a DFSPH step runs some forty),
   // and waking a sleeping thread costs tens of microseconds on a virtual machine.
   template <class Ready>
-  static bool spin_until(Ready&& ready);
+  static void spin_until(Ready&& ready);
 
   std::vector<std::thread> workers_;
   std::mutex mutex_;
