@@ -39,8 +39,8 @@ void VulkanBackend::exclusive_scan(const std::shared_ptr<Allocation>& data, uint
   }
 }
 
-void VulkanBackend::run_own(const KernelArgs<KernelId::radix_sort>& a) {
-  auto& [p, items_, keys, values] = a;
+void VulkanBackend::run_own(const KernelArgs<KernelId::radix_sort>& args) {
+  auto& [p, items_, keys, values] = args;
   if (p.n <= 1) return;
   // Tile geometry of the scatter variant; the histogram must use the same tiles.
   const bool by_subgroup = scatter_ == SortScatter::subgroup;
@@ -52,31 +52,45 @@ void VulkanBackend::run_own(const KernelArgs<KernelId::radix_sort>& a) {
   check_fits(*this, ElemKind::u32, hist_entries, "radix_sort", "the digit histogram");
   const bool has_values = values != nullptr;
 
-  std::shared_ptr<Allocation> k_src = alloc(keys.impl(), "radix_sort");
-  std::shared_ptr<Allocation> v_src = has_values ? alloc(values->impl(), "radix_sort") : k_src;
-  std::shared_ptr<Allocation> k_dst = scratch("radix_sort keys", size_t(p.n) * 4);
-  std::shared_ptr<Allocation> v_dst =
-      has_values ? scratch("radix_sort values", size_t(p.n) * 4) : k_dst;
+  std::shared_ptr<Allocation> k_home = alloc(keys.impl(), "radix_sort");
+  std::shared_ptr<Allocation> v_home = has_values ? alloc(values->impl(), "radix_sort") : k_home;
   auto hist = scratch("radix_sort histogram", hist_entries * 4);
-
   const uint32_t passes = radix::pass_count(p.key_bits);
+  // Where each pass writes (radix::pass_buffer): with an odd pass count of 3 or more, through a
+  // second scratch pair so that the last pass lands home instead of a copy after it.
+  const bool second = radix::uses_second_scratch(passes);
+  auto scratch_pair = [&](const char* what) {
+    std::shared_ptr<Allocation> k =
+        scratch(fmt::format("radix_sort keys{}", what), size_t(p.n) * 4);
+    std::shared_ptr<Allocation> v =
+        has_values ? scratch(fmt::format("radix_sort values{}", what), size_t(p.n) * 4) : k;
+    return std::pair{k, v};
+  };
+  const auto first_pair = scratch_pair("");
+  const auto second_pair = second ? scratch_pair(" 2") : first_pair;
+  auto pair_of = [&](radix::PassBuffer which) {
+    return which == radix::PassBuffer::home ? std::pair{k_home, v_home}
+           : which == radix::PassBuffer::a  ? first_pair
+                                            : second_pair;
+  };
+  std::pair src{k_home, v_home};
   for (uint32_t pass = 0; pass < passes; ++pass) {
     const uint32_t bits = radix::pass_bits(p.key_bits, pass);
+    const auto dst = pair_of(radix::pass_buffer(passes, pass));
     const RadixPassParams push{p.n, pass * radix::kDigitBits, bits, num_tiles};
-    run({"radix_histogram", 2, sizeof push, {items}, wg}, {k_src, hist}, &push, num_tiles);
+    run({"radix_histogram", 2, sizeof push, {items}, wg}, {src.first, hist}, &push, num_tiles);
     exclusive_scan(hist, (1u << bits) * num_tiles, "radix_sort");
     run({by_subgroup ? "radix_scatter_subgroup" : "radix_scatter",
          5,
          sizeof push,
          {items, has_values ? 1u : 0u},
          wg},
-        {k_src, v_src, k_dst, v_dst, hist}, &push, num_tiles);
-    std::swap(k_src, k_dst);
-    std::swap(v_src, v_dst);
+        {src.first, src.second, dst.first, dst.second, hist}, &push, num_tiles);
+    src = dst;
   }
-  if (passes % 2 == 1) {  // the result sits in scratch: copy it home
-    stream_.copy(k_src, 0, k_dst, 0, size_t(p.n) * 4);
-    if (has_values) stream_.copy(v_src, 0, v_dst, 0, size_t(p.n) * 4);
+  if (src.first != k_home) {  // a single pass: the result sits in scratch, copy it home
+    stream_.copy(src.first, 0, k_home, 0, size_t(p.n) * 4);
+    if (has_values) stream_.copy(src.second, 0, v_home, 0, size_t(p.n) * 4);
   }
 }
 

@@ -33,26 +33,39 @@ void CudaBackend::sort_portable(uint32_t n, uint32_t key_bits, uint32_t* keys, u
   const uint32_t num_tiles = (n + launch::kSortTile - 1) / launch::kSortTile;
   auto* hist = static_cast<uint32_t*>(
       scratch("histogram", size_t(radix::kRadix) * num_tiles * 4, "radix_sort"));
-  uint32_t* k_src = keys;
-  auto* k_dst = static_cast<uint32_t*>(scratch("keys", size_t(n) * 4, "radix_sort"));
-  uint32_t* v_src = values;
-  uint32_t* v_dst =
-      values ? static_cast<uint32_t*>(scratch("values", size_t(n) * 4, "radix_sort")) : nullptr;
-  const dim3 grid = grid_for(num_tiles, "radix_sort");
   const uint32_t passes = radix::pass_count(key_bits);
+  // Where each pass writes: radix::pass_buffer (an odd count of 3 or more ends home, no copy).
+  auto scratch_pair = [&](const char* what) {
+    auto* k =
+        static_cast<uint32_t*>(scratch(fmt::format("keys{}", what), size_t(n) * 4, "radix_sort"));
+    auto* v = values ? static_cast<uint32_t*>(
+                           scratch(fmt::format("values{}", what), size_t(n) * 4, "radix_sort"))
+                     : nullptr;
+    return std::pair{k, v};
+  };
+  const std::pair home{keys, values};
+  const auto a = scratch_pair("");
+  const auto b = radix::uses_second_scratch(passes) ? scratch_pair(" 2") : a;
+  std::pair src = home;
+  const dim3 grid = grid_for(num_tiles, "radix_sort");
   for (uint32_t pass = 0; pass < passes; ++pass) {
+    const radix::PassBuffer which = radix::pass_buffer(passes, pass);
+    const auto dst = which == radix::PassBuffer::home ? home
+                     : which == radix::PassBuffer::a  ? a
+                                                      : b;
     const RadixPassParams step{n, pass * radix::kDigitBits, radix::pass_bits(key_bits, pass),
                                num_tiles};
-    launched(launch::radix_histogram(stream_, grid, k_src, hist, step), "radix_sort", "histogram");
+    launched(launch::radix_histogram(stream_, grid, src.first, hist, step), "radix_sort",
+             "histogram");
     exclusive_scan(hist, (1u << step.bits) * num_tiles, "radix_sort");
-    launched(launch::radix_scatter(stream_, grid, k_src, v_src, k_dst, v_dst, hist, step),
+    launched(launch::radix_scatter(stream_, grid, src.first, src.second, dst.first, dst.second,
+                                   hist, step),
              "radix_sort", "scatter");
-    std::swap(k_src, k_dst);
-    std::swap(v_src, v_dst);
+    src = dst;
   }
-  if (k_src != keys) {  // odd pass count: the result sits in scratch
-    copy_device(keys, k_src, size_t(n) * 4, "radix_sort");
-    if (values) copy_device(values, v_src, size_t(n) * 4, "radix_sort");
+  if (src.first != keys) {  // a single pass: the result sits in scratch
+    copy_device(keys, src.first, size_t(n) * 4, "radix_sort");
+    if (values) copy_device(values, src.second, size_t(n) * 4, "radix_sort");
   }
 }
 

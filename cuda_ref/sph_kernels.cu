@@ -33,7 +33,12 @@ __device__ inline SphStepLayout<float> with_model(const SphStepLayout<float>& la
   return c;
 }
 
-// Every thread of the block reaches the reductions (kBlock is a multiple of 32).
+// Every thread of the block reaches the reductions and the vote (kBlock is a multiple of 32).
+// The walk comes in two copies, chosen per warp: with the wall images where a lane of the warp
+// is within h of a wall, and without them elsewhere (most warps), whose loop holds no test
+// for them. Both copies' pair terms are unfused (sph::unfused_mul), so they round alike and a
+// particle's density does not depend on which copy its warp took: the ranks of a split run,
+// whose warps hold other particles, stay bit for bit the one-process run.
 template <SphPressureModel M>
 __global__ void __launch_bounds__(kBlock, kNeighborBlocks)
     density_kernel(SphStepLayout<float> layout, const V4* __restrict__ pos,
@@ -42,13 +47,22 @@ __global__ void __launch_bounds__(kBlock, kNeighborBlocks)
                    uint32_t* stats, uint32_t* neighbor_rows) {
   const SphStepLayout<float> c = with_model<M>(layout);
   const uint64_t i = c.first + particle_thread();  // the range computed: [first, end)
+  const bool live = i < c.end;
+  auto pos_at = [pos](uint32_t j) { return sph::xyz(pos[j]); };
+  const sph::V3<float> xi = live ? pos_at(uint32_t(i)) : sph::V3<float>{0.0f, 0.0f, 0.0f};
+  const sph::WallMirrors<float> mirrors =
+      live && c.walls ? sph::wall_mirrors(xi, c) : sph::WallMirrors<float>{};
+  const bool walls_near = __any_sync(0xffffffffu, mirrors.axes != 0u);
   uint32_t cand = 0, within = 0, over = 0, bad = 0, rho_bits = 0;
-  if (i < c.end) {
+  if (live) {
     const uint32_t dims[3] = {c.dims.x, c.dims.y, c.dims.z};
-    auto pos_at = [pos](uint32_t j) { return sph::xyz(pos[j]); };
-    const auto r = sph::density_at<float>(uint32_t(i), pos_at(uint32_t(i)), cells[i], dims, start,
-                                          end, c.max_candidates, c, pos_at,
-                                          sph::row_masks(neighbor_rows, uint32_t(i), c.n));
+    const auto masks = sph::row_masks(neighbor_rows, uint32_t(i), c.n);
+    const auto r =
+        walls_near
+            ? sph::density_walk<float, true, true>(uint32_t(i), xi, mirrors, cells[i], dims, start,
+                                                   end, c.max_candidates, c, pos_at, masks)
+            : sph::density_walk<float, false, true>(uint32_t(i), xi, mirrors, cells[i], dims, start,
+                                                    end, c.max_candidates, c, pos_at, masks);
     const float p = sph::pressure_of(r.density, c);
     density[i] = r.density;
     pressure[i] = p;

@@ -82,6 +82,20 @@ TEST_CASE("radix pass arithmetic") {
   CHECK(radix::pass_count(1) == 1);
   CHECK(radix::digit(0xABCD1234u, 8, 8) == 0x12u);
   CHECK(radix::digit(0xABCD1234u, 16, 4) == 0xDu);
+  // Every pass writes another buffer than it reads, and the last lands home unless there is one.
+  for (uint32_t passes = 1; passes <= 6; ++passes) {
+    CAPTURE(passes);
+    radix::PassBuffer src = radix::PassBuffer::home;
+    bool b_used = false;
+    for (uint32_t pass = 0; pass < passes; ++pass) {
+      const radix::PassBuffer dst = radix::pass_buffer(passes, pass);
+      CHECK(dst != src);
+      b_used = b_used || dst == radix::PassBuffer::b;
+      src = dst;
+    }
+    CHECK((src == radix::PassBuffer::home) == (passes > 1));
+    CHECK(b_used == radix::uses_second_scratch(passes));
+  }
 }
 
 TEST_CASE("errors name the place, the problem and the remedy") {

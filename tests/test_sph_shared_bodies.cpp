@@ -152,3 +152,48 @@ TEST_CASE("sph::density_at and sph::force_at (the CUDA bodies) equal the CPU ref
     for (uint32_t i = 0; i < c.params.n; ++i) REQUIRE(acc_d[i].w == acc[i].w);  // neighbours
   });
 }
+
+// CUDA's density kernel walks without the wall images in warps with no lane near a wall
+// (sph::density_walk<T, false, true>); for a particle far from the walls that copy must give
+// density_at's bits, and near a wall it must differ (it leaves the images out).
+TEST_CASE("sph::density_walk without wall images equals density_at far from the walls") {
+  cpu::CpuBackend r;
+  uint32_t far = 0, near = 0, lower = 0;
+  test::for_each_model_and_walls(10, 37, [&](test::SphCase& c) {
+    test::SphBuffers s = test::upload_sph_case(r, c);
+    sph_density(r, c.params, {&s.sorted_pos, s.view(), &s.density, &s.pressure, &s.stats});
+    const auto pos = r.download(s.sorted_pos);
+    const auto cells = r.download(s.grid.sorted_cells);
+    const auto start = r.download(s.grid.cell_start), end = r.download(s.grid.cell_end);
+    const SphStepParams& p = c.params;
+    const auto k = device_params<float>(p);
+    const uint32_t dims[3] = {p.grid.dims.x, p.grid.dims.y, p.grid.dims.z};
+    auto pos_at = [&](uint32_t j) { return v3<float>(pos[j]); };
+    std::vector<uint32_t> rows_at(size_t(kSphRowMaskWords) * p.n),
+        rows_walk(size_t(kSphRowMaskWords) * p.n);
+    for (uint32_t i = 0; i < p.n; ++i) {
+      CAPTURE(i);
+      const auto m = k.walls ? sph::wall_mirrors(pos_at(i), k) : sph::WallMirrors<float>{};
+      const auto at = sph::density_at<float>(i, pos_at(i), cells[i], dims, start.data(), end.data(),
+                                             p.max_candidates, k, pos_at,
+                                             sph::row_masks(rows_at.data(), i, p.n));
+      const auto walk = sph::density_walk<float, false, true>(
+          i, pos_at(i), m, cells[i], dims, start.data(), end.data(), p.max_candidates, k, pos_at,
+          sph::row_masks(rows_walk.data(), i, p.n));
+      REQUIRE(walk.neighbors == at.neighbors);
+      REQUIRE(walk.candidates == at.candidates);
+      if (m.axes == 0u) {
+        ++far;
+        REQUIRE(std::memcmp(&walk.density, &at.density, sizeof(float)) == 0);
+      } else {
+        ++near;
+        REQUIRE(walk.density <= at.density);
+        lower += walk.density < at.density ? 1u : 0u;
+      }
+    }
+    CHECK(rows_walk == rows_at);
+  });
+  CHECK(far > 0u);
+  CHECK(near > 0u);
+  CHECK(lower > near / 2);
+}

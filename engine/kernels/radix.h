@@ -20,4 +20,19 @@ MASAV_HD inline uint32_t digit(uint32_t key, uint32_t shift, uint32_t bits) {
   return (key >> shift) & ((1u << bits) - 1u);
 }
 
+// The buffer pass `pass` of `passes` writes; pass 0 reads home (the caller's keys), every later
+// pass the one before's. An even count alternates a, home, ..., a, home; an odd count of 3 or
+// more writes a, b, a, ..., b, home, so the result lands home without a copy, at the cost of a
+// second scratch pair (uses_second_scratch); a single pass writes a, and the caller copies it home.
+enum class PassBuffer { home, a, b };
+inline PassBuffer pass_buffer(uint32_t passes, uint32_t pass) {
+  if (passes % 2 == 0) return pass % 2 == 0 ? PassBuffer::a : PassBuffer::home;
+  if (passes == 1) return PassBuffer::a;
+  if (pass + 1 == passes) return PassBuffer::home;
+  return pass % 2 == 0 ? PassBuffer::a : PassBuffer::b;
+}
+inline bool uses_second_scratch(uint32_t passes) {
+  return passes % 2 == 1 && passes >= 3;
+}
+
 }  // namespace masav::radix

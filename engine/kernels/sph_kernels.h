@@ -15,6 +15,7 @@
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <type_traits>
 #if !defined(__CUDA_ARCH__)
 #include <bit>
 #endif
@@ -227,6 +228,18 @@ MASAV_HD inline uint32_t take_lowest_bit(uint64_t& bits) {
   return b;
 }
 
+// a * b. With Unfused on CUDA, the round-to-nearest product that nvcc never contracts into a
+// fused multiply-add with a following sum: a kernel that holds two copies of one walk (the
+// density with and without wall images, chosen per warp) must round them alike, or a particle's
+// density would change with the particles sharing its warp. Elsewhere the plain product.
+template <bool Unfused, class T>
+MASAV_HD inline T unfused_mul(T a, T b) {
+#if defined(__CUDA_ARCH__)
+  if constexpr (Unfused && std::is_same_v<T, float>) return __fmul_rn(a, b);
+#endif
+  return a * b;
+}
+
 // The density sum's term for r^2 < h^2, else 0: the spiky kernel's (1 - q)^3 for wcsph and
 // dfsph, whose gradient is the one their pressure force and solves use, or poly6's
 // (1 - q^2)^3 for the thesis model (Eq. 4.4). A density and a pressure gradient of the same
@@ -234,11 +247,20 @@ MASAV_HD inline uint32_t take_lowest_bit(uint64_t& bits) {
 // does work that the energy does not store (with poly6 densities and spiky gradients an
 // inviscid dam break gained 49% in 0.8 s), and dfsph's solves predict exactly the density they
 // correct.
-template <class T>
+// With Unfused, see unfused_mul.
+template <class T, bool Unfused = false>
 MASAV_HD inline T density_term(T r2, const SphStepLayout<T>& c) {
-  T u = c.model != SphPressureModel::thesis ? T(1) - sqrt(r2) * c.inv_h : T(1) - r2 * c.inv_h2;
+  T u = c.model != SphPressureModel::thesis ? T(1) - unfused_mul<Unfused>(sqrt(r2), c.inv_h)
+                                            : T(1) - unfused_mul<Unfused>(r2, c.inv_h2);
   u = u > T(0) ? u : T(0);
-  return u * u * u;
+  return unfused_mul<Unfused>(unfused_mul<Unfused>(u, u), u);
+}
+
+// |d|^2, with Unfused as unfused_mul.
+template <bool Unfused, class T>
+MASAV_HD inline T squared_length(V3<T> d) {
+  return unfused_mul<Unfused>(d.x, d.x) + unfused_mul<Unfused>(d.y, d.y) +
+         unfused_mul<Unfused>(d.z, d.z);
 }
 
 // The density term sum of j's wall images (see WallMirrors) at x_i.
@@ -267,39 +289,54 @@ struct DensityResult {
   bool overflow;
 };
 
-// Density of sorted particle i (thesis Eq. 4.4): sum over j within h of m W(r_ij), W as in
-// density_term.
-// pos_at(j) returns V3<T> of sorted particle j. With `masks`, also records which candidates of
-// each row lie within h (zero for an empty, missing or too long row).
-template <class T, class PosAt>
-MASAV_HD inline DensityResult<T> density_at(uint32_t self, V3<T> xi, uint32_t cell,
-                                            const uint32_t dims[3], const uint32_t* cell_start,
-                                            const uint32_t* cell_end, uint32_t max_candidates,
-                                            const SphStepLayout<T>& c, PosAt&& pos_at,
-                                            RowMasks<uint32_t> masks = {}) {
+// Density of sorted particle i (thesis Eq. 4.4) at xi, `mirrors` its wall_mirrors (none
+// without walls): sum over j within h of m W(r_ij), W as in density_term, plus the terms of
+// the wall images. Images = false leaves the images out and is for callers that know
+// mirrors.axes == 0 (CUDA's per-warp copy for warps far from the walls); Unfused as
+// unfused_mul. pos_at(j) returns V3<T> of sorted particle j. With `masks`, also records which
+// candidates of each row lie within h (zero for an empty, missing or too long row).
+template <class T, bool Images, bool Unfused, class PosAt>
+MASAV_HD inline DensityResult<T> density_walk(uint32_t self, V3<T> xi,
+                                              const WallMirrors<T>& mirrors, uint32_t cell,
+                                              const uint32_t dims[3], const uint32_t* cell_start,
+                                              const uint32_t* cell_end, uint32_t max_candidates,
+                                              const SphStepLayout<T>& c, PosAt&& pos_at,
+                                              RowMasks<uint32_t> masks = {}) {
   T sum = T(0);
   uint32_t neighbors = 0;
   bool overflow = false;
-  const WallMirrors<T> mirrors = c.walls ? wall_mirrors(xi, c) : WallMirrors<T>{};
   const uint32_t candidates =
       walk_rows(cell, dims, cell_start, cell_end, max_candidates, overflow,
                 [&](uint32_t row, uint32_t first, uint32_t last) {
                   uint64_t bits = 0;  // wraps around in a row too long for it, which stores 0
                   for (uint32_t j = first; j < last; ++j) {
-                    const V3<T> d = xi - pos_at(j);
-                    const T r2 = dot(d, d);
-                    sum += density_term(r2, c);
+                    const T r2 = squared_length<Unfused>(xi - pos_at(j));
+                    sum += density_term<T, Unfused>(r2, c);
                     const bool within = r2 < c.h2;
-                    if (within && mirrors.axes && j != self)
-                      sum += wall_image_density(xi, pos_at(j), mirrors, c);
+                    if constexpr (Images) {
+                      if (within && mirrors.axes && j != self)
+                        sum += wall_image_density(xi, pos_at(j), mirrors, c);
+                    }
                     neighbors += within ? 1u : 0u;
                     bits |= uint64_t(within) << ((j - first) & (kSphRowMaskBits - 1));
                   }
                   if (masks.words)
                     store_row_mask(masks, row, row_fits_mask(first, last) ? bits : 0);
                 });
-  const T own = mirrors.axes ? own_image_density(xi, mirrors, c) : T(0);
+  const T own = Images && mirrors.axes ? own_image_density(xi, mirrors, c) : T(0);
   return {c.density * sum + own, neighbors, candidates, overflow};
+}
+
+// density_walk with its wall images, the mirrors computed here.
+template <class T, class PosAt>
+MASAV_HD inline DensityResult<T> density_at(uint32_t self, V3<T> xi, uint32_t cell,
+                                            const uint32_t dims[3], const uint32_t* cell_start,
+                                            const uint32_t* cell_end, uint32_t max_candidates,
+                                            const SphStepLayout<T>& c, PosAt&& pos_at,
+                                            RowMasks<uint32_t> masks = {}) {
+  const WallMirrors<T> mirrors = c.walls ? wall_mirrors(xi, c) : WallMirrors<T>{};
+  return density_walk<T, true, false>(self, xi, mirrors, cell, dims, cell_start, cell_end,
+                                      max_candidates, c, pos_at, masks);
 }
 
 // What the force walk reads of a neighbour: position, velocity, density and p / rho^2 (the
