@@ -373,10 +373,11 @@ int run_sph(const SphOptions& given) {
       double(sim.substeps() - substeps0) * sim.particle_count() / wall * 1e-6);
   if (const SphSolveStats& ss = sim.solve_stats(); ss.steps > 0)
     fmt::print(
-        "dfsph: {:.2f} density and {:.2f} divergence iterations per step, last mean residuals "
-        "{:.3g}% and {:.3g}%, {} solves stopped at the iteration limit\n",
+        "dfsph: {:.2f} density and {:.2f} divergence iterations per step ({:.2f} residual reads), "
+        "last mean residuals {:.3g}% and {:.3g}%, {} solves stopped at the iteration limit\n",
         double(ss.density_iterations) / double(ss.steps),
-        double(ss.divergence_iterations) / double(ss.steps), 100 * ss.last_density_error,
+        double(ss.divergence_iterations) / double(ss.steps),
+        double(sim.dfsph_residual_reads()) / double(ss.steps), 100 * ss.last_density_error,
         100 * ss.last_divergence_error, ss.unconverged);
   if (interrupted() && rc == 0) {
     fmt::print(stderr, "masav: interrupted after step {}; every row and file written is complete\n",

@@ -83,8 +83,8 @@ void VulkanBackend::run_kernel(const Params& p, uint64_t items, Buffers&... buff
       texels = {rgba32, r32u, r32u, r32u, none, none, r32u};
     if constexpr (K == KernelId::dfsph_rate)  // + velocities, density, factor; kappa, sums
       texels = {rgba32, rgba32, r32f, r32f, r32u, r32u, r32u, none, none, none, r32u};
-    if constexpr (K == KernelId::dfsph_correct)  // positions, kappa, cells, ranges; v, stats
-      texels = {rgba32, r32f, r32u, r32u, r32u, none, none, r32u};
+    if constexpr (K == KernelId::dfsph_correct)  // positions, kappa, cells, ranges; v, stats;
+      texels = {rgba32, r32f, r32u, r32u, r32u, none, none, r32u, r32u};  // residual, rows
     dispatch_kernel(K, impls, &layout, sizeof(layout), items, written, constants, texels, extra);
   }
 }

@@ -40,17 +40,18 @@ void CudaBackend::run_own(const KernelArgs<KernelId::dfsph_rate>& a) {
 }
 
 void CudaBackend::run_own(const KernelArgs<KernelId::dfsph_correct>& a) {
-  auto& [p, items_, positions, kappa, cells, cell_start, cell_end, velocities, stats,
+  auto& [p, items_, positions, kappa, cells, cell_start, cell_end, velocities, stats, residual,
          neighbor_rows] = a;
   const char* k = "dfsph_correct";
   const uint32_t* rows = neighbor_rows ? device_ptr<uint32_t>(*neighbor_rows, k) : nullptr;
-  launched(
-      launch::dfsph_correct(stream_, grid_for_items(sph_range_count(p.step), k),
-                            device_params<float>(p, neighbor_rows), device_ptr<V4>(positions, k),
-                            device_ptr<float>(kappa, k), device_ptr<uint32_t>(cells, k),
-                            device_ptr<uint32_t>(cell_start, k), device_ptr<uint32_t>(cell_end, k),
-                            device_ptr<V4>(velocities, k), device_ptr<uint32_t>(stats, k), rows),
-      k);
+  const uint32_t* words = residual ? device_ptr<uint32_t>(*residual, k) : nullptr;
+  launched(launch::dfsph_correct(
+               stream_, grid_for_items(sph_range_count(p.step), k),
+               device_params<float>(p, neighbor_rows), device_ptr<V4>(positions, k),
+               device_ptr<float>(kappa, k), device_ptr<uint32_t>(cells, k),
+               device_ptr<uint32_t>(cell_start, k), device_ptr<uint32_t>(cell_end, k),
+               device_ptr<V4>(velocities, k), device_ptr<uint32_t>(stats, k), words, rows),
+           k);
 }
 
 }  // namespace masav::cuda

@@ -60,6 +60,8 @@ __global__ void rate_kernel(DfsphLayout<float> c, const V4* __restrict__ pos,
                             const uint32_t* __restrict__ start, const uint32_t* __restrict__ end,
                             float* kappa, float* kappa_sum, uint32_t* residual,
                             const uint32_t* __restrict__ neighbor_rows) {
+  if (sph::dfsph_stopped(c, residual))
+    return;  // every thread alike: the iteration before converged
   const uint64_t i = c.begin + particle_thread();  // the range computed: [begin, end)
   uint32_t units = 0;
   if (i < c.end) {
@@ -85,9 +87,10 @@ __global__ void rate_kernel(DfsphLayout<float> c, const V4* __restrict__ pos,
 __global__ void correct_kernel(DfsphLayout<float> c, const V4* __restrict__ pos,
                                const float* __restrict__ kappa, const uint32_t* __restrict__ cells,
                                const uint32_t* __restrict__ start, const uint32_t* __restrict__ end,
-                               V4* vel, uint32_t* stats,
+                               V4* vel, uint32_t* stats, const uint32_t* __restrict__ residual,
                                const uint32_t* __restrict__ neighbor_rows) {
-  const uint64_t i = c.begin + particle_thread();  // the range computed: [begin, end)
+  if (residual && sph::dfsph_stopped(c, residual)) return;  // as rate_kernel
+  const uint64_t i = c.begin + particle_thread();           // the range computed: [begin, end)
   uint32_t bad = 0, s2 = 0;
   if (i < c.end) {
     const V4 pw = pos[i];
@@ -136,9 +139,9 @@ cudaError_t dfsph_rate(cudaStream_t s, dim3 grid, const DfsphLayout<float>& c, c
 
 cudaError_t dfsph_correct(cudaStream_t s, dim3 grid, const DfsphLayout<float>& c, const V4* pos,
                           const float* kappa, const uint32_t* cells, const uint32_t* start,
-                          const uint32_t* end, V4* vel, uint32_t* stats,
+                          const uint32_t* end, V4* vel, uint32_t* stats, const uint32_t* residual,
                           const uint32_t* neighbor_rows) {
-  correct_kernel<<<grid, kBlock, 0, s>>>(c, pos, kappa, cells, start, end, vel, stats,
+  correct_kernel<<<grid, kBlock, 0, s>>>(c, pos, kappa, cells, start, end, vel, stats, residual,
                                          neighbor_rows);
   return cudaGetLastError();
 }

@@ -1,6 +1,7 @@
 #pragma once
 // The .cu side of the CUDA DFSPH kernels: launchers around dfsph_kernels.cu, returning the
-// launch status; the host code (cuda_dfsph.cpp) checks it. neighbor_rows may be null.
+// launch status; the host code (cuda_dfsph.cpp) checks it. neighbor_rows may be null, and so
+// may dfsph_correct's residual where the layout's stop_slot is kDfsphNoStop.
 #include <cuda_runtime_api.h>
 
 #include <cstdint>
@@ -24,6 +25,6 @@ cudaError_t dfsph_rate(cudaStream_t s, dim3 grid, const DfsphLayout<float>& c,
 cudaError_t dfsph_correct(cudaStream_t s, dim3 grid, const DfsphLayout<float>& c,
                           const hd::V4<float>* pos, const float* kappa, const uint32_t* cells,
                           const uint32_t* start, const uint32_t* end, hd::V4<float>* vel,
-                          uint32_t* stats, const uint32_t* neighbor_rows);
+                          uint32_t* stats, const uint32_t* residual, const uint32_t* neighbor_rows);
 
 }  // namespace masav::cuda::launch

@@ -21,7 +21,9 @@ layout(binding = 5) uniform usamplerBuffer cell_end_texels;  // r32ui
 uint cell_end_at(uint i) { return texelFetch(cell_end_texels, int(i)).r; }
 layout(std430, binding = 6) buffer Velocities { vec4 velocities[]; };
 layout(std430, binding = 7) buffer Stats { uint stats[]; };
-layout(binding = 8) uniform usamplerBuffer neighbor_rows_texels;  // r32ui
+layout(binding = 8) uniform usamplerBuffer residual_texels;  // r32ui; read if p.stop_slot is set
+uint residual_at(uint i) { return texelFetch(residual_texels, int(i)).r; }
+layout(binding = 9) uniform usamplerBuffer neighbor_rows_texels;  // r32ui
 uint neighbor_row_at(uint i) { return texelFetch(neighbor_rows_texels, int(i)).r; }
 
 #include "sph.glsl"
@@ -62,6 +64,10 @@ void dfsph_visit(uint j, bool images) {
 }
 
 void main() {
+  // The iteration before converged: this one, queued behind it, does nothing.
+  if (p.stop_slot != kDfsphNoStop &&
+      dfsph_stopped_at(uvec2(residual_at(2u * p.stop_slot), residual_at(2u * p.stop_slot + 1u)), p))
+    return;
   // The range computed, [begin, end) of the n; the others are only read as neighbours.
   const uint i = p.begin + flat_invocation_id();
   vec4 pw = vec4(0.0);

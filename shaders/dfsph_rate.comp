@@ -70,6 +70,10 @@ void dfsph_visit(uint j, bool images) {
 }
 
 void main() {
+  // The iteration before converged: this one, queued behind it, does nothing.
+  if (p.stop_slot != kDfsphNoStop &&
+      dfsph_stopped_at(uvec2(residual[2u * p.stop_slot], residual[2u * p.stop_slot + 1u]), p))
+    return;
   // The range computed, [begin, end) of the n (a rank's own particles); the others are only
   // read as neighbours.
   const uint i = p.begin + flat_invocation_id();

@@ -12,11 +12,13 @@
 #include <cmath>
 #include <vector>
 
+#include "engine/core/error.h"
 #include "engine/kernels/dfsph_params.h"
 #include "engine/sph/dfsph_case_buffers.h"
 #include "engine/sph/sph_kernel_calls.h"
 #include "engine/sph/sph_particles.h"
 #include "tests/backend_fixture.h"
+#include "tests/same_bits.h"
 #include "tests/sph_fixture.h"
 
 using namespace masav;
@@ -220,4 +222,76 @@ TEST_CASE("dfsph_correct conserves momentum; iterating the solve shrinks the res
   const auto words = b.download(e.s.stats);
   CHECK(words[kSphStatNonFinite] == 0);
   CHECK(words[kSphStatOverflow] == 0);
+}
+
+TEST_CASE("dfsph_rate and dfsph_correct do nothing once the iteration before converged") {
+  Backend& b = test::backend();
+  test::SphCase packed = dfsph_case(8, 11, true);
+  for (auto& x : packed.positions)
+    x = {0.05f + (x.x - 0.05f) * 0.98f, 0.05f + (x.y - 0.05f) * 0.98f,
+         0.05f + (x.z - 0.05f) * 0.98f, x.w};
+  // Residual slot 3 holds 2^32 + 1000 units; each call tests it against stop_units.
+  auto run = [&](uint32_t stop_slot, uint64_t stop_units) {
+    DfsphBuffers e = upload(b, packed);
+    std::vector<uint32_t> words(kDfsphResidualWords, 0u);
+    words[6] = 1000u;
+    words[7] = 1u;
+    b.upload(e.k.residual, words);
+    DfsphParams p{packed.params, DfsphSolve::density, 2e-3, 5, false};
+    p.stop_slot = stop_slot;
+    p.stop_units = stop_units;
+    dfsph_rate(b, p, e.io());
+    dfsph_correct(b, p, e.io());
+    struct Out {
+      std::vector<double> kappa, kappa_sum;
+      std::vector<Vec4d> vel;
+      std::vector<uint32_t> residual;
+    };
+    return Out{b.download(e.k.kappa), b.download(e.k.kappa_sum), b.download(e.s.sorted_vel),
+               b.download(e.k.residual)};
+  };
+  const auto untouched = [&] {
+    DfsphBuffers e = upload(b, packed);
+    return std::pair{b.download(e.s.sorted_vel), b.download(e.k.kappa_sum)};
+  }();
+  const auto ran = run(kDfsphNoStop, 0);
+  REQUIRE(!test::same_bits(ran.vel, untouched.first));  // the iteration changes the velocities
+  REQUIRE(ran.residual[10] + ran.residual[11] > 0u);
+  const uint64_t at = (uint64_t(1) << 32) + 1000u;
+  // At or above the slot's sum: the iteration before converged, nothing runs.
+  for (const uint64_t units : {at, at + 1, uint64_t(2) << 32}) {
+    CAPTURE(units);
+    const auto o = run(3, units);
+    CHECK(test::same_bits(o.vel, untouched.first));
+    CHECK(test::same_bits(o.kappa_sum, untouched.second));
+    CHECK(o.residual[10] == 0u);
+    CHECK(o.residual[11] == 0u);
+  }
+  // Below it (in the low word, or in the high word with a larger low word): both run, with the
+  // bits of a call that never stops.
+  for (const uint64_t units : {at - 1, uint64_t(0xffffffffu), uint64_t(0)}) {
+    CAPTURE(units);
+    const auto o = run(3, units);
+    CHECK(test::same_bits(o.vel, ran.vel));
+    CHECK(test::same_bits(o.kappa, ran.kappa));
+    CHECK(test::same_bits(o.kappa_sum, ran.kappa_sum));
+    CHECK(o.residual == ran.residual);
+  }
+}
+
+TEST_CASE("the DFSPH kernels refuse a stop slot they cannot read") {
+  Backend& b = test::backend();
+  test::SphCase c = dfsph_case(6, 13, true);
+  DfsphBuffers e = upload(b, c);
+  DfsphParams p{c.params, DfsphSolve::density, 2e-3, 4, false};
+  p.stop_slot = 4;  // the slot the rate adds to
+  CHECK_THROWS_WITH_AS(dfsph_rate(b, p, e.io()), doctest::Contains("stop_slot"), Error);
+  p.stop_slot = kDfsphMaxSlots;
+  CHECK_THROWS_WITH_AS(dfsph_rate(b, p, e.io()), doctest::Contains("stop_slot"), Error);
+  CHECK_THROWS_WITH_AS(dfsph_correct(b, p, e.io()), doctest::Contains("stop_slot"), Error);
+  p.stop_slot = 3;
+  DfsphIO io = e.io();
+  io.residual = nullptr;
+  CHECK_THROWS_WITH_AS(dfsph_correct(b, p, io), doctest::Contains("residual"), Error);
+  CHECK_THROWS_WITH_AS(dfsph_factor(b, p, e.io()), doctest::Contains("stop_slot"), Error);
 }

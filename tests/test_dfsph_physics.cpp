@@ -11,6 +11,7 @@
 #include "engine/sph/sph_presets.h"
 #include "engine/sph/sph_simulation.h"
 #include "tests/backend_fixture.h"
+#include "tests/same_bits.h"
 
 using namespace masav;
 
@@ -90,4 +91,38 @@ TEST_CASE("[sph-physics] every preset with dfsph never gains energy") {
                       << sim.steps() << " steps to t = " << sim.time() << " s");
     CHECK(worst <= 0.005);
   }
+}
+
+TEST_CASE("dfsph queues iterations between residual reads, with the bits of one read each") {
+  // The dam break's first steps, once with several iterations per residual read (the default)
+  // and once with one: the same positions, velocities and iteration counts, in fewer reads.
+  Backend& b = test::backend();
+  SphScene scene = dfsph_preset("dam-break", 1024);
+  SphSimulation queued(b, scene), one(b, scene);
+  one.set_dfsph_queued_iterations(false);
+  for (int s = 0; s < 12; ++s) {
+    queued.step();
+    one.step();
+  }
+  const SphState a = queued.download(), c = one.download();
+  CHECK(test::same_bits(a.positions, c.positions));
+  CHECK(test::same_bits(a.velocities, c.velocities));
+  CHECK(queued.solve_stats().density_iterations == one.solve_stats().density_iterations);
+  CHECK(queued.solve_stats().divergence_iterations == one.solve_stats().divergence_iterations);
+  MESSAGE("residual reads in 12 steps: " << queued.dfsph_residual_reads() << " queued, "
+                                         << one.dfsph_residual_reads() << " one per iteration");
+  CHECK(queued.dfsph_residual_reads() < one.dfsph_residual_reads());
+}
+
+TEST_CASE("dfsph_stop_units is the mean residual test as one integer comparison") {
+  for (const uint32_t movers : {1u, 3u, 1000u, 1048576u})
+    for (const double target : {1e-4, 1e-3, 3e-3, 0.1, 1.0}) {
+      CAPTURE(movers);
+      CAPTURE(target);
+      const uint64_t u = dfsph_stop_units(target, movers);
+      auto mean = [&](uint64_t x) { return double(x) / double(kDfsphResidualScale) / movers; };
+      CHECK(mean(u) <= target);
+      CHECK(mean(u + 1) > target);
+    }
+  CHECK(dfsph_stop_units(-1.0, 10) == 0u);
 }

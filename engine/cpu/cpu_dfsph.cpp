@@ -139,6 +139,7 @@ void CpuBackend::run_own(const KernelArgs<KernelId::dfsph_rate>& a) {
          kappa_sum, residual, neighbor_rows] = a;
   const char* k = "dfsph_rate";
   const auto c = device_params<double>(p);
+  if (sph::dfsph_stopped(c, own(residual.impl(), k).as<uint32_t>())) return;
   SphListInputs in = sph_list_inputs(p.step, cells, cell_start, cell_end, c.h2, k);
   const double* pos = own(positions.impl(), k).as<double>();
   in.positions = pos;
@@ -180,10 +181,11 @@ void CpuBackend::run_own(const KernelArgs<KernelId::dfsph_rate>& a) {
 }
 
 void CpuBackend::run_own(const KernelArgs<KernelId::dfsph_correct>& a) {
-  auto& [p, items_, positions, kappa, cells, cell_start, cell_end, velocities, stats,
+  auto& [p, items_, positions, kappa, cells, cell_start, cell_end, velocities, stats, residual,
          neighbor_rows] = a;
   const char* k = "dfsph_correct";
   const auto c = device_params<double>(p);
+  if (residual && sph::dfsph_stopped(c, own(residual->impl(), k).as<uint32_t>())) return;
   SphListInputs in = sph_list_inputs(p.step, cells, cell_start, cell_end, c.h2, k);
   const double* pos = own(positions.impl(), k).as<double>();
   in.positions = pos;

@@ -64,6 +64,15 @@ MASAV_HD inline uint32_t dfsph_residual_units(T r) {
   return uint32_t(r * T(kDfsphResidualScale));
 }
 
+// Whether a dfsph_rate or dfsph_correct call does nothing (DfsphLayout::stop_slot): the
+// iteration before it converged. residual: the kDfsphResidualWords words.
+template <class T>
+MASAV_HD inline bool dfsph_stopped(const DfsphLayout<T>& c, const uint32_t* residual) {
+  if (c.stop_slot == kDfsphNoStop) return false;
+  const uint32_t lo = residual[2 * c.stop_slot], hi = residual[2 * c.stop_slot + 1];
+  return hi < c.stop_hi || (hi == c.stop_hi && lo <= c.stop_lo);
+}
+
 // Each body takes walk(visit), which calls visit(j) for every candidate neighbour j of the
 // particle (itself included; the visitor tests the distance), and pos_at(j) etc. that read
 // sorted particle j: the GPU walks the 27 cells (sph::walk_candidates), the CPU reference its

@@ -23,6 +23,8 @@ MASAV_ENUM_END(DfsphSolve)
 MASAV_CONSTANT(kDfsphMaxSlots, 256)
 MASAV_CONSTANT(kDfsphResidualWords, 512)
 MASAV_CONSTANT(kDfsphResidualScale, 16777216)
+// DfsphLayout::stop_slot when a call runs whatever the residuals hold.
+MASAV_CONSTANT(kDfsphNoStop, 0xffffffff)
 
 // What the DFSPH kernels read: the grid they walk, the spiky gradient's constant, the solve.
 MASAV_REAL_LAYOUT(DfsphLayout) {
@@ -48,6 +50,12 @@ MASAV_REAL_LAYOUT(DfsphLayout) {
   // read, as neighbours). From DfsphParams::step's first and count.
   uint begin;
   uint end;
+  // dfsph_rate and dfsph_correct do nothing when residual slot stop_slot (not kDfsphNoStop)
+  // holds at most stop_units (64 bits: stop_lo, stop_hi), i.e. when the iteration before
+  // converged: the host queues several iterations before it reads a residual.
+  uint stop_slot;
+  uint stop_lo;
+  uint stop_hi;
 };
 
 MASAV_NAMESPACE_END
@@ -58,11 +66,13 @@ MASAV_NAMESPACE_END
 
 namespace masav {
 
-MASAV_LAYOUT_CHECK(DfsphLayout<float>, 112, (dims, 0), (n, 12), (max_candidates, 16), (walls, 20),
+MASAV_LAYOUT_CHECK(DfsphLayout<float>, 128, (dims, 0), (n, 12), (max_candidates, 16), (walls, 20),
                    (solve, 24), (slot, 28), (first, 32), (min_neighbors, 36), (neighbor_rows, 40),
                    (h2, 44), (inv_h, 48), (grad, 52), (rest_density, 56), (inv_rest_density, 60),
                    (dt, 64), (warm_scale, 68), (lo, 72), (hi, 84))
-MASAV_LAYOUT_CHECK(DfsphLayout<float>, 112, (begin, 96), (end, 100))
+MASAV_LAYOUT_CHECK(DfsphLayout<float>, 128, (begin, 96), (end, 100), (stop_slot, 104),
+                   (stop_lo, 108))
+MASAV_LAYOUT_CHECK(DfsphLayout<float>, 128, (stop_hi, 112))
 
 // One call of a DFSPH kernel. `step` gives the grid, particles, mass, h, rest density and box
 // (its model must be dfsph); the rest describes the solve.
@@ -74,6 +84,10 @@ struct DfsphParams {
   bool first = false;          // dfsph_rate: a solve's first iteration
   double warm_scale = 0.5;     // of kappa_sum, on the first iteration
   uint32_t min_neighbors = 0;  // divergence solve: fewer neighbours, no residual
+  // dfsph_rate and dfsph_correct: do nothing if residual slot stop_slot (< kDfsphMaxSlots, before
+  // `slot`) sums to at most stop_units; kDfsphNoStop: always run.
+  uint32_t stop_slot = kDfsphNoStop;
+  uint64_t stop_units = 0;
 };
 
 // The buffers of the DFSPH kernels: the sorted particles and grid of the last sph_density,
@@ -107,6 +121,9 @@ DfsphLayout<F> device_params(const DfsphParams& p, const Buffers&... buffers) {
   c.slot = p.slot;
   c.first = p.first ? 1u : 0u;
   c.min_neighbors = p.min_neighbors;
+  c.stop_slot = p.stop_slot;
+  c.stop_lo = uint32_t(p.stop_units);
+  c.stop_hi = uint32_t(p.stop_units >> 32);
   c.neighbor_rows = passes_neighbor_rows(buffers...) ? 1u : 0u;
   c.h2 = F(h * h);
   c.inv_h = F(1.0 / h);
@@ -140,7 +157,7 @@ void validate(const DeviceApi& dev, const DfsphParams& p, const Buffer<Real4>& p
               const Buffer<Real>& kappa, const Buffer<uint32_t>& cells,
               const Buffer<uint32_t>& cell_start, const Buffer<uint32_t>& cell_end,
               const Buffer<Real4>& velocities, const Buffer<uint32_t>& stats,
-              const Buffer<uint32_t>* neighbor_rows);
+              const Buffer<uint32_t>* residual, const Buffer<uint32_t>* neighbor_rows);
 
 }  // namespace masav
 #endif

@@ -1,6 +1,7 @@
 #include <fmt/format.h>
 
 #include <cmath>
+#include <string_view>
 
 #include "engine/core/device_api.h"
 #include "engine/core/error.h"
@@ -118,6 +119,20 @@ void check_dfsph(const DeviceApi& dev, const DfsphParams& p, const Buffer<Real4>
   check_neighbor_rows(neighbor_rows, p.step, kernel);
 }
 
+// A call that stops on a residual slot (DfsphParams::stop_slot) reads it from `residual`; for
+// dfsph_rate it must be another than the slot the call adds to.
+void check_stop(const DfsphParams& p, const Buffer<uint32_t>* residual, const char* kernel) {
+  if (p.stop_slot == kDfsphNoStop) return;
+  if (p.stop_slot >= kDfsphMaxSlots)
+    throw_invalid(kernel, "stop_slot", std::to_string(p.stop_slot),
+                  fmt::format("below {}, or kDfsphNoStop", kDfsphMaxSlots));
+  if (!residual)
+    throw_invalid(kernel, "residual", "none", "the residual words when stop_slot is set");
+  if (std::string_view(kernel) == "dfsph_rate" && p.stop_slot == p.slot)
+    throw_invalid(kernel, "stop_slot", std::to_string(p.stop_slot),
+                  fmt::format("another than slot {} (the one this call adds to)", p.slot));
+}
+
 }  // namespace
 
 void validate(const DeviceApi& dev, const DfsphParams& p, const Buffer<Real4>& positions,
@@ -126,6 +141,8 @@ void validate(const DeviceApi& dev, const DfsphParams& p, const Buffer<Real4>& p
               const Buffer<uint32_t>& stats, const Buffer<uint32_t>* neighbor_rows) {
   const char* k = "dfsph_factor";
   check_dfsph(dev, p, positions, cells, cell_start, cell_end, neighbor_rows, k);
+  if (p.stop_slot != kDfsphNoStop)
+    throw_invalid(k, "stop_slot", std::to_string(p.stop_slot), "kDfsphNoStop (it never stops)");
   need(dev, &factor, p.step.n, k, "factor");
   need(dev, &stats, kSphStatWords, k, "stats");
 }
@@ -144,18 +161,21 @@ void validate(const DeviceApi& dev, const DfsphParams& p, const Buffer<Real4>& p
   need(dev, &kappa, p.step.n, k, "kappa");
   need(dev, &kappa_sum, p.step.n, k, "kappa_sum");
   need(dev, &residual, kDfsphResidualWords, k, "residual");
+  check_stop(p, &residual, k);
 }
 
 void validate(const DeviceApi& dev, const DfsphParams& p, const Buffer<Real4>& positions,
               const Buffer<Real>& kappa, const Buffer<uint32_t>& cells,
               const Buffer<uint32_t>& cell_start, const Buffer<uint32_t>& cell_end,
               const Buffer<Real4>& velocities, const Buffer<uint32_t>& stats,
-              const Buffer<uint32_t>* neighbor_rows) {
+              const Buffer<uint32_t>* residual, const Buffer<uint32_t>* neighbor_rows) {
   const char* k = "dfsph_correct";
   check_dfsph(dev, p, positions, cells, cell_start, cell_end, neighbor_rows, k);
   need(dev, &kappa, p.step.n, k, "kappa");
   need(dev, &velocities, p.step.n, k, "velocities");
   need(dev, &stats, kSphStatWords, k, "stats");
+  if (residual) need(dev, residual, kDfsphResidualWords, k, "residual");
+  check_stop(p, residual, k);
 }
 
 void validate(const DeviceApi& dev, const SphStepParams& p, const Buffer<Real4>& positions,

@@ -66,7 +66,7 @@ void dfsph_correct(Backend& b, const DfsphParams& p, const DfsphIO& io) {
       p, given(b, io.positions, k, "positions"), given(b, io.kappa, k, "kappa"),
       given(b, io.grid.cells, k, "cells"), given(b, io.grid.cell_start, k, "cell_start"),
       given(b, io.grid.cell_end, k, "cell_end"), given(b, io.velocities, k, "velocities"),
-      given(b, io.stats, k, "stats"), io.neighbor_rows);
+      given(b, io.stats, k, "stats"), io.residual, io.neighbor_rows);
 }
 
 }  // namespace masav

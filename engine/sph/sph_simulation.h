@@ -108,6 +108,11 @@ struct SphSolveStats {
 };
 const char* to_string(SphStage s);
 
+// The largest residual sum of a DFSPH solve (kDfsphResidualScale units over `movers` particles)
+// whose mean is at most `target`: the convergence test as the integer comparison the kernels
+// make (DfsphParams::stop_units).
+uint64_t dfsph_stop_units(double target, uint32_t movers);
+
 // Everything the simulation's next steps depend on besides its scene, for a checkpoint
 // (sph_checkpoint.h): the committed device arrays in the order of the last grid rebuild (the
 // next step's neighbour sums run in that order), the host's step control and the watchdog's
@@ -181,6 +186,10 @@ class SphSimulation {
   SphStepParams step_params() const { return step_params_; }
   const SphStepStats& last_stats() const { return stats_; }
   const SphSolveStats& solve_stats() const { return solve_stats_; }  // dfsph only
+  // dfsph: the residual reads (host waits) of the solves so far, and whether a solve queues
+  // several iterations per read (on by default; off: one per iteration, the same bits).
+  uint64_t dfsph_residual_reads() const { return dfsph_residual_reads_; }
+  void set_dfsph_queued_iterations(bool on) { dfsph_queue_ = on; }
   Backend& backend() { return backend_; }
 
   // Current state, in particle-id order, with density and pressure at these positions (on
@@ -380,6 +389,11 @@ class SphSimulation {
   Buffer<uint32_t> residual_;
   bool kappa_warm_ = false;  // the kappa sums hold a previous step's (in pos_'s order)
   uint32_t min_neighbors_ = 0;
+  // Iterations each solve (divergence, density) took last: how many the next queues before it
+  // reads a residual.
+  uint32_t last_iterations_[2] = {0, 0};
+  bool dfsph_queue_ = true;
+  uint64_t dfsph_residual_reads_ = 0;
   SphSolveStats solve_stats_;
   // The states at the start of run()'s pending block and of the one after it; empty where they
   // do not fit (the second: where it does not, or on several ranks).

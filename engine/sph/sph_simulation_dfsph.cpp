@@ -8,9 +8,11 @@
 //   3. x1 = x + dt v* with the box walls (sph_integrate: drift), the grid rebuilt at x1;
 //   4. density and factor at x1, then the divergence solve: v1 corrected until drho/dt ~ 0.
 // Each solve starts from half of the previous step's kappa sum (the warm start) and runs at
-// least 2 (density) or 1 (divergence) iterations; after each from then on the host reads the
-// iteration's residual (one wait per iteration: the loop's length depends on it), queued right
-// behind the iteration's rate so that its correction runs while the host waits for it. The step
+// least 2 (density) or 1 (divergence) iterations, until its mean residual is within its error
+// bound. The host queues as many iterations as the solve took the step before, then reads their
+// residuals in one wait (queued behind the last rate, so that its correction runs meanwhile);
+// an iteration queued after one that converged does nothing (the kernels test the residual
+// slot before it on the device), so the result is the bits of one read per iteration. The step
 // ends, like leapfrog's, with the fields at the new positions, so the next step starts there.
 //
 // On several ranks (sph_ranks.h) each kernel computes the rank's own particles, and what a
@@ -49,6 +51,21 @@ void SphSimulation::allocate_dfsph() {
       for (int k = -r; k <= r; ++k)
         if (double(i * i + j * j + k * k) < reach * reach) ++lattice;
   min_neighbors_ = uint32_t(std::ceil(0.75 * lattice));
+}
+
+// The largest residual sum (kDfsphResidualScale units over `movers` particles) whose mean,
+// units / scale / movers computed in double, is at most `target`: the test the host made on
+// the mean, as one integer comparison the kernels can make too.
+uint64_t dfsph_stop_units(double target, uint32_t movers) {
+  const double scale = double(kDfsphResidualScale), count = double(std::max(movers, 1u));
+  auto within = [&](uint64_t u) { return double(u) / scale / count <= target; };
+  if (!within(0)) return 0;  // a negative target: nothing converges (the units are >= 0)
+  const double guess = std::floor(target * scale * count);
+  const double cap = double(UINT64_MAX >> 1);
+  uint64_t u = guess >= cap ? uint64_t(cap) : uint64_t(std::max(guess, 0.0));
+  while (u > 0 && !within(u)) --u;
+  while (u < (UINT64_MAX >> 1) && within(u + 1)) ++u;
+  return u;
 }
 
 DfsphParams SphSimulation::dfsph_params(DfsphSolve solve, double dt) const {
@@ -104,37 +121,64 @@ void SphSimulation::dfsph_solve(DfsphSolve solve, double dt, const Buffer<Real4>
   // the own particles only; a warm start changed the own ones.
   if (ranks_ && (density || kappa_warm_)) ranks_->exchange_halos(v);
   io.kappa = &kappa_;
+  const uint64_t stop_units = dfsph_stop_units(target, movers);
+  uint32_t& expected = last_iterations_[density ? 1 : 0];
   uint32_t done = 0;
   double error = 0;
   bool converged = false;
   while (done < max_iterations && !converged) {
-    p.slot = done;
-    p.first = done == 0;
-    dfsph_rate(backend_, p, io);
-    // This iteration's residual slot, read behind the rate: the correction runs meanwhile (and
-    // on several ranks the kappa exchange's wait covers it).
-    const uint64_t residual_read = done + 1 >= min_iterations
-                                       ? backend_.read_async(residual_.impl(), 2 * sizeof(uint32_t),
-                                                             2 * size_t(p.slot) * sizeof(uint32_t))
-                                       : 0;
+    // Iterations queued before the host reads a residual: as many as the last solve took (its
+    // warm start makes the next one much alike), each from the second on doing nothing if the
+    // one before converged (stop_slot), so the result is the one of a read per iteration. On
+    // several ranks the residual is summed over them on the host: one iteration per read.
+    const uint32_t batch =
+        ranks_ || !dfsph_queue_
+            ? 1u
+            : std::clamp(expected > done ? expected - done : 1u, 1u, max_iterations - done);
+    const uint32_t first_read = std::max(done, min_iterations - 1);
+    uint64_t residual_read = 0;
     try {
-      if (ranks_) ranks_->exchange_halos(kappa_);
-      p.first = false;
-      dfsph_correct(backend_, p, io);
+      for (uint32_t b = 0; b < batch; ++b) {
+        const uint32_t it = done + b;
+        p.slot = it;
+        p.first = it == 0;
+        p.stop_slot = b > 0 && it >= min_iterations ? it - 1 : kDfsphNoStop;
+        p.stop_units = stop_units;
+        dfsph_rate(backend_, p, io);
+        // The batch's residual slots, read behind its last rate: the correction runs meanwhile
+        // (and on several ranks the kappa exchange's wait covers it).
+        if (b + 1 == batch && it >= first_read)
+          residual_read =
+              backend_.read_async(residual_.impl(), 2 * sizeof(uint32_t) * (it + 1 - first_read),
+                                  2 * size_t(first_read) * sizeof(uint32_t));
+        if (ranks_) ranks_->exchange_halos(kappa_);
+        p.first = false;
+        dfsph_correct(backend_, p, io);
+      }
     } catch (...) {
       backend_.discard_read(residual_read);
       throw;
     }
-    ++done;
+    const uint32_t end = done + batch;
+    done = end;
     if (residual_read) {
       const std::vector<uint32_t> words = backend_.take_u32s(residual_read);
-      uint64_t units = uint64_t(words[1]) << 32 | words[0];
-      if (ranks_) units = ranks_->sum(units);
-      error = double(units) / double(kDfsphResidualScale) / double(std::max(movers, 1u));
-      converged = error <= target;
+      ++dfsph_residual_reads_;
+      for (uint32_t it = first_read; it < end; ++it) {
+        const size_t w = 2 * size_t(it - first_read);
+        uint64_t units = uint64_t(words[w + 1]) << 32 | words[w];
+        if (ranks_) units = ranks_->sum(units);
+        error = double(units) / double(kDfsphResidualScale) / double(std::max(movers, 1u));
+        if (units <= stop_units) {  // the later iterations of the batch did nothing
+          converged = true;
+          done = it + 1;
+          break;
+        }
+      }
     }
     if (ranks_ && !converged && done < max_iterations) ranks_->exchange_halos(v);
   }
+  expected = done;
   // The divergence solve's velocities are the step's: the next step's viscosity reads the
   // halos' (the density solve's move with the particles at the rebuild instead).
   if (ranks_ && !density) ranks_->exchange_halos(v);

@@ -35,6 +35,12 @@ bool dfsph_image(vec3 xi, vec3 xj, SphMirrors m, uint s, float h2, out vec3 d, o
   return r2 < h2;
 }
 
+// Twin of sph::dfsph_stopped: w, residual slot c.stop_slot (low, high), holds at most the
+// stop units (the iteration before converged), so the call does nothing.
+bool dfsph_stopped_at(uvec2 w, DfsphLayout c) {
+  return w.y < c.stop_hi || (w.y == c.stop_hi && w.x <= c.stop_lo);
+}
+
 uint dfsph_residual_units(float r) {
   r = r < 1.0 ? r : 1.0;
   r = r > 0.0 ? r : 0.0;
