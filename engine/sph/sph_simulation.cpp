@@ -6,6 +6,8 @@
 #include <array>
 #include <bit>
 #include <cmath>
+#include <cstdlib>
+#include <cstring>
 #include <limits>
 #include <span>
 
@@ -35,6 +37,13 @@ const char* to_string(SphStage s) {
 SphSimulation::SphSimulation(Backend& backend, const SphScene& scene, SphComm* comm)
     : backend_(backend), scene_(scene) {
   validate(scene_);
+  // MASAV_DFSPH_QUEUE=off: one DFSPH iteration per residual read (the same bits), to measure
+  // what queueing them saves.
+  if (const char* env = std::getenv("MASAV_DFSPH_QUEUE"); env && *env) {
+    if (std::strcmp(env, "on") != 0 && std::strcmp(env, "off") != 0)
+      throw_invalid("sph", "MASAV_DFSPH_QUEUE", env, "on or off");
+    dfsph_queue_ = env[1] == 'n';
+  }
   const int ranks = comm ? comm->size() : 1;
   check_capacity(backend_, scene_, ranks);
   layout_ = build_particles(scene_);

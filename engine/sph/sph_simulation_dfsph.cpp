@@ -128,13 +128,15 @@ void SphSimulation::dfsph_solve(DfsphSolve solve, double dt, const Buffer<Real4>
   bool converged = false;
   while (done < max_iterations && !converged) {
     // Iterations queued before the host reads a residual: as many as the last solve took (its
-    // warm start makes the next one much alike), each from the second on doing nothing if the
-    // one before converged (stop_slot), so the result is the one of a read per iteration. On
+    // warm start makes the next one much alike; once those are done, one at a time), each from
+    // the second on doing nothing if the one before converged (stop_slot), so the result is the
+    // one of a read per iteration. On a GPU one more: an iteration that does nothing costs two
+    // launches that return at once, a read a round trip of the host, while the GPU idles. On
     // several ranks the residual is summed over them on the host: one iteration per read.
-    const uint32_t batch =
-        ranks_ || !dfsph_queue_
-            ? 1u
-            : std::clamp(expected > done ? expected - done : 1u, 1u, max_iterations - done);
+    const uint32_t want = expected + (backend_.caps().device_type != "cpu" ? 1u : 0u);
+    const uint32_t batch = ranks_ || !dfsph_queue_ ? 1u
+                                                   : std::clamp(want > done ? want - done : 1u, 1u,
+                                                                max_iterations - done);
     const uint32_t first_read = std::max(done, min_iterations - 1);
     uint64_t residual_read = 0;
     try {
