@@ -218,9 +218,10 @@ TEST_CASE("an asynchronous read returns the bytes of its copy while later work r
     // Its work is done when recorded: nothing to wait for, nothing queued.
     CHECK(c.async_reads == 0);
   } else {
-    // The first take waits for its copy with the gather still queued; the second drains.
+    // The first take comes with the gather still queued; the second drains the queue, a host
+    // sync where its copy has not finished yet (on a fast GPU it may have: none).
     CHECK(c.async_reads == 1);
-    CHECK(c.host_syncs == 1);
+    CHECK(c.host_syncs <= 1);
   }
   CHECK(b.download(x) == z);
 
