@@ -76,7 +76,8 @@ bool CpuBackend::ensure_dfsph_terms(const double* pos, const DfsphLayout<double>
       const V xi = load3(pos, i);
       const sph::WallMirrors<double> m = sph::dfsph_mirrors(xi, c);
       uint32_t neighbors = 0;
-      dfsph_terms_.begin(chunk, self);
+      // At most the pair and 7 wall images per candidate within h, itself included.
+      dfsph_terms_.begin(chunk, self, 8 * (size_t(sph_lists_.count(self)) + 1));
       ListWalk{sph_lists_, self}([&](uint32_t j) {
         const V xj = load3(pos, j);
         const V d = xi - xj;

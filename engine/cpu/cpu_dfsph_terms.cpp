@@ -17,11 +17,21 @@ V load3(const double* a, uint32_t i) {
 
 void DfsphTerms::reset(uint32_t n, size_t chunks) {
   valid_ = false;
-  terms_.resize(chunks);
-  for (auto& t : terms_) t.clear();  // keeps the capacity: the next build needs about as much
+  chunks_.resize(chunks);
+  for (Chunk& c : chunks_) c.size = c.end = 0;  // keeps the arrays: the next build needs as much
   begin_.resize(n);
   count_.resize(n);
   neighbors_.resize(n);
+}
+
+// At least `need` terms, and at least twice the old capacity (amortised growth); the terms so
+// far move along.
+void DfsphTerms::grow(Chunk& c, size_t need) {
+  const size_t capacity = std::max(need, 2 * c.capacity);
+  std::unique_ptr<DfsphTerm[]> data(new DfsphTerm[capacity]);  // default-initialised: no zeroing
+  std::copy(c.data.get(), c.data.get() + c.size, data.get());
+  c.data = std::move(data);
+  c.capacity = capacity;
 }
 
 void DfsphTerms::remember(uint64_t lists_generation, const DfsphLayout<double>& c) {
