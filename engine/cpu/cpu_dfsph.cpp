@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "engine/cpu/cpu_backend.h"
+#include "engine/cpu/cpu_sph_rows.h"
 #include "engine/kernels/dfsph_kernels.h"
 
 namespace masav::cpu {
@@ -71,25 +72,40 @@ bool CpuBackend::ensure_dfsph_terms(const double* pos, const DfsphLayout<double>
   const size_t chunks = sph_chunks(c.end - c.begin);
   dfsph_terms_.reset(c.n, chunks);
   pool_.run_chunks(c.end - c.begin, chunks, [&](size_t chunk, size_t b, size_t e) {
+    // ListWalk's candidates of one particle (itself, then its list): offsets, squared distances
+    // and the pair gradients' scales, these computed for the whole list at once.
+    std::vector<V> d;
+    std::vector<double> r2, scale;
     for (size_t i = c.begin + b; i < c.begin + e; ++i) {
       const uint32_t self = uint32_t(i);
       const V xi = load3(pos, i);
       const sph::WallMirrors<double> m = sph::dfsph_mirrors(xi, c);
+      const uint32_t* list = sph_lists_.list(self);
+      const uint32_t count = sph_lists_.count(self) + 1;
+      auto candidate = [&](uint32_t k) { return k == 0 ? self : list[k - 1]; };
+      d.resize(count);
+      r2.resize(count);
+      scale.resize(count);
+      for (uint32_t k = 0; k < count; ++k) {
+        d[k] = xi - load3(pos, candidate(k));
+        r2[k] = sph::dot(d[k], d[k]);
+      }
+      gradient_scales(r2.data(), count, c.inv_h, c.grad, scale.data());
       uint32_t neighbors = 0;
       // At most the pair and 7 wall images per candidate within h, itself included.
-      dfsph_terms_.begin(chunk, self, 8 * (size_t(sph_lists_.count(self)) + 1));
-      ListWalk{sph_lists_, self}([&](uint32_t j) {
-        const V xj = load3(pos, j);
-        const V d = xi - xj;
-        const double r2 = sph::dot(d, d);
-        if (!(r2 < c.h2)) return;
+      dfsph_terms_.begin(chunk, self, 8 * size_t(count));
+      for (uint32_t k = 0; k < count; ++k) {
+        if (!(r2[k] < c.h2)) continue;
+        const uint32_t j = candidate(k);
         ++neighbors;
-        if (j != self) dfsph_terms_.add(chunk, {term_gradient(d, r2, c), j, 0u});
+        // term_gradient(d, r2, c), its scale computed above
+        if (j != self) dfsph_terms_.add(chunk, {scale[k] * d[k], j, 0u});
         if (m.axes)
-          sph::for_each_wall_image_set(xi, xj, m, c.h2, [&](V di, double ri2, uint32_t set) {
-            dfsph_terms_.add(chunk, {term_gradient(di, ri2, c), j, set});
-          });
-      });
+          sph::for_each_wall_image_set(
+              xi, load3(pos, j), m, c.h2, [&](V di, double ri2, uint32_t set) {
+                dfsph_terms_.add(chunk, {term_gradient(di, ri2, c), j, set});
+              });
+      }
       dfsph_terms_.end(chunk, self, neighbors);
       if (factor) factor[i] = factor_of_terms(chunk, self);
     }

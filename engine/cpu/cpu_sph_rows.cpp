@@ -60,10 +60,10 @@ constexpr CompressTable kCompress = make_compress_table();
 // so the same r2 bits; the neighbours of each four are packed to the front with one permute and
 // stored with one vector store per output (which writes up to 3 entries past the last one).
 __attribute__((target("avx2"))) uint32_t neighbors_row_avx2(const double* xs, const double* ys,
-                                                             const double* zs, uint32_t first,
-                                                             uint32_t count, double px, double py,
-                                                             double pz, double h2, uint32_t self,
-                                                             uint32_t* out, double* out_r2) {
+                                                            const double* zs, uint32_t first,
+                                                            uint32_t count, double px, double py,
+                                                            double pz, double h2, uint32_t self,
+                                                            uint32_t* out, double* out_r2) {
   const __m256d vx = _mm256_set1_pd(px), vy = _mm256_set1_pd(py), vz = _mm256_set1_pd(pz);
   const __m256d vh2 = _mm256_set1_pd(h2);
   const __m128i lanes = _mm_setr_epi32(0, 1, 2, 3);
@@ -128,6 +128,19 @@ double density_sum(const double* r2, uint32_t count, double inv_h2) {
     s[0] += u * u * u;
   }
   return (s[0] + s[1]) + (s[2] + s[3]);
+}
+
+MASAV_CPU_CLONES void gradient_scales(const double* r2, uint32_t count, double inv_h, double grad,
+                                      double* out) {
+  for (uint32_t k = 0; k < count; ++k) {
+    const bool positive = r2[k] > 0.0;
+    // r2 = 0 (the particle itself) computes with 1, whose result is dropped: no branch, so the
+    // loop vectorises, and no division by 0.
+    const double r = __builtin_sqrt(positive ? r2[k] : 1.0);
+    const double u = 1.0 - r * inv_h;
+    const double s = -(grad * u * u) / r;
+    out[k] = positive ? s : 0.0;
+  }
 }
 
 }  // namespace masav::cpu

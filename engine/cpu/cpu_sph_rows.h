@@ -26,4 +26,9 @@ bool neighbors_row_uses_avx2();
 // neighbours within h.
 double density_sum(const double* r2, uint32_t count, double inv_h2);
 
+// out[k] = sph::dfsph_gradient_scale(r2[k]) (-(grad u^2) / r, r = sqrt(r2), u = 1 - r inv_h)
+// where r2[k] > 0, else 0: the DFSPH pair gradients' scales, four at a time where AVX2 is
+// there (square roots and divisions round alike in every lane: the same bits).
+void gradient_scales(const double* r2, uint32_t count, double inv_h, double grad, double* out);
+
 }  // namespace masav::cpu
