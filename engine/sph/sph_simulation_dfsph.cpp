@@ -54,12 +54,12 @@ void SphSimulation::allocate_dfsph() {
 }
 
 // The largest residual sum (kDfsphResidualScale units over `movers` particles) whose mean,
-// units / scale / movers computed in double, is at most `target`: the test the host made on
-// the mean, as one integer comparison the kernels can make too.
+// units / scale / movers computed in double, is at most `target` (> 0: the scene's error bounds
+// are at least 1e-7): the test the host made on the mean, as one integer comparison the kernels
+// can make too. Starts from the rounded product and steps to the exact boundary.
 uint64_t dfsph_stop_units(double target, uint32_t movers) {
   const double scale = double(kDfsphResidualScale), count = double(std::max(movers, 1u));
   auto within = [&](uint64_t u) { return double(u) / scale / count <= target; };
-  if (!within(0)) return 0;  // a negative target: nothing converges (the units are >= 0)
   const double guess = std::floor(target * scale * count);
   const double cap = double(UINT64_MAX >> 1);
   uint64_t u = guess >= cap ? uint64_t(cap) : uint64_t(std::max(guess, 0.0));
