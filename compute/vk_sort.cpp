@@ -68,15 +68,12 @@ void VulkanBackend::run_own(const KernelArgs<KernelId::radix_sort>& args) {
   };
   const auto first_pair = scratch_pair("");
   const auto second_pair = second ? scratch_pair(" 2") : first_pair;
-  auto pair_of = [&](radix::PassBuffer which) {
-    return which == radix::PassBuffer::home ? std::pair{k_home, v_home}
-           : which == radix::PassBuffer::a  ? first_pair
-                                            : second_pair;
-  };
-  std::pair src{k_home, v_home};
+  const std::pair home{k_home, v_home};
+  std::pair src = home;
   for (uint32_t pass = 0; pass < passes; ++pass) {
     const uint32_t bits = radix::pass_bits(p.key_bits, pass);
-    const auto dst = pair_of(radix::pass_buffer(passes, pass));
+    const auto dst =
+        radix::pass_target(radix::pass_buffer(passes, pass), home, first_pair, second_pair);
     const RadixPassParams push{p.n, pass * radix::kDigitBits, bits, num_tiles};
     run({"radix_histogram", 2, sizeof push, {items}, wg}, {src.first, hist}, &push, num_tiles);
     exclusive_scan(hist, (1u << bits) * num_tiles, "radix_sort");

@@ -49,10 +49,7 @@ void CudaBackend::sort_portable(uint32_t n, uint32_t key_bits, uint32_t* keys, u
   std::pair src = home;
   const dim3 grid = grid_for(num_tiles, "radix_sort");
   for (uint32_t pass = 0; pass < passes; ++pass) {
-    const radix::PassBuffer which = radix::pass_buffer(passes, pass);
-    const auto dst = which == radix::PassBuffer::home ? home
-                     : which == radix::PassBuffer::a  ? a
-                                                      : b;
+    const auto dst = radix::pass_target(radix::pass_buffer(passes, pass), home, a, b);
     const RadixPassParams step{n, pass * radix::kDigitBits, radix::pass_bits(key_bits, pass),
                                num_tiles};
     launched(launch::radix_histogram(stream_, grid, src.first, hist, step), "radix_sort",

@@ -7,7 +7,6 @@
 
 #include <bit>
 #include <cmath>
-#include <cstring>
 #include <vector>
 
 #include "engine/core/error.h"
@@ -17,6 +16,7 @@
 #include "engine/sph/sph_kernel_calls.h"
 #include "engine/util/error_metrics.h"
 #include "tests/backend_fixture.h"
+#include "tests/same_bits.h"
 #include "tests/sph_fixture.h"
 
 using namespace masav;
@@ -197,16 +197,13 @@ TEST_CASE("sph_forces depends only on its inputs, whatever sph_density saw befor
         {&x.sorted_pos, &x.sorted_vel, &x.density, &x.pressure, x.view(), &x.accel, &x.stats});
     return b.download(x.accel);
   };
-  auto same = [](const std::vector<Vec4d>& a, const std::vector<Vec4d>& z) {
-    return a.size() == z.size() && std::memcmp(a.data(), z.data(), a.size() * sizeof(Vec4d)) == 0;
-  };
   density(s);
   const auto fresh = forces(s);
   density(o);  // another particle set ran last
-  CHECK(same(forces(s), fresh));
+  CHECK(test::same_bits(forces(s), fresh));
   density(s);
   (void)forces(o);  // forces on other inputs in between
-  CHECK(same(forces(s), fresh));
+  CHECK(test::same_bits(forces(s), fresh));
 
   // Move one particle inside its cell, in the same buffer, after the density, so far that its
   // set of neighbours within h changes (a stale list would keep the old set).
@@ -250,8 +247,8 @@ TEST_CASE("sph_forces depends only on its inputs, whatever sph_density saw befor
   density(t);  // the moved positions' own neighbour walk, then the old density and pressure
   b.upload(t.density, b.download(s.density));
   b.upload(t.pressure, b.download(s.pressure));
-  CHECK(same(forces(t), after_move));
-  CHECK(!same(after_move, fresh));
+  CHECK(test::same_bits(forces(t), after_move));
+  CHECK(!test::same_bits(after_move, fresh));
 }
 
 TEST_CASE("sph_integrate: every stage and the walls equal the CPU reference") {

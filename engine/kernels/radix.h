@@ -34,5 +34,11 @@ inline PassBuffer pass_buffer(uint32_t passes, uint32_t pass) {
 inline bool uses_second_scratch(uint32_t passes) {
   return passes % 2 == 1 && passes >= 3;
 }
+// The buffers (of any backend's kind) that `which` names.
+template <class Buffers>
+const Buffers& pass_target(PassBuffer which, const Buffers& home, const Buffers& a,
+                           const Buffers& b) {
+  return which == PassBuffer::home ? home : which == PassBuffer::a ? a : b;
+}
 
 }  // namespace masav::radix

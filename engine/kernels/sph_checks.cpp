@@ -1,7 +1,6 @@
 #include <fmt/format.h>
 
 #include <cmath>
-#include <string_view>
 
 #include "engine/core/device_api.h"
 #include "engine/core/error.h"
@@ -119,16 +118,17 @@ void check_dfsph(const DeviceApi& dev, const DfsphParams& p, const Buffer<Real4>
   check_neighbor_rows(neighbor_rows, p.step, kernel);
 }
 
-// A call that stops on a residual slot (DfsphParams::stop_slot) reads it from `residual`; for
-// dfsph_rate it must be another than the slot the call adds to.
-void check_stop(const DfsphParams& p, const Buffer<uint32_t>* residual, const char* kernel) {
+// A call that stops on a residual slot (DfsphParams::stop_slot) reads it from `residual`; one
+// that adds to slot p.slot (dfsph_rate: `adds`) must stop on another.
+void check_stop(const DfsphParams& p, const Buffer<uint32_t>* residual, bool adds,
+                const char* kernel) {
   if (p.stop_slot == kDfsphNoStop) return;
   if (p.stop_slot >= kDfsphMaxSlots)
     throw_invalid(kernel, "stop_slot", std::to_string(p.stop_slot),
                   fmt::format("below {}, or kDfsphNoStop", kDfsphMaxSlots));
   if (!residual)
     throw_invalid(kernel, "residual", "none", "the residual words when stop_slot is set");
-  if (std::string_view(kernel) == "dfsph_rate" && p.stop_slot == p.slot)
+  if (adds && p.stop_slot == p.slot)
     throw_invalid(kernel, "stop_slot", std::to_string(p.stop_slot),
                   fmt::format("another than slot {} (the one this call adds to)", p.slot));
 }
@@ -161,7 +161,7 @@ void validate(const DeviceApi& dev, const DfsphParams& p, const Buffer<Real4>& p
   need(dev, &kappa, p.step.n, k, "kappa");
   need(dev, &kappa_sum, p.step.n, k, "kappa_sum");
   need(dev, &residual, kDfsphResidualWords, k, "residual");
-  check_stop(p, &residual, k);
+  check_stop(p, &residual, true, k);
 }
 
 void validate(const DeviceApi& dev, const DfsphParams& p, const Buffer<Real4>& positions,
@@ -175,7 +175,7 @@ void validate(const DeviceApi& dev, const DfsphParams& p, const Buffer<Real4>& p
   need(dev, &velocities, p.step.n, k, "velocities");
   need(dev, &stats, kSphStatWords, k, "stats");
   if (residual) need(dev, residual, kDfsphResidualWords, k, "residual");
-  check_stop(p, residual, k);
+  check_stop(p, residual, false, k);
 }
 
 void validate(const DeviceApi& dev, const SphStepParams& p, const Buffer<Real4>& positions,
