@@ -16,15 +16,17 @@ namespace masav::vk {
 // MASAV_VK_SPH_COOP.
 bool sph_coop_walk(std::string_view device_type);
 
-// Which Vulkan SPH walks are written twice, with and without the wall images, for subgroups
-// near and away from the walls (specialisation constant 5 of shaders/common/sph_walk.glsl).
-// lavapipe runs every statement of a loop body in every pass, so there every walk is split. A GPU
-// skips a branch that no lane of its subgroup takes, but its compiler may round the two copies
-// differently, and a particle's sums must not depend on which particles share its subgroup (a
-// rank's particles sit at other indices than in one process). sph_density's pair terms are
-// unfused (`precise`), so its copies agree and it stays split on a GPU: an H200 (2026-11-27,
-// 1,048,576 particles) took 0.266 ms split against 0.326 in one copy. sph_forces and the DFSPH
-// solves are not split there: unsplit, forces took 0.371 ms against 0.391, the solves the same.
+// Which Vulkan SPH kernels skip the wall images in subgroups with no lane near a wall
+// (specialisation constant 5 of shaders/common/sph_walk.glsl): sph_forces and the DFSPH solves by
+// a second copy of their walk without the images, sph_density by skipping its loop over the
+// neighbours' images after its walk. lavapipe runs every statement of a loop body in every pass,
+// so there every kernel is split. A GPU skips a branch that no lane of its subgroup takes, but its
+// compiler may round two copies of a walk differently, and a particle's sums must not depend on
+// which particles share its subgroup (a rank's particles sit at other indices than in one
+// process). sph_density's image loop adds nothing for a lane without walls, so it stays split on
+// a GPU (an H200, 2026-11-27, 1,048,576 particles, with the images in its walk: 0.266 ms split
+// against 0.326 in one copy). sph_forces and the DFSPH solves are not split there: unsplit,
+// forces took 0.371 ms against 0.391, the solves the same.
 // MASAV_VK_SPH_WALL_SPLIT=on|off|auto overrides both. Throws on a bad value.
 struct SphWallSplit {
   bool density = true;

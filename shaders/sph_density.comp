@@ -31,6 +31,8 @@ layout(std430, binding = 8) writeonly buffer NeighborRows { uint neighbor_rows[]
 #include "sph.glsl"
 #include "sph_walk.glsl"
 #include "sph_coop.glsl"
+#define SPH_ROWS_FROM_WALK
+#include "sph_row_walk.glsl"
 
 MASAV_PUSH(SphStepLayout);
 
@@ -41,41 +43,49 @@ struct Walk {
   uvec2 bits;
 };
 
-// Candidate j's term at squared distance r2 (near: within h and in this lane's row), and those of
-// its wall images when `images` (a constant at each call: the copy without them has none).
-void add_candidate(inout Walk w, uint i, uint j, vec3 xi, vec3 xj, float r2, bool in_row,
-                   uint first, SphMirrors mirrors, bool images) {
-  const bool near = in_row && r2 < p.h2;
-  w.sum += in_row ? sph_density_term(r2, p) : 0.0;
-  if (images && near && mirrors.axes != 0u && j != i)
-    w.sum += sph_wall_image_density(xi, xj, mirrors, p);
-  w.within += near ? 1u : 0u;
-  w.bits = sph_mask_set(w.bits, j - first, near);
-}
-
 // One chunk of a cooperative row: the cluster's kSphCoop candidates from `base`, rotated through
-// its lanes.
-void coop_chunk(inout Walk w, uint i, vec3 xi, uint base, uvec2 u, uvec2 r, SphMirrors mirrors,
-                bool images) {
+// its lanes. At rotation step k this lane examines candidate base + t, t = (lane + k) mod C, a
+// constant per step, so whether it lies in the lane's row is two comparisons of t, and (with C <=
+// 32) which neighbours it found is one word of bits t that joins the row's mask once per chunk:
+// lavapipe runs the per-candidate bit arithmetic of sph_mask_set on every lane of every step.
+void coop_chunk(inout Walk w, vec3 xi, uint base, uvec2 u, uvec2 r) {
   const uint mine = base + sph_coop_lane();
   const vec3 xc = mine < u.y ? position_at(mine).xyz : vec3(0.0);
+  const int lo = int(r.x) - int(base), hi = int(r.y) - int(base);  // the row: lo <= t < hi
+  const bool chunk_bits = kSphCoop <= 32u;
+  uint found = 0u;
   for (uint k = 0u; k < kSphCoop; ++k) {
     LOOP_TICK();
     const vec3 xj = subgroupShuffle(xc, sph_coop_source(k));
-    const uint j = base + ((sph_coop_lane() + k) & (kSphCoop - 1u));
+    const uint t = (sph_coop_lane() + k) & (kSphCoop - 1u);
+    const uint j = base + t;
     const vec3 d = xi - xj;
     precise float r2 = d.x * d.x + d.y * d.y + d.z * d.z;  // unfused, as sph_density_term
-    add_candidate(w, i, j, xi, xj, r2, j >= r.x && j < r.y, r.x, mirrors, images);
+    const bool in_row = int(t) >= lo && int(t) < hi;
+    const bool near = in_row && r2 < p.h2;
+    w.sum += in_row ? sph_density_term(r2, p) : 0.0;
+    if (chunk_bits) {
+      found |= near ? 1u << t : 0u;
+    } else {
+      w.within += near ? 1u : 0u;
+      w.bits = sph_mask_set(w.bits, j - r.x, near);
+    }
+  }
+  if (chunk_bits) {
+    w.within += uint(bitCount(found));
+    w.bits = sph_mask_or_shifted(w.bits, found, int(base) - int(r.x));
   }
 }
 
 // Candidate j of a row walked per lane (r: the row).
-void lane_candidate(inout Walk w, uint i, vec3 xi, uint j, uvec2 r, SphMirrors mirrors,
-                    bool images) {
+void lane_candidate(inout Walk w, vec3 xi, uint j, uvec2 r) {
   const vec3 xj = position_at(j).xyz;
   const vec3 d = xi - xj;
   precise float r2 = d.x * d.x + d.y * d.y + d.z * d.z;  // unfused, as sph_density_term
-  add_candidate(w, i, j, xi, xj, r2, true, r.x, mirrors, images);
+  const bool near = r2 < p.h2;
+  w.sum += sph_density_term(r2, p);
+  w.within += near ? 1u : 0u;
+  w.bits = sph_mask_set(w.bits, j - r.x, near);
 }
 
 void main() {
@@ -96,13 +106,12 @@ void main() {
   }
   SphMirrors mirrors = sph_wall_mirrors(xi, p);
   if (!live) mirrors.axes = 0u;
+  const float own_images = mirrors.axes != 0u ? sph_own_image_density(xi, mirrors, p) : 0.0;
   const uvec3 dims = p.dims;
-  // lavapipe runs every statement of a loop body in every pass, whatever its lanes take, and the
-  // seven wall images cost a pass several times the pair's: each walk below is written twice,
-  // with and without the images, and where the backend splits them (sph_walls_near) a subgroup
-  // with no lane within h of a wall takes the second (the first then makes one empty pass). (A
-  // third copy with one wall's image alone, for subgroups along a single wall, measured slower.)
-  const bool walls_near = sph_walls_near(mirrors.axes);
+  // The neighbours' terms, row by row; each row's neighbours within h are kept (rows) for the
+  // wall images below.
+  SphRowWalk rows[9];
+  uint pending = 0u;
   uint spent = 0u;
   Walk w = Walk(0.0, 0u, uvec2(0u));
   for (int dx = -1; dx <= 1; ++dx) {
@@ -110,40 +119,56 @@ void main() {
     for (int dy = -1; dy <= 1; ++dy) {
       LOOP_TICK();
       const uvec2 r = sph_lane_row(live, cc, dx, dy, dims, p.max_candidates, candidates, overflow);
-      w.bits = uvec2(0u);  // this row's mask, in both walks
+      w.bits = uvec2(0u);  // this row's mask
       uvec2 u;
       if (sph_coop_row(r, spent, u)) {
-        for (uint base = u.x; walls_near && base < u.y; base += kSphCoop) {
+        for (uint base = u.x; base < u.y; base += kSphCoop) {
           LOOP_TICK();
-          coop_chunk(w, i, xi, base, u, r, mirrors, true);
-        }
-        for (uint base = u.x; !walls_near && base < u.y; base += kSphCoop) {
-          LOOP_TICK();
-          coop_chunk(w, i, xi, base, u, r, mirrors, false);
+          coop_chunk(w, xi, base, u, r);
         }
       } else {
-        for (uint j = r.x; walls_near && j < r.y; ++j) {
+        for (uint j = r.x; j < r.y; ++j) {
           LOOP_TICK();
-          lane_candidate(w, i, xi, j, r, mirrors, true);
-        }
-        for (uint j = r.x; !walls_near && j < r.y; ++j) {
-          LOOP_TICK();
-          lane_candidate(w, i, xi, j, r, mirrors, false);
+          lane_candidate(w, xi, j, r);
         }
       }
+      const uint row = sph_row_index(dx, dy);
+      const bool fits = sph_row_fits_mask(r);
       if (p.neighbor_rows != 0u && live) {
-        const uint row = sph_row_index(dx, dy);
-        const uvec2 bits = sph_row_fits_mask(r) ? w.bits : uvec2(0u);
+        const uvec2 bits = fits ? w.bits : uvec2(0u);
         neighbor_rows[sph_mask_word(row, 0u, i, p.n)] = bits.x;
         neighbor_rows[sph_mask_word(row, 1u, i, p.n)] = bits.y;
       }
+      rows[row] = SphRowWalk(r.x, r.x, fits ? r.x : r.y, fits ? w.bits : uvec2(0u));
+      if (sph_row_left(rows[row])) pending |= 1u << row;
     }
+  }
+  // The wall images of the neighbours within h (sph_wall_image_density), one loop over the rows
+  // kept, after the neighbours' own terms: lavapipe runs every statement of a loop in every pass
+  // whatever its lanes take, so the seven images, a square root each, cost a pass several times
+  // the pair's, and this loop runs ~35 passes over the neighbours instead of the walk's ~200
+  // over its candidates. Where the backend splits the walls off (sph_walls_near), a subgroup with
+  // no lane within h of a wall makes one empty pass. A lane without walls adds nothing, so a
+  // particle's density is the same whichever subgroup it shares.
+  const bool walls_near = sph_walls_near(mirrors.axes);
+  SphRowWalk wr = kSphNoRow;
+  while (walls_near && (pending != 0u || sph_row_left(wr))) {
+    LOOP_TICK();
+    if (!sph_row_left(wr)) {
+      wr = rows[findLSB(pending)];
+      pending &= pending - 1u;
+    }
+    const uint j = sph_row_take(wr);
+    const vec3 xj = position_at(j).xyz;
+    const vec3 d = xi - xj;
+    precise float r2 = d.x * d.x + d.y * d.y + d.z * d.z;  // unfused, as in the walk
+    if (r2 < p.h2 && j != i && mirrors.axes != 0u)
+      w.sum += sph_wall_image_density(xi, xj, mirrors, p);
   }
   const float sum = w.sum;
   within = w.within;
   if (live) {
-    const float rho =
-        p.density * sum + (mirrors.axes != 0u ? sph_own_image_density(xi, mirrors, p) : 0.0);
+    const float rho = p.density * sum + own_images;
     const float pr = sph_pressure_of(rho, p);
     density[i] = rho;
     pressure[i] = pr;

@@ -20,6 +20,7 @@
 #endif
 #include "engine/grid/hash_grid.h"
 #include "engine/kernels/atom_checks.h"
+#include "engine/kernels/kernel_checks.h"
 #include "engine/sph/sph_kernel_calls.h"
 #include "engine/sph/sph_particles.h"
 #include "tests/backend_fixture.h"
@@ -387,8 +388,8 @@ LOOP_LIMIT_CASE("sph kernels: loop ticks = rows + cells + candidates, capped bel
   // each of the 9 rows, C the smallest subgroup) + 1 cell in the row + the crowded row: walked
   // together in chunks of C (1 + C ticks each) when that costs at most the extra budget (260,
   // shaders/common/sph_coop.glsl) over the n candidates of the per-lane walk (C = 32 on NVIDIA:
-  // 102 extra), else per lane (C = 8 on lavapipe: 375 extra). The wall images are spelled out
-  // per neighbour, not looped over: they add no tick.
+  // 102 extra), else per lane (C = 8 on lavapipe: 375 extra). sph_forces spells the wall
+  // images out per neighbour, not looped over: they add no tick to its walk.
   // The per-lane walk (a GPU's, or MASAV_VK_SPH_COOP=off) has no unions.
 #if MASAV_HAVE_VULKAN
   const bool coop = vk::sph_coop_walk(b.caps().device_type);
@@ -400,21 +401,29 @@ LOOP_LIMIT_CASE("sph kernels: loop ticks = rows + cells + candidates, capped bel
   const uint32_t together = (n + c - 1) / c * (c + 1);
   const uint32_t row = coop && together - n <= 260 ? together : n;
   MESSAGE("subgroup ", c, ": the crowded row costs ", row, " ticks (", n, " candidates)");
-  CHECK(test::ticks_of(b) == 3 + 9 + unions + 1 + row);
+  // Within h of the walls, sph_density then walks each particle's neighbours within h again
+  // (itself included) for their wall images: the most any particle has.
+  const uint32_t images = b.download(stats)[kSphStatMaxNeighbors];
+  CHECK(images > 1);
+  CHECK(test::ticks_of(b) == 3 + 9 + unions + 1 + row + images);
   sph_forces(b, p, {&pos, &vel, &rho, &pr, view, &acc, &stats});
   CHECK(test::ticks_of(b) == 3 + 9 + unions + 1 + row);
   // The worst any SPH kernel can do: 3 + 9 row loops, 27 cells, the unions at subgroups of 64,
-  // the cooperative walk's extra budget (260, shaders/common/sph_coop.glsl), the validated
-  // maximum of candidates (65000) stay under lavapipe's limit; one more candidate is refused.
-  CHECK(3 + 9 + 27 + 9 * 3 * 6 + 260 + 65000 < test::loop_counter().caps().max_loop_iterations);
+  // the cooperative walk's extra budget (260, shaders/common/sph_coop.glsl) and two walks over
+  // the validated maximum of candidates (32,500: sph_density's candidates and its neighbours'
+  // images) stay under lavapipe's limit; one more candidate is refused.
+  const uint32_t cap = max_sph_candidates(test::loop_counter().caps().max_loop_iterations);
+  CHECK(cap == 32500);
+  CHECK(3 + 9 + 27 + 9 * 3 * 6 + 260 + kSphWalks * cap <
+        test::loop_counter().caps().max_loop_iterations);
 
   // Over neighbour row masks: recording them adds no loop to sph_density; sph_forces walks per
   // lane (no row unions) a row too long for its mask whole, so the crowded row costs what it
   // did, and a row that fits one pass per neighbour (at most its candidates). Its worst case,
-  // 3 + 9 + 27 + 65000, is then below the cooperative walk's bound above.
+  // 3 + 9 + 27 + 32,500, is then below sph_density's bound above.
   auto rows = b.create<uint32_t>(size_t(kSphRowMaskWords) * n, "rows");
   sph_density(b, p, {&pos, view, &rho, &pr, &stats, &rows});
-  CHECK(test::ticks_of(b) == 3 + 9 + unions + 1 + row);
+  CHECK(test::ticks_of(b) == 3 + 9 + unions + 1 + row + images);
   sph_forces(b, p, {&pos, &vel, &rho, &pr, view, &acc, &stats, &rows});
   CHECK(test::ticks_of(b) == 3 + 9 + 1 + n);
   const uint32_t few = 50;  // one row that fits a mask
@@ -439,7 +448,10 @@ LOOP_LIMIT_CASE("sph kernels: loop ticks = rows + cells + candidates, capped bel
   CHECK(most <= few);
   CHECK(test::ticks_of(b) == 3 + 9 + 1 + most);
 
-  p.max_candidates = 65001;
+  p.max_candidates = cap;
+  CHECK_NOTHROW(sph_density(b, p, {&pos, view, &rho, &pr, &stats}));
+  (void)test::ticks_of(b);
+  p.max_candidates = cap + 1;
   CHECK_THROWS_AS(sph_density(b, p, {&pos, view, &rho, &pr, &stats}), Error);
 
   // The integrator's only loops are the walls' (at most 3 + 3).
@@ -496,9 +508,9 @@ LOOP_LIMIT_CASE("dfsph kernels: loop ticks = rows + cells + candidates, as sph_f
     dfsph_correct(b, dp, io);
     CHECK(test::ticks_of(b) == 3 + 9 + 1 + n);
   }
-  // The worst case, 3 + 9 + 27 + the validated maximum of candidates, is sph_forces' masked
-  // walk's (the case above); one more candidate is refused.
-  p.max_candidates = 65001;
+  // The worst case, 3 + 9 + 27 + the validated maximum of candidates, is below sph_density's
+  // (the case above); one more candidate is refused.
+  p.max_candidates = max_sph_candidates(b.caps().max_loop_iterations) + 1;
   CHECK_THROWS_AS(
       dfsph_factor(b, DfsphParams{p},
                    DfsphIO{&pos, &vel, &rho, &factor, view, &kappa, &kappa_sum, &residual, &stats}),

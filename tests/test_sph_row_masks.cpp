@@ -151,6 +151,30 @@ TEST_CASE("sph_forces over row masks walks a row too long for its mask whole") {
   }
 }
 
+// 30 more particles crowd one cell, so rows through it hold 33 to 64 candidates: their masks
+// fill the second word, from bits that a cooperative walk's chunks carry across the words.
+TEST_CASE("sph_density's masks of rows longer than one word equal the CPU reference's") {
+  Backend& b = test::backend();
+  Backend& r = test::reference();
+  test::SphCase c = test::make_sph_case(10, SphPressureModel::wcsph, 45);
+  std::mt19937_64 rng(46);
+  std::uniform_real_distribution<double> u(-0.25 * c.dx, 0.25 * c.dx);
+  for (int k = 0; k < 30; ++k) {
+    c.positions.push_back(
+        {float(0.105 + u(rng)), float(0.105 + u(rng)), float(0.105 + u(rng)), 1.0f});
+    c.velocities.push_back({0.0f, 0.0f, 0.0f, 0.0f});
+  }
+  c.params.n = c.params.grid.n = uint32_t(c.positions.size());
+  const MaskedRun got = run_masked(b, c);
+  CHECK(got.rows == run_masked(r, c).rows);
+  check_same_forces(b, got);
+  const uint32_t n = c.params.n;
+  uint32_t high_words = 0;
+  for (uint32_t row = 0; row < 9; ++row)
+    for (uint32_t i = 0; i < n; ++i) high_words += got.rows[size_t(2 * row + 1) * n + i] != 0;
+  CHECK(high_words > 0);
+}
+
 TEST_CASE("sph kernels reject a neighbor_rows buffer too small, naming it") {
   Backend& b = test::backend();
   const test::SphCase c = test::make_sph_case(4, SphPressureModel::wcsph, 1);

@@ -200,13 +200,14 @@ uint32_t max_walk_candidates(const DeviceApi& dev) {
 }
 
 void check_candidates(const DeviceApi& dev, uint32_t max_candidates, std::string_view kernel,
-                      std::string_view field) {
-  const uint32_t most = max_walk_candidates(dev);
+                      std::string_view field, uint32_t walks) {
+  const uint32_t most = std::max(max_walk_candidates(dev) / std::max(walks, 1u), 1u);
   if (max_candidates < 1 || max_candidates > most)
     throw_invalid(kernel, field, std::to_string(max_candidates),
                   fmt::format("in [1, {}] (a shader invocation runs at most {} loop iterations "
-                              "on {})",
-                              most, dev.caps().max_loop_iterations, dev.caps().device_name));
+                              "on {}{})",
+                              most, dev.caps().max_loop_iterations, dev.caps().device_name,
+                              walks > 1 ? fmt::format(", over {} walks", walks) : ""));
 }
 
 void raise_diagnostics(const DeviceApi& dev, uint32_t flags, uint32_t detail, uint32_t limit) {

@@ -15,9 +15,18 @@ void check_grid(const GridParams& g, std::string_view kernel);
 inline constexpr uint32_t kWalkLoopOverhead = 535;
 // The candidates a neighbour walk may examine on `dev`: its loop budget less that overhead.
 uint32_t max_walk_candidates(const DeviceApi& dev);
-// throw_invalid for a candidate cap (the field `field`) outside [1, max_walk_candidates(dev)].
+// The SPH kernels' walks per candidate: sph_density walks its candidates, then, near a wall,
+// its neighbours within h again for their wall images (shaders/sph_density.comp), so their
+// candidate cap is the budget's share of one of two walks.
+inline constexpr uint32_t kSphWalks = 2;
+// The most candidates an SPH kernel may examine on a device whose loop budget is `budget`.
+constexpr uint32_t max_sph_candidates(uint32_t budget) {
+  return budget > kWalkLoopOverhead ? (budget - kWalkLoopOverhead) / kSphWalks : 1;
+}
+// throw_invalid for a candidate cap (the field `field`) outside [1, max_walk_candidates(dev) /
+// walks] (walks: the walks over the candidates one invocation may make).
 void check_candidates(const DeviceApi& dev, uint32_t max_candidates, std::string_view kernel,
-                      std::string_view field = "max_candidates");
+                      std::string_view field = "max_candidates", uint32_t walks = 1);
 
 // Throws the error of the kernel that raised a flag of a non-zero flags word (each kDiag* flag
 // belongs to one kernel: engine/kernels/grid_params.h); `detail` is the first offending index,

@@ -82,7 +82,7 @@ void check_sph_step(const DeviceApi& dev, const SphStepParams& p, const char* ke
         throw_invalid(kernel, "box", fmt::format("[{}, {}] on axis {}", lo[a], hi[a], a),
                       "finite with min < max on every axis");
   }
-  check_candidates(dev, p.max_candidates, kernel);
+  check_candidates(dev, p.max_candidates, kernel, "max_candidates", kSphWalks);
 }
 
 // The optional neighbour row masks: kSphRowMaskWords words per particle when given.

@@ -153,12 +153,12 @@ void validate(const SphScene& s) {
   in_range("dt_min", s.dt_min, 0.0, s.dt_max, true);
   in_range("rk4_skin", s.rk4_skin, 0.0, 2.0, true);
   // Before a device is chosen: the portable budget (each kernel checks its device's own).
-  constexpr uint32_t most = kPortableLoopBudget - kWalkLoopOverhead;
+  constexpr uint32_t most = max_sph_candidates(kPortableLoopBudget);
   if (s.max_candidates < 1 || s.max_candidates > most)
     throw_invalid(kWhere, "max_candidates", std::to_string(s.max_candidates),
                   fmt::format("in [1, {}] (a shader invocation runs at most {} loop iterations "
-                              "on lavapipe)",
-                              most, kPortableLoopBudget));
+                              "on lavapipe, over {} walks)",
+                              most, kPortableLoopBudget, kSphWalks));
   in_range("jitter", s.jitter, 0.0, 0.45);
 }
 

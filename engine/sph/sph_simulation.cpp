@@ -126,7 +126,8 @@ SphSimulation::SphSimulation(Backend& backend, const SphScene& scene, SphComm* c
                 fmt::format("a particle of the initial state has more than {} neighbour "
                             "candidates in its 27 cells",
                             scene_.max_candidates),
-                "raise max_candidates (at most 65000) or lower the initial density_ratio");
+                fmt::format("raise max_candidates (at most {}) or lower the initial density_ratio",
+                            max_sph_candidates(kPortableLoopBudget)));
   double vmax = 0;
   for (const auto& v : layout_.velocities) vmax = std::max(vmax, std::hypot(v.x, v.y, v.z));
   stats_.max_speed = vmax;
@@ -478,8 +479,9 @@ SphSimulation::Attempt SphSimulation::attempt(double dt) {
               fmt::format("step {}: a particle has more than {} neighbour candidates in its 27 "
                           "cells (the fluid is compressed far beyond rest density)",
                           steps_ + 1, scene_.max_candidates),
-              "raise max_candidates (at most 65000), lower dt, or stiffen the fluid "
-              "(sound_speed, kp)"));
+              fmt::format("raise max_candidates (at most {}), lower dt, or stiffen the fluid "
+                          "(sound_speed, kp)",
+                          max_sph_candidates(kPortableLoopBudget))));
   if (a.watchdog)
     fail_together(Error(
         backend_.name(), "sph watchdog",

@@ -7,7 +7,9 @@
 // row-by-row walk. The step of that loop (move to the next pending row when w has none left,
 // then take) is written out in each loop, not called: passed to a function, the nine rows are
 // copied in every pass on lavapipe (sph_forces at 32,768 particles: 19 -> 49 ms). The includer
-// includes sph_walk.glsl first and defines `uint neighbor_row_at(uint word)`.
+// includes sph_walk.glsl first and defines `uint neighbor_row_at(uint word)`, or defines
+// SPH_ROWS_FROM_WALK (sph_density, which keeps the rows of its own walk) and gets no
+// sph_gather_rows.
 
 // One row's walk state: the candidates [next, end) in order (a row too long for its mask, or a
 // walk without masks), then the set bits of `bits` from `first`.
@@ -23,6 +25,7 @@ uint sph_row_take(inout SphRowWalk w) {
   return w.first + sph_mask_take(w.bits);
 }
 
+#ifndef SPH_ROWS_FROM_WALK
 // This lane's nine rows around cell coordinates cc (sph_lane_row: counted against the candidate
 // cap), each by its mask where `masks` and the row fits one; returns the set of rows (bit k: row
 // k) with candidates.
@@ -47,3 +50,4 @@ uint sph_gather_rows(bool live, ivec3 cc, uint i, bool masks, uvec3 dims, uint n
   }
   return pending;
 }
+#endif

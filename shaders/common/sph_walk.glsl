@@ -3,17 +3,18 @@
 // including kernel defines `uint cell_start_at(uint cell)` and `uint cell_end_at(uint cell)`.
 // The includer enables GL_KHR_shader_subgroup_arithmetic.
 
-// Whether a walk is written twice, with and without the wall images, and a subgroup with no lane
-// within h of a wall takes the copy without them (the backend's choice per kernel, specialisation
-// constant 5: compute/sph_walk_choice.h). lavapipe runs every statement of a loop body in every
-// pass, whatever its lanes take, so there the copy without the images saves their cost away from
-// the walls. A GPU skips a branch that no lane of the subgroup takes, but its compiler may round
-// the two copies differently: a particle's sums would then depend on which particles share its
-// subgroup, and a rank's particles, at other indices than in one process, would leave the
-// one-process trajectory. A kernel split on a GPU keeps its pair terms unfused (`precise`).
+// Whether a subgroup with no lane within h of a wall skips the wall images (the backend's choice
+// per kernel, specialisation constant 5: compute/sph_walk_choice.h): sph_forces and the DFSPH
+// solves write their walk twice, with and without the images, and such a subgroup takes the copy
+// without them; sph_density adds the images in a loop of its own after its walk, which such a
+// subgroup skips. lavapipe runs every statement of a loop body in every pass, whatever its lanes
+// take, so there the split saves the images' cost away from the walls. A GPU skips a branch that
+// no lane of the subgroup takes, but its compiler may round two copies of a walk differently: a
+// particle's sums would then depend on which particles share its subgroup, and a rank's
+// particles, at other indices than in one process, would leave the one-process trajectory.
 layout(constant_id = 5) const bool SPH_WALL_SPLIT = true;
 
-// Whether a lane takes the walk's copy with the wall images (axes: its sph_wall_mirrors axes).
+// Whether a lane's subgroup computes the wall images (axes: the lane's sph_wall_mirrors axes).
 bool sph_walls_near(uint axes) { return !SPH_WALL_SPLIT || subgroupMax(axes) != 0u; }
 
 // Sorted range of the row (x, y, z-1 .. z+1): 3 consecutive cell ids, contiguous points.
@@ -64,6 +65,16 @@ bool sph_row_fits_mask(uvec2 r) { return r.y - r.x <= kSphRowMaskBits; }
 uvec2 sph_mask_set(uvec2 m, uint b, bool on) {
   const uint bit = on ? 1u << (b & 31u) : 0u;
   return b < 32u ? uvec2(m.x | bit, m.y) : uvec2(m.x, m.y | bit);
+}
+// Sets bits off + t of a mask held as two words for the set bits t of `bits`; bits that land
+// outside 0..63 are dropped.
+uvec2 sph_mask_or_shifted(uvec2 m, uint bits, int off) {
+  const uint s = uint(abs(off));
+  const uint right = s < 32u ? bits >> s : 0u;
+  const uint low = s < 32u ? bits << s : 0u;
+  const uint carry = s == 0u || s >= 32u ? 0u : bits >> (32u - s);
+  const uint high = s < 32u ? carry : (s < 64u ? bits << (s - 32u) : 0u);
+  return off < 0 ? uvec2(m.x | right, m.y) : uvec2(m.x | low, m.y | high);
 }
 // The lowest set bit's index of a non-zero mask, cleared from it.
 uint sph_mask_take(inout uvec2 m) {
