@@ -119,7 +119,8 @@ class VulkanBackend final : public Backend, public VulkanInterop {
   SortScatter scatter_ = SortScatter::tiled;
   // The SPH neighbour rows walked by subgroup clusters (compute/sph_walk_choice.h).
   bool sph_coop_walk_ = true;
-  // The SPH walks written twice, with and without the wall images (compute/sph_walk_choice.h).
+  // The SPH kernels that skip the wall images where no lane is near a wall
+  // (compute/sph_walk_choice.h).
   SphWallSplit sph_wall_split_;
   // raymarch reads its volume four voxels to a texel (compute/raymarch_quads_choice.h).
   bool ray_quads_ = false;

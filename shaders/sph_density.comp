@@ -5,11 +5,12 @@
 // Density (sph_density_term's kernel: spiky, or poly6 for the thesis model, Eq. 4.4) and
 // pressure of each sorted particle over the neighbours
 // within h in the 27 cells around cells[i], walked as 9 rows of 3 consecutive cells, and of
-// their wall images (sph_wall_mirrors) when the particle is within h of a wall. The
-// candidates per invocation are capped (max_candidates) and an overflow is reported, never
-// silently truncated. With neighbor_rows bound (p.neighbor_rows != 0), also records which
-// candidates of each row lie within h, for sph_forces (kSphRowMaskBits in
-// engine/kernels/sph_kernel_params.h). Twin of sph::density_at (engine/kernels/sph_kernels.h).
+// their wall images (sph_wall_mirrors) when the particle is within h of a wall, added after the
+// walk over the neighbours it kept. The candidates per invocation are capped (max_candidates)
+// and an overflow is reported, never silently truncated. With neighbor_rows bound
+// (p.neighbor_rows != 0), also records which candidates of each row lie within h, for
+// sph_forces (kSphRowMaskBits in engine/kernels/sph_kernel_params.h). Twin of sph::density_at
+// (engine/kernels/sph_kernels.h), which adds a neighbour's images with its own term.
 #include "kernel_base.glsl"
 
 // What the kernel only reads are uniform texel buffers (compute/vk_kernels.cpp): lavapipe fetches
@@ -139,8 +140,9 @@ void main() {
         neighbor_rows[sph_mask_word(row, 0u, i, p.n)] = bits.x;
         neighbor_rows[sph_mask_word(row, 1u, i, p.n)] = bits.y;
       }
-      rows[row] = SphRowWalk(r.x, r.x, fits ? r.x : r.y, fits ? w.bits : uvec2(0u));
-      if (sph_row_left(rows[row])) pending |= 1u << row;
+      const SphRowWalk kept = sph_row_state(r, fits, w.bits);
+      rows[row] = kept;
+      if (sph_row_left(kept)) pending |= 1u << row;
     }
   }
   // The wall images of the neighbours within h (sph_wall_image_density), one loop over the rows

@@ -19,6 +19,11 @@ struct SphRowWalk {
 };
 const SphRowWalk kSphNoRow = SphRowWalk(0u, 0u, 0u, uvec2(0u));
 
+// Row r's walk: by its mask `bits` where `by_mask`, else every candidate in order.
+SphRowWalk sph_row_state(uvec2 r, bool by_mask, uvec2 bits) {
+  return SphRowWalk(r.x, r.x, by_mask ? r.x : r.y, by_mask ? bits : uvec2(0u));
+}
+
 bool sph_row_left(SphRowWalk w) { return w.next < w.end || (w.bits.x | w.bits.y) != 0u; }
 uint sph_row_take(inout SphRowWalk w) {
   if (w.next < w.end) return w.next++;
@@ -40,10 +45,11 @@ uint sph_gather_rows(bool live, ivec3 cc, uint i, bool masks, uvec3 dims, uint n
       const uvec2 r = sph_lane_row(live, cc, dx, dy, dims, max_candidates, candidates, overflow);
       const bool whole = !masks || !sph_row_fits_mask(r);
       const uint row = sph_row_index(dx, dy);
-      SphRowWalk w = SphRowWalk(r.x, r.x, whole ? r.y : r.x, uvec2(0u));
+      uvec2 bits = uvec2(0u);
       if (!whole && r.y > r.x)
-        w.bits = uvec2(neighbor_row_at(sph_mask_word(row, 0u, i, n)),
-                       neighbor_row_at(sph_mask_word(row, 1u, i, n)));
+        bits = uvec2(neighbor_row_at(sph_mask_word(row, 0u, i, n)),
+                     neighbor_row_at(sph_mask_word(row, 1u, i, n)));
+      const SphRowWalk w = sph_row_state(r, !whole, bits);
       rows[row] = w;
       if (sph_row_left(w)) pending |= 1u << row;
     }
