@@ -82,6 +82,22 @@ uint32_t mask_bits(const std::vector<uint32_t>& rows, uint32_t i, uint32_t n) {
   return bits;
 }
 
+// Case `size` (make_sph_case's size and seed) with `extra` more particles crowding one cell,
+// moving at up to `speed` times the spread of their positions.
+test::SphCase crowded_case(uint32_t size, uint64_t seed, int extra, double speed) {
+  test::SphCase c = test::make_sph_case(size, SphPressureModel::wcsph, seed);
+  std::mt19937_64 rng(seed + 1);
+  std::uniform_real_distribution<double> u(-0.25 * c.dx, 0.25 * c.dx);
+  for (int k = 0; k < extra; ++k) {
+    c.positions.push_back(
+        {float(0.105 + u(rng)), float(0.105 + u(rng)), float(0.105 + u(rng)), 1.0f});
+    c.velocities.push_back(
+        {float(speed * u(rng)), float(speed * u(rng)), float(speed * u(rng)), 0.0f});
+  }
+  c.params.n = c.params.grid.n = uint32_t(c.positions.size());
+  return c;
+}
+
 }  // namespace
 
 TEST_CASE("sph_forces over neighbour row masks equals sph_forces walking every candidate") {
@@ -108,15 +124,7 @@ TEST_CASE("sph_forces over neighbour row masks equals sph_forces walking every c
 // small candidate cap, both kernels stop at the same row.
 TEST_CASE("sph_forces over row masks walks a row too long for its mask whole") {
   Backend& b = test::backend();
-  test::SphCase c = test::make_sph_case(10, SphPressureModel::wcsph, 43);
-  std::mt19937_64 rng(44);
-  std::uniform_real_distribution<double> u(-0.25 * c.dx, 0.25 * c.dx);
-  for (int k = 0; k < 60; ++k) {
-    c.positions.push_back(
-        {float(0.105 + u(rng)), float(0.105 + u(rng)), float(0.105 + u(rng)), 1.0f});
-    c.velocities.push_back({float(10 * u(rng)), float(10 * u(rng)), float(10 * u(rng)), 0.0f});
-  }
-  c.params.n = c.params.grid.n = uint32_t(c.positions.size());
+  test::SphCase c = crowded_case(10, 43, 60, 10);
   for (const uint32_t cap : {8192u, 100u}) {
     CAPTURE(cap);
     c.params.max_candidates = cap;
@@ -156,15 +164,7 @@ TEST_CASE("sph_forces over row masks walks a row too long for its mask whole") {
 TEST_CASE("sph_density's masks of rows longer than one word equal the CPU reference's") {
   Backend& b = test::backend();
   Backend& r = test::reference();
-  test::SphCase c = test::make_sph_case(10, SphPressureModel::wcsph, 45);
-  std::mt19937_64 rng(46);
-  std::uniform_real_distribution<double> u(-0.25 * c.dx, 0.25 * c.dx);
-  for (int k = 0; k < 30; ++k) {
-    c.positions.push_back(
-        {float(0.105 + u(rng)), float(0.105 + u(rng)), float(0.105 + u(rng)), 1.0f});
-    c.velocities.push_back({0.0f, 0.0f, 0.0f, 0.0f});
-  }
-  c.params.n = c.params.grid.n = uint32_t(c.positions.size());
+  const test::SphCase c = crowded_case(10, 45, 30, 0);
   const MaskedRun got = run_masked(b, c);
   CHECK(got.rows == run_masked(r, c).rows);
   check_same_forces(b, got);
