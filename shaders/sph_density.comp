@@ -46,36 +46,27 @@ struct Walk {
 
 // One chunk of a cooperative row: the cluster's kSphCoop candidates from `base`, rotated through
 // its lanes. At rotation step k this lane examines candidate base + t, t = (lane + k) mod C, a
-// constant per step, so whether it lies in the lane's row is two comparisons of t, and (with C <=
-// 32) which neighbours it found is one word of bits t that joins the row's mask once per chunk:
+// constant per step, so whether it lies in the lane's row is two comparisons of t, and which
+// neighbours it found is one word of bits t (C <= 32) that joins the row's mask once per chunk:
 // lavapipe runs the per-candidate bit arithmetic of sph_mask_set on every lane of every step.
 void coop_chunk(inout Walk w, vec3 xi, uint base, uvec2 u, uvec2 r) {
   const uint mine = base + sph_coop_lane();
   const vec3 xc = mine < u.y ? position_at(mine).xyz : vec3(0.0);
   const int lo = int(r.x) - int(base), hi = int(r.y) - int(base);  // the row: lo <= t < hi
-  const bool chunk_bits = kSphCoop <= 32u;
   uint found = 0u;
   for (uint k = 0u; k < kSphCoop; ++k) {
     LOOP_TICK();
     const vec3 xj = subgroupShuffle(xc, sph_coop_source(k));
     const uint t = (sph_coop_lane() + k) & (kSphCoop - 1u);
-    const uint j = base + t;
     const vec3 d = xi - xj;
     precise float r2 = d.x * d.x + d.y * d.y + d.z * d.z;  // unfused, as sph_density_term
     const bool in_row = int(t) >= lo && int(t) < hi;
     const bool near = in_row && r2 < p.h2;
     w.sum += in_row ? sph_density_term(r2, p) : 0.0;
-    if (chunk_bits) {
-      found |= near ? 1u << t : 0u;
-    } else {
-      w.within += near ? 1u : 0u;
-      w.bits = sph_mask_set(w.bits, j - r.x, near);
-    }
+    found |= near ? 1u << t : 0u;
   }
-  if (chunk_bits) {
-    w.within += uint(bitCount(found));
-    w.bits = sph_mask_or_shifted(w.bits, found, int(base) - int(r.x));
-  }
+  w.within += uint(bitCount(found));
+  w.bits = sph_mask_or_shifted(w.bits, found, int(base) - int(r.x));
 }
 
 // Candidate j of a row walked per lane (r: the row).

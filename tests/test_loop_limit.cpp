@@ -396,7 +396,7 @@ LOOP_LIMIT_CASE("sph kernels: loop ticks = rows + cells + candidates, capped bel
 #else
   const bool coop = false;  // only Vulkan counts loop ticks
 #endif
-  const uint32_t c = b.caps().min_subgroup_size;
+  const uint32_t c = std::min(b.caps().min_subgroup_size, 32u);  // clusters of at most 32
   const uint32_t unions = coop ? 9 * 3 * uint32_t(std::countr_zero(c)) : 0;
   const uint32_t together = (n + c - 1) / c * (c + 1);
   const uint32_t row = coop && together - n <= 260 ? together : n;
@@ -408,10 +408,10 @@ LOOP_LIMIT_CASE("sph kernels: loop ticks = rows + cells + candidates, capped bel
   CHECK(test::ticks_of(b) == 3 + 9 + unions + 1 + row + images);
   sph_forces(b, p, {&pos, &vel, &rho, &pr, view, &acc, &stats});
   CHECK(test::ticks_of(b) == 3 + 9 + unions + 1 + row);
-  // The worst any SPH kernel can do: 3 + 9 row loops, 27 cells, the unions at subgroups of 64,
-  // the cooperative walk's extra budget (260, shaders/common/sph_coop.glsl) and two walks over
-  // the validated maximum of candidates (32,500: sph_density's candidates and its neighbours'
-  // images) stay under lavapipe's limit; one more candidate is refused.
+  // The worst any SPH kernel can do: 3 + 9 row loops, 27 cells, the unions (at most those of
+  // clusters of 64), the cooperative walk's extra budget (260, shaders/common/sph_coop.glsl) and
+  // two walks over the validated maximum of candidates (32,500: sph_density's candidates and its
+  // neighbours' images) stay under lavapipe's limit; one more candidate is refused.
   const uint32_t cap = max_sph_candidates(test::loop_counter().caps().max_loop_iterations);
   CHECK(cap == 32500);
   CHECK(3 + 9 + 27 + 9 * 3 * 6 + 260 + kSphWalks * cap <

@@ -195,13 +195,12 @@ void validate(const DeviceApi& dev, const CellRankParams& p, const Buffer<uint32
 }
 
 uint32_t max_walk_candidates(const DeviceApi& dev) {
-  const uint32_t budget = dev.caps().max_loop_iterations;
-  return budget > kWalkLoopOverhead ? budget - kWalkLoopOverhead : 1;
+  return walk_candidates(dev.caps().max_loop_iterations);
 }
 
 void check_candidates(const DeviceApi& dev, uint32_t max_candidates, std::string_view kernel,
                       std::string_view field, uint32_t walks) {
-  const uint32_t most = std::max(max_walk_candidates(dev) / std::max(walks, 1u), 1u);
+  const uint32_t most = walk_candidates(dev.caps().max_loop_iterations, std::max(walks, 1u));
   if (max_candidates < 1 || max_candidates > most)
     throw_invalid(kernel, field, std::to_string(max_candidates),
                   fmt::format("in [1, {}] (a shader invocation runs at most {} loop iterations "

@@ -13,7 +13,13 @@ void check_grid(const GridParams& g, std::string_view kernel);
 // cooperative walk: its row unions and chunk rounding, shaders/common/sph_coop.glsl): fewer
 // than this.
 inline constexpr uint32_t kWalkLoopOverhead = 535;
-// The candidates a neighbour walk may examine on `dev`: its loop budget less that overhead.
+// The candidates an invocation that walks them `walks` times may examine within a loop budget
+// of `budget` iterations: each walk's share of the budget less that overhead (at least 1).
+constexpr uint32_t walk_candidates(uint32_t budget, uint32_t walks = 1) {
+  const uint32_t share = budget > kWalkLoopOverhead ? (budget - kWalkLoopOverhead) / walks : 0;
+  return share > 0 ? share : 1;
+}
+// The candidates a neighbour walk may examine on `dev`: walk_candidates of its loop budget.
 uint32_t max_walk_candidates(const DeviceApi& dev);
 // The SPH kernels' walks per candidate: sph_density walks its candidates, then, near a wall,
 // its neighbours within h again for their wall images (shaders/sph_density.comp), so their
@@ -21,7 +27,7 @@ uint32_t max_walk_candidates(const DeviceApi& dev);
 inline constexpr uint32_t kSphWalks = 2;
 // The most candidates an SPH kernel may examine on a device whose loop budget is `budget`.
 constexpr uint32_t max_sph_candidates(uint32_t budget) {
-  return budget > kWalkLoopOverhead ? (budget - kWalkLoopOverhead) / kSphWalks : 1;
+  return walk_candidates(budget, kSphWalks);
 }
 // throw_invalid for a candidate cap (the field `field`) outside [1, max_walk_candidates(dev) /
 // walks] (walks: the walks over the candidates one invocation may make).

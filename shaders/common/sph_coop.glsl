@@ -1,6 +1,7 @@
 // The cooperative neighbour walk of the SPH kernels. Consecutive sorted particles share most of
-// their 27 cells, so a cluster of C = SUBGROUP_MIN consecutive lanes (a power of two, at most
-// the subgroup) walks each of the 9 rows together, over the union of its lanes' row ranges:
+// their 27 cells, so a cluster of C = SUBGROUP_MIN consecutive lanes, at most 32 (a power of two,
+// at most the subgroup; sph_density holds the neighbours a lane finds in a chunk as one word of
+// bits) walks each of the 9 rows together, over the union of its lanes' row ranges:
 // each lane loads one candidate per chunk of C (contiguous loads, one per array and chunk instead
 // of one per lane and candidate) and the chunk rotates through the cluster by shuffles whose
 // pattern is fixed per step (lane + k mod C), which a SIMD CPU driver compiles to one register
@@ -17,7 +18,7 @@
 // including kernel enables GL_KHR_shader_subgroup_shuffle.
 
 const uint kSphCoopExtraTicks = 260u;
-const uint kSphCoop = SUBGROUP_MIN;
+const uint kSphCoop = SUBGROUP_MIN < 32u ? SUBGROUP_MIN : 32u;
 // Off: every row is walked per lane (the backend's choice: compute/sph_walk_choice.h).
 layout(constant_id = 4) const bool SPH_COOP_WALK = true;
 
