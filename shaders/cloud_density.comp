@@ -11,6 +11,7 @@ layout(std430, binding = 3) writeonly buffer Density { float density[]; };
 MASAV_PUSH(CloudDensityParams);
 
 void main() {
+  MASAV_LOAD_PUSH();
   const uint c = flat_invocation_id();
   const uvec3 d = p.grid.dims;
   const float cell = p.grid.cell_size;

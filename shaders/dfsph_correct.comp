@@ -64,6 +64,7 @@ void dfsph_visit(uint j, bool images) {
 }
 
 void main() {
+  MASAV_LOAD_PUSH();
   // The iteration before converged: this one, queued behind it, does nothing.
   if (p.stop_slot != kDfsphNoStop &&
       dfsph_stopped_at(uvec2(residual_at(2u * p.stop_slot), residual_at(2u * p.stop_slot + 1u)), p))

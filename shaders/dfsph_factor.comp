@@ -70,6 +70,7 @@ void dfsph_visit(uint j, bool images) {
 }
 
 void main() {
+  MASAV_LOAD_PUSH();
   // The range computed, [begin, end) of the n; the others are only read as neighbours.
   const uint i = p.begin + flat_invocation_id();
   const bool live = i < p.end;

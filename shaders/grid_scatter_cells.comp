@@ -37,6 +37,7 @@ void run() {
 }
 
 void main() {
+  MASAV_LOAD_PUSH();
   run();
   report_loop_ticks();
 }

@@ -13,6 +13,7 @@ MASAV_PUSH(RaymarchLayout);
 float volume_at(uint index) { return texelFetch(volume_texels, int(index)).r; }
 
 void main() {
+  MASAV_LOAD_PUSH();
   const uint id = flat_invocation_id();
   const uvec3 d = p.dims;
   if (id >= d.x * d.y * d.z) return;

@@ -9,6 +9,7 @@ layout(std430, binding = 2) writeonly buffer Table { float table_out[]; };
 MASAV_PUSH(ScatterFinalizeParams);
 
 void main() {
+  MASAV_LOAD_PUSH();
   const uint i = flat_invocation_id();
   if (i < p.entries)
     table_out[i] = (float(tallies[2u * i + 1u]) * 4294967296.0 + float(tallies[2u * i])) * p.scale;

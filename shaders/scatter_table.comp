@@ -25,6 +25,7 @@ uvec2 add64(uvec2 a, uvec2 b) {
 }
 
 void main() {
+  MASAV_LOAD_PUSH();
   const uint lid = gl_LocalInvocationID.x;
   for (uint e = lid; e < ENTRIES; e += WG_SIZE) {
     LOOP_TICK();

@@ -81,6 +81,7 @@ void lane_candidate(inout Walk w, vec3 xi, uint j, uvec2 r) {
 }
 
 void main() {
+  MASAV_LOAD_PUSH();
   // The range computed, [first, end) of the n (a rank's own particles); the others are only
   // read as neighbours.
   const uint i = p.first + flat_invocation_id();
@@ -147,10 +148,7 @@ void main() {
   SphRowWalk wr = kSphNoRow;
   while (walls_near && (pending != 0u || sph_row_left(wr))) {
     LOOP_TICK();
-    if (!sph_row_left(wr)) {
-      wr = rows[findLSB(pending)];
-      pending &= pending - 1u;
-    }
+    if (!sph_row_left(wr)) SPH_NEXT_ROW(wr, rows, pending)
     const uint j = sph_row_take(wr);
     const vec3 xj = position_at(j).xyz;
     const vec3 d = xi - xj;

@@ -158,23 +158,18 @@ void walk_masked(bool live, ivec3 cc, Me me, bool walls_near, inout Sum s) {
   SphRowWalk w = kSphNoRow;
   while (walls_near && (pending != 0u || sph_row_left(w))) {
     LOOP_TICK();
-    if (!sph_row_left(w)) {
-      w = rows[findLSB(pending)];
-      pending &= pending - 1u;
-    }
+    if (!sph_row_left(w)) SPH_NEXT_ROW(w, rows, pending)
     add_candidate(me, sph_row_take(w), s, true);
   }
   while (!walls_near && (pending != 0u || sph_row_left(w))) {
     LOOP_TICK();
-    if (!sph_row_left(w)) {
-      w = rows[findLSB(pending)];
-      pending &= pending - 1u;
-    }
+    if (!sph_row_left(w)) SPH_NEXT_ROW(w, rows, pending)
     add_candidate(me, sph_row_take(w), s, false);
   }
 }
 
 void main() {
+  MASAV_LOAD_PUSH();
   // The range computed, [first, end) of the n (a rank's own particles); the others are only
   // read as neighbours.
   const uint i = p.first + flat_invocation_id();

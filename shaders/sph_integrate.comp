@@ -24,6 +24,7 @@ layout(std430, binding = 9) buffer Stats { uint stats[]; };
 MASAV_PUSH(SphIntegrateLayout);
 
 void main() {
+  MASAV_LOAD_PUSH();
   // The range stepped, [first, end) of the n (a rank's own particles); the others are left
   // as they are.
   const uint i = p.first + flat_invocation_id();

@@ -12,6 +12,7 @@ layout(std430, binding = 4) writeonly buffer S { float sample_out[]; };
 MASAV_PUSH(VoxelizeParams);
 
 void main() {
+  MASAV_LOAD_PUSH();
   const uint o = flat_invocation_id();
   const uvec3 d = p.grid.dims;
   const uint cells = d.x * d.y * d.z;

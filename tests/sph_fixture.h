@@ -5,12 +5,14 @@
 #include <doctest/doctest.h>
 
 #include <algorithm>
+#include <bit>
 #include <random>
 #include <string>
 #include <vector>
 
 #include "engine/grid/hash_grid.h"
 #include "engine/kernels/sph_kernel_params.h"
+#include "engine/kernels/sph_kernels.h"
 #include "engine/sph/sph_case_buffers.h"
 #include "engine/sph/sph_particles.h"
 
@@ -89,6 +91,15 @@ void for_each_model_and_walls(uint32_t side, uint64_t seed, Body body) {
 using SphBuffers = SphCaseBuffers;
 inline SphBuffers upload_sph_case(Backend& b, const SphCase& c) {
   return masav::upload_sph_case(b, c.params, c.positions, c.velocities, "test sph");
+}
+
+// The set bits of sorted particle i's 9 neighbour row masks in `rows` (n particles): its
+// neighbours within h, itself included.
+inline uint32_t row_mask_bits(const std::vector<uint32_t>& rows, uint32_t i, uint32_t n) {
+  uint32_t bits = 0;
+  for (uint32_t r = 0; r < 9; ++r)
+    bits += uint32_t(std::popcount(sph::load_row_mask(sph::row_masks(rows.data(), i, n), r)));
+  return bits;
 }
 
 }  // namespace masav::test

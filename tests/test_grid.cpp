@@ -433,9 +433,9 @@ TEST_CASE("the counting build equals the radix build and the CPU reference, bit 
     CAPTURE(c.n);
     CAPTURE(c.dims.x);
     const Scene s = make_scene(c.n, c.dims, c.cell, seed++);
-    HashGrid g;
+    HashGrid g, g_radix;
     const GridResult got = build_on(b, s, &g, nullptr, counting(b));
-    const GridResult radix = build_on(b, s);
+    const GridResult radix = build_on(b, s, &g_radix);
     const GridResult ref =
         build_on(test::reference(), s, nullptr, nullptr, counting(test::reference()));
     CHECK(got.cells == radix.cells);
@@ -443,6 +443,16 @@ TEST_CASE("the counting build equals the radix build and the CPU reference, bit 
     CHECK(same_ranges(got, radix));
     CHECK(got.index == ref.index);
     CHECK(got.start == ref.start);
+    // Its tables are prefix ranges, every cell's end the next one's start (the SPH kernels read
+    // a row of 3 cells from its first start to its last end); the radix build's are not.
+    CHECK(g.prefix_ranges);
+    CHECK(!g_radix.prefix_ranges);
+    REQUIRE(!got.start.empty());
+    CHECK(got.start.front() == 0);
+    CHECK(got.end.back() == c.n);
+    size_t breaks = 0;
+    for (size_t k = 0; k + 1 < got.start.size(); ++k) breaks += got.end[k] != got.start[k + 1];
+    CHECK(breaks == 0);
     // The build leaves its count table zero: the next build needs no clear.
     const auto counts = b.download(g.counts);
     CHECK(std::count(counts.begin(), counts.end(), 0u) == ptrdiff_t(counts.size()));

@@ -25,6 +25,7 @@
 #include "engine/sph/sph_particles.h"
 #include "tests/backend_fixture.h"
 #include "tests/loop_limit.h"
+#include "tests/sph_fixture.h"
 
 using namespace masav;
 
@@ -69,7 +70,7 @@ CrowdedCell crowded_cell(Backend& b, SphPressureModel model, uint64_t seed) {
   b.upload(c.pos, c.pts);
   b.upload(c.vel, std::vector<Vec4f>(n));
   c.g = make_hash_grid(b, p.grid, n);
-  build_hash_grid(b, c.g, c.pos);
+  build_hash_grid(b, c.g, c.pos, {GridBuild::counting, n});
   return c;
 }
 
@@ -382,22 +383,20 @@ LOOP_LIMIT_CASE("sph kernels: loop ticks = rows + cells + candidates, capped bel
   auto stats = b.create<uint32_t>(kSphStatWords, "stats");
   b.fill(stats, 0u);
   (void)test::ticks_of(b);
-  const SphGridView view{&g.sorted_cells, &g.cell_start, &g.cell_end};
+  const SphGridView view = sph_grid_view(g);
   sph_density(b, p, {&pos, view, &rho, &pr, &stats});
-  // x loop 3 + y loop 9 + the cooperative walk's row unions (3 butterflies of log2(C) steps for
-  // each of the 9 rows, C the smallest subgroup) + 1 cell in the row + the crowded row: walked
-  // together in chunks of C (1 + C ticks each) when that costs at most the extra budget (260,
+  // x loop 3 + y loop 9 + the crowded row (a row's range is two loads and the cooperative walk's
+  // row unions written-out butterflies, no loops): walked together in chunks of C (1 + C ticks
+  // each, C the smallest subgroup) when that costs at most the extra budget (260,
   // shaders/common/sph_coop.glsl) over the n candidates of the per-lane walk (C = 32 on NVIDIA:
   // 102 extra), else per lane (C = 8 on lavapipe: 375 extra). sph_forces spells the wall
   // images out per neighbour, not looped over: they add no tick to its walk.
-  // The per-lane walk (a GPU's, or MASAV_VK_SPH_COOP=off) has no unions.
 #if MASAV_HAVE_VULKAN
   const bool coop = vk::sph_coop_walk(b.caps().device_type);
 #else
   const bool coop = false;  // only Vulkan counts loop ticks
 #endif
   const uint32_t c = std::min(b.caps().min_subgroup_size, 32u);  // clusters of at most 32
-  const uint32_t unions = coop ? 9 * 3 * uint32_t(std::countr_zero(c)) : 0;
   const uint32_t together = (n + c - 1) / c * (c + 1);
   const uint32_t row = coop && together - n <= 260 ? together : n;
   MESSAGE("subgroup ", c, ": the crowded row costs ", row, " ticks (", n, " candidates)");
@@ -405,48 +404,43 @@ LOOP_LIMIT_CASE("sph kernels: loop ticks = rows + cells + candidates, capped bel
   // (itself included) for their wall images: the most any particle has.
   const uint32_t images = b.download(stats)[kSphStatMaxNeighbors];
   CHECK(images > 1);
-  CHECK(test::ticks_of(b) == 3 + 9 + unions + 1 + row + images);
+  CHECK(test::ticks_of(b) == 3 + 9 + row + images);
   sph_forces(b, p, {&pos, &vel, &rho, &pr, view, &acc, &stats});
-  CHECK(test::ticks_of(b) == 3 + 9 + unions + 1 + row);
-  // The worst any SPH kernel can do: 3 + 9 row loops, 27 cells, the unions (at most those of
-  // clusters of 64), the cooperative walk's extra budget (260, shaders/common/sph_coop.glsl) and
-  // two walks over the validated maximum of candidates (32,500: sph_density's candidates and its
-  // neighbours' images) stay under lavapipe's limit; one more candidate is refused.
+  CHECK(test::ticks_of(b) == 3 + 9 + row);
+  // The worst any SPH kernel can do: 3 + 9 row loops, the cooperative walk's extra budget (260,
+  // shaders/common/sph_coop.glsl) and two walks over the validated maximum of candidates (32,500:
+  // sph_density's candidates and its neighbours' images) stay under lavapipe's limit; one more
+  // candidate is refused.
   const uint32_t cap = max_sph_candidates(test::loop_counter().caps().max_loop_iterations);
   CHECK(cap == 32500);
-  CHECK(3 + 9 + 27 + 9 * 3 * 6 + 260 + kSphWalks * cap <
-        test::loop_counter().caps().max_loop_iterations);
+  CHECK(3 + 9 + 260 + kSphWalks * cap < test::loop_counter().caps().max_loop_iterations);
 
   // Over neighbour row masks: recording them adds no loop to sph_density; sph_forces walks per
-  // lane (no row unions) a row too long for its mask whole, so the crowded row costs what it
+  // lane a row too long for its mask whole, so the crowded row costs what it
   // did, and a row that fits one pass per neighbour (at most its candidates). Its worst case,
-  // 3 + 9 + 27 + 32,500, is then below sph_density's bound above.
+  // 3 + 9 + 32,500, is then below sph_density's bound above.
   auto rows = b.create<uint32_t>(size_t(kSphRowMaskWords) * n, "rows");
   sph_density(b, p, {&pos, view, &rho, &pr, &stats, &rows});
-  CHECK(test::ticks_of(b) == 3 + 9 + unions + 1 + row + images);
+  CHECK(test::ticks_of(b) == 3 + 9 + row + images);
   sph_forces(b, p, {&pos, &vel, &rho, &pr, view, &acc, &stats, &rows});
-  CHECK(test::ticks_of(b) == 3 + 9 + 1 + n);
+  CHECK(test::ticks_of(b) == 3 + 9 + n);
   const uint32_t few = 50;  // one row that fits a mask
   SphStepParams q = p;
   q.grid.n = q.n = q.max_candidates = few;
   auto pos_q = b.create<Real4>(few, "pos few");
   b.upload(pos_q, std::vector<Vec4f>(pts.begin(), pts.begin() + few));
   HashGrid gq = make_hash_grid(b, q.grid, few);
-  build_hash_grid(b, gq, pos_q);
-  const SphGridView vq{&gq.sorted_cells, &gq.cell_start, &gq.cell_end};
+  build_hash_grid(b, gq, pos_q, {GridBuild::counting, few});
+  const SphGridView vq = sph_grid_view(gq);
   sph_density(b, q, {&pos_q, vq, &rho, &pr, &stats, &rows});
   (void)test::ticks_of(b);
   sph_forces(b, q, {&pos_q, &vel, &rho, &pr, vq, &acc, &stats, &rows});
   const std::vector<uint32_t> words = b.download(rows);
   uint32_t most = 0;  // the most neighbours any particle has, itself included
-  for (uint32_t i = 0; i < few; ++i) {
-    uint32_t bits = 0;
-    for (uint32_t w = 0; w < kSphRowMaskWords; ++w) bits += std::popcount(words[w * few + i]);
-    most = std::max(most, bits);
-  }
+  for (uint32_t i = 0; i < few; ++i) most = std::max(most, test::row_mask_bits(words, i, few));
   CHECK(most > 1);
   CHECK(most <= few);
-  CHECK(test::ticks_of(b) == 3 + 9 + 1 + most);
+  CHECK(test::ticks_of(b) == 3 + 9 + most);
 
   p.max_candidates = cap;
   CHECK_NOTHROW(sph_density(b, p, {&pos, view, &rho, &pr, &stats}));
@@ -481,9 +475,9 @@ LOOP_LIMIT_CASE("dfsph kernels: loop ticks = rows + cells + candidates, as sph_f
   auto rows = b.create<uint32_t>(size_t(kSphRowMaskWords) * n, "rows");
   b.fill(stats, 0u);
   b.fill(kappa_sum, 0u);
-  const SphGridView view{&g.sorted_cells, &g.cell_start, &g.cell_end};
+  const SphGridView view = sph_grid_view(g);
   // Each kernel, walking every candidate and over the masks (the crowded row is too long for
-  // its mask, so it is walked whole either way): x loop 3 + y loop 9 + 1 cell in the row + n
+  // its mask, so it is walked whole either way): x loop 3 + y loop 9 + n
   // candidates, one pass each; the wall images are spelled out, not looped over.
   for (const bool masked : {false, true}) {
     CAPTURE(masked);
@@ -502,13 +496,13 @@ LOOP_LIMIT_CASE("dfsph kernels: loop ticks = rows + cells + candidates, as sph_f
     io.neighbor_rows = masked ? &rows : nullptr;
     const DfsphParams dp{p, DfsphSolve::density, 1e-3};
     dfsph_factor(b, dp, io);
-    CHECK(test::ticks_of(b) == 3 + 9 + 1 + n);
+    CHECK(test::ticks_of(b) == 3 + 9 + n);
     dfsph_rate(b, dp, io);
-    CHECK(test::ticks_of(b) == 3 + 9 + 1 + n);
+    CHECK(test::ticks_of(b) == 3 + 9 + n);
     dfsph_correct(b, dp, io);
-    CHECK(test::ticks_of(b) == 3 + 9 + 1 + n);
+    CHECK(test::ticks_of(b) == 3 + 9 + n);
   }
-  // The worst case, 3 + 9 + 27 + the validated maximum of candidates, is below sph_density's
+  // The worst case, 3 + 9 + the validated maximum of candidates, is below sph_density's
   // (the case above); one more candidate is refused.
   p.max_candidates = max_sph_candidates(b.caps().max_loop_iterations) + 1;
   CHECK_THROWS_AS(

@@ -12,6 +12,7 @@
 #include "engine/core/error.h"
 #include "engine/kernels/grid_cell.h"
 #include "engine/kernels/sph_kernels.h"
+#include "engine/sph/dfsph_case_buffers.h"
 #include "engine/sph/sph_coefficients.h"
 #include "engine/sph/sph_kernel_calls.h"
 #include "engine/util/error_metrics.h"
@@ -406,4 +407,31 @@ TEST_CASE("sph kernel parameters out of range are rejected, naming the field") {
                                      {&s.sorted_pos, &s.sorted_vel, nullptr, &s.accel, &s.pos,
                                       &s.vel, nullptr, nullptr, &s.stats}),
                        doctest::Contains("vk"), Error);
+}
+
+TEST_CASE("sph and dfsph kernels refuse a grid whose tables are not prefix ranges") {
+  Backend& b = test::backend();
+  const test::SphCase c = test::make_sph_case(4, SphPressureModel::dfsph, 2);
+  test::SphBuffers s = test::upload_sph_case(b, c);
+  // The same points, grid and order by the radix build, whose empty cells read [0, 0): a row
+  // read from its first cell's start to its last one's end would be wrong there.
+  build_hash_grid(b, s.grid, s.pos);
+  REQUIRE(!s.grid.prefix_ranges);
+  const auto refused = doctest::Contains("not prefix ranges");
+  CHECK_THROWS_WITH_AS(
+      sph_density(b, c.params, {&s.sorted_pos, s.view(), &s.density, &s.pressure, &s.stats}),
+      refused, Error);
+  CHECK_THROWS_WITH_AS(sph_forces(b, c.params,
+                                  {&s.sorted_pos, &s.sorted_vel, &s.density, &s.pressure, s.view(),
+                                   &s.accel, &s.stats}),
+                       refused, Error);
+  DfsphCaseBuffers d = make_dfsph_buffers(b, c.params.n, "test dfsph");
+  const DfsphIO io = dfsph_io(s, d);
+  CHECK_THROWS_WITH_AS(dfsph_factor(b, DfsphParams{c.params}, io), refused, Error);
+  CHECK_THROWS_WITH_AS(dfsph_rate(b, DfsphParams{c.params}, io), refused, Error);
+  CHECK_THROWS_WITH_AS(dfsph_correct(b, DfsphParams{c.params}, io), refused, Error);
+  // The counting build again: accepted.
+  build_hash_grid(b, s.grid, s.pos, {GridBuild::counting, c.params.n});
+  CHECK_NOTHROW(
+      sph_density(b, c.params, {&s.sorted_pos, s.view(), &s.density, &s.pressure, &s.stats}));
 }

@@ -76,12 +76,6 @@ void check_same_forces(const Backend& b, const MaskedRun& r) {
   }
 }
 
-uint32_t mask_bits(const std::vector<uint32_t>& rows, uint32_t i, uint32_t n) {
-  uint32_t bits = 0;
-  for (uint32_t w = 0; w < kSphRowMaskWords; ++w) bits += std::popcount(rows[size_t(w) * n + i]);
-  return bits;
-}
-
 // Case `size` (make_sph_case's size and seed) with `extra` more particles crowding one cell,
 // moving at up to `speed` times the spread of their positions.
 test::SphCase crowded_case(uint32_t size, uint64_t seed, int extra, double speed) {
@@ -108,7 +102,8 @@ TEST_CASE("sph_forces over neighbour row masks equals sph_forces walking every c
     check_same_forces(b, got);
     const uint32_t n = c.params.n;
     // Each particle's bits are its neighbours within h and itself (no row here is too long).
-    for (uint32_t i = 0; i < n; ++i) REQUIRE(mask_bits(got.rows, i, n) == got.full[i].w + 1);
+    for (uint32_t i = 0; i < n; ++i)
+      REQUIRE(test::row_mask_bits(got.rows, i, n) == got.full[i].w + 1);
     // The same bits as the CPU reference's (its own neighbour test, in double).
     CHECK(got.rows == run_masked(r, c).rows);
     // Recording the masks leaves the density as it was.
@@ -141,8 +136,9 @@ TEST_CASE("sph_forces over row masks walks a row too long for its mask whole") {
       bool overflow = false;
       sph::walk_rows(cells[i], dims, start.data(), end.data(), p.max_candidates, overflow,
                      [&](uint32_t row, uint32_t first, uint32_t last) {
-                       const uint32_t lo = got.rows[size_t(2 * row) * p.n + i];
-                       const uint32_t hi = got.rows[size_t(2 * row + 1) * p.n + i];
+                       const uint64_t bits =
+                           sph::load_row_mask(sph::row_masks(got.rows.data(), i, p.n), row);
+                       const uint32_t lo = uint32_t(bits), hi = uint32_t(bits >> 32);
                        const uint32_t count = last - first;
                        if (count > kSphRowMaskBits) {
                          ++long_rows;
@@ -171,7 +167,8 @@ TEST_CASE("sph_density's masks of rows longer than one word equal the CPU refere
   const uint32_t n = c.params.n;
   uint32_t high_words = 0;
   for (uint32_t row = 0; row < 9; ++row)
-    for (uint32_t i = 0; i < n; ++i) high_words += got.rows[size_t(2 * row + 1) * n + i] != 0;
+    for (uint32_t i = 0; i < n; ++i)
+      high_words += sph::load_row_mask(sph::row_masks(got.rows.data(), i, n), row) >> 32 != 0;
   CHECK(high_words > 0);
 }
 

@@ -74,11 +74,17 @@ using uvec3 = UVec3;
 #define MASAV_CONSTANT64(name, hi, lo) const uvec2 name = uvec2(lo, hi);
 #define MASAV_NAMESPACE_BEGIN
 #define MASAV_NAMESPACE_END
-// A kernel's parameters as its push block, read as `p.field` like the C++ and CUDA code.
+// A kernel's parameters as its push block, read as `p.field` like the C++ and CUDA code: `p` is
+// a private copy that the kernel's main makes before anything else (MASAV_LOAD_PUSH). lavapipe
+// loads a push constant lane by lane, from memory, wherever a loop reads it; the copy made before
+// the loops stays in registers (sph_forces at 32,768 particles: 8.1 -> 7.2 ms). A GPU compiler
+// reads the copied fields from the push constants where they are used.
 #define MASAV_PUSH(Layout)                              \
   layout(push_constant, std430) uniform Layout##Block { \
-    Layout p;                                           \
-  }
+    Layout push_block_;                                 \
+  };                                                    \
+  Layout p
+#define MASAV_LOAD_PUSH() p = push_block_
 
 #endif
 #endif

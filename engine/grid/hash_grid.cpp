@@ -48,6 +48,7 @@ void build_by_counting(Backend& backend, HashGrid& grid, const Buffer<Real4>& po
   backend.grid_rank_in_cell({g.n, uint32_t(grid_cell_count(g)), max_per_cell}, grid.point_cells,
                             grid.unsorted, grid.cell_start, grid.cell_end, grid.sorted_cells,
                             grid.sorted_index);
+  grid.prefix_ranges = true;
 }
 
 }  // namespace
@@ -69,6 +70,7 @@ HashGrid make_hash_grid(Backend& backend, const GridParams& params, size_t capac
 
 void build_hash_grid(Backend& backend, HashGrid& grid, const Buffer<Real4>& positions,
                      const GridBuildOptions& options) {
+  grid.prefix_ranges = false;  // until a counting build completes
   if (options.method == GridBuild::counting)
     build_by_counting(backend, grid, positions, options.max_per_cell);
   else
@@ -82,12 +84,14 @@ void build_hash_grid_moving(Backend& backend, HashGrid& grid, const Buffer<Real4
                 "pass positions_sorted, b, b_sorted, ids and ids_sorted");
   // The rank pass's cap, before any pass runs.
   check_candidates(backend, max_per_cell, "grid_rank_and_move", "max_per_cell");
+  grid.prefix_ranges = false;  // until the build completes
   count_and_scatter(backend, grid, positions);
   const GridParams& g = grid.params;
   backend.grid_rank_and_move({g.n, uint32_t(grid_cell_count(g)), max_per_cell}, grid.point_cells,
                              grid.unsorted, grid.cell_start, grid.cell_end, grid.sorted_cells,
                              grid.sorted_index, positions, *m.positions_sorted, *m.b, *m.b_sorted,
                              *m.ids, *m.ids_sorted);
+  grid.prefix_ranges = true;
 }
 
 void reorder(Backend& backend, const HashGrid& grid, const BufferImpl& src, BufferImpl& dst) {

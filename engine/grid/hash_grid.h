@@ -13,6 +13,9 @@ struct HashGrid {
   Buffer<uint32_t> sorted_index;  // original index of each sorted point
   Buffer<uint32_t> cell_start;    // first sorted point of each cell
   Buffer<uint32_t> cell_end;      // one past the last (== start for empty cells)
+  // Set by the counting build, cleared by the radix build: every cell, empty or not, reads
+  // [k, k + count) with k the points in lower cells, so cell_end[c] == cell_start[c + 1].
+  bool prefix_ranges = false;
   // The counting build's working buffers, made by its first build, so radix builds never pay:
   Buffer<uint32_t> counts;       // per cell, all zero between builds (counted up, scattered down)
   Buffer<uint32_t> point_cells;  // cell of each point, in point order

@@ -10,8 +10,7 @@ namespace masav {
 void check_grid(const GridParams& g, std::string_view kernel);
 
 // The loops of a neighbour walk besides its candidates (rows, cells, walls, and the SPH kernels'
-// cooperative walk: its row unions and chunk rounding, shaders/common/sph_coop.glsl): fewer
-// than this.
+// cooperative walk: its chunk rounding, shaders/common/sph_coop.glsl): fewer than this.
 inline constexpr uint32_t kWalkLoopOverhead = 535;
 // The candidates an invocation that walks them `walks` times may examine within a loop budget
 // of `budget` iterations: each walk's share of the budget less that overhead (at least 1).

@@ -162,6 +162,9 @@ struct SphGridView {
   const Buffer<uint32_t>* cells = nullptr;  // cell id of each sorted particle
   const Buffer<uint32_t>* cell_start = nullptr;
   const Buffer<uint32_t>* cell_end = nullptr;
+  // Whether the tables are the counting build's (HashGrid::prefix_ranges): the kernels read a
+  // row of 3 cells as [start of the first, end of the last), so they refuse other tables.
+  bool prefix_ranges = false;
 };
 
 struct SphDensityIO {

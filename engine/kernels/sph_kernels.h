@@ -131,26 +131,19 @@ MASAV_HD inline void cell_coords(uint32_t id, const uint32_t dims[3], int out[3]
 }
 
 // The sorted range holding the 3 cells (x, y, z-1 .. z+1) of one row of the 27-cell block:
-// consecutive cell ids, so their points are contiguous in cell order. Empty when all 3 are
-// empty (an empty cell has start == end).
+// consecutive cell ids, so their points are contiguous in cell order, from the first cell's start
+// to the last one's end. That needs the counting build's tables, where an empty cell reads
+// [k, k) with k the points in lower cells (SphGridView::prefix_ranges); two loads instead of six.
+// [0, 0) when all 3 are empty.
 MASAV_HD inline void row_range(int x, int y, int z, const uint32_t dims[3],
                                const uint32_t* cell_start, const uint32_t* cell_end,
                                uint32_t& first, uint32_t& last) {
-  first = 0;
-  last = 0;
   const int z0 = z > 0 ? z - 1 : 0;
   const int z1 = z + 1 < int(dims[2]) ? z + 1 : int(dims[2]) - 1;
   const uint32_t base = (uint32_t(x) * dims[1] + uint32_t(y)) * dims[2];
-  bool found = false;
-  for (int k = z0; k <= z1; ++k) {
-    const uint32_t id = base + uint32_t(k);
-    const uint32_t s = cell_start[id], e = cell_end[id];
-    if (e > s) {
-      if (!found) first = s;
-      found = true;
-      last = e;
-    }
-  }
+  first = cell_start[base + uint32_t(z0)];
+  last = cell_end[base + uint32_t(z1)];
+  if (last <= first) first = last = 0;
 }
 
 // Visits the 9 rows of the 27 cells around `cell` in the order every backend sums in (x

@@ -2,6 +2,10 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
+
+#include "engine/kernels/kernel_checks.h"
+
 namespace masav {
 
 SphCaseBuffers upload_sph_case(Backend& b, const SphStepParams& p, std::span<const Vec4f> positions,
@@ -21,7 +25,10 @@ SphCaseBuffers upload_sph_case(Backend& b, const SphStepParams& p, std::span<con
   b.upload(s.pos, positions);
   b.upload(s.vel, velocities);
   s.grid = make_hash_grid(b, p.grid, n);
-  build_hash_grid(b, s.grid, s.pos);
+  // The counting build, which the SPH kernels need (SphGridView::prefix_ranges); a cell may hold
+  // as many points as a walk could examine.
+  build_hash_grid(b, s.grid, s.pos,
+                  {GridBuild::counting, std::max(1u, std::min(n, max_walk_candidates(b)))});
   reorder(b, s.grid, s.pos.impl(), s.sorted_pos.impl());
   reorder(b, s.grid, s.vel.impl(), s.sorted_vel.impl());
   b.fill(s.stats, 0u);

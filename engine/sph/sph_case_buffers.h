@@ -7,6 +7,7 @@
 
 #include "engine/grid/hash_grid.h"
 #include "engine/kernels/sph_kernel_params.h"
+#include "engine/sph/sph_kernel_calls.h"
 
 namespace masav {
 
@@ -16,7 +17,7 @@ struct SphCaseBuffers {
   Buffer<Real> density, pressure;
   Buffer<uint32_t> stats;          // zeroed
   Buffer<uint32_t> neighbor_rows;  // room for the neighbour row masks (kSphRowMaskWords n)
-  SphGridView view() const { return {&grid.sorted_cells, &grid.cell_start, &grid.cell_end}; }
+  SphGridView view() const { return sph_grid_view(grid); }
 };
 
 // p.n particles on p.grid; buffer labels start with `label`.

@@ -15,10 +15,25 @@ B& given(const Backend& b, B* buffer, const char* kernel, const char* field) {
   return *buffer;
 }
 
+// The grid's tables, refused unless they are the counting build's: a radix build leaves an empty
+// cell as [0, 0), and a row read as [start of its first cell, end of its last) would then be
+// wrong wherever its first cell is empty.
+void check_prefix_ranges(const Backend& b, const SphGridView& g, const char* kernel) {
+  if (!g.prefix_ranges)
+    throw Error(b.name(), kernel, "the grid's cell tables are not prefix ranges (a radix build)",
+                "build the grid with GridBuild::counting (build_hash_grid_moving builds it so) "
+                "and pass sph_grid_view(grid)");
+}
+
 }  // namespace
+
+SphGridView sph_grid_view(const HashGrid& grid) {
+  return {&grid.sorted_cells, &grid.cell_start, &grid.cell_end, grid.prefix_ranges};
+}
 
 void sph_density(Backend& b, const SphStepParams& p, const SphDensityIO& io) {
   const char* k = "sph_density";
+  check_prefix_ranges(b, io.grid, k);
   b.sph_density(p, given(b, io.positions, k, "positions"), given(b, io.grid.cells, k, "cells"),
                 given(b, io.grid.cell_start, k, "cell_start"),
                 given(b, io.grid.cell_end, k, "cell_end"), given(b, io.density, k, "density"),
@@ -28,6 +43,7 @@ void sph_density(Backend& b, const SphStepParams& p, const SphDensityIO& io) {
 
 void sph_forces(Backend& b, const SphStepParams& p, const SphForcesIO& io) {
   const char* k = "sph_forces";
+  check_prefix_ranges(b, io.grid, k);
   b.sph_forces(p, given(b, io.positions, k, "positions"), given(b, io.velocities, k, "velocities"),
                given(b, io.density, k, "density"), given(b, io.pressure, k, "pressure"),
                given(b, io.grid.cells, k, "cells"), given(b, io.grid.cell_start, k, "cell_start"),
@@ -44,6 +60,7 @@ void sph_integrate(Backend& b, const SphIntegrateParams& p, const SphIntegrateIO
 
 void dfsph_factor(Backend& b, const DfsphParams& p, const DfsphIO& io) {
   const char* k = "dfsph_factor";
+  check_prefix_ranges(b, io.grid, k);
   b.dfsph_factor(p, given(b, io.positions, k, "positions"), given(b, io.grid.cells, k, "cells"),
                  given(b, io.grid.cell_start, k, "cell_start"),
                  given(b, io.grid.cell_end, k, "cell_end"), given(b, io.factor, k, "factor"),
@@ -52,6 +69,7 @@ void dfsph_factor(Backend& b, const DfsphParams& p, const DfsphIO& io) {
 
 void dfsph_rate(Backend& b, const DfsphParams& p, const DfsphIO& io) {
   const char* k = "dfsph_rate";
+  check_prefix_ranges(b, io.grid, k);
   b.dfsph_rate(p, given(b, io.positions, k, "positions"), given(b, io.velocities, k, "velocities"),
                given(b, io.density, k, "density"), given(b, io.factor, k, "factor"),
                given(b, io.grid.cells, k, "cells"), given(b, io.grid.cell_start, k, "cell_start"),
@@ -62,6 +80,7 @@ void dfsph_rate(Backend& b, const DfsphParams& p, const DfsphIO& io) {
 
 void dfsph_correct(Backend& b, const DfsphParams& p, const DfsphIO& io) {
   const char* k = "dfsph_correct";
+  check_prefix_ranges(b, io.grid, k);
   b.dfsph_correct(
       p, given(b, io.positions, k, "positions"), given(b, io.kappa, k, "kappa"),
       given(b, io.grid.cells, k, "cells"), given(b, io.grid.cell_start, k, "cell_start"),

@@ -2,9 +2,14 @@
 // The SPH kernels called with their buffers grouped by role (SphDensityIO, SphForcesIO,
 // SphIntegrateIO), as the simulation, the cross-check and the tests hold them. A missing
 // required buffer is an error naming it, before the kernel's own checks.
+#include "engine/grid/hash_grid.h"
 #include "engine/kernels/backend.h"
 
 namespace masav {
+
+// The view of `grid` the SPH and DFSPH kernels walk; they refuse one whose tables are not the
+// counting build's (HashGrid::prefix_ranges).
+SphGridView sph_grid_view(const HashGrid& grid);
 
 void sph_density(Backend& b, const SphStepParams& p, const SphDensityIO& io);
 void sph_forces(Backend& b, const SphStepParams& p, const SphForcesIO& io);

@@ -223,7 +223,7 @@ Buffer<uint32_t>* SphSimulation::neighbor_rows() {
 }
 
 void SphSimulation::evaluate(const Buffer<Real4>& x, const Buffer<Real4>& v) {
-  const SphGridView view{&grid_.sorted_cells, &grid_.cell_start, &grid_.cell_end};
+  const SphGridView view = sph_grid_view(grid_);
   sph_density(backend_, step_params_,
               SphDensityIO{&x, view, &density_, &pressure_, &stats_buf_, neighbor_rows()});
   mark(SphStage::density);

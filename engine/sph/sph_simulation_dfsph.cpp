@@ -78,7 +78,7 @@ DfsphParams SphSimulation::dfsph_params(DfsphSolve solve, double dt) const {
 }
 
 void SphSimulation::dfsph_fields(const Buffer<Real4>& x) {
-  const SphGridView view{&grid_.sorted_cells, &grid_.cell_start, &grid_.cell_end};
+  const SphGridView view = sph_grid_view(grid_);
   sph_density(backend_, step_params_,
               SphDensityIO{&x, view, &density_, &pressure_, &stats_buf_, neighbor_rows()});
   if (ranks_) ranks_->exchange_halos(density_);  // dfsph's force reads no pressure
@@ -106,7 +106,7 @@ void SphSimulation::dfsph_solve(DfsphSolve solve, double dt, const Buffer<Real4>
   io.velocities = &v;
   io.density = &density_;
   io.factor = &factor_;
-  io.grid = {&grid_.sorted_cells, &grid_.cell_start, &grid_.cell_end};
+  io.grid = sph_grid_view(grid_);
   io.kappa_sum = &kappa_sum;
   io.residual = &residual_;
   io.stats = &stats_buf_;
@@ -199,7 +199,7 @@ void SphSimulation::step_dfsph(double dt) {
     kappa_warm_ = false;
     accel_valid_ = true;
   }
-  const SphGridView view{&grid_.sorted_cells, &grid_.cell_start, &grid_.cell_end};
+  const SphGridView view = sph_grid_view(grid_);
   sph_forces(backend_, step_params_,
              SphForcesIO{&pos_, &vel_, &density_, &pressure_, view, &accel_, &stats_buf_,
                          neighbor_rows()});

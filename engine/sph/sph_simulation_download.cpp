@@ -50,7 +50,7 @@ SphSimulation::StateReads SphSimulation::queue_state_reads(std::optional<StatsKe
     // the positions, velocities and ids into a fresh grid (scratch buffers), evaluate there.
     rebuild_moving(pos_, ta_, vel_, tb_, ids_, ids_t_);
     keep.emplace(*this);
-    const SphGridView view{&grid_.sorted_cells, &grid_.cell_start, &grid_.cell_end};
+    const SphGridView view = sph_grid_view(grid_);
     sph_density(backend_, step_params_,
                 SphDensityIO{&ta_, view, &density_, &pressure_, &stats_buf_, neighbor_rows()});
     sph_forces(backend_, step_params_,

@@ -64,18 +64,12 @@ void dfsph_walk(bool live, uint i, ivec3 cc, bool walls_near, inout uint candida
   SphRowWalk w = kSphNoRow;
   while (walls_near && (pending != 0u || sph_row_left(w))) {
     LOOP_TICK();
-    if (!sph_row_left(w)) {
-      w = rows[findLSB(pending)];
-      pending &= pending - 1u;
-    }
+    if (!sph_row_left(w)) SPH_NEXT_ROW(w, rows, pending)
     dfsph_visit(sph_row_take(w), true);
   }
   while (!walls_near && (pending != 0u || sph_row_left(w))) {
     LOOP_TICK();
-    if (!sph_row_left(w)) {
-      w = rows[findLSB(pending)];
-      pending &= pending - 1u;
-    }
+    if (!sph_row_left(w)) SPH_NEXT_ROW(w, rows, pending)
     dfsph_visit(sph_row_take(w), false);
   }
 }

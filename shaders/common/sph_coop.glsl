@@ -10,12 +10,12 @@
 // union is much longer than the lanes' own ranges (lanes in distant cells: sparse fluid, the end
 // of a column) is walked per lane instead.
 //
-// Loop budget: the union of a row costs 3 log2(C) butterfly ticks, and a cooperative row costs
-// every lane the union's chunks (1 + C ticks each) instead of its own range; the extra over the
-// shortest own range is charged to kSphCoopExtraTicks per invocation. With C <= 64 the worst
-// case (max_candidates at its validated maximum, 9 x 18 butterfly ticks, this budget) stays
-// under lavapipe's 65,535 iterations (kWalkLoopOverhead, engine/kernels/kernel_checks.h). The
-// including kernel enables GL_KHR_shader_subgroup_shuffle.
+// Loop budget: the union of a row is found without a loop (sph_coop_min and _max), and a
+// cooperative row costs every lane the union's chunks (1 + C ticks each) instead of its own range;
+// the extra over the shortest own range is charged to kSphCoopExtraTicks per invocation, so the
+// worst case (max_candidates at its validated maximum plus this budget) stays under lavapipe's
+// 65,535 iterations (kWalkLoopOverhead, engine/kernels/kernel_checks.h). The including kernel
+// enables GL_KHR_shader_subgroup_shuffle.
 
 const uint kSphCoopExtraTicks = 260u;
 const uint kSphCoop = SUBGROUP_MIN < 32u ? SUBGROUP_MIN : 32u;
@@ -28,19 +28,23 @@ uint sph_coop_source(uint k) {
   return (gl_SubgroupInvocationID & ~(kSphCoop - 1u)) + ((sph_coop_lane() + k) & (kSphCoop - 1u));
 }
 
-// Minimum and maximum over the cluster (butterfly; clustered operations need a literal size).
+// Minimum and maximum over the cluster (butterfly; clustered operations need a literal size),
+// written out: with kSphCoop a constant once specialised, the steps it does not take fold away
+// and no loop is left (lavapipe ran the loop's exit test and masks in every step).
 uint sph_coop_min(uint v) {
-  for (uint m = 1u; m < kSphCoop; m <<= 1u) {
-    LOOP_TICK();
-    v = min(v, subgroupShuffleXor(v, m));
-  }
+  if (kSphCoop > 1u) v = min(v, subgroupShuffleXor(v, 1u));
+  if (kSphCoop > 2u) v = min(v, subgroupShuffleXor(v, 2u));
+  if (kSphCoop > 4u) v = min(v, subgroupShuffleXor(v, 4u));
+  if (kSphCoop > 8u) v = min(v, subgroupShuffleXor(v, 8u));
+  if (kSphCoop > 16u) v = min(v, subgroupShuffleXor(v, 16u));
   return v;
 }
 uint sph_coop_max(uint v) {
-  for (uint m = 1u; m < kSphCoop; m <<= 1u) {
-    LOOP_TICK();
-    v = max(v, subgroupShuffleXor(v, m));
-  }
+  if (kSphCoop > 1u) v = max(v, subgroupShuffleXor(v, 1u));
+  if (kSphCoop > 2u) v = max(v, subgroupShuffleXor(v, 2u));
+  if (kSphCoop > 4u) v = max(v, subgroupShuffleXor(v, 4u));
+  if (kSphCoop > 8u) v = max(v, subgroupShuffleXor(v, 8u));
+  if (kSphCoop > 16u) v = max(v, subgroupShuffleXor(v, 16u));
   return v;
 }
 

@@ -17,24 +17,15 @@ layout(constant_id = 5) const bool SPH_WALL_SPLIT = true;
 // Whether a lane's subgroup computes the wall images (axes: the lane's sph_wall_mirrors axes).
 bool sph_walls_near(uint axes) { return !SPH_WALL_SPLIT || subgroupMax(axes) != 0u; }
 
-// Sorted range of the row (x, y, z-1 .. z+1): 3 consecutive cell ids, contiguous points.
+// Sorted range of the row (x, y, z-1 .. z+1): 3 consecutive cell ids, contiguous points, from
+// the first cell's start to the last one's end (the counting build's tables, where an empty cell
+// reads [k, k): SphGridView::prefix_ranges); [0, 0) when all 3 are empty.
 uvec2 sph_row_range(int x, int y, int z, uvec3 dims) {
   const int z0 = max(z - 1, 0);
   const int z1 = min(z + 1, int(dims.z) - 1);
   const uint base = (uint(x) * dims.y + uint(y)) * dims.z;
-  uint first = 0u, last = 0u;
-  bool found = false;
-  for (int k = z0; k <= z1; ++k) {
-    LOOP_TICK();
-    const uint id = base + uint(k);
-    const uint s = cell_start_at(id), e = cell_end_at(id);
-    if (e > s) {
-      if (!found) first = s;
-      found = true;
-      last = e;
-    }
-  }
-  return uvec2(first, last);
+  const uint first = cell_start_at(base + uint(z0)), last = cell_end_at(base + uint(z1));
+  return last > first ? uvec2(first, last) : uvec2(0u);
 }
 
 // This lane's range of row (dx, dy) around cell coordinates cc, counted against the candidate
