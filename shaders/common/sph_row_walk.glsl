@@ -7,9 +7,8 @@
 // row-by-row walk. The step of that loop (move to the next pending row when w has none left,
 // SPH_NEXT_ROW, then take) is written out in each loop, not called: passed to a function, the
 // nine rows are copied in every pass on lavapipe (sph_forces at 32,768 particles: 19 -> 49 ms).
-// The includer
-// includes sph_walk.glsl first and defines `uint neighbor_row_at(uint word)`, or defines
-// SPH_ROWS_FROM_WALK (sph_density, which keeps the rows of its own walk) and gets no
+// The includer includes sph_walk.glsl first and defines `uint neighbor_row_at(uint word)`, or
+// defines SPH_ROWS_FROM_WALK (sph_density, which keeps the rows of its own walk) and gets no
 // sph_gather_rows.
 
 // One row's walk state: the candidates [next, end) in order (a row too long for its mask, or a
