@@ -6,7 +6,6 @@
 #include <doctest/doctest.h>
 
 #include <algorithm>
-#include <bit>
 #include <cmath>
 #include <random>
 #include <set>
@@ -416,8 +415,8 @@ LOOP_LIMIT_CASE("sph kernels: loop ticks = rows + cells + candidates, capped bel
   CHECK(3 + 9 + 260 + kSphWalks * cap < test::loop_counter().caps().max_loop_iterations);
 
   // Over neighbour row masks: recording them adds no loop to sph_density; sph_forces walks per
-  // lane a row too long for its mask whole, so the crowded row costs what it
-  // did, and a row that fits one pass per neighbour (at most its candidates). Its worst case,
+  // lane a row too long for its mask whole, so the crowded row costs what it did, and a row that
+  // fits one pass per neighbour (at most its candidates). Its worst case,
   // 3 + 9 + 32,500, is then below sph_density's bound above.
   auto rows = b.create<uint32_t>(size_t(kSphRowMaskWords) * n, "rows");
   sph_density(b, p, {&pos, view, &rho, &pr, &stats, &rows});

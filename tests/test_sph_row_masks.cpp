@@ -7,7 +7,6 @@
 // are integers: each particle's neighbours within h, itself included, equal on every backend.
 #include <doctest/doctest.h>
 
-#include <bit>
 #include <cmath>
 #include <cstring>
 #include <random>
