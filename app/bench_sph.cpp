@@ -48,6 +48,7 @@ struct StepCounts {
   double bytes_to_device = 0, bytes_to_host = 0;
   double async_reads = 0;  // stats read while later work kept the device busy
   double host_ms = 0;      // CPU time of the calling thread: recording, submitting, reading stats
+  double graphs = 0;       // captured blocks launched as one unit (CUDA graphs)
 };
 
 struct Throughput {
@@ -83,11 +84,11 @@ Throughput measure(Backend& b, const SphScene& scene, int steps, uint32_t block_
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
   const double counted = double(sim.substeps() - sub0);
   const DeviceCounters& c = b.counters();
-  t.per_step = {double(c.launches) / counted,      double(c.barriers) / counted,
-                double(c.host_syncs) / counted,    double(c.fills) / counted,
-                double(c.device_copies) / counted, double(c.bytes_to_device) / counted,
-                double(c.bytes_to_host) / counted, double(c.async_reads) / counted,
-                (thread_cpu_ms() - cpu0) / counted};
+  t.per_step = {double(c.launches) / counted,       double(c.barriers) / counted,
+                double(c.host_syncs) / counted,     double(c.fills) / counted,
+                double(c.device_copies) / counted,  double(c.bytes_to_device) / counted,
+                double(c.bytes_to_host) / counted,  double(c.async_reads) / counted,
+                (thread_cpu_ms() - cpu0) / counted, double(c.graphs) / counted};
   t.wall_ms = wall / counted;
   // Device time per stage, from timestamps, in a second run.
   sim.set_profiling(true);
@@ -198,10 +199,12 @@ int run_sph_bench(const SphBenchOptions& o, JsonWriter& j) {
           const StepCounts& c = t.per_step;
           fmt::print(
               "  {:<7} {:<10} {:>9} per step: {:.1f} launches, {:.1f} barriers, {:.3f} host "
-              "syncs, {:.3f} asynchronous reads, {:.1f} fills, {:.1f} device copies, {:.0f} B to "
-              "device, {:.0f} B to host, {:.3f} ms host CPU; compression (rho/rho0 - 1) mean "
+              "syncs, {:.3f} asynchronous reads, {:.3f} graphs, {:.1f} fills, {:.1f} device "
+              "copies, "
+              "{:.0f} B to device, {:.0f} B to host, {:.3f} ms host CPU; compression (rho/rho0 - "
+              "1) mean "
               "{:.2f}%, max {:.2f}% at the end\n",
-              "", "", "", c.launches, c.barriers, c.host_syncs, c.async_reads, c.fills,
+              "", "", "", c.launches, c.barriers, c.host_syncs, c.async_reads, c.graphs, c.fills,
               c.device_copies, c.bytes_to_device, c.bytes_to_host, c.host_ms,
               100 * t.mean_compression, 100 * t.max_compression);
           begin_row(j, *b);
@@ -219,7 +222,7 @@ int run_sph_bench(const SphBenchOptions& o, JsonWriter& j) {
           j.key("per_step").begin_object();
           j.field("launches", c.launches).field("barriers", c.barriers);
           j.field("host_syncs", c.host_syncs).field("async_reads", c.async_reads);
-          j.field("fills", c.fills);
+          j.field("fills", c.fills).field("graphs", c.graphs);
           j.field("device_copies", c.device_copies).field("bytes_to_device", c.bytes_to_device);
           j.field("bytes_to_host", c.bytes_to_host).field("host_cpu_ms", c.host_ms);
           j.end_object();

@@ -47,6 +47,12 @@ class CudaBackend final : public Backend {
   TimestampId timestamp() override;
   double timestamp_ns(TimestampId id) override;
   void reset_timestamps() override;
+  // A capture is a CUDA graph of the stream's work, with MASAV_CUDA_GRAPHS=1 (and not with
+  // MASAV_CUDA_SYNC=1); otherwise nothing. Each capture updates the one executable graph kept
+  // (same shape: new parameters such as dt) or, where its shape differs, replaces it.
+  void begin_capture() override;
+  void end_capture() override;
+  void abort_capture() noexcept override;
 
   cudaStream_t stream() const { return stream_; }
   uint32_t* diagnostics() const { return diag_; }  // {max_loop_ticks, flags, detail, reserved}
@@ -82,8 +88,9 @@ class CudaBackend final : public Backend {
   // Waits for the stream and raises what the kernels flagged in the diagnostics words.
   void settle(const char* where);
   void clear_diagnostics(const char* where);
-  // Stream-ordered, counted memset to zero and device-to-device copy.
+  // Stream-ordered, counted memsets (to zero, to `byte`) and device-to-device copy.
   void zero(void* dst, size_t bytes, const char* kernel);
+  void set_bytes(void* dst, int byte, size_t bytes, const char* kernel);
   void copy_device(void* dst, const void* src, size_t bytes, const char* kernel);
   // Scratch memory `name` of at least `bytes`. Growing it frees the old block, which waits for
   // the whole device (cudaFree); a scene's sizes settle after its first step.
@@ -110,7 +117,13 @@ class CudaBackend final : public Backend {
   std::array<AsyncRead, kMaxPendingReads> async_reads_;
   // Launches, fills and copies queued so far: whether work followed a read (end_read).
   uint64_t work_count() const;
-  bool sync_each_launch_ = false;      // MASAV_CUDA_SYNC=1 at creation
+  // Ends a capture in progress and launches its graph; every call that cannot be captured
+  // (allocations, host copies, waits, events) calls it first.
+  void leave_capture();
+  bool sync_each_launch_ = false;  // MASAV_CUDA_SYNC=1 at creation
+  bool graphs_ = false;            // captures made (MASAV_CUDA_GRAPHS=1, not with SYNC)
+  bool capturing_ = false;
+  cudaGraphExec_t graph_exec_ = nullptr;
   const char* last_kernel_ = nullptr;  // the last launch (static strings), for fault messages
   const char* last_step_ = nullptr;
 };

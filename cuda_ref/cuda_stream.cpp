@@ -47,13 +47,18 @@ std::string CudaBackend::last_launch() const {
 }
 
 void CudaBackend::wait(const char* where) {
+  leave_capture();
   ++counters_.host_syncs;
   check_stream(cudaStreamSynchronize(stream_), where, "cudaStreamSynchronize");
 }
 
 void CudaBackend::zero(void* dst, size_t bytes, const char* kernel) {
+  set_bytes(dst, 0, bytes, kernel);
+}
+
+void CudaBackend::set_bytes(void* dst, int byte, size_t bytes, const char* kernel) {
   ++counters_.fills;
-  check_stream(cudaMemsetAsync(dst, 0, bytes, stream_), kernel, "cudaMemsetAsync");
+  check_stream(cudaMemsetAsync(dst, byte, bytes, stream_), kernel, "cudaMemsetAsync");
 }
 
 void CudaBackend::copy_device(void* dst, const void* src, size_t bytes, const char* kernel) {
@@ -63,6 +68,7 @@ void CudaBackend::copy_device(void* dst, const void* src, size_t bytes, const ch
 }
 
 void CudaBackend::clear_diagnostics(const char* where) {
+  leave_capture();  // a copy from pageable memory
   // From static memory: a pageable source is staged before the call returns.
   check_stream(cudaMemcpyAsync(diag_, kCleanDiagnostics, sizeof kCleanDiagnostics,
                                cudaMemcpyHostToDevice, stream_),
@@ -70,6 +76,7 @@ void CudaBackend::clear_diagnostics(const char* where) {
 }
 
 void CudaBackend::write_bytes(BufferImpl& dst, const void* src, size_t bytes, size_t offset) {
+  leave_capture();
   // From pageable memory the call returns once `src` has been staged.
   check_stream(cudaMemcpyAsync(static_cast<char*>(ptr(dst, "upload")) + offset, src, bytes,
                                cudaMemcpyHostToDevice, stream_),
@@ -77,6 +84,7 @@ void CudaBackend::write_bytes(BufferImpl& dst, const void* src, size_t bytes, si
 }
 
 void CudaBackend::read_bytes(const BufferImpl& src, void* dst, size_t bytes, size_t offset) {
+  leave_capture();
   // Into pageable memory the copy returns once done, after the work queued before it; with
   // settle's wait that is one host sync.
   check_stream(cudaMemcpyAsync(dst, static_cast<const char*>(ptr(src, "download")) + offset, bytes,
@@ -90,6 +98,7 @@ uint64_t CudaBackend::work_count() const {
 }
 
 void CudaBackend::start_read(uint32_t slot, const BufferImpl& src, size_t bytes, size_t offset) {
+  leave_capture();
   AsyncRead& r = async_reads_[slot];
   constexpr size_t kDiagBytes = launch::kDiagWords * sizeof(uint32_t);
   const size_t room = (bytes + 15) / 16 * 16;  // the diagnostics words after the bytes, aligned
@@ -101,9 +110,12 @@ void CudaBackend::start_read(uint32_t slot, const BufferImpl& src, size_t bytes,
     check(cudaMallocHost(&r.pinned, room + kDiagBytes), "asynchronous read", "cudaMallocHost");
     r.bytes = room;
   }
+  // A blocking-sync event: the host sleeps while it waits for a read instead of spinning (CUDA's
+  // default on a machine with more cores than contexts), so a simulation that runs blocks
+  // ahead of the device leaves the host's core to the rest of the program (a renderer, a UI).
   if (!r.done)
-    check(cudaEventCreateWithFlags(&r.done, cudaEventDisableTiming), "asynchronous read",
-          "cudaEventCreate");
+    check(cudaEventCreateWithFlags(&r.done, cudaEventDisableTiming | cudaEventBlockingSync),
+          "asynchronous read", "cudaEventCreate");
   auto* host = static_cast<char*>(r.pinned);
   const char* from = static_cast<const char*>(ptr(src, "asynchronous read")) + offset;
   check_stream(cudaMemcpyAsync(host, from, bytes, cudaMemcpyDeviceToHost, stream_),
@@ -115,6 +127,7 @@ void CudaBackend::start_read(uint32_t slot, const BufferImpl& src, size_t bytes,
 }
 
 bool CudaBackend::end_read(uint32_t slot, void* dst, size_t bytes) {
+  leave_capture();
   AsyncRead& r = async_reads_[slot];
   // Counted as DeviceApi::take_read says: with later work queued an asynchronous read, else a
   // host sync where it has to wait (nothing, where the copy is done already).
@@ -146,6 +159,12 @@ void CudaBackend::copy_buffer(const BufferImpl& src, BufferImpl& dst, size_t byt
 void CudaBackend::fill_u32(BufferImpl& dst, uint32_t value) {
   const size_t words = dst.bytes() / 4;
   if (!words) return;
+  const uint32_t byte = value & 0xFFu;
+  if (value == byte * 0x01010101u) {
+    // A word of four equal bytes (0, ~0: the stats' reset) is a memset, not a launch.
+    set_bytes(ptr(dst, "fill"), int(byte), words * 4, "fill");
+    return;
+  }
   ++counters_.fills;  // a kernel (cudaMemsetAsync sets bytes, not words): a fill and a launch
   launched(launch::fill_u32(stream_, grid_for_items(words, "fill"),
                             static_cast<uint32_t*>(ptr(dst, "fill")), words, value),
@@ -157,6 +176,7 @@ void CudaBackend::finish() {
 }
 
 void CudaBackend::settle(const char* where) {
+  leave_capture();
   // Queued behind the work, so that one wait covers the work and the diagnostics' read.
   uint32_t d[launch::kDiagWords];
   check_stream(cudaMemcpyAsync(d, diag_, sizeof d, cudaMemcpyDeviceToHost, stream_), where,

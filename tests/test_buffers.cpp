@@ -76,6 +76,57 @@ TEST_CASE("copy, fill, partial upload and empty buffers keep their order") {
   CHECK_THROWS_WITH_AS(b.upload(empty, a), doctest::Contains("do not fit"), Error);
 }
 
+TEST_CASE("a fill writes every word, whether or not its four bytes are equal") {
+  // CUDA sets a word of four equal bytes with a memset and any other word with a kernel.
+  Backend& b = test::backend();
+  auto x = b.create<uint32_t>(4099, "x");  // not a multiple of a workgroup or of 16 bytes
+  for (const uint32_t word : {0u, ~0u, 0x7F7F7F7Fu, 0x00000001u, 0x01000000u, 0xABCDEF01u}) {
+    CAPTURE(word);
+    b.fill(x, word);
+    CHECK(b.download(x) == std::vector<uint32_t>(x.size(), word));
+  }
+}
+
+TEST_CASE("captured work gives what it gives uncaptured, split by a download or abandoned") {
+  // DeviceApi::begin_capture (CUDA: a graph). A download inside a capture ends it there: the
+  // work before it must have run, the work after it still runs, in order.
+  Backend& b = test::backend();
+  const uint32_t n = 3000;
+  std::vector<uint32_t> order(n), a(n);
+  for (uint32_t i = 0; i < n; ++i) {
+    order[i] = (i * 7) % n;
+    a[i] = 3 * i + 1;
+  }
+  auto o = b.create<uint32_t>(n, "order");
+  auto x = b.create<uint32_t>(n, "x"), y = b.create<uint32_t>(n, "y"),
+       z = b.create<uint32_t>(n, "z");
+  b.upload(o, order);
+  b.upload(x, a);
+  {
+    CaptureScope scope(b);
+    b.gather({n}, o, x.impl(), y.impl());
+    const auto once = b.download(y);  // ends the capture
+    for (uint32_t i = 0; i < n; ++i) REQUIRE(once[i] == a[order[i]]);
+    b.gather({n}, o, y.impl(), z.impl());
+    b.fill(x, 5u);
+    scope.commit();
+  }
+  const auto twice = b.download(z);
+  for (uint32_t i = 0; i < n; ++i) REQUIRE(twice[i] == a[order[order[i]]]);
+  CHECK(b.download(x) == std::vector<uint32_t>(n, 5u));
+  // An error inside a capture abandons it; the backend goes on as before.
+  auto small = b.create<uint32_t>(n / 2, "small");
+  CHECK_THROWS_AS(([&] {
+                    CaptureScope scope(b);
+                    b.gather({n}, o, x.impl(), small.impl());  // too small: refused
+                    scope.commit();
+                  }()),
+                  Error);
+  b.gather({n}, o, z.impl(), y.impl());
+  const auto after = b.download(y);
+  for (uint32_t i = 0; i < n; ++i) REQUIRE(after[i] == a[order[order[order[i]]]]);
+}
+
 TEST_CASE("device timestamps are ordered") {
   Backend& b = test::backend();
   auto x = b.create<uint32_t>(1 << 18, "x");

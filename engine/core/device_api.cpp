@@ -257,4 +257,17 @@ std::vector<Vec4f> DeviceApi::download_f32(const Buffer<Real4>& b) {
   return out;
 }
 
+CaptureScope::CaptureScope(DeviceApi& d) : d_(d) {
+  d_.begin_capture();
+}
+
+CaptureScope::~CaptureScope() {
+  if (open_) d_.abort_capture();
+}
+
+void CaptureScope::commit() {
+  open_ = false;
+  d_.end_capture();
+}
+
 }  // namespace masav

@@ -26,6 +26,24 @@ struct DeviceCounters {
   uint64_t bytes_to_device = 0;  // host -> device (uploads)
   uint64_t bytes_to_host = 0;    // device -> host (downloads, including asynchronous reads)
   uint64_t async_reads = 0;      // reads taken while the device still had later work to run
+  uint64_t graphs = 0;           // captured work queued as one unit (CUDA graph launches)
+};
+
+class DeviceApi;
+
+// begin_capture() on construction; end_capture() on commit(), abort_capture() when it goes out
+// of scope uncommitted (an exception on the way).
+class CaptureScope {
+ public:
+  explicit CaptureScope(DeviceApi& d);
+  ~CaptureScope();
+  CaptureScope(const CaptureScope&) = delete;
+  CaptureScope& operator=(const CaptureScope&) = delete;
+  void commit();
+
+ private:
+  DeviceApi& d_;
+  bool open_ = true;
 };
 
 class DeviceApi {
@@ -71,6 +89,18 @@ class DeviceApi {
   std::vector<uint32_t> take_u32s(uint64_t ticket);
   std::vector<double> take_reals(uint64_t ticket);  // a Buffer<Real>
   std::vector<Vec4d> take_real4s(uint64_t ticket);  // a Buffer<Real4>
+
+  // ---- work queued as one unit
+  // Between begin_capture() and end_capture() a backend may gather what is recorded and queue it
+  // as one unit: CUDA captures it as a graph, so the device runs the kernels back to back
+  // instead of the host launching each (the other backends already submit a recording at once).
+  // Results and order are the same as without. A call that cannot be captured (an allocation,
+  // an upload or download, a wait, a timestamp) ends the capture first: what was captured is
+  // queued then, the rest as usual. abort_capture() drops what was captured and not yet queued:
+  // only on the way out of an error, when that work is abandoned anyway. CaptureScope pairs them.
+  virtual void begin_capture() {}
+  virtual void end_capture() {}
+  virtual void abort_capture() noexcept {}
 
   // ---- ordering and timing
   virtual void finish() = 0;            // submit what is recorded and wait for it

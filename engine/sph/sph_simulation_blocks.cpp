@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <optional>
 #include <utility>
 
 #include "engine/sph/sph_simulation.h"
@@ -144,6 +145,10 @@ void SphSimulation::record_block(uint64_t k, double t_end) {
   p.start = save_host_state();
   p.checkpoint = slot;
   p.continuing = continuing;
+  // The block's work as one unit where the backend can (a CUDA graph). Not with ranks: their
+  // exchanges go through the host.
+  std::optional<CaptureScope> capture;
+  if (pipelines_blocks()) capture.emplace(backend_);
   take_checkpoint(checkpoints_[size_t(slot)]);
   if (!continuing) backend_.fill(stats_buf_, 0u);
   block_limit_ = limit;
@@ -166,6 +171,7 @@ void SphSimulation::record_block(uint64_t k, double t_end) {
   }
   block_open_ = steps_ % block_steps() != 0;  // until a rollback says otherwise
   p.t_end = t_end;
+  if (capture) capture->commit();
   p.ticket = backend_.read_async(stats_buf_.impl(), kSphStatWords * sizeof(uint32_t));
   if (pipelines_blocks() && !block_open_ && steps_ >= next_energy_check_) {
     // The energy check due at this block's end: its state queued behind it and checked when its
