@@ -64,4 +64,10 @@ if(MASAV_WITH_APP)
            COMMAND ${CMAKE_CURRENT_LIST_DIR}/gpu_unpack.sh ${PROJECT_SOURCE_DIR}/tools/gpu-unpack
                    ${CMAKE_CURRENT_BINARY_DIR}/out/gpu_unpack)
   set_tests_properties(tools.gpu_unpack PROPERTIES LABELS tools)
+  # The summary of a GPU report (made up: no GPU here): CUDA-graph runs paired, never throughput.
+  add_test(NAME tools.gpu_report_summary
+           COMMAND ${CMAKE_CURRENT_LIST_DIR}/gpu_report_summary.sh
+                   ${PROJECT_SOURCE_DIR}/tools/gpu_report_summary.py
+                   ${CMAKE_CURRENT_BINARY_DIR}/out/gpu_report_summary)
+  set_tests_properties(tools.gpu_report_summary PROPERTIES LABELS tools)
 endif()

@@ -72,6 +72,12 @@ def load_json(out, pattern):
     return records
 
 
+def graph_row(r):
+    """An SPH row run with each block as one CUDA graph (MASAV_CUDA_GRAPHS=1): compared in its
+    own table, never counted as the backend's throughput."""
+    return (r.get("per_step", {}).get("graphs") or 0) > 0
+
+
 class Bench:
     """Every benchmark row, by kind, with the file it came from."""
 
@@ -86,7 +92,7 @@ class Bench:
         for f, d in self.of("sph"):
             for r in d.get("throughput", []):
                 if (r.get("backend") == backend and r.get("integrator") == integrator
-                        and r.get("particles") == particles):
+                        and r.get("particles") == particles and not graph_row(r)):
                     found = (f, r)
         return found
 
@@ -286,8 +292,9 @@ def paired_times(bench, kind, backend):
                     skip = "" if r.get("skip_empty") else " no skipping"
                     out[f"{r['volume']} at {r['width']}x{r['height']}{skip}"] = (r["median_ms"], f)
         elif kind == "sph":
+            # The small systems' steps are latency, not throughput: not what the rule compares.
             for r in d.get("throughput", []):
-                if r.get("backend") == backend:
+                if r.get("backend") == backend and not graph_row(r) and r["particles"] >= 32768:
                     case = f"{r['particles']} {r['integrator']}"
                     for stage, ms in r.get("stage_ms_per_step", {}).items():
                         out[f"{case} {stage}"] = (ms, f)
@@ -352,6 +359,8 @@ def sph_table(bench):
     rows = []
     for f, d in bench.of("sph"):
         for r in d.get("throughput", []):
+            if graph_row(r):
+                continue
             rows.append({"backend": r["backend"], "integrator": r["integrator"],
                          "particles": r["particles"], "ms_per_step": r["device_ms_per_step"],
                          "steps_per_s": r["steps_per_s"],
@@ -362,6 +371,36 @@ def sph_table(bench):
                          "host_syncs_per_step": r.get("per_step", {}).get("host_syncs"),
                          "async_reads_per_step": r.get("per_step", {}).get("async_reads"),
                          "source": f})
+    rows.sort(key=lambda r: (r["particles"], r["integrator"], r["backend"]))
+    return rows
+
+
+def graphs_table(bench):
+    """Each CUDA-graph row against the same run (backend, integrator, particles, timed steps)
+    launched kernel by kernel: wall time and host CPU per step."""
+    plain, rows = {}, []
+    for f, d in bench.of("sph"):
+        for r in d.get("throughput", []):
+            if not graph_row(r):
+                plain[(r["backend"], r["integrator"], r["particles"], r["timed_steps"])] = (f, r)
+    for f, d in bench.of("sph"):
+        for r in d.get("throughput", []):
+            if not graph_row(r):
+                continue
+            base = plain.get((r["backend"], r["integrator"], r["particles"], r["timed_steps"]))
+            row = {"backend": r["backend"], "integrator": r["integrator"],
+                   "particles": r["particles"], "timed_steps": r["timed_steps"],
+                   "graph_wall_ms": r["wall_ms_per_step"],
+                   "graph_host_ms": r.get("per_step", {}).get("host_cpu_ms"),
+                   "launch_wall_ms": None, "launch_host_ms": None, "ratio": None,
+                   "source": f}
+            if base:
+                b = base[1]
+                row.update(launch_wall_ms=b["wall_ms_per_step"],
+                           launch_host_ms=b.get("per_step", {}).get("host_cpu_ms"),
+                           ratio=r["wall_ms_per_step"] / b["wall_ms_per_step"],
+                           source=f"{f}, {base[0]}")
+            rows.append(row)
     rows.sort(key=lambda r: (r["particles"], r["integrator"], r["backend"]))
     return rows
 
@@ -400,7 +439,7 @@ def md_table(title, header, rows):
     return lines + [""]
 
 
-def markdown(run, steps, targets, sph, verify, dambreak):
+def markdown(run, steps, targets, sph, verify, dambreak, graphs):
     gpu = run.get("mode") == "gpu"
     lines = [f"# masav GPU report: {run.get('machine', '?')}", ""]
     if gpu:
@@ -460,6 +499,18 @@ def markdown(run, steps, targets, sph, verify, dambreak):
               " / ".join(fmt(r[k]) for k in ("launches_per_step", "host_syncs_per_step",
                                              "async_reads_per_step")),
               r['source']] for r in sph])
+    if graphs:
+        lines += md_table(
+            "## CUDA graphs (`MASAV_CUDA_GRAPHS=1`) against kernel-by-kernel launches",
+            ["particles", "integrator", "backend", "timed steps", "wall ms/step: graphs",
+             "launches", "graphs / launches", "host CPU ms/step: graphs", "launches",
+             "source JSON"],
+            [[f"{r['particles']:,}", r['integrator'], r['backend'], r['timed_steps'],
+              fmt(r['graph_wall_ms']), fmt(r['launch_wall_ms']) if r['launch_wall_ms'] else "-",
+              fmt(r['ratio']) if r['ratio'] else "no run to compare",
+              fmt(r['graph_host_ms']) if r['graph_host_ms'] is not None else "-",
+              fmt(r['launch_host_ms']) if r['launch_host_ms'] is not None else "-",
+              r['source']] for r in graphs])
     if dambreak:
         lines += md_table(
             "## Dam break against experiment (`masav bench dambreak`)",
@@ -500,10 +551,10 @@ def main(argv):
         targets = gpu_targets(bench, run, backends) + vulkan_vs_cuda(bench, backends)
     else:
         targets = cpu_targets(bench, run)
-    sph, dambreak = sph_table(bench), dambreak_table(bench)
-    text = markdown(run, steps, targets, sph, verify, dambreak)
+    sph, dambreak, graphs = sph_table(bench), dambreak_table(bench), graphs_table(bench)
+    text = markdown(run, steps, targets, sph, verify, dambreak, graphs)
     summary = {"run": run, "targets": targets, "verify": verify, "sph": sph,
-               "dambreak": dambreak, "steps": steps}
+               "dambreak": dambreak, "cuda_graphs": graphs, "steps": steps}
     write_atomic(os.path.join(out, "summary.md"), text)
     write_atomic(os.path.join(out, "summary.json"), json.dumps(summary, indent=2) + "\n")
     print(f"wrote {os.path.join(out, 'summary.md')} and summary.json: {len(targets)} targets")
