@@ -94,7 +94,8 @@ CudaBackend::CudaBackend(int device)
 
 CudaBackend::~CudaBackend() {
   abort_capture();
-  if (graph_exec_) cudaGraphExecDestroy(graph_exec_);
+  for (cudaGraphExec_t e : graph_execs_)
+    if (e) cudaGraphExecDestroy(e);
   if (stream_) cudaStreamSynchronize(stream_);
   scratch_.clear();
   for (cudaEvent_t e : events_) cudaEventDestroy(e);

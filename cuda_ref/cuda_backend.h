@@ -48,8 +48,9 @@ class CudaBackend final : public Backend {
   double timestamp_ns(TimestampId id) override;
   void reset_timestamps() override;
   // A capture is a CUDA graph of the stream's work, with MASAV_CUDA_GRAPHS=1 (and not with
-  // MASAV_CUDA_SYNC=1); otherwise nothing. Each capture updates the one executable graph kept
-  // (same shape: new parameters such as dt) or, where its shape differs, replaces it.
+  // MASAV_CUDA_SYNC=1); otherwise nothing. Each capture updates one of two executable graphs
+  // kept, in turn (same shape: new parameters such as dt) or, where its shape differs, replaces
+  // it (cuda_capture.cpp).
   void begin_capture() override;
   void end_capture() override;
   void abort_capture() noexcept override;
@@ -123,7 +124,8 @@ class CudaBackend final : public Backend {
   bool sync_each_launch_ = false;  // MASAV_CUDA_SYNC=1 at creation
   bool graphs_ = false;            // captures made (MASAV_CUDA_GRAPHS=1, not with SYNC)
   bool capturing_ = false;
-  cudaGraphExec_t graph_exec_ = nullptr;
+  std::array<cudaGraphExec_t, 2> graph_execs_{};
+  uint32_t next_graph_exec_ = 0;
   const char* last_kernel_ = nullptr;  // the last launch (static strings), for fault messages
   const char* last_step_ = nullptr;
 };

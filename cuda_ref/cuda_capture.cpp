@@ -1,9 +1,11 @@
 // CUDA backend, captures: the work recorded between begin_capture() and end_capture() (a block
 // of SPH steps) becomes one CUDA graph, launched with one call, so that the device runs its
 // kernels back to back instead of waiting for the host to launch each. A block's graph has the
-// shape of the one before it, with other parameters (dt, the buffers a swap exchanged):
-// cudaGraphExecUpdate carries them into the executable graph kept, far cheaper than
-// instantiating a new one; a graph of another shape (a shorter last block) replaces it.
+// shape of the ones before it, with other parameters (dt, the buffers a swap exchanged):
+// cudaGraphExecUpdate carries them into a kept executable graph, far cheaper than
+// instantiating a new one; a graph of another shape (a shorter last block) replaces it. Two
+// executable graphs take turns: a simulation keeps two blocks in flight, so the one updated
+// is the one launched two blocks ago, whose stats the host has taken (it has finished).
 #include <fmt/format.h>
 
 #include "cuda_ref/cuda_backend.h"
@@ -48,17 +50,18 @@ void CudaBackend::leave_capture() {
   size_t nodes = 0;
   check(cudaGraphGetNodes(graph.g, nullptr, &nodes), "capture", "cudaGraphGetNodes");
   if (nodes == 0) return;
-  if (graph_exec_) {
+  cudaGraphExec_t& exec = graph_execs_[next_graph_exec_];
+  next_graph_exec_ = (next_graph_exec_ + 1) % graph_execs_.size();
+  if (exec) {
     cudaGraphExecUpdateResultInfo info{};
-    if (cudaGraphExecUpdate(graph_exec_, graph.g, &info) != cudaSuccess) {
+    if (cudaGraphExecUpdate(exec, graph.g, &info) != cudaSuccess) {
       (void)cudaGetLastError();  // another shape: not an error, a new graph
-      cudaGraphExecDestroy(graph_exec_);
-      graph_exec_ = nullptr;
+      cudaGraphExecDestroy(exec);
+      exec = nullptr;
     }
   }
-  if (!graph_exec_)
-    check(cudaGraphInstantiate(&graph_exec_, graph.g, 0), "capture", "cudaGraphInstantiate");
-  check_stream(cudaGraphLaunch(graph_exec_, stream_), "capture", "cudaGraphLaunch");
+  if (!exec) check(cudaGraphInstantiate(&exec, graph.g, 0), "capture", "cudaGraphInstantiate");
+  check_stream(cudaGraphLaunch(exec, stream_), "capture", "cudaGraphLaunch");
   ++counters_.graphs;
   last_kernel_ = kGraphLaunch;
   last_step_ = nullptr;
