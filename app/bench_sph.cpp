@@ -46,9 +46,10 @@ std::vector<std::string> split(const std::string& s) {
 struct StepCounts {
   double launches = 0, barriers = 0, host_syncs = 0, fills = 0, device_copies = 0;
   double bytes_to_device = 0, bytes_to_host = 0;
-  double async_reads = 0;  // stats read while later work kept the device busy
-  double host_ms = 0;      // CPU time of the calling thread: recording, submitting, reading stats
-  double graphs = 0;       // captured blocks launched as one unit (CUDA graphs)
+  double async_reads = 0;   // stats read while later work kept the device busy
+  double host_ms = 0;       // CPU time of the calling thread: recording, submitting, reading stats
+  double graphs = 0;        // captured blocks queued as one unit (CUDA graphs, Vulkan replays)
+  double graph_builds = 0;  // of them, those that built their unit (the rest reused one)
 };
 
 struct Throughput {
@@ -88,7 +89,8 @@ Throughput measure(Backend& b, const SphScene& scene, int steps, uint32_t block_
                 double(c.host_syncs) / counted,     double(c.fills) / counted,
                 double(c.device_copies) / counted,  double(c.bytes_to_device) / counted,
                 double(c.bytes_to_host) / counted,  double(c.async_reads) / counted,
-                (thread_cpu_ms() - cpu0) / counted, double(c.graphs) / counted};
+                (thread_cpu_ms() - cpu0) / counted, double(c.graphs) / counted,
+                double(c.graph_builds) / counted};
   t.wall_ms = wall / counted;
   // Device time per stage, from timestamps, in a second run.
   sim.set_profiling(true);
@@ -199,12 +201,13 @@ int run_sph_bench(const SphBenchOptions& o, JsonWriter& j) {
           const StepCounts& c = t.per_step;
           fmt::print(
               "  {:<7} {:<10} {:>9} per step: {:.1f} launches, {:.1f} barriers, {:.3f} host "
-              "syncs, {:.3f} asynchronous reads, {:.3f} graphs, {:.1f} fills, {:.1f} device "
+              "syncs, {:.3f} asynchronous reads, {:.3f} graphs ({:.3f} built), {:.1f} fills, "
+              "{:.1f} device "
               "copies, {:.0f} B to device, {:.0f} B to host, {:.3f} ms host CPU; compression "
               "(rho/rho0 - 1) mean {:.2f}%, max {:.2f}% at the end\n",
-              "", "", "", c.launches, c.barriers, c.host_syncs, c.async_reads, c.graphs, c.fills,
-              c.device_copies, c.bytes_to_device, c.bytes_to_host, c.host_ms,
-              100 * t.mean_compression, 100 * t.max_compression);
+              "", "", "", c.launches, c.barriers, c.host_syncs, c.async_reads, c.graphs,
+              c.graph_builds, c.fills, c.device_copies, c.bytes_to_device, c.bytes_to_host,
+              c.host_ms, 100 * t.mean_compression, 100 * t.max_compression);
           begin_row(j, *b);
           j.field("integrator", to_string(integ)).field("particles", t.particles);
           j.field("timed_steps", t.steps).field("dt_s", t.dt);
@@ -221,6 +224,7 @@ int run_sph_bench(const SphBenchOptions& o, JsonWriter& j) {
           j.field("launches", c.launches).field("barriers", c.barriers);
           j.field("host_syncs", c.host_syncs).field("async_reads", c.async_reads);
           j.field("fills", c.fills).field("graphs", c.graphs);
+          j.field("graph_builds", c.graph_builds);
           j.field("device_copies", c.device_copies).field("bytes_to_device", c.bytes_to_device);
           j.field("bytes_to_host", c.bytes_to_host).field("host_cpu_ms", c.host_ms);
           j.end_object();

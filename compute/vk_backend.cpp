@@ -84,6 +84,7 @@ VulkanBackend::VulkanBackend(const BackendOptions& options)
   sph_coop_walk_ = sph_coop_walk(ctx_.caps().device_type);
   sph_wall_split_ = sph_wall_split(ctx_.caps().device_type);
   ray_quads_ = raymarch_quads_wanted(ctx_.caps().device_type);
+  replays_ = env_switch("MASAV_VK_REPLAY", true);
   diag_ = allocate(ctx_, sizeof(Diagnostics), MemoryUse::readback, "diagnostics");
   std::memcpy(diag_->mapped, &kCleanDiagnostics, sizeof(Diagnostics));
 }
@@ -124,6 +125,7 @@ std::shared_ptr<Allocation> VulkanBackend::scratch(const std::string& slot, size
 }
 
 void VulkanBackend::write_bytes(BufferImpl& dst, const void* src, size_t bytes, size_t offset) {
+  stream_.end_capture();  // an upload is not captured (DeviceApi::begin_capture)
   const auto& a = alloc(dst, "upload");
   if (a->mapped) {
     stream_.submit_and_wait();  // earlier recorded work may still read the old contents
@@ -137,6 +139,7 @@ void VulkanBackend::write_bytes(BufferImpl& dst, const void* src, size_t bytes, 
 }
 
 void VulkanBackend::read_bytes(const BufferImpl& src, void* dst, size_t bytes, size_t offset) {
+  stream_.end_capture();
   const auto& a = alloc(src, "download");
   if (a->mapped) {
     finish();
@@ -155,6 +158,7 @@ void VulkanBackend::read_bytes(const BufferImpl& src, void* dst, size_t bytes, s
 }
 
 void VulkanBackend::start_read(uint32_t slot, const BufferImpl& src, size_t bytes, size_t offset) {
+  stream_.end_capture();
   AsyncRead& r = async_reads_[slot];
   // The slot is free: the read that last used its buffer was taken, so no copy still writes it.
   if (!r.staging || r.staging->bytes < bytes)

@@ -52,6 +52,13 @@ class VulkanBackend final : public Backend, public VulkanInterop {
   TimestampId timestamp() override { return stream_.timestamp(); }
   double timestamp_ns(TimestampId id) override { return stream_.timestamp_ns(id); }
   void reset_timestamps() override { stream_.reset_timestamps(); }
+  // Captured work replays a recording of the same commands (compute/vk_stream.h, "Replays"),
+  // where replays_ (MASAV_VK_REPLAY=on|off|auto, on by default) allows.
+  void begin_capture() override {
+    if (replays_) stream_.begin_capture();
+  }
+  void end_capture() override { stream_.end_capture(); }
+  void abort_capture() noexcept override { stream_.abort_capture(); }
 
   std::optional<uint32_t> take_max_loop_ticks() override;
   uint32_t tile_size() const { return options_.workgroup_size * options_.items_per_thread; }
@@ -124,6 +131,7 @@ class VulkanBackend final : public Backend, public VulkanInterop {
   SphWallSplit sph_wall_split_;
   // raymarch reads its volume four voxels to a texel (compute/raymarch_quads_choice.h).
   bool ray_quads_ = false;
+  bool replays_ = true;
   std::shared_ptr<Allocation> quads_;  // raymarch_quads' output, of the volume below
   struct QuadSource {
     uint64_t serial = 0, writes = 0;  // the volume's Allocation::serial and ::writes

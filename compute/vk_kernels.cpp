@@ -71,8 +71,19 @@ void VulkanBackend::run_kernel(const Params& p, uint64_t items, Buffers&... buff
       texels = {r32u, r32u, r32u, r32u, none, none};
     if constexpr (K == KernelId::grid_rank_and_move)  // as above; a, b and ids, each + sorted
       texels = {r32u, r32u, r32u, r32u, none, none, rgba32, none, rgba32, none, r32u, none};
-    if constexpr (K == KernelId::sph_integrate)  // x0, v0, vk, accel; outputs, sums, stats
-      texels = {rgba32, rgba32, rgba32, rgba32, none, none, none, none, none};
+    const void* push = &layout;
+    [[maybe_unused]] std::decay_t<decltype(layout)> replayable;
+    if constexpr (K == KernelId::sph_integrate) {  // x0, v0, vk, accel; outputs, sums, stats;
+      texels = {rgba32, rgba32, rgba32, rgba32, none, none, none, none, none, none};  // dt table
+      // Captured, dt goes through the replay table, so that blocks differing only in dt
+      // replay one recording (compute/vk_stream.h).
+      static_assert(Stream::kNoSlot == kSphDtInline);
+      replayable = layout;
+      replayable.dt_slot = stream_.capture_value(layout.dt);
+      if (replayable.dt_slot != kSphDtInline) replayable.dt = 0;
+      push = &replayable;
+      extra = stream_.value_table();
+    }
     if constexpr (K == KernelId::nebula_illuminate)  // positions, density; illumination
       texels = {rgba32, r32f, none};
     if constexpr (K == KernelId::nebula_view)  // positions, density, table, illumination; light
@@ -85,7 +96,7 @@ void VulkanBackend::run_kernel(const Params& p, uint64_t items, Buffers&... buff
       texels = {rgba32, rgba32, r32f, r32f, r32u, r32u, r32u, none, none, none, r32u};
     if constexpr (K == KernelId::dfsph_correct)  // positions, kappa, cells, ranges; v, stats;
       texels = {rgba32, r32f, r32u, r32u, r32u, none, none, r32u, r32u};  // residual, rows
-    dispatch_kernel(K, impls, &layout, sizeof(layout), items, written, constants, texels, extra);
+    dispatch_kernel(K, impls, push, sizeof(layout), items, written, constants, texels, extra);
   }
 }
 

@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <cstring>
 
 #include "engine/core/error.h"
 
@@ -24,8 +25,11 @@ constexpr uint32_t kCachedSets = 1024;
 
 Stream::Stream(const Context& ctx, uint32_t max_timestamps, DeviceCounters& counters)
     : ctx_(ctx), counters_(counters), max_timestamps_(max_timestamps) {
+  recording_pool_ =
+      ::vk::raii::CommandPool(ctx_.device(), ::vk::CommandPoolCreateInfo({}, ctx_.queue_family()));
   ring_.resize(kInFlight);
   for (Slot& s : ring_) s.cmds = std::make_unique<Commands>(ctx_);
+  value_table_ = allocate(ctx_, kValueSlots * sizeof(float), MemoryUse::device, "replay values");
   queries_ = ::vk::raii::QueryPool(
       ctx_.device(), ::vk::QueryPoolCreateInfo({}, ::vk::QueryType::eTimestamp, max_timestamps_));
 }
@@ -49,6 +53,8 @@ void Stream::retire(Slot& s) {
   if (!s.cmds->in_flight()) return;
   s.cmds->wait("vulkan", "the GPU reset or a kernel faulted; restart masav, and report the scene");
   s.alive.clear();
+  s.recordings.clear();
+  s.logs.clear();
 }
 
 void Stream::begin() {
@@ -63,6 +69,7 @@ void Stream::begin() {
   // order() carry over from it (submission order makes a barrier cover earlier buffers too).
   if (!any_in_flight()) {
     commands_recorded_ = false;
+    barrier_next_ = false;
     read_.clear();
     written_.clear();
   }
@@ -78,11 +85,12 @@ void Stream::record_barrier() {
   using A = ::vk::AccessFlagBits;
   ::vk::MemoryBarrier mb(A::eShaderWrite | A::eTransferWrite,
                          A::eShaderRead | A::eShaderWrite | A::eTransferRead | A::eTransferWrite);
-  cmds().cmd().pipelineBarrier(S::eComputeShader | S::eTransfer, S::eComputeShader | S::eTransfer,
-                               {}, mb, {}, {});
+  rec().pipelineBarrier(S::eComputeShader | S::eTransfer, S::eComputeShader | S::eTransfer, {}, mb,
+                        {}, {});
   ++counters_.barriers;
   read_.clear();
   written_.clear();
+  barrier_next_ = false;
 }
 
 void Stream::barrier() {
@@ -103,7 +111,7 @@ void Stream::order(std::span<const Allocation* const> reads,
     depends = depends || in(written_, w) || in(read_, w);
     ++w->writes;
   }
-  if (depends && commands_recorded_) record_barrier();
+  if ((depends || barrier_next_) && commands_recorded_) record_barrier();
   commands_recorded_ = true;
   read_.insert(read_.end(), reads.begin(), reads.end());
   written_.insert(written_.end(), writes.begin(), writes.end());
@@ -130,6 +138,8 @@ void Stream::dispatch(const Kernel& k, const std::shared_ptr<Allocation>& diag,
                 "internal error: report it");
   if (k.buffers + 1 > kBuffersPerSet)
     throw Error("vulkan", k.name, "too many buffers for one descriptor set", "internal error");
+  if (k.push_bytes > sizeof(Op::push))
+    throw Error("vulkan", k.name, "push constants beyond 128 bytes", "internal error");
   if (groups == 0) return;
   const uint64_t max_x = ctx_.caps().max_workgroups_x;
   const uint32_t gx = uint32_t(std::min<uint64_t>(groups, max_x));
@@ -137,24 +147,63 @@ void Stream::dispatch(const Kernel& k, const std::shared_ptr<Allocation>& diag,
   if (gy > 65535)
     throw Error("vulkan", k.name, fmt::format("{} workgroups exceed this device's grid", groups),
                 "use fewer elements");
+  Op op;
+  op.kind = Op::Kind::dispatch;
+  op.kernel = &k;
+  op.bound.reserve(buffers.size() + 1);
+  op.bound.push_back(diag);
+  op.bound.insert(op.bound.end(), buffers.begin(), buffers.end());
+  op.push_bytes = k.push_bytes;
+  if (k.push_bytes) std::memcpy(op.push.data(), push, k.push_bytes);
+  op.gx = gx;
+  op.gy = uint32_t(gy);
+  op.written = written;
+  if (capturing_)
+    log_.push_back(std::move(op));
+  else
+    record(op);
+}
+
+void Stream::record(const Op& op) {
   std::vector<const Allocation*> reads, writes;
-  for (size_t i = 0; i < buffers.size(); ++i)
-    ((written >> i) & 1u ? writes : reads).push_back(buffers[i].get());
-  order(reads, writes);
-  std::vector<std::shared_ptr<Allocation>> bound;
-  bound.reserve(buffers.size() + 1);
-  bound.push_back(diag);
-  bound.insert(bound.end(), buffers.begin(), buffers.end());
-  for (const auto& b : bound) keep(b);
-  const ::vk::DescriptorSet set = set_for(k, bound);
-  cmds().cmd().bindPipeline(::vk::PipelineBindPoint::eCompute, *k.pipeline);
-  cmds().cmd().bindDescriptorSets(::vk::PipelineBindPoint::eCompute, *k.layout, 0, set, {});
-  if (k.push_bytes)
-    cmds().cmd().pushConstants<uint8_t>(
-        *k.layout, ::vk::ShaderStageFlagBits::eCompute, 0,
-        ::vk::ArrayProxy<const uint8_t>(k.push_bytes, static_cast<const uint8_t*>(push)));
-  cmds().cmd().dispatch(gx, uint32_t(gy), 1);
-  ++counters_.launches;
+  switch (op.kind) {
+    case Op::Kind::dispatch: {
+      const Kernel& k = *op.kernel;
+      // The diagnostics block (bound[0]) takes only atomics, in any order: not tracked.
+      for (size_t i = 1; i < op.bound.size(); ++i)
+        ((op.written >> (i - 1)) & 1u ? writes : reads).push_back(op.bound[i].get());
+      order(reads, writes);
+      for (const auto& b : op.bound) keep(b);
+      const ::vk::DescriptorSet set = set_for(k, op.bound);
+      rec().bindPipeline(::vk::PipelineBindPoint::eCompute, *k.pipeline);
+      rec().bindDescriptorSets(::vk::PipelineBindPoint::eCompute, *k.layout, 0, set, {});
+      if (op.push_bytes)
+        rec().pushConstants<uint8_t>(
+            *k.layout, ::vk::ShaderStageFlagBits::eCompute, 0,
+            ::vk::ArrayProxy<const uint8_t>(op.push_bytes, op.push.data()));
+      rec().dispatch(op.gx, op.gy, 1);
+      ++counters_.launches;
+      break;
+    }
+    case Op::Kind::copy: {
+      const Allocation* read[] = {op.bound[0].get()};
+      const Allocation* write[] = {op.bound[1].get()};
+      order(read, write);
+      rec().copyBuffer(*op.bound[0]->buffer, *op.bound[1]->buffer,
+                       ::vk::BufferCopy(op.src_offset, op.dst_offset, op.bytes));
+      keep(op.bound[0]);
+      keep(op.bound[1]);
+      break;
+    }
+    case Op::Kind::fill: {
+      const Allocation* write[] = {op.bound[0].get()};
+      order({}, write);
+      rec().fillBuffer(*op.bound[0]->buffer, 0, VK_WHOLE_SIZE, op.value);
+      keep(op.bound[0]);
+      ++counters_.fills;
+      break;
+    }
+  }
 }
 
 ::vk::DescriptorSet Stream::set_for(const Kernel& k,
@@ -176,6 +225,7 @@ void Stream::dispatch(const Kernel& k, const std::shared_ptr<Allocation>& diag,
     ++cached_sets_;
   } else {
     set = allocate_set(k);  // the cache is full until the next submission: a transient set
+    transient_set_ = true;
   }
   std::vector<::vk::DescriptorBufferInfo> infos;
   std::vector<::vk::BufferView> views(buffers.size());
@@ -201,30 +251,36 @@ void Stream::copy(const std::shared_ptr<Allocation>& src, ::vk::DeviceSize src_o
                   const std::shared_ptr<Allocation>& dst, ::vk::DeviceSize dst_offset,
                   ::vk::DeviceSize bytes) {
   if (bytes == 0) return;
-  const Allocation* read[] = {src.get()};
-  const Allocation* write[] = {dst.get()};
-  order(read, write);
-  cmds().cmd().copyBuffer(*src->buffer, *dst->buffer,
-                          ::vk::BufferCopy(src_offset, dst_offset, bytes));
-  keep(src);
-  keep(dst);
+  Op op;
+  op.kind = Op::Kind::copy;
+  op.bound = {src, dst};
+  op.src_offset = src_offset;
+  op.dst_offset = dst_offset;
+  op.bytes = bytes;
+  if (capturing_)
+    log_.push_back(std::move(op));
+  else
+    record(op);
 }
 
 void Stream::fill(const std::shared_ptr<Allocation>& dst, uint32_t value) {
-  const Allocation* write[] = {dst.get()};
-  order({}, write);
-  cmds().cmd().fillBuffer(*dst->buffer, 0, VK_WHOLE_SIZE, value);
-  keep(dst);
-  ++counters_.fills;
+  Op op;
+  op.kind = Op::Kind::fill;
+  op.bound = {dst};
+  op.value = value;
+  if (capturing_)
+    log_.push_back(std::move(op));
+  else
+    record(op);
 }
 
 uint32_t Stream::timestamp() {
+  end_capture();
   if (timestamps_used_ >= max_timestamps_)
     throw Error("vulkan", "timestamp", fmt::format("more than {} timestamps", max_timestamps_),
                 "call reset_timestamps() between measurements");
   barrier();
-  cmds().cmd().writeTimestamp(::vk::PipelineStageFlagBits::eBottomOfPipe, *queries_,
-                              timestamps_used_);
+  rec().writeTimestamp(::vk::PipelineStageFlagBits::eBottomOfPipe, *queries_, timestamps_used_);
   return timestamps_used_++;
 }
 
@@ -251,11 +307,16 @@ uint64_t Stream::submit_recording() {
   slot.serial = ++last_serial_;
   slot.alive = std::move(alive_);
   alive_.clear();
+  slot.recordings = std::move(executed_);
+  executed_.clear();
+  slot.logs = std::move(executed_logs_);
+  executed_logs_.clear();
   current_ = (current_ + 1) % kInFlight;
   return slot.serial;
 }
 
 uint64_t Stream::flush() {
+  end_capture();
   if (!cmds().recording()) return last_serial_;
   // Transient descriptor sets (the cache was full) are freed only when the device is idle.
   if (sets_in_last_pool_ > 0 || descriptor_pools_.size() > 1 || cached_sets_ >= kCachedSets) {
@@ -266,6 +327,7 @@ uint64_t Stream::flush() {
 }
 
 bool Stream::wait_for(uint64_t serial) {
+  end_capture();
   bool waited = false;
   for (Slot& s : ring_) {
     if (s.cmds->in_flight() && s.serial <= serial) {
@@ -279,6 +341,7 @@ bool Stream::wait_for(uint64_t serial) {
 }
 
 void Stream::submit_and_wait() {
+  end_capture();
   if (!cmds().recording() && !any_in_flight()) return;
   if (cmds().recording()) submit_recording();
   for (Slot& s : ring_) retire(s);
@@ -289,8 +352,10 @@ void Stream::submit_and_wait() {
   sets_in_last_pool_ = 0;
   read_.clear();
   written_.clear();
+  barrier_next_ = false;
   if (cached_sets_ >= kCachedSets) {
-    // Full: start over (no recorded work uses a set any more).
+    // Full: start over (no recorded work uses a set any more; the recordings bind them).
+    recordings_.clear();
     set_cache_.clear();
     cache_pool_.reset();
     cached_sets_ = 0;

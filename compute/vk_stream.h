@@ -7,6 +7,16 @@
 // writes what was read), so independent commands (the gathers of a grid rebuild) may overlap. A
 // dispatch's descriptor set is cached by (kernel, buffers): a simulation binds the same few
 // buffer combinations every step, so after the first step no set is allocated or written.
+//
+// Replays (DeviceApi::begin_capture): between begin_capture() and end_capture() the commands are
+// only logged. end_capture() looks the log up among the last few recorded: the same commands
+// (kernels, buffers, push constants, sizes) replay that recording, a secondary command buffer,
+// with one vkCmdExecuteCommands; other ones are recorded into a new one first. The host then
+// neither re-records a block of SPH steps nor orders, binds and pushes its dispatches one by one.
+// What differs between blocks is dt: a captured sph_integrate takes it from a small table
+// (capture_value) that the primary command buffer fills with vkCmdUpdateBuffer, in the command
+// stream as push constants are, before it executes the recording.
+#include <array>
 #include <map>
 #include <memory>
 #include <span>
@@ -52,14 +62,61 @@ class Stream {
   // Device time of timestamp `id` in nanoseconds (after submit_and_wait).
   double timestamp_ns(uint32_t id);
 
+  // ---- replays (see above). flush, submit_and_wait, wait_for and timestamp end a capture first.
+  void begin_capture();
+  void end_capture();
+  void abort_capture() noexcept;  // drops what was logged
+  bool capturing() const { return capturing_; }
+  // The table entry a captured command reads `v` from (binding value_table()), filled before its
+  // recording runs; kNoSlot when not capturing or the table is full (pass `v` inline then).
+  static constexpr uint32_t kNoSlot = UINT32_MAX;
+  uint32_t capture_value(float v);
+  const std::shared_ptr<Allocation>& value_table() const { return value_table_; }
+  static constexpr uint32_t kValueSlots = 1024;
+  // A simulation's buffers rotate through a grid rebuild and a step with a period of three steps
+  // and its blocks alternate two checkpoints: its full blocks come in up to six forms.
+  static constexpr uint32_t kKeptRecordings = 12;
+
  private:
   static constexpr uint32_t kInFlight = 3;
+  // One command as logged: a dispatch, a copy or a fill, with what it binds.
+  struct Op {
+    enum class Kind : uint8_t { dispatch, copy, fill } kind = Kind::dispatch;
+    const Kernel* kernel = nullptr;
+    // dispatch: diagnostics, then the kernel's buffers; copy: source, destination; fill: dst.
+    std::vector<std::shared_ptr<Allocation>> bound;
+    std::array<uint8_t, 128> push{};
+    uint32_t push_bytes = 0;
+    uint32_t gx = 0, gy = 0;
+    uint32_t written = 0;  // dispatch: bit i, it writes bound[i + 1]
+    ::vk::DeviceSize src_offset = 0, dst_offset = 0, bytes = 0;
+    uint32_t value = 0;  // fill
+  };
+  // Logged commands recorded once into a secondary command buffer, replayed as long as kept.
+  // It names its buffers by Allocation::serial only, never keeps them alive: a freed buffer's
+  // serial never comes back, so a recording that binds one is never matched again (and ages
+  // out); one that runs binds buffers that the log it matched holds.
+  struct Recording {
+    std::vector<Op> ops;            // the key, with `bound` empty
+    std::vector<uint64_t> serials;  // of every op's bound buffers, in order
+    ::vk::raii::CommandBuffer cmd = nullptr;
+    uint64_t launches = 0, barriers = 0, fills = 0;
+    bool matches(const std::vector<Op>& log) const;
+  };
   struct Slot {
-    std::vector<std::shared_ptr<Allocation>> alive;  // what its commands touch
-    uint64_t serial = 0;                             // of its last submission
-    std::unique_ptr<Commands> cmds;  // last: destroyed first, waiting for its submission
+    std::vector<std::shared_ptr<Allocation>> alive;            // what its commands touch
+    std::vector<std::shared_ptr<const Recording>> recordings;  // executed by its commands
+    std::vector<std::vector<Op>> logs;  // theirs: the buffers they bind, kept alive
+    uint64_t serial = 0;                // of its last submission
+    std::unique_ptr<Commands> cmds;     // last: destroyed first, waiting for its submission
   };
   Commands& cmds() { return *ring_[current_].cmds; }
+  // Where commands go: the secondary being recorded, else the slot's primary.
+  const ::vk::raii::CommandBuffer& rec() { return target_ ? *target_ : cmds().cmd(); }
+  void record(const Op& op);
+  std::shared_ptr<const Recording> find_recording(const std::vector<Op>& ops);
+  std::shared_ptr<const Recording> make_recording(const std::vector<Op>& log, bool& keep_it);
+  void execute(const std::shared_ptr<const Recording>& r, std::vector<Op> log);
   void begin();
   bool any_in_flight() const;
   void retire(Slot& s);         // waits for its submission and releases what it kept alive
@@ -69,7 +126,9 @@ class Stream {
   void order(std::span<const Allocation* const> reads, std::span<const Allocation* const> writes);
   void barrier();  // unconditionally (timestamps, the host)
   void record_barrier();
-  void keep(const std::shared_ptr<Allocation>& a) { alive_.push_back(a); }
+  void keep(const std::shared_ptr<Allocation>& a) {
+    if (!target_) alive_.push_back(a);  // a recording's commands keep theirs (Recording::ops)
+  }
   ::vk::DescriptorSet allocate_set(const Kernel& k);
   // The set binding `buffers` (diagnostics first) for `k`: cached, or written now.
   ::vk::DescriptorSet set_for(const Kernel& k,
@@ -81,6 +140,7 @@ class Stream {
 
   const Context& ctx_;
   DeviceCounters& counters_;
+  ::vk::raii::CommandPool recording_pool_ = nullptr;  // before ring_: its slots hold recordings
   std::vector<Slot> ring_;
   uint32_t current_ = 0;  // the slot recording now
   uint64_t last_serial_ = 0;
@@ -94,8 +154,19 @@ class Stream {
   uint32_t timestamps_used_ = 0;
   bool queries_need_reset_ = true;
   bool commands_recorded_ = false;
-  std::vector<const Allocation*> read_, written_;   // since the last barrier
-  std::vector<std::shared_ptr<Allocation>> alive_;  // of the recording
+  std::vector<const Allocation*> read_, written_;           // since the last barrier
+  std::vector<std::shared_ptr<Allocation>> alive_;          // of the recording
+  std::vector<std::shared_ptr<const Recording>> executed_;  // by the recording
+  std::vector<std::vector<Op>> executed_logs_;
+  bool barrier_next_ = false;   // a recording ran: order the next command after all of it
+  bool transient_set_ = false;  // set_for had to allocate a set outside the cache
+  // Replays.
+  bool capturing_ = false;
+  std::vector<Op> log_;
+  std::vector<float> values_;
+  std::shared_ptr<Allocation> value_table_;
+  const ::vk::raii::CommandBuffer* target_ = nullptr;
+  std::vector<std::shared_ptr<const Recording>> recordings_;  // most recently used first
 };
 
 }  // namespace masav::vk

@@ -60,7 +60,10 @@ void CudaBackend::leave_capture() {
       exec = nullptr;
     }
   }
-  if (!exec) check(cudaGraphInstantiate(&exec, graph.g, 0), "capture", "cudaGraphInstantiate");
+  if (!exec) {
+    check(cudaGraphInstantiate(&exec, graph.g, 0), "capture", "cudaGraphInstantiate");
+    ++counters_.graph_builds;
+  }
   check_stream(cudaGraphLaunch(exec, stream_), "capture", "cudaGraphLaunch");
   ++counters_.graphs;
   last_kernel_ = kGraphLaunch;

@@ -18,6 +18,8 @@ layout(std430, binding = 6) writeonly buffer VOut { vec4 v_out[]; };
 layout(std430, binding = 7) buffer SumX { vec4 sum_x[]; };
 layout(std430, binding = 8) buffer SumV { vec4 sum_v[]; };
 layout(std430, binding = 9) buffer Stats { uint stats[]; };
+// The dt of a stage recorded for replay (SphIntegrateLayout::dt_slot; compute/vk_stream.h).
+layout(std430, binding = 10) readonly buffer DtTable { float dt_table[]; };
 
 #include "sph.glsl"
 
@@ -25,6 +27,7 @@ MASAV_PUSH(SphIntegrateLayout);
 
 void main() {
   MASAV_LOAD_PUSH();
+  const float dt = p.dt_slot == kSphDtInline ? p.dt : dt_table[p.dt_slot];
   // The range stepped, [first, end) of the n (a rank's own particles); the others are left
   // as they are.
   const uint i = p.first + flat_invocation_id();
@@ -43,11 +46,11 @@ void main() {
     vec3 sx = rk4 ? sum_x[i].xyz : vec3(0.0);
     vec3 sv = rk4 ? sum_v[i].xyz : vec3(0.0);
     vec3 xn, vn;
-    sph_integrate_stage(op, p.dt, x, v, kv, a, xn, vn, sx, sv);
+    sph_integrate_stage(op, dt, x, v, kv, a, xn, vn, sx, sv);
     const vec3 lo = vec3(p.lo[0], p.lo[1], p.lo[2]), hi = vec3(p.hi[0], p.hi[1], p.hi[2]);
     if (sph_op_ends_step(op) && p.walls != 0u)
       sph_wall_response(xn, vn, lo, hi, p.restitution, p.tangential_damping);
-    if (op == SphStageOp_kick_drift) sv = vn + (0.5 * p.dt) * a;
+    if (op == SphStageOp_kick_drift) sv = vn + (0.5 * dt) * a;
     if (!kick) x_out[i] = vec4(xn, xw.w);
     v_out[i] = vec4(vn, 0.0);
     if (rk4) sum_x[i] = vec4(sx, 0.0);

@@ -1,12 +1,12 @@
 #!/bin/sh
 # gpu_report_summary.sh SCRIPT OUT: tools/gpu_report_summary.py on a GPU-mode report made up
-# here. A CUDA-graph row (per_step.graphs > 0) must be paired with the run of the same backend,
-# integrator, particles and timed steps launched kernel by kernel, and must never stand for the
-# backend's throughput in the targets or the SPH table.
+# here. A row of a variant run (CUDA graphs on, Vulkan replays off) must be paired with the
+# backend's default run of the same integrator, particles and timed steps, and must never stand
+# for the backend's throughput in the targets or the SPH table.
 set -eu
 script=$1 out=$2
 rm -rf "$out" && mkdir -p "$out"
-printf 'mode=gpu\nquick=0\nmachine=fixture-gpu\nbackends=cuda\n' >"$out/run.txt"
+printf 'mode=gpu\nquick=0\nmachine=fixture-gpu\nbackends=cuda,vulkan\n' >"$out/run.txt"
 printf 'bench sph on cuda\tok\t1\tlogs/bench_sph_cuda.log\n' >"$out/steps.tsv"
 row() {  # backend integrator particles steps wall_ms graphs host_ms
   printf '{"backend": "%s", "integrator": "%s", "particles": %s, "timed_steps": %s,
@@ -24,6 +24,11 @@ printf '{"benchmark": "sph", "throughput": [%s, %s]}\n' \
 printf '{"benchmark": "sph", "throughput": [%s, %s]}\n' \
   "$(row cuda leapfrog 1048576 50 0.45 0.125 0.06)" "$(row cuda rk4 1048576 64 1.8 0.125 0.1)" \
   >"$out/bench_sph_graphs_cuda.json"
+# Vulkan replays by default; its variant run records each block anew (and is faster here too).
+printf '{"benchmark": "sph", "throughput": [%s]}\n' \
+  "$(row vulkan euler 1024 512 0.12 0.125 0.05)" >"$out/bench_sph_small_vulkan.json"
+printf '{"benchmark": "sph", "throughput": [%s]}\n' \
+  "$(row vulkan euler 1024 512 0.06 0 0.1)" >"$out/bench_sph_noreplay_small_vulkan.json"
 python3 "$script" "$out" >/dev/null
 s=$out/summary.md
 fail() {
@@ -35,12 +40,18 @@ grep -q '^| SPH 1,048,576 particles: symplectic (leapfrog) step <= 1 ms | cuda |
   fail "the leapfrog target is not the kernel-by-kernel run's 0.9 ms"
 grep -q '^| SPH 1,048,576 particles: RK4 step <= 4 ms | cuda | 3.7 ms/step' "$s" ||
   fail "the RK4 target is not the kernel-by-kernel run's 3.7 ms"
-grep -q '^## CUDA graphs' "$s" || fail "no CUDA graphs table"
-grep -q '^| 1,048,576 | leapfrog | cuda | 50 | 0.45 | 0.9 | 0.5 | 0.06 | 0.08 |' "$s" ||
+grep -q '^## Captured blocks' "$s" || fail "no table of captured blocks"
+grep -q '^| 1,048,576 | leapfrog | cuda | CUDA graphs | 50 | 0.45 | 0.9 | 0.5 | 0.06 | 0.08 |' "$s" ||
   fail "the leapfrog graph row is not paired with its 50-step run"
-grep -q '^| 1,048,576 | rk4 | cuda | 64 | 1.8 | - | no run to compare |' "$s" ||
+grep -q '^| 1,048,576 | rk4 | cuda | CUDA graphs | 64 | 1.8 | - | no run to compare |' "$s" ||
   fail "the 64-step RK4 graph row is paired with a run of another length"
+grep -q '^| 1,024 | euler | vulkan | no replays | 512 | 0.06 | 0.12 | 0.5 | 0.1 | 0.05 |' "$s" ||
+  fail "the Vulkan run without replays is not paired with its default run"
 if grep -q '^| 1,048,576 | leapfrog | cuda | 0.45 ' "$s"; then
   fail "a graph row is listed as SPH throughput"
 fi
-echo "gpu_report_summary: graph rows paired, never taken as throughput"
+if grep -q '^| 1,024 | euler | vulkan | 0.06 ' "$s"; then
+  fail "a row without replays is listed as SPH throughput"
+fi
+grep -q '^| 1,024 | euler | vulkan | 0.12 ' "$s" || fail "Vulkan's replayed run is not in the SPH table"
+echo "gpu_report_summary: variant rows paired, never taken as throughput"

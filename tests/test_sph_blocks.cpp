@@ -1,15 +1,20 @@
 // SphSimulation::run's blocks (one stats read per block, a checkpoint to replay from) against
 // step-by-step runs, on every backend: the same state bit for bit at a fixed dt, and a guard
 // that stops at the same step with the same message when the trouble starts inside a block.
+// Blocks captured as units (Vulkan replays, CUDA graphs) against the same blocks uncaptured.
 #include <doctest/doctest.h>
 
 #include <cmath>
 #include <cstdlib>
+#include <memory>
+#include <optional>
 #include <string>
+#include <vector>
 
 #include "engine/core/error.h"
 #include "engine/sph/sph_presets.h"
 #include "engine/sph/sph_simulation.h"
+#include "registry/backends.h"
 #include "tests/backend_fixture.h"
 #include "tests/sph_state_compare.h"
 
@@ -21,22 +26,28 @@ struct Outcome {
   SphState state;
   std::string error;  // empty: the run finished
   uint64_t steps = 0, substeps = 0, replays = 0;
-  uint64_t graphs = 0;  // work queued as one unit (DeviceApi::begin_capture: CUDA graphs)
+  uint64_t graphs = 0;        // work queued as one unit (DeviceApi::begin_capture)
+  uint64_t graph_builds = 0;  // of it, the units built (the others reused one)
   double time = 0;
 };
 
-// CUDA captures each block as a graph where MASAV_CUDA_GRAPHS=1 (and not MASAV_CUDA_SYNC=1).
-bool captures_blocks(const Backend& b) {
-  const char* graphs = std::getenv("MASAV_CUDA_GRAPHS");
-  const char* sync = std::getenv("MASAV_CUDA_SYNC");
-  return b.name() == "cuda" && graphs && std::string(graphs) == "1" &&
-         !(sync && std::string(sync) == "1");
+bool env_is(const char* name, const char* value) {
+  const char* v = std::getenv(name);
+  return v && std::string(v) == value;
 }
 
-Outcome run_in_blocks(const SphScene& s, uint32_t block, uint64_t steps) {
-  SphSimulation sim(test::backend(), s);
+// Vulkan replays each block's recording unless MASAV_VK_REPLAY=off; CUDA captures each block as
+// a graph where MASAV_CUDA_GRAPHS=1 (and not MASAV_CUDA_SYNC=1).
+bool captures_blocks(const Backend& b) {
+  if (b.name() == "vulkan") return !env_is("MASAV_VK_REPLAY", "off");
+  return b.name() == "cuda" && env_is("MASAV_CUDA_GRAPHS", "1") && !env_is("MASAV_CUDA_SYNC", "1");
+}
+
+Outcome run_in_blocks(const SphScene& s, uint32_t block, uint64_t steps,
+                      Backend& b = test::backend()) {
+  SphSimulation sim(b, s);
   sim.set_block_steps(block);
-  const uint64_t graphs0 = test::backend().counters().graphs;
+  const uint64_t graphs0 = b.counters().graphs, builds0 = b.counters().graph_builds;
   Outcome o;
   try {
     const uint64_t taken = sim.run(steps);
@@ -49,8 +60,38 @@ Outcome run_in_blocks(const SphScene& s, uint32_t block, uint64_t steps) {
   o.substeps = sim.substeps();
   o.replays = sim.block_replays();
   o.time = sim.time();
-  o.graphs = test::backend().counters().graphs - graphs0;
+  o.graphs = b.counters().graphs - graphs0;
+  o.graph_builds = b.counters().graph_builds - builds0;
   return o;
+}
+
+// The backend under test created again with its captures off (Vulkan: no replays; CUDA: no
+// graphs); the variables are restored after.
+std::unique_ptr<Backend> backend_without_captures() {
+  struct Saved {
+    const char* name;
+    std::optional<std::string> value;
+  };
+  std::vector<Saved> saved;
+  for (const char* name : {"MASAV_VK_REPLAY", "MASAV_CUDA_GRAPHS"}) {
+    const char* v = std::getenv(name);
+    saved.push_back({name, v ? std::optional<std::string>(v) : std::nullopt});
+  }
+  setenv("MASAV_VK_REPLAY", "off", 1);
+  setenv("MASAV_CUDA_GRAPHS", "0", 1);
+  std::unique_ptr<Backend> b;
+  try {
+    b = create_backend(test::backend_name());
+  } catch (...) {
+    b.reset();
+  }
+  for (const Saved& s : saved) {
+    if (s.value)
+      setenv(s.name, s.value->c_str(), 1);
+    else
+      unsetenv(s.name);
+  }
+  return b;
 }
 
 }  // namespace
@@ -70,14 +111,40 @@ TEST_CASE("[sph-physics] run() in blocks gives the step-by-step state bit for bi
     CHECK(blocks.steps == 20);
     CHECK(blocks.time == single.time);
     CHECK(test::same_state(blocks.state, single.state));
-    // On CUDA the blocks ran as graphs (the first may split where its scratch memory grows;
-    // the last, of another shape, replaces the executable graph), the single steps never.
+    // Captured, the blocks ran as units (CUDA graphs: the first may split where its scratch
+    // memory grows; the last, of another shape, replaces the executable graph; Vulkan: the
+    // blocks use the two checkpoints in turn, and the last is shorter), single steps never.
     CHECK(single.graphs == 0);
     if (captures_blocks(test::backend()))
       CHECK(blocks.graphs >= 2);
     else
       CHECK(blocks.graphs == 0);
   }
+}
+
+TEST_CASE("[sph-physics] blocks at the adaptive dt: captured units reused, bit for bit") {
+  // Every block has another dt: Vulkan passes it through its replay table, CUDA updates the
+  // graph. Either way the run must give what the same backend gives without captures.
+  SphScene s = make_preset("dam-break", 1000);
+  const Outcome captured = run_in_blocks(s, 8, 64);
+  REQUIRE(captured.error.empty());
+  if (!captures_blocks(test::backend())) {
+    MESSAGE("skipped: " << test::backend_name() << " does not capture blocks here");
+    CHECK(captured.graphs == 0);
+    return;
+  }
+  // 8 blocks, at most half of them built (Vulkan builds 3: the first, with leapfrog's first
+  // evaluation, and the first of each checkpoint slot; CUDA instantiates where a graph's shape
+  // changes), the others reusing one with their own dt.
+  CHECK(captured.graphs >= 8);
+  CHECK(captured.graph_builds * 2 <= captured.graphs);
+  const std::unique_ptr<Backend> plain = backend_without_captures();
+  REQUIRE(plain);
+  const Outcome direct = run_in_blocks(s, 8, 64, *plain);
+  REQUIRE(direct.error.empty());
+  CHECK(direct.graphs == 0);
+  CHECK(captured.time == direct.time);
+  CHECK(test::same_state(captured.state, direct.state));
 }
 
 TEST_CASE("[sph-physics] a block the guard rejects is replayed and stops at the very step") {

@@ -72,10 +72,22 @@ def load_json(out, pattern):
     return records
 
 
-def graph_row(r):
-    """An SPH row run with each block as one CUDA graph (MASAV_CUDA_GRAPHS=1): compared in its
-    own table, never counted as the backend's throughput."""
-    return (r.get("per_step", {}).get("graphs") or 0) > 0
+# The SPH runs with a backend's captured blocks switched from its default: CUDA graphs on
+# (MASAV_CUDA_GRAPHS=1), Vulkan replays off (MASAV_VK_REPLAY=off).
+VARIANT_RUNS = ("bench_sph_graphs", "bench_sph_noreplay")
+
+
+def variant_row(f):
+    """A row of a variant run (VARIANT_RUNS): compared with the default run in its own table,
+    never counted as the backend's throughput."""
+    return os.path.basename(f).startswith(VARIANT_RUNS)
+
+
+def variant_name(r):
+    graphs = (r.get("per_step", {}).get("graphs") or 0) > 0
+    if r.get("backend") == "cuda":
+        return "CUDA graphs" if graphs else "launches"
+    return "replays" if graphs else "no replays"
 
 
 class Bench:
@@ -92,7 +104,7 @@ class Bench:
         for f, d in self.of("sph"):
             for r in d.get("throughput", []):
                 if (r.get("backend") == backend and r.get("integrator") == integrator
-                        and r.get("particles") == particles and not graph_row(r)):
+                        and r.get("particles") == particles and not variant_row(f)):
                     found = (f, r)
         return found
 
@@ -294,7 +306,7 @@ def paired_times(bench, kind, backend):
         elif kind == "sph":
             # The small systems' steps are latency, not throughput: not what the rule compares.
             for r in d.get("throughput", []):
-                if r.get("backend") == backend and not graph_row(r) and r["particles"] >= 32768:
+                if r.get("backend") == backend and not variant_row(f) and r["particles"] >= 32768:
                     case = f"{r['particles']} {r['integrator']}"
                     for stage, ms in r.get("stage_ms_per_step", {}).items():
                         out[f"{case} {stage}"] = (ms, f)
@@ -358,9 +370,9 @@ def cpu_targets(bench, run):
 def sph_table(bench):
     rows = []
     for f, d in bench.of("sph"):
+        if variant_row(f):
+            continue
         for r in d.get("throughput", []):
-            if graph_row(r):
-                continue
             rows.append({"backend": r["backend"], "integrator": r["integrator"],
                          "particles": r["particles"], "ms_per_step": r["device_ms_per_step"],
                          "steps_per_s": r["steps_per_s"],
@@ -376,20 +388,22 @@ def sph_table(bench):
 
 
 def graphs_table(bench):
-    """Each CUDA-graph row against the same run (backend, integrator, particles, timed steps)
-    launched kernel by kernel: wall time and host CPU per step."""
+    """Each row of a variant run (VARIANT_RUNS) against the default run of the same backend,
+    integrator, particles and timed steps: wall time and host CPU per step."""
     plain, rows = {}, []
     for f, d in bench.of("sph"):
+        if variant_row(f):
+            continue
         for r in d.get("throughput", []):
-            if not graph_row(r):
-                plain[(r["backend"], r["integrator"], r["particles"], r["timed_steps"])] = (f, r)
+            plain[(r["backend"], r["integrator"], r["particles"], r["timed_steps"])] = (f, r)
     for f, d in bench.of("sph"):
+        if not variant_row(f):
+            continue
         for r in d.get("throughput", []):
-            if not graph_row(r):
-                continue
             base = plain.get((r["backend"], r["integrator"], r["particles"], r["timed_steps"]))
             row = {"backend": r["backend"], "integrator": r["integrator"],
                    "particles": r["particles"], "timed_steps": r["timed_steps"],
+                   "variant": variant_name(r),
                    "graph_wall_ms": r["wall_ms_per_step"],
                    "graph_host_ms": r.get("per_step", {}).get("host_cpu_ms"),
                    "launch_wall_ms": None, "launch_host_ms": None, "ratio": None,
@@ -501,11 +515,14 @@ def markdown(run, steps, targets, sph, verify, dambreak, graphs):
               r['source']] for r in sph])
     if graphs:
         lines += md_table(
-            "## CUDA graphs (`MASAV_CUDA_GRAPHS=1`) against kernel-by-kernel launches",
-            ["particles", "integrator", "backend", "timed steps", "wall ms/step: graphs",
-             "launches", "graphs / launches", "host CPU ms/step: graphs", "launches",
-             "source JSON"],
-            [[f"{r['particles']:,}", r['integrator'], r['backend'], r['timed_steps'],
+            "## Captured blocks against each backend's default (CUDA graphs, "
+            "`MASAV_CUDA_GRAPHS=1`, against launches; Vulkan without replays, "
+            "`MASAV_VK_REPLAY=off`, against replays)",
+            ["particles", "integrator", "backend", "variant", "timed steps",
+             "wall ms/step: variant", "default", "variant / default",
+             "host CPU ms/step: variant", "default", "source JSON"],
+            [[f"{r['particles']:,}", r['integrator'], r['backend'], r['variant'],
+              r['timed_steps'],
               fmt(r['graph_wall_ms']), fmt(r['launch_wall_ms']) if r['launch_wall_ms'] else "-",
               fmt(r['ratio']) if r['ratio'] else "no run to compare",
               fmt(r['graph_host_ms']) if r['graph_host_ms'] is not None else "-",
@@ -554,7 +571,7 @@ def main(argv):
     sph, dambreak, graphs = sph_table(bench), dambreak_table(bench), graphs_table(bench)
     text = markdown(run, steps, targets, sph, verify, dambreak, graphs)
     summary = {"run": run, "targets": targets, "verify": verify, "sph": sph,
-               "dambreak": dambreak, "cuda_graphs": graphs, "steps": steps}
+               "dambreak": dambreak, "captured_blocks": graphs, "steps": steps}
     write_atomic(os.path.join(out, "summary.md"), text)
     write_atomic(os.path.join(out, "summary.json"), json.dumps(summary, indent=2) + "\n")
     print(f"wrote {os.path.join(out, 'summary.md')} and summary.json: {len(targets)} targets")

@@ -26,7 +26,11 @@ struct DeviceCounters {
   uint64_t bytes_to_device = 0;  // host -> device (uploads)
   uint64_t bytes_to_host = 0;    // device -> host (downloads, including asynchronous reads)
   uint64_t async_reads = 0;      // reads taken while the device still had later work to run
-  uint64_t graphs = 0;           // captured work queued as one unit (CUDA graph launches)
+  // Captured work queued as one unit (DeviceApi::begin_capture): CUDA graph launches, Vulkan
+  // executions of a recorded command buffer. graph_builds: those that first built their unit
+  // (CUDA: instantiated a graph; Vulkan: recorded the commands); the others reused one.
+  uint64_t graphs = 0;
+  uint64_t graph_builds = 0;
 };
 
 class DeviceApi;
@@ -93,7 +97,8 @@ class DeviceApi {
   // ---- work queued as one unit
   // Between begin_capture() and end_capture() a backend may gather what is recorded and queue it
   // as one unit: CUDA captures it as a graph, so the device runs the kernels back to back
-  // instead of the host launching each (the other backends already submit a recording at once).
+  // instead of the host launching each; Vulkan replays a recording of the same commands made
+  // before, so the host records and orders nothing (compute/vk_stream.h, "Replays").
   // Results and order are the same as without. A call that cannot be captured (an allocation,
   // an upload or download, a wait, a timestamp) ends the capture first: what was captured is
   // queued then, the rest as usual. abort_capture() drops what was captured and not yet queued:

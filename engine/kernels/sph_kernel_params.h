@@ -48,6 +48,11 @@ MASAV_CONSTANT(kSphStatMaxNeighbors, 7)   // most neighbours within h (density, 
 MASAV_CONSTANT(kSphStatMaxDensity, 8)     // float bits: largest density from sph_density
 MASAV_CONSTANT(kSphStatWords, 9)
 
+// SphIntegrateLayout::dt_slot of a dt passed inline (in `dt`). A backend that replays recorded
+// work (Vulkan, DeviceApi::begin_capture) passes a captured stage's dt through a table instead,
+// at dt_slot, so that blocks differing only in dt replay one recording.
+MASAV_CONSTANT(kSphDtInline, 0xFFFFFFFFu)
+
 // Neighbour row masks (sph_density's optional output, sph_forces' optional input): for each of
 // the 9 rows of a particle's 27-cell walk, 64 bits, bit b set when candidate first + b of the
 // row lies within h (the particle itself included); a row of more candidates has no bits and
@@ -99,6 +104,7 @@ MASAV_REAL_LAYOUT(SphIntegrateLayout) {
   real_t tangential_damping;
   uint first;  // the particles stepped: [first, end) of the n
   uint end;
+  uint dt_slot;  // kSphDtInline: dt is `dt`; else the Vulkan replay table's entry (see above)
 };
 
 MASAV_NAMESPACE_END
@@ -121,7 +127,8 @@ MASAV_LAYOUT_CHECK(SphStepLayout<float>, 128, (dims, 0), (n, 12), (max_candidate
                    (neighbor_rows, 104))
 MASAV_LAYOUT_CHECK(SphStepLayout<float>, 128, (first, 108), (end, 112))
 MASAV_LAYOUT_CHECK(SphIntegrateLayout<float>, 64, (op, 0), (walls, 4), (n, 8), (dt, 12), (lo, 16),
-                   (restitution, 28), (hi, 32), (tangential_damping, 44), (first, 48), (end, 52))
+                   (restitution, 28), (hi, 32), (tangential_damping, 44), (first, 48), (end, 52),
+                   (dt_slot, 56))
 
 // SphStepParams / SphIntegrateParams::count for "from first to n".
 inline constexpr uint32_t kSphAllParticles = UINT32_MAX;
@@ -313,6 +320,7 @@ SphIntegrateLayout<F> device_params(const SphIntegrateParams& p, const Buffers&.
   s.tangential_damping = F(p.tangential_damping);
   s.first = p.first;
   s.end = sph_range_end(p);
+  s.dt_slot = kSphDtInline;
   return s;
 }
 
