@@ -54,8 +54,11 @@ void VulkanBackend::run_kernel(const Params& p, uint64_t items, Buffers&... buff
       const bool split =
           K == KernelId::sph_density ? sph_wall_split_.density : sph_wall_split_.others;
       constants.push_back(split ? 1u : 0u);
-      if constexpr (K == KernelId::sph_density)  // positions, cells, cell_start, cell_end
-        texels = {rgba32, r32u, r32u, r32u, none, none, none, none};
+      if constexpr (K == KernelId::sph_density) {  // positions, cells, cell_start, cell_end
+        texels = {rgba32, r32u, r32u, r32u, none, none, none, none, none};
+        // How it uses the reach masks (constant 6): a pipeline each, none paying for the others.
+        constants.push_back(uint32_t(layout.reach));
+      }
       if constexpr (K == KernelId::sph_forces)  // ... velocities, density, pressure; neighbor_rows
         texels = {rgba32, rgba32, r32f, r32f, r32u, r32u, r32u, none, none, r32u};
     }

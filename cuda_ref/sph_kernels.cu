@@ -44,7 +44,7 @@ __global__ void __launch_bounds__(kBlock, kNeighborBlocks)
     density_kernel(SphStepLayout<float> layout, const V4* __restrict__ pos,
                    const uint32_t* __restrict__ cells, const uint32_t* __restrict__ start,
                    const uint32_t* __restrict__ end, float* density, float* pressure,
-                   uint32_t* stats, uint32_t* neighbor_rows) {
+                   uint32_t* stats, uint32_t* reach_rows, uint32_t* neighbor_rows) {
   const SphStepLayout<float> c = with_model<M>(layout);
   const uint64_t i = c.first + particle_thread();  // the range computed: [first, end)
   const bool live = i < c.end;
@@ -57,12 +57,13 @@ __global__ void __launch_bounds__(kBlock, kNeighborBlocks)
   if (live) {
     const uint32_t dims[3] = {c.dims.x, c.dims.y, c.dims.z};
     const auto masks = sph::row_masks(neighbor_rows, uint32_t(i), c.n);
+    const auto reach = sph::reach_of(c, reach_rows, uint32_t(i));
     const auto r =
         walls_near
             ? sph::density_walk<float, true, true>(uint32_t(i), xi, mirrors, cells[i], dims, start,
-                                                   end, c.max_candidates, c, pos_at, masks)
+                                                   end, c.max_candidates, c, pos_at, masks, reach)
             : sph::density_walk<float, false, true>(uint32_t(i), xi, mirrors, cells[i], dims, start,
-                                                    end, c.max_candidates, c, pos_at, masks);
+                                                    end, c.max_candidates, c, pos_at, masks, reach);
     const float p = sph::pressure_of(r.density, c);
     density[i] = r.density;
     pressure[i] = p;
@@ -177,10 +178,11 @@ cudaError_t for_model(SphPressureModel m, Launch&& launch) {
 
 cudaError_t sph_density(cudaStream_t s, dim3 grid, const SphStepLayout<float>& c, const V4* pos,
                         const uint32_t* cells, const uint32_t* start, const uint32_t* end,
-                        float* density, float* pressure, uint32_t* stats, uint32_t* neighbor_rows) {
+                        float* density, float* pressure, uint32_t* stats, uint32_t* reach_rows,
+                        uint32_t* neighbor_rows) {
   return for_model(c.model, [&](auto m) {
-    density_kernel<decltype(m)::value><<<grid, kBlock, 0, s>>>(c, pos, cells, start, end, density,
-                                                               pressure, stats, neighbor_rows);
+    density_kernel<decltype(m)::value><<<grid, kBlock, 0, s>>>(
+        c, pos, cells, start, end, density, pressure, stats, reach_rows, neighbor_rows);
     return cudaGetLastError();
   });
 }

@@ -9,8 +9,10 @@
 // walk over the neighbours it kept. The candidates per invocation are capped (max_candidates)
 // and an overflow is reported, never silently truncated. With neighbor_rows bound
 // (p.neighbor_rows != 0), also records which candidates of each row lie within h, for
-// sph_forces (kSphRowMaskBits in engine/kernels/sph_kernel_params.h). Twin of sph::density_at
-// (engine/kernels/sph_kernels.h), which adds a neighbour's images with its own term.
+// sph_forces (kSphRowMaskBits in engine/kernels/sph_kernel_params.h). With the reach masks
+// (SphReach, specialisation constant 6), also records which lie within the reach radius, or
+// walks only those. Twin of sph::density_walk (engine/kernels/sph_kernels.h), which adds a
+// neighbour's images with its own term.
 #include "kernel_base.glsl"
 
 // What the kernel only reads are uniform texel buffers (compute/vk_kernels.cpp): lavapipe fetches
@@ -26,22 +28,31 @@ uint cell_end_at(uint cell) { return texelFetch(cell_end_texels, int(cell)).r; }
 layout(std430, binding = 5) writeonly buffer Density { float density[]; };
 layout(std430, binding = 6) writeonly buffer Pressure { float pressure[]; };
 layout(std430, binding = 7) buffer Stats { uint stats[]; };
-layout(std430, binding = 8) writeonly buffer NeighborRows { uint neighbor_rows[]; };
+layout(std430, binding = 8) buffer ReachRows { uint reach_rows[]; };
+layout(std430, binding = 9) writeonly buffer NeighborRows { uint neighbor_rows[]; };
+
+// How the walk uses the reach masks (SphReach: none, record, walk). A constant rather than
+// p.reach: lavapipe runs the code of a branch that no lane takes, so each use is a pipeline of
+// its own and the others carry none of its cost.
+layout(constant_id = 6) const uint SPH_REACH = 0u;
 
 #define SPH_MODEL_SPECIALIZED
 #include "sph.glsl"
 #include "sph_walk.glsl"
 #include "sph_coop.glsl"
-#define SPH_ROWS_FROM_WALK
+// The gathered rows' masks are the reach masks (the walk that visits only their bits).
+uint neighbor_row_at(uint word) { return reach_rows[word]; }
 #include "sph_row_walk.glsl"
 
 MASAV_PUSH(SphStepLayout);
 
-// What a walk adds up: the kernel sum, the neighbours within h, and the row's mask.
+// What a walk adds up: the kernel sum, the neighbours within h, and the row's masks of its
+// candidates within h and within the reach radius (SPH_REACH record).
 struct Walk {
   float sum;
   uint within;
   uvec2 bits;
+  uvec2 reach_bits;
 };
 
 // One chunk of a cooperative row: the cluster's kSphCoop candidates from `base`, rotated through
@@ -53,7 +64,7 @@ void coop_chunk(inout Walk w, vec3 xi, uint base, uvec2 u, uvec2 r) {
   const uint mine = base + sph_coop_lane();
   const vec3 xc = mine < u.y ? position_at(mine).xyz : vec3(0.0);
   const int lo = int(r.x) - int(base), hi = int(r.y) - int(base);  // the row: lo <= t < hi
-  uint found = 0u;
+  uint found = 0u, reach_found = 0u;
   for (uint k = 0u; k < kSphCoop; ++k) {
     LOOP_TICK();
     const vec3 xj = subgroupShuffle(xc, sph_coop_source(k));
@@ -64,9 +75,12 @@ void coop_chunk(inout Walk w, vec3 xi, uint base, uvec2 u, uvec2 r) {
     const bool near = in_row && r2 < p.h2;
     w.sum += in_row ? sph_density_term(r2, p) : 0.0;
     found |= near ? 1u << t : 0u;
+    if (SPH_REACH == SphReach_record) reach_found |= in_row && r2 < p.reach2 ? 1u << t : 0u;
   }
   w.within += uint(bitCount(found));
   w.bits = sph_mask_or_shifted(w.bits, found, int(base) - int(r.x));
+  if (SPH_REACH == SphReach_record)
+    w.reach_bits = sph_mask_or_shifted(w.reach_bits, reach_found, int(base) - int(r.x));
 }
 
 // Candidate j of a row walked per lane (r: the row).
@@ -78,6 +92,54 @@ void lane_candidate(inout Walk w, vec3 xi, uint j, uvec2 r) {
   w.sum += sph_density_term(r2, p);
   w.within += near ? 1u : 0u;
   w.bits = sph_mask_set(w.bits, j - r.x, near);
+  if (SPH_REACH == SphReach_record) w.reach_bits = sph_mask_set(w.reach_bits, j - r.x, r2 < p.reach2);
+}
+
+// Stores row `row`'s two mask words of particle i in `rows` (neighbor_rows or reach_rows).
+#define SPH_STORE_MASK(rows, row, bits)                    \
+  {                                                        \
+    rows[sph_mask_word(row, 0u, i, p.n)] = (bits).x;       \
+    rows[sph_mask_word(row, 1u, i, p.n)] = (bits).y;       \
+  }
+
+// The walk over the reach masks (SPH_REACH walk): each lane's nine rows gathered with their
+// recorded bits (or whole, where a row does not fit a mask), walked in one loop as sph_forces
+// walks its masks (sph_row_walk.glsl), rows in order and ascending within a row: the sum adds
+// the terms the whole walk adds, less the zeros beyond h. Each row's mask of neighbours within
+// h is stored as the lane moves on from it; rows with nothing to walk store none. Returns the
+// gathered rows (bit k: row k), which the wall images walk again.
+uint walk_reach(inout Walk w, bool live, uint i, vec3 xi, ivec3 cc, inout uint candidates,
+                inout bool overflow, out SphRowWalk rows[9]) {
+  const uint gathered = sph_gather_rows(live, cc, i, true, p.dims, p.n, p.max_candidates,
+                                        candidates, overflow, rows);
+  const bool store = p.neighbor_rows != 0u && live;
+  for (uint k = 0u; k < 9u; ++k) {
+    LOOP_TICK();
+    if (store && (gathered & (1u << k)) == 0u) SPH_STORE_MASK(neighbor_rows, k, uvec2(0u))
+  }
+  uint pending = gathered;
+  SphRowWalk r = kSphNoRow;
+  uint row = 9u;  // the row being walked
+  uvec2 bits = uvec2(0u);
+  while (pending != 0u || sph_row_left(r)) {
+    LOOP_TICK();
+    if (!sph_row_left(r)) {
+      // A row walked whole (too long for a mask) stores no bits.
+      if (store && row < 9u) SPH_STORE_MASK(neighbor_rows, row, r.end > r.first ? uvec2(0u) : bits)
+      row = uint(findLSB(pending));
+      SPH_NEXT_ROW(r, rows, pending)
+      bits = uvec2(0u);
+    }
+    const uint j = sph_row_take(r);
+    const vec3 d = xi - position_at(j).xyz;
+    precise float r2 = d.x * d.x + d.y * d.y + d.z * d.z;  // unfused, as sph_density_term
+    const bool near = r2 < p.h2;
+    w.sum += sph_density_term(r2, p);
+    w.within += near ? 1u : 0u;
+    bits = sph_mask_set(bits, j - r.first, near);
+  }
+  if (store && row < 9u) SPH_STORE_MASK(neighbor_rows, row, r.end > r.first ? uvec2(0u) : bits)
+  return gathered;
 }
 
 void main() {
@@ -106,13 +168,15 @@ void main() {
   SphRowWalk rows[9];
   uint pending = 0u;
   uint spent = 0u;
-  Walk w = Walk(0.0, 0u, uvec2(0u));
-  for (int dx = -1; dx <= 1; ++dx) {
+  Walk w = Walk(0.0, 0u, uvec2(0u), uvec2(0u));
+  if (SPH_REACH == SphReach_walk) pending = walk_reach(w, live, i, xi, cc, candidates, overflow, rows);
+  for (int dx = -1; SPH_REACH != SphReach_walk && dx <= 1; ++dx) {
     LOOP_TICK();
     for (int dy = -1; dy <= 1; ++dy) {
       LOOP_TICK();
       const uvec2 r = sph_lane_row(live, cc, dx, dy, dims, p.max_candidates, candidates, overflow);
-      w.bits = uvec2(0u);  // this row's mask
+      w.bits = uvec2(0u);  // this row's masks
+      w.reach_bits = uvec2(0u);
       uvec2 u;
       if (sph_coop_row(r, spent, u)) {
         for (uint base = u.x; base < u.y; base += kSphCoop) {
@@ -127,11 +191,9 @@ void main() {
       }
       const uint row = sph_row_index(dx, dy);
       const bool fits = sph_row_fits_mask(r);
-      if (p.neighbor_rows != 0u && live) {
-        const uvec2 bits = fits ? w.bits : uvec2(0u);
-        neighbor_rows[sph_mask_word(row, 0u, i, p.n)] = bits.x;
-        neighbor_rows[sph_mask_word(row, 1u, i, p.n)] = bits.y;
-      }
+      if (p.neighbor_rows != 0u && live) SPH_STORE_MASK(neighbor_rows, row, fits ? w.bits : uvec2(0u))
+      if (SPH_REACH == SphReach_record && live)
+        SPH_STORE_MASK(reach_rows, row, fits ? w.reach_bits : uvec2(0u))
       const SphRowWalk kept = sph_row_state(r, fits, w.bits);
       rows[row] = kept;
       if (sph_row_left(kept)) pending |= 1u << row;

@@ -72,9 +72,10 @@ def load_json(out, pattern):
     return records
 
 
-# The SPH runs with a backend's captured blocks switched from its default: CUDA graphs on
-# (MASAV_CUDA_GRAPHS=1), Vulkan replays off (MASAV_VK_REPLAY=off).
-VARIANT_RUNS = ("bench_sph_graphs", "bench_sph_noreplay")
+# The SPH runs with a choice switched from the backend's default: CUDA graphs on
+# (MASAV_CUDA_GRAPHS=1), Vulkan replays off (MASAV_VK_REPLAY=off), RK4's reach masks off
+# (MASAV_SPH_REACH=off).
+VARIANT_RUNS = ("bench_sph_graphs", "bench_sph_noreplay", "bench_sph_noreach")
 
 
 def variant_row(f):
@@ -83,7 +84,9 @@ def variant_row(f):
     return os.path.basename(f).startswith(VARIANT_RUNS)
 
 
-def variant_name(r):
+def variant_name(f, r):
+    if os.path.basename(f).startswith("bench_sph_noreach"):
+        return "no reach masks"
     graphs = (r.get("per_step", {}).get("graphs") or 0) > 0
     if r.get("backend") == "cuda":
         return "CUDA graphs" if graphs else "launches"
@@ -403,7 +406,7 @@ def graphs_table(bench):
             base = plain.get((r["backend"], r["integrator"], r["particles"], r["timed_steps"]))
             row = {"backend": r["backend"], "integrator": r["integrator"],
                    "particles": r["particles"], "timed_steps": r["timed_steps"],
-                   "variant": variant_name(r),
+                   "variant": variant_name(f, r),
                    "graph_wall_ms": r["wall_ms_per_step"],
                    "graph_host_ms": r.get("per_step", {}).get("host_cpu_ms"),
                    "launch_wall_ms": None, "launch_host_ms": None, "ratio": None,
@@ -517,7 +520,8 @@ def markdown(run, steps, targets, sph, verify, dambreak, graphs):
         lines += md_table(
             "## Captured blocks against each backend's default (CUDA graphs, "
             "`MASAV_CUDA_GRAPHS=1`, against launches; Vulkan without replays, "
-            "`MASAV_VK_REPLAY=off`, against replays)",
+            "`MASAV_VK_REPLAY=off`, against replays), and RK4 without its reach masks "
+            "(`MASAV_SPH_REACH=off`, every evaluation walking the inflated cells) against them",
             ["particles", "integrator", "backend", "variant", "timed steps",
              "wall ms/step: variant", "default", "variant / default",
              "host CPU ms/step: variant", "default", "source JSON"],

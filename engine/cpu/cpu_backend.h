@@ -71,7 +71,8 @@ class CpuBackend final : public Backend {
                                 const Buffer<uint32_t>& cell_end, double h2,
                                 const char* kernel) const;
   template <class Found>
-  void build_sph_lists(const SphListInputs& in, size_t chunks, Found&& found);
+  void build_sph_lists(const SphListInputs& in, size_t chunks, Found&& found,
+                       const SphListReach& reach = {});
   // The lists for `in` in sph_chunks(in.n) chunks: sph_density's where they match, else new.
   void ensure_sph_lists(const SphListInputs& in);
   size_t sph_chunks(uint32_t n) const;

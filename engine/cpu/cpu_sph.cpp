@@ -107,9 +107,9 @@ const Soa& soa_positions(ThreadPool& pool, const double* pos, size_t n) {
   return s;
 }
 
-// Particle i's neighbour row masks (sph::RowMasks) from its neighbour list, which holds the
-// same test (r2 < h2) in walk order -- ascending within a row, rows in walk order -- without
-// the particle itself, which the masks include.
+// Particle i's row masks (sph::RowMasks) from its list of the candidates within a radius (h for
+// the neighbour rows, the reach radius for the reach masks) in walk order -- ascending within a
+// row, rows in walk order -- without the particle itself, which the masks include.
 void write_row_masks(const SphListInputs& in, uint32_t i, const uint32_t* list, uint32_t count,
                      uint32_t* neighbor_rows) {
   const sph::RowMasks<uint32_t> masks = sph::row_masks(neighbor_rows, i, in.n);
@@ -124,6 +124,17 @@ void write_row_masks(const SphListInputs& in, uint32_t i, const uint32_t* list, 
                      bits |= uint64_t(1) << ((i - first) & (kSphRowMaskBits - 1));
                    sph::store_row_mask(masks, row, sph::row_fits_mask(first, last) ? bits : 0);
                  });
+}
+
+// Keeps the entries of (index, r2) with r2 < h2, in order; returns how many.
+uint32_t keep_within(uint32_t* index, double* r2, uint32_t count, double h2) {
+  uint32_t kept = 0;
+  for (uint32_t k = 0; k < count; ++k) {
+    index[kept] = index[k];
+    r2[kept] = r2[k];
+    kept += r2[k] < h2 ? 1u : 0u;
+  }
+  return kept;
 }
 
 }  // namespace
@@ -148,13 +159,19 @@ SphListInputs CpuBackend::sph_list_inputs(const SphStepParams& p, const Buffer<u
   return in;
 }
 
-// Finds every particle's neighbours into sph_lists_ (sph::walk_neighbor_rows, then the
-// candidate test row by row) and calls found(chunk, i, count, r2) with each particle's squared
-// distances, in list order.
+// Finds every particle's neighbours into sph_lists_ (sph::walk_rows, then the candidate test row
+// by row) and calls found(chunk, i, count, r2) with each particle's squared distances, in list
+// order. With `reach`, the test first lists the candidates within its radius, records them and
+// keeps those within h; or tests only the recorded ones of each row that fits a mask. Either way
+// the lists are those of the plain test (the same r2 bits, the same order).
 template <class Found>
-void CpuBackend::build_sph_lists(const SphListInputs& in, size_t chunks, Found&& found) {
+void CpuBackend::build_sph_lists(const SphListInputs& in, size_t chunks, Found&& found,
+                                 const SphListReach& reach) {
   sph_lists_.reset(in.n, chunks);
   const Soa& xyz = soa_positions(pool_, in.positions, in.n);
+  const bool record = reach.mode == SphReach::record && reach.rows;
+  const bool walk = reach.mode == SphReach::walk && reach.rows;
+  const double test_h2 = record ? reach.reach2 : in.h2;
   pool_.run_chunks(in.end - in.first, chunks, [&](size_t chunk, size_t b, size_t e) {
     b += in.first;
     e += in.first;
@@ -166,14 +183,26 @@ void CpuBackend::build_sph_lists(const SphListInputs& in, size_t chunks, Found&&
     for (size_t i = b; i < e; ++i) {
       const uint32_t self = uint32_t(i);
       const double px = xyz.x[i], py = xyz.y[i], pz = xyz.z[i];
+      const sph::RowMasks<const uint32_t> recorded{walk ? reach.rows + i : nullptr, in.n};
       uint32_t count = 0;
       bool overflow = false;
-      const uint32_t candidates = sph::walk_neighbor_rows(
+      const uint32_t candidates = sph::walk_rows(
           in.cells[i], in.dims, in.cell_start, in.cell_end, in.max_candidates, overflow,
-          [&](uint32_t f, uint32_t l) {
-            count += neighbors_row(&xyz.x[f], &xyz.y[f], &xyz.z[f], f, l - f, px, py, pz, in.h2,
-                                   self, index.data() + count, r2.data() + count);
+          [&](uint32_t row, uint32_t f, uint32_t l) {
+            if (l == f) return;
+            if (walk && sph::row_fits_mask(f, l)) {
+              count += neighbors_masked(&xyz.x[f], &xyz.y[f], &xyz.z[f], f,
+                                        sph::load_row_mask(recorded, row), px, py, pz, in.h2, self,
+                                        index.data() + count, r2.data() + count);
+            } else {
+              count += neighbors_row(&xyz.x[f], &xyz.y[f], &xyz.z[f], f, l - f, px, py, pz, test_h2,
+                                     self, index.data() + count, r2.data() + count);
+            }
           });
+      if (record) {
+        write_row_masks(in, self, index.data(), count, reach.rows);
+        count = keep_within(index.data(), r2.data(), count, in.h2);
+      }
       sph_lists_.append(chunk, self, index.data(), count, candidates, overflow);
       found(chunk, self, count, r2.data());
     }
@@ -192,7 +221,7 @@ void CpuBackend::ensure_sph_lists(const SphListInputs& in) {
 }
 
 void CpuBackend::run_own(const KernelArgs<KernelId::sph_density>& a) {
-  auto& [p, items_, positions, cells, cell_start, cell_end, density, pressure, stats,
+  auto& [p, items_, positions, cells, cell_start, cell_end, density, pressure, stats, reach_rows,
          neighbor_rows] = a;
   const char* k = "sph_density";
   const auto c = device_params<double>(p);
@@ -202,24 +231,31 @@ void CpuBackend::run_own(const KernelArgs<KernelId::sph_density>& a) {
   double* pr = own(pressure.impl(), k).as<double>();
   uint32_t* words = own(stats.impl(), k).as<uint32_t>();
   uint32_t* rows = neighbor_rows ? own(neighbor_rows->impl(), k).as<uint32_t>() : nullptr;
+  SphListReach reach{p.reach, c.reach2, nullptr};
+  if (reach_rows && p.reach != SphReach::none)
+    reach.rows = own(reach_rows->impl(), k).as<uint32_t>();
   const size_t chunks = sph_chunks(sph_range_count(p));
   std::vector<ChunkStats> st(chunks);
   // sph::density_at's sum over the neighbour list: the particle itself (r = 0, term 1) first,
   // then its neighbours; candidates beyond h add exactly nothing there.
-  build_sph_lists(in, chunks, [&](size_t chunk, uint32_t i, uint32_t count, const double* r2) {
-    ChunkStats& s = st[chunk];
-    const double sum = c.model != SphPressureModel::thesis ? spiky_density_sum(r2, count, c)
-                                                           : density_sum(r2, count, c.inv_h2);
-    rho[i] = c.density * (1.0 + sum) +
-             wall_images_density(c, in.positions, i, sph_lists_.list(i), count);
-    pr[i] = sph::pressure_of(rho[i], c);
-    s.max_candidates = std::max(s.max_candidates, sph_lists_.candidates(i));
-    s.max_neighbors = std::max(s.max_neighbors, count + 1);
-    if (rho[i] > s.max_density) s.max_density = rho[i];  // NaN is reported as non-finite
-    if (sph_lists_.overflow(i)) s.overflow = std::min(s.overflow, i);
-    if (!std::isfinite(rho[i]) || !std::isfinite(pr[i])) s.non_finite = std::min(s.non_finite, i);
-    if (rows) write_row_masks(in, i, sph_lists_.list(i), count, rows);
-  });
+  build_sph_lists(
+      in, chunks,
+      [&](size_t chunk, uint32_t i, uint32_t count, const double* r2) {
+        ChunkStats& s = st[chunk];
+        const double sum = c.model != SphPressureModel::thesis ? spiky_density_sum(r2, count, c)
+                                                               : density_sum(r2, count, c.inv_h2);
+        rho[i] = c.density * (1.0 + sum) +
+                 wall_images_density(c, in.positions, i, sph_lists_.list(i), count);
+        pr[i] = sph::pressure_of(rho[i], c);
+        s.max_candidates = std::max(s.max_candidates, sph_lists_.candidates(i));
+        s.max_neighbors = std::max(s.max_neighbors, count + 1);
+        if (rho[i] > s.max_density) s.max_density = rho[i];  // NaN is reported as non-finite
+        if (sph_lists_.overflow(i)) s.overflow = std::min(s.overflow, i);
+        if (!std::isfinite(rho[i]) || !std::isfinite(pr[i]))
+          s.non_finite = std::min(s.non_finite, i);
+        if (rows) write_row_masks(in, i, sph_lists_.list(i), count, rows);
+      },
+      reach);
   merge(words, st);
 }
 

@@ -9,7 +9,17 @@
 #include <cstdint>
 #include <vector>
 
+#include "engine/kernels/sph_kernel_params.h"
+
 namespace masav::cpu {
+
+// sph_density's reach masks (SphReach) as the list build uses them: recorded (the candidates
+// within reach2, itself included, as masks in `rows`) or walked (only their bits are tested).
+struct SphListReach {
+  SphReach mode = SphReach::none;
+  double reach2 = 0;
+  uint32_t* rows = nullptr;  // kSphRowMaskWords n words
+};
 
 // What a neighbour walk reads: sorted positions (x, y, z, w), each particle's cell, the cell
 // ranges, the grid's dims, h^2 and the candidate cap; and the particles whose lists are made,

@@ -22,6 +22,13 @@ uint32_t neighbors_row_portable(const double* xs, const double* ys, const double
                                 double h2, uint32_t self, uint32_t* out, double* out_r2);
 bool neighbors_row_uses_avx2();
 
+// neighbors_row over the candidates first + b of a row for the set bits b of `bits` only (a
+// reach mask, engine/kernels/sph_kernel_params.h), with the same r2 bits; xs, ys, zs start at
+// the row's first candidate. Appends at most popcount(bits) entries.
+uint32_t neighbors_masked(const double* xs, const double* ys, const double* zs, uint32_t first,
+                          uint64_t bits, double px, double py, double pz, double h2, uint32_t self,
+                          uint32_t* out, double* out_r2);
+
 // Sum over k < count of (1 - r2[k] inv_h2)^3, the poly6 terms of sph::density_term for
 // neighbours within h.
 double density_sum(const double* r2, uint32_t count, double inv_h2);

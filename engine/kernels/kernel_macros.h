@@ -8,6 +8,7 @@
 // inout    Buffer<Elem>&                 read and written
 // opt_in   const Buffer<Elem>*           read when not null
 // opt_out  Buffer<Elem>*                 written when not null
+// opt_inout Buffer<Elem>*                read or written when not null (the params say which)
 // any_in   const BufferImpl&             read, any element type (Elem is a placeholder)
 // any_out  BufferImpl&                   written, any element type
 
@@ -18,6 +19,7 @@
 #define MASAV_BUFFER_TYPE_inout(elem) Buffer<elem>&
 #define MASAV_BUFFER_TYPE_opt_in(elem) const Buffer<elem>*
 #define MASAV_BUFFER_TYPE_opt_out(elem) Buffer<elem>*
+#define MASAV_BUFFER_TYPE_opt_inout(elem) Buffer<elem>*
 #define MASAV_BUFFER_TYPE_any_in(elem) const BufferImpl&
 #define MASAV_BUFFER_TYPE_any_out(elem) BufferImpl&
 

@@ -95,6 +95,33 @@ void check_neighbor_rows(const Buffer<uint32_t>* rows, const SphStepParams& p, c
                               need_words, kSphRowMaskWords, p.n));
 }
 
+// sph_density's reach masks (SphReach): the mode, the radius the record walk can reach within the
+// 27 cells, and a buffer of their own.
+void check_reach(const Buffer<uint32_t>* reach_rows, const Buffer<uint32_t>* neighbor_rows,
+                 const SphStepParams& p, const char* kernel) {
+  const uint32_t mode = uint32_t(p.reach);
+  if (mode > uint32_t(SphReach::walk))
+    throw_invalid(kernel, "reach", std::to_string(mode), "none (0), record (1) or walk (2)");
+  if (p.reach == SphReach::none) return;
+  if (!reach_rows)
+    throw_invalid(
+        kernel, "reach_rows", "none",
+        fmt::format("{} words per particle when reach is record or walk", kSphRowMaskWords));
+  if (reach_rows == neighbor_rows)
+    throw_invalid(kernel, "reach_rows", "the neighbor_rows buffer", "a buffer of its own");
+  const size_t need_words = size_t(kSphRowMaskWords) * p.n;
+  if (reach_rows->size() < need_words)
+    throw_invalid(kernel, "reach_rows size", std::to_string(reach_rows->size()),
+                  fmt::format("at least {} elements ({} words per particle, {} particles)",
+                              need_words, kSphRowMaskWords, p.n));
+  if (p.reach == SphReach::record && !(std::isfinite(p.reach_radius) && p.reach_radius >= p.h &&
+                                       p.reach_radius <= double(p.grid.cell_size)))
+    throw_invalid(kernel, "reach_radius", fmt::format("{}", p.reach_radius),
+                  fmt::format("in [h, grid cell_size] = [{}, {}]: the 27 cells around a "
+                              "particle hold every candidate within it",
+                              p.h, double(p.grid.cell_size)));
+}
+
 // The DFSPH kernels' common parameters: a dfsph step and a solve.
 void check_dfsph(const DeviceApi& dev, const DfsphParams& p, const Buffer<Real4>& positions,
                  const Buffer<uint32_t>& cells, const Buffer<uint32_t>& cell_start,
@@ -182,7 +209,7 @@ void validate(const DeviceApi& dev, const SphStepParams& p, const Buffer<Real4>&
               const Buffer<uint32_t>& cells, const Buffer<uint32_t>& cell_start,
               const Buffer<uint32_t>& cell_end, const Buffer<Real>& density,
               const Buffer<Real>& pressure, const Buffer<uint32_t>& stats,
-              const Buffer<uint32_t>* neighbor_rows) {
+              const Buffer<uint32_t>* reach_rows, const Buffer<uint32_t>* neighbor_rows) {
   const char* k = "sph_density";
   check_sph_step(dev, p, k);
   need(dev, &positions, p.n, k, "positions");
@@ -191,6 +218,7 @@ void validate(const DeviceApi& dev, const SphStepParams& p, const Buffer<Real4>&
   need(dev, &pressure, p.n, k, "pressure");
   need(dev, &stats, kSphStatWords, k, "stats");
   check_neighbor_rows(neighbor_rows, p, k);
+  check_reach(reach_rows, neighbor_rows, p, k);
 }
 
 void validate(const DeviceApi& dev, const SphStepParams& p, const Buffer<Real4>& positions,

@@ -62,6 +62,18 @@ MASAV_CONSTANT(kSphDtInline, 0xFFFFFFFFu)
 MASAV_CONSTANT(kSphRowMaskBits, 64)
 MASAV_CONSTANT(kSphRowMaskWords, 18)
 
+// Reach masks: sph_density's masks (the format above) of the candidates within a reach radius
+// R >= h, in a buffer of their own (reach_rows). RK4 sorts once per step into cells of
+// h + skin, and no particle drifts more than skin / 2 from the sorted positions within the step
+// (SphSimulation rejects a step that drifts further), so every pair within h at a later stage was
+// within h + skin <= R at the first: the first evaluation records the masks and the later three
+// walk only their bits instead of every candidate of the 27 inflated cells.
+MASAV_ENUM_BEGIN(SphReach)
+MASAV_ENUMERATOR(SphReach, none, 0)    // reach_rows unused
+MASAV_ENUMERATOR(SphReach, record, 1)  // the walk visits every candidate and writes reach_rows
+MASAV_ENUMERATOR(SphReach, walk, 2)    // the walk visits only reach_rows' bits (rows that fit)
+MASAV_ENUM_END(SphReach)
+
 // What sph_density and sph_forces read: the grid they walk and the smoothing kernels' constants
 // (definitions: device_params below; formulas: engine/kernels/sph_kernels.h).
 MASAV_REAL_LAYOUT(SphStepLayout) {
@@ -90,6 +102,8 @@ MASAV_REAL_LAYOUT(SphStepLayout) {
   // The particles computed: [first, end) of the n (SphStepParams::first, count).
   uint first;
   uint end;
+  MASAV_ENUM(SphReach) reach;  // sph_density only
+  real_t reach2;               // R^2 of the reach masks (SphReach::record)
 };
 
 // What sph_integrate reads: one stage of the integrator, then the box walls.
@@ -125,7 +139,7 @@ MASAV_LAYOUT_CHECK(SphStepLayout<float>, 128, (dims, 0), (n, 12), (max_candidate
                    (density, 44), (pressure, 48), (viscosity, 52), (rest_density, 56),
                    (inv_rest_density, 60), (eos, 64), (gravity, 68), (lo, 80), (hi, 92),
                    (neighbor_rows, 104))
-MASAV_LAYOUT_CHECK(SphStepLayout<float>, 128, (first, 108), (end, 112))
+MASAV_LAYOUT_CHECK(SphStepLayout<float>, 128, (first, 108), (end, 112), (reach, 116), (reach2, 120))
 MASAV_LAYOUT_CHECK(SphIntegrateLayout<float>, 64, (op, 0), (walls, 4), (n, 8), (dt, 12), (lo, 16),
                    (restitution, 28), (hi, 32), (tangential_damping, 44), (first, 48), (end, 52),
                    (dt_slot, 56))
@@ -146,7 +160,11 @@ struct SphStepParams {
   uint32_t count = kSphAllParticles;
   uint32_t max_candidates = 8192;  // examined per particle; beyond it the kernel reports
   SphPressureModel model = SphPressureModel::wcsph;
-  double h = 0.02;               // support radius (m)
+  double h = 0.02;  // support radius (m)
+  // sph_density's reach masks (SphReach above) and their radius R (m): h <= R <= the grid's
+  // cell size, so that the 27 cells hold every candidate within R.
+  SphReach reach = SphReach::none;
+  double reach_radius = 0.0;
   double mass = 0.008;           // SPH mass of every particle (kg)
   double rest_density = 1000.0;  // rho0 (kg/m^3)
   double sound_speed = 20.0;     // c0 (m/s): Tait B = rho0 c0^2 / 7 (wcsph)
@@ -183,6 +201,8 @@ struct SphDensityIO {
   // Optional: the neighbour row masks (kSphRowMaskWords n words) for a later sph_forces on the
   // same positions, grid and h.
   Buffer<uint32_t>* neighbor_rows = nullptr;
+  // The reach masks (kSphRowMaskWords n words), written or read as SphStepParams::reach says.
+  Buffer<uint32_t>* reach_rows = nullptr;
 };
 
 struct SphForcesIO {
@@ -300,6 +320,8 @@ SphStepLayout<F> device_params(const SphStepParams& p, const Buffers&... buffers
   c.neighbor_rows = passes_neighbor_rows(buffers...) ? 1u : 0u;
   c.first = p.first;
   c.end = sph_range_end(p);
+  c.reach = p.reach;
+  c.reach2 = F(p.reach_radius * p.reach_radius);
   return c;
 }
 
@@ -330,7 +352,7 @@ void validate(const DeviceApi& dev, const SphStepParams& p, const Buffer<Real4>&
               const Buffer<uint32_t>& cells, const Buffer<uint32_t>& cell_start,
               const Buffer<uint32_t>& cell_end, const Buffer<Real>& density,
               const Buffer<Real>& pressure, const Buffer<uint32_t>& stats,
-              const Buffer<uint32_t>* neighbor_rows);
+              const Buffer<uint32_t>* reach_rows, const Buffer<uint32_t>* neighbor_rows);
 void validate(const DeviceApi& dev, const SphStepParams& p, const Buffer<Real4>& positions,
               const Buffer<Real4>& velocities, const Buffer<Real>& density,
               const Buffer<Real>& pressure, const Buffer<uint32_t>& cells,

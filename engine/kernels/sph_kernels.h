@@ -282,27 +282,46 @@ struct DensityResult {
   bool overflow;
 };
 
+// sph_density's reach masks (SphReach in sph_kernel_params.h) of one particle: recorded (rows:
+// candidates within reach2) or walked; mode none leaves them alone.
+template <class T>
+struct Reach {
+  SphReach mode = SphReach::none;
+  T reach2 = T(0);
+  RowMasks<uint32_t> rows;
+};
+template <class T>
+MASAV_HD inline Reach<T> reach_of(const SphStepLayout<T>& c, uint32_t* reach_rows, uint32_t i) {
+  if (!reach_rows || c.reach == SphReach::none) return Reach<T>{};
+  return Reach<T>{c.reach, c.reach2, row_masks(reach_rows, i, c.n)};
+}
+
 // Density of sorted particle i (thesis Eq. 4.4) at xi, `mirrors` its wall_mirrors (none
 // without walls): sum over j within h of m W(r_ij), W as in density_term, plus the terms of
 // the wall images. Images = false leaves the images out and is for callers that know
 // mirrors.axes == 0 (CUDA's per-warp copy for warps far from the walls); Unfused as
 // unfused_mul. pos_at(j) returns V3<T> of sorted particle j. With `masks`, also records which
-// candidates of each row lie within h (zero for an empty, missing or too long row).
+// candidates of each row lie within h (zero for an empty, missing or too long row). With
+// `reach`, records which lie within its radius (the same format), or visits only the recorded
+// ones of each row that fits a mask: the candidates it skips lie beyond h, whose terms are 0, so
+// the sum adds the same terms in the same order as the whole walk.
 template <class T, bool Images, bool Unfused, class PosAt>
 MASAV_HD inline DensityResult<T> density_walk(uint32_t self, V3<T> xi,
                                               const WallMirrors<T>& mirrors, uint32_t cell,
                                               const uint32_t dims[3], const uint32_t* cell_start,
                                               const uint32_t* cell_end, uint32_t max_candidates,
                                               const SphStepLayout<T>& c, PosAt&& pos_at,
-                                              RowMasks<uint32_t> masks = {}) {
+                                              RowMasks<uint32_t> masks = {},
+                                              const Reach<T>& reach = {}) {
   T sum = T(0);
   uint32_t neighbors = 0;
   bool overflow = false;
   const uint32_t candidates =
       walk_rows(cell, dims, cell_start, cell_end, max_candidates, overflow,
                 [&](uint32_t row, uint32_t first, uint32_t last) {
-                  uint64_t bits = 0;  // wraps around in a row too long for it, which stores 0
-                  for (uint32_t j = first; j < last; ++j) {
+                  // Both wrap around in a row too long for them, which stores 0.
+                  uint64_t bits = 0, reach_bits = 0;
+                  auto visit = [&](uint32_t j) {
                     const T r2 = squared_length<Unfused>(xi - pos_at(j));
                     sum += density_term<T, Unfused>(r2, c);
                     const bool within = r2 < c.h2;
@@ -311,10 +330,21 @@ MASAV_HD inline DensityResult<T> density_walk(uint32_t self, V3<T> xi,
                         sum += wall_image_density(xi, pos_at(j), mirrors, c);
                     }
                     neighbors += within ? 1u : 0u;
-                    bits |= uint64_t(within) << ((j - first) & (kSphRowMaskBits - 1));
+                    const uint32_t b = (j - first) & (kSphRowMaskBits - 1);
+                    bits |= uint64_t(within) << b;
+                    reach_bits |= uint64_t(r2 < reach.reach2) << b;
+                  };
+                  const bool fits = row_fits_mask(first, last);
+                  if (reach.mode == SphReach::walk && fits) {
+                    const RowMasks<const uint32_t> recorded{reach.rows.words, reach.rows.stride};
+                    for (uint64_t rb = load_row_mask(recorded, row); rb != 0;)
+                      visit(first + take_lowest_bit(rb));
+                  } else {
+                    for (uint32_t j = first; j < last; ++j) visit(j);
                   }
-                  if (masks.words)
-                    store_row_mask(masks, row, row_fits_mask(first, last) ? bits : 0);
+                  if (masks.words) store_row_mask(masks, row, fits ? bits : 0);
+                  if (reach.mode == SphReach::record)
+                    store_row_mask(reach.rows, row, fits ? reach_bits : 0);
                 });
   const T own = Images && mirrors.axes ? own_image_density(xi, mirrors, c) : T(0);
   return {c.density * sum + own, neighbors, candidates, overflow};
@@ -326,10 +356,11 @@ MASAV_HD inline DensityResult<T> density_at(uint32_t self, V3<T> xi, uint32_t ce
                                             const uint32_t dims[3], const uint32_t* cell_start,
                                             const uint32_t* cell_end, uint32_t max_candidates,
                                             const SphStepLayout<T>& c, PosAt&& pos_at,
-                                            RowMasks<uint32_t> masks = {}) {
+                                            RowMasks<uint32_t> masks = {},
+                                            const Reach<T>& reach = {}) {
   const WallMirrors<T> mirrors = c.walls ? wall_mirrors(xi, c) : WallMirrors<T>{};
   return density_walk<T, true, false>(self, xi, mirrors, cell, dims, cell_start, cell_end,
-                                      max_candidates, c, pos_at, masks);
+                                      max_candidates, c, pos_at, masks, reach);
 }
 
 // What the force walk reads of a neighbour: position, velocity, density and p / rho^2 (the

@@ -37,7 +37,7 @@ void sph_density(Backend& b, const SphStepParams& p, const SphDensityIO& io) {
   b.sph_density(p, given(b, io.positions, k, "positions"), given(b, io.grid.cells, k, "cells"),
                 given(b, io.grid.cell_start, k, "cell_start"),
                 given(b, io.grid.cell_end, k, "cell_end"), given(b, io.density, k, "density"),
-                given(b, io.pressure, k, "pressure"), given(b, io.stats, k, "stats"),
+                given(b, io.pressure, k, "pressure"), given(b, io.stats, k, "stats"), io.reach_rows,
                 io.neighbor_rows);
 }
 

@@ -10,6 +10,7 @@
 #include <cstring>
 #include <limits>
 #include <span>
+#include <string>
 
 #include "engine/core/enum_names.h"
 #include "engine/core/error.h"
@@ -43,6 +44,13 @@ SphSimulation::SphSimulation(Backend& backend, const SphScene& scene, SphComm* c
     if (std::strcmp(env, "on") != 0 && std::strcmp(env, "off") != 0)
       throw_invalid("sph", "MASAV_DFSPH_QUEUE", env, "on or off");
     dfsph_queue_ = env[1] == 'n';
+  }
+  // MASAV_SPH_REACH=off: every RK4 evaluation walks the inflated cells (the reach masks' A/B).
+  if (const char* env = std::getenv("MASAV_SPH_REACH"); env && *env) {
+    const std::string v = env;
+    if (v != "on" && v != "off" && v != "auto")
+      throw_invalid("sph", "MASAV_SPH_REACH", v, "auto, on or off");
+    reach_wanted_ = v != "off";
   }
   const int ranks = comm ? comm->size() : 1;
   check_capacity(backend_, scene_, ranks);
@@ -222,10 +230,16 @@ Buffer<uint32_t>* SphSimulation::neighbor_rows() {
   return neighbor_rows_.valid() ? &neighbor_rows_ : nullptr;
 }
 
-void SphSimulation::evaluate(const Buffer<Real4>& x, const Buffer<Real4>& v) {
+void SphSimulation::evaluate(const Buffer<Real4>& x, const Buffer<Real4>& v, SphReach reach) {
   const SphGridView view = sph_grid_view(grid_);
-  sph_density(backend_, step_params_,
-              SphDensityIO{&x, view, &density_, &pressure_, &stats_buf_, neighbor_rows()});
+  SphStepParams density_params = step_params_;
+  SphDensityIO density_io{&x, view, &density_, &pressure_, &stats_buf_, neighbor_rows()};
+  if (reach != SphReach::none && reach_rows_.valid()) {
+    density_params.reach = reach;
+    density_params.reach_radius = double(step_params_.grid.cell_size);
+    density_io.reach_rows = &reach_rows_;
+  }
+  sph_density(backend_, density_params, density_io);
   mark(SphStage::density);
   const SphForcesIO forces{&x,   &v,      &density_,   &pressure_,
                            view, &accel_, &stats_buf_, neighbor_rows()};
@@ -296,7 +310,7 @@ void SphSimulation::step_euler(double dt, SphStageOp op) {
 
 void SphSimulation::step_rk4(double dt) {
   sort_state();  // the one rebuild of this step (see the header)
-  evaluate(pos_, vel_);
+  evaluate(pos_, vel_, SphReach::record);
   // On several ranks the halos' stage states come from their owners before each evaluation.
   auto stage_halos = [&] {
     if (!ranks_) return;
@@ -304,13 +318,13 @@ void SphSimulation::step_rk4(double dt) {
   };
   integrate(SphStageOp::rk4_stage1, dt, pos_, vel_, nullptr, &xs_, vs_, &sum_x_, &sum_v_);
   stage_halos();
-  evaluate(xs_, vs_);
+  evaluate(xs_, vs_, SphReach::walk);
   integrate(SphStageOp::rk4_stage2, dt, pos_, vel_, &vs_, &xs_, vs_, &sum_x_, &sum_v_);
   stage_halos();
-  evaluate(xs_, vs_);
+  evaluate(xs_, vs_, SphReach::walk);
   integrate(SphStageOp::rk4_stage3, dt, pos_, vel_, &vs_, &xs_, vs_, &sum_x_, &sum_v_);
   stage_halos();
-  evaluate(xs_, vs_);
+  evaluate(xs_, vs_, SphReach::walk);
   integrate(SphStageOp::rk4_final, dt, pos_, vel_, &vs_, &xs_, vs_, &sum_x_, &sum_v_);
 }
 

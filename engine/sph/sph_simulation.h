@@ -16,8 +16,10 @@
 //    within h at a stage was within h + skin h of each other at the rebuild and lies in the 27
 //    cells walked (each particle drifts at most skin h / 2, which sph_integrate measures every
 //    stage; a step that drifts further is rejected and retried with a smaller dt). Rebuilding
-//    per stage would cost three more sorts and re-gathers of six arrays per step; the skin costs
-//    (1 + skin)^3 more candidates, which the distance test rejects cheaply.
+//    per stage would cost three more sorts and re-gathers of six arrays per step. The first
+//    evaluation walks the 27 inflated cells and records which candidates lie within h + skin
+//    (the reach masks, SphReach); the other three test only those, not the 27 cells' 27 / (4/3 pi)
+//    ~ 6.4 times as many (MASAV_SPH_REACH=off: every evaluation walks the cells).
 //
 // CFL guard. dt is limited by C_v h / (c + v_max), C_f sqrt(h / a_max) and C_nu h^2 / nu (and
 // the skin for RK4). Adaptive mode takes the smallest (growing at most 25% per step). A fixed dt
@@ -160,6 +162,8 @@ class SphSimulation {
   void set_block_steps(uint32_t k);
   uint32_t block_steps() const;
   uint64_t block_replays() const { return block_replays_; }  // blocks rolled back and replayed
+  // RK4: whether its later evaluations walk the first one's reach masks (SphReach).
+  bool keeps_reach_masks() const { return reach_rows_.valid(); }
 
   double time() const { return time_; }
   uint64_t steps() const { return steps_; }
@@ -301,7 +305,8 @@ class SphSimulation {
   void drop_state(StateReads& r);
   void refresh_fields_ranks();  // density and pressure at the committed state's positions
   [[noreturn]] void fail_non_finite_ranks(double dt);
-  void evaluate(const Buffer<Real4>& x, const Buffer<Real4>& v);
+  // Density and forces at x, v; `reach`: how sph_density uses the reach masks, where kept.
+  void evaluate(const Buffer<Real4>& x, const Buffer<Real4>& v, SphReach reach = SphReach::none);
   Buffer<uint32_t>* neighbor_rows();  // null where the masks are not kept
   void integrate(SphStageOp op, double dt, const Buffer<Real4>& x0, const Buffer<Real4>& v0,
                  const Buffer<Real4>* vk, Buffer<Real4>* x_out, Buffer<Real4>& v_out,
@@ -381,6 +386,10 @@ class SphSimulation {
   // sph_density's neighbour row masks for sph_forces at the same positions (every evaluate()
   // runs both); empty where they are not kept (see keeps_neighbor_rows).
   Buffer<uint32_t> neighbor_rows_;
+  // RK4: sph_density's reach masks of the step's first evaluation (within the grid's cell size,
+  // h + skin rounded up), which its other three walk (SphReach); empty where not kept (see
+  // keeps_reach_rows).
+  Buffer<uint32_t> reach_rows_;
   Buffer<Real> density_, pressure_;
   // dfsph: the factor at pos_ (or the step's new positions), one iteration's kappa, each
   // solve's kappa sum in pos_'s order (warm starts) and in the new order, the residual slots.
@@ -393,6 +402,7 @@ class SphSimulation {
   // reads a residual.
   uint32_t last_iterations_[2] = {0, 0};
   bool dfsph_queue_ = true;
+  bool reach_wanted_ = true;  // MASAV_SPH_REACH: RK4 keeps the reach masks where they fit
   uint64_t dfsph_residual_reads_ = 0;
   SphSolveStats solve_stats_;
   // The states at the start of run()'s pending block and of the one after it; empty where they

@@ -14,21 +14,20 @@ namespace {
 
 // Device memory the simulation needs per particle: 10 Real4 arrays, 2 Real (8 with dfsph's
 // factor and kappas), 2 ids, the grid's 4 words (cells, order, and the counting build's counts
-// and ranks), the neighbour row masks where they are kept, and with `checkpoint` one of
-// run()'s checkpoints (3 Real4 and ids).
-uint64_t bytes_per_particle(const Backend& b, bool neighbor_rows, bool checkpoint = false,
+// and ranks), `mask_sets` sets of row masks (the neighbour rows and RK4's reach masks, where
+// kept), and with `checkpoint` one of run()'s checkpoints (3 Real4 and ids).
+uint64_t bytes_per_particle(const Backend& b, int mask_sets, bool checkpoint = false,
                             bool dfsph = false) {
   return 10 * 4 * b.real_bytes() + (dfsph ? 8 : 2) * b.real_bytes() + 6 * 4 +
-         (neighbor_rows ? uint64_t(kSphRowMaskWords) * 4 : 0) +
-         (checkpoint ? 3 * 4 * b.real_bytes() + 4 : 0);
+         uint64_t(mask_sets) * kSphRowMaskWords * 4 + (checkpoint ? 3 * 4 * b.real_bytes() + 4 : 0);
 }
 
 // How many of the checkpoints run() keeps for its blocks (up to `wanted`) fit the memory budget
-// check_capacity applies (with the row masks, when they are kept).
-int keeps_checkpoints(const Backend& b, uint64_t n, bool neighbor_rows, int wanted) {
+// check_capacity applies (with the masks that are kept).
+int keeps_checkpoints(const Backend& b, uint64_t n, int mask_sets, int wanted) {
   const Capabilities& caps = b.caps();
-  const uint64_t base = bytes_per_particle(b, neighbor_rows);
-  const uint64_t each = bytes_per_particle(b, neighbor_rows, true) - base;
+  const uint64_t base = bytes_per_particle(b, mask_sets);
+  const uint64_t each = bytes_per_particle(b, mask_sets, true) - base;
   int k = 0;
   while (k < wanted && (!caps.device_memory_bytes ||
                         n * (base + uint64_t(k + 1) * each) <= caps.device_memory_bytes / 2))
@@ -48,7 +47,20 @@ bool keeps_neighbor_rows(const Backend& b, uint64_t n, bool dfsph) {
   const uint64_t mask_bytes = n * kSphRowMaskWords * 4;
   if (caps.max_buffer_bytes && mask_bytes > caps.max_buffer_bytes) return false;
   return !caps.device_memory_bytes ||
-         n * bytes_per_particle(b, true, false, dfsph) <= caps.device_memory_bytes / 2;
+         n * bytes_per_particle(b, 1, false, dfsph) <= caps.device_memory_bytes / 2;
+}
+
+// Whether RK4's first evaluation records the reach masks that its other three walk (SphReach):
+// where `wanted` (MASAV_SPH_REACH), on every backend (the CPU reference's lists use them too),
+// where they fit one buffer and, with the neighbour rows when kept, the memory budget
+// check_capacity applies; elsewhere every evaluation walks the inflated cells.
+bool keeps_reach_rows(const Backend& b, uint64_t n, bool wanted, bool neighbor_rows) {
+  if (!wanted) return false;
+  const Capabilities& caps = b.caps();
+  const uint64_t mask_bytes = n * kSphRowMaskWords * 4;
+  if (caps.max_buffer_bytes && mask_bytes > caps.max_buffer_bytes) return false;
+  return !caps.device_memory_bytes ||
+         n * bytes_per_particle(b, neighbor_rows ? 2 : 1) <= caps.device_memory_bytes / 2;
 }
 
 }  // namespace
@@ -92,8 +104,7 @@ void SphSimulation::check_capacity(const Backend& b, const SphScene& s, int rank
   const Capabilities& caps = b.caps();
   const uint64_t n = initial_capacity(s.particles, ranks);
   // Without the row masks: a count they do not fit runs without them.
-  const uint64_t per_particle =
-      bytes_per_particle(b, false, false, s.model == SphPressureModel::dfsph);
+  const uint64_t per_particle = bytes_per_particle(b, 0, false, s.model == SphPressureModel::dfsph);
   if (caps.device_memory_bytes && n * per_particle > caps.device_memory_bytes / 2)
     throw_invalid("sph scene", "particles", std::to_string(s.particles),
                   fmt::format("at most {}{} on {} ({} bytes per particle, {} MiB of memory)",
@@ -123,12 +134,18 @@ void SphSimulation::allocate_particle_buffers() {
   if (keeps_neighbor_rows(backend_, c, dfsph()))
     neighbor_rows_ =
         backend_.create<uint32_t>(size_t(kSphRowMaskWords) * c, "sph neighbour row masks");
+  if (scene_.integrator == SphIntegrator::rk4 && !dfsph() &&
+      keeps_reach_rows(backend_, c, reach_wanted_, neighbor_rows_.valid()))
+    reach_rows_ = backend_.create<uint32_t>(size_t(kSphRowMaskWords) * c, "sph rk4 reach masks");
   if (dfsph()) allocate_dfsph();
   // dfsph reads its solves' residuals every iteration: it steps one at a time (no blocks).
   // The second checkpoint lets run() record a block while the one before it is pending: in one
   // process, where both fit.
   const int checkpoints =
-      dfsph() ? 0 : keeps_checkpoints(backend_, c, neighbor_rows_.valid(), ranks_ ? 1 : 2);
+      dfsph()
+          ? 0
+          : keeps_checkpoints(backend_, c, int(neighbor_rows_.valid()) + int(reach_rows_.valid()),
+                              ranks_ ? 1 : 2);
   for (int k = 0; k < checkpoints; ++k) {
     Checkpoint& cp = checkpoints_[size_t(k)];
     cp.pos = real4("sph checkpoint positions");
@@ -169,6 +186,7 @@ void SphSimulation::reserve(uint32_t local) {
   for (Buffer<uint32_t>* b : {&ids_, &ids_t_, &grid_.sorted_cells, &grid_.sorted_index})
     grow(backend_, *b, c);
   grow(backend_, neighbor_rows_, size_t(kSphRowMaskWords) * c);
+  grow(backend_, reach_rows_, size_t(kSphRowMaskWords) * c);
 }
 
 }  // namespace masav
