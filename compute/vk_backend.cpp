@@ -208,9 +208,9 @@ std::optional<uint32_t> VulkanBackend::take_max_loop_ticks() {
   return ticks;
 }
 
-void VulkanBackend::run(const KernelSpec& spec,
-                        std::initializer_list<std::shared_ptr<Allocation>> buffers,
-                        const void* push, uint64_t groups, uint32_t written) {
+void VulkanBackend::run_bytes(const KernelSpec& spec,
+                              std::initializer_list<std::shared_ptr<Allocation>> buffers,
+                              const void* push, uint64_t groups, uint32_t written) {
   stream_.dispatch(pipelines_.get(spec), diag_,
                    std::span<const std::shared_ptr<Allocation>>(buffers.begin(), buffers.size()),
                    push, groups, written);

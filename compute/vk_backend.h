@@ -9,6 +9,7 @@
 
 #include "compute/device/vk_context.h"
 #include "compute/device/vk_memory.h"
+#include "compute/push_padding.h"
 #include "compute/sph_walk_choice.h"
 #include "compute/vk_pipelines.h"
 #include "compute/vk_stream.h"
@@ -86,8 +87,15 @@ class VulkanBackend final : public Backend, public VulkanInterop {
   const std::shared_ptr<Allocation>& alloc(const BufferImpl& b, std::string_view kernel) const;
   std::shared_ptr<Allocation> scratch(const std::string& slot, size_t bytes);
   // One pass of a multi-pass kernel; bit i of `written`: it writes buffers[i] (Stream::dispatch).
+  // `push` is copied with its padding zeroed (compute/push_padding.h).
+  template <class Push>
   void run(const KernelSpec& spec, std::initializer_list<std::shared_ptr<Allocation>> buffers,
-           const void* push, uint64_t groups, uint32_t written = ~0u);
+           const Push* push, uint64_t groups, uint32_t written = ~0u) {
+    const Push clean = without_padding(*push);
+    run_bytes(spec, buffers, &clean, groups, written);
+  }
+  void run_bytes(const KernelSpec& spec, std::initializer_list<std::shared_ptr<Allocation>> buffers,
+                 const void* push, uint64_t groups, uint32_t written);
   // One dispatch of shaders/<kernel>.comp over `items` invocations: `buffers` bound at 1..n in
   // the order of kernels.inc (a null one, unused by the call, gets the first non-null one's
   // memory), `push` the kernel's layout, `written` the buffers it writes (bit i: buffers[i]),

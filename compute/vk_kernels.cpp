@@ -4,6 +4,7 @@
 #include <type_traits>
 #include <vector>
 
+#include "compute/push_padding.h"
 #include "compute/vk_backend.h"
 #include "engine/kernels/kernel_body.h"
 #include "engine/kernels/volume_math.h"
@@ -74,17 +75,15 @@ void VulkanBackend::run_kernel(const Params& p, uint64_t items, Buffers&... buff
       texels = {r32u, r32u, r32u, r32u, none, none};
     if constexpr (K == KernelId::grid_rank_and_move)  // as above; a, b and ids, each + sorted
       texels = {r32u, r32u, r32u, r32u, none, none, rgba32, none, rgba32, none, r32u, none};
-    const void* push = &layout;
-    [[maybe_unused]] std::decay_t<decltype(layout)> replayable;
+    // The push constants as pushed: a copy with its padding zeroed (compute/push_padding.h).
+    auto push = without_padding(layout);
     if constexpr (K == KernelId::sph_integrate) {  // x0, v0, vk, accel; outputs, sums, stats;
       texels = {rgba32, rgba32, rgba32, rgba32, none, none, none, none, none, none};  // dt table
       // Captured, dt goes through the replay table, so that blocks differing only in dt
       // replay one recording (compute/vk_stream.h).
       static_assert(Stream::kNoSlot == kSphDtInline);
-      replayable = layout;
-      replayable.dt_slot = stream_.capture_value(layout.dt);
-      if (replayable.dt_slot != kSphDtInline) replayable.dt = 0;
-      push = &replayable;
+      push.dt_slot = stream_.capture_value(layout.dt);
+      if (push.dt_slot != kSphDtInline) push.dt = 0;
       extra = stream_.value_table();
     }
     if constexpr (K == KernelId::nebula_illuminate)  // positions, density; illumination
@@ -99,7 +98,7 @@ void VulkanBackend::run_kernel(const Params& p, uint64_t items, Buffers&... buff
       texels = {rgba32, rgba32, r32f, r32f, r32u, r32u, r32u, none, none, none, r32u};
     if constexpr (K == KernelId::dfsph_correct)  // positions, kappa, cells, ranges; v, stats;
       texels = {rgba32, r32f, r32u, r32u, r32u, none, none, r32u, r32u};  // residual, rows
-    dispatch_kernel(K, impls, push, sizeof(layout), items, written, constants, texels, extra);
+    dispatch_kernel(K, impls, &push, sizeof(push), items, written, constants, texels, extra);
   }
 }
 
