@@ -37,12 +37,8 @@ void count_and_scatter(Backend& backend, HashGrid& grid, const Buffer<Real4>& po
   // The cells and their counts in one launch (the counting build needs no index array).
   backend.grid_assign_count({g}, positions, grid.point_cells, grid.counts);
   backend.grid_cell_offsets({cells}, grid.counts, grid.cell_start, grid.cell_end);
-  // Value-initialised, padding and all: the Vulkan backend pushes the whole struct, and a
-  // replayed recording matches only the same bytes (compute/vk_stream.h, "Replays").
-  CellScatterParams scatter{};
-  scatter.n = g.n;
-  scatter.cell_count = cells;
-  backend.grid_scatter_cells(scatter, grid.point_cells, grid.cell_end, grid.counts, grid.unsorted);
+  backend.grid_scatter_cells({g.n, cells}, grid.point_cells, grid.cell_end, grid.counts,
+                             grid.unsorted);
 }
 
 void build_by_counting(Backend& backend, HashGrid& grid, const Buffer<Real4>& positions,
@@ -91,13 +87,10 @@ void build_hash_grid_moving(Backend& backend, HashGrid& grid, const Buffer<Real4
   grid.prefix_ranges = false;  // until the build completes
   count_and_scatter(backend, grid, positions);
   const GridParams& g = grid.params;
-  CellRankParams rank{};  // padding zeroed too (count_and_scatter)
-  rank.n = g.n;
-  rank.cell_count = uint32_t(grid_cell_count(g));
-  rank.max_per_cell = max_per_cell;
-  backend.grid_rank_and_move(rank, grid.point_cells, grid.unsorted, grid.cell_start, grid.cell_end,
-                             grid.sorted_cells, grid.sorted_index, positions, *m.positions_sorted,
-                             *m.b, *m.b_sorted, *m.ids, *m.ids_sorted);
+  backend.grid_rank_and_move({g.n, uint32_t(grid_cell_count(g)), max_per_cell}, grid.point_cells,
+                             grid.unsorted, grid.cell_start, grid.cell_end, grid.sorted_cells,
+                             grid.sorted_index, positions, *m.positions_sorted, *m.b, *m.b_sorted,
+                             *m.ids, *m.ids_sorted);
   grid.prefix_ranges = true;
 }
 
