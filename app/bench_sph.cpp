@@ -200,11 +200,11 @@ int run_sph_bench(const SphBenchOptions& o, JsonWriter& j) {
               t.stage_ms[3], t.step_ms, t.wall_ms, sps, sps * t.particles * 1e-6);
           const StepCounts& c = t.per_step;
           fmt::print(
-              "  {:<7} {:<10} {:>9} per step: {:.1f} launches, {:.1f} barriers, {:.3f} host "
-              "syncs, {:.3f} asynchronous reads, {:.3f} graphs ({:.3f} built), {:.1f} fills, "
-              "{:.1f} device "
-              "copies, {:.0f} B to device, {:.0f} B to host, {:.3f} ms host CPU; compression "
-              "(rho/rho0 - 1) mean {:.2f}%, max {:.2f}% at the end\n",
+              "  {:<7} {:<10} {:>9} per step: "
+              "{:.1f} launches, {:.1f} barriers, {:.3f} host syncs, {:.3f} asynchronous reads, "
+              "{:.3f} graphs ({:.3f} built), {:.1f} fills, {:.1f} device copies, "
+              "{:.0f} B to device, {:.0f} B to host, {:.3f} ms host CPU; "
+              "compression (rho/rho0 - 1) mean {:.2f}%, max {:.2f}% at the end\n",
               "", "", "", c.launches, c.barriers, c.host_syncs, c.async_reads, c.graphs,
               c.graph_builds, c.fills, c.device_copies, c.bytes_to_device, c.bytes_to_host,
               c.host_ms, 100 * t.mean_compression, 100 * t.max_compression);
