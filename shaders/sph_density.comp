@@ -92,7 +92,8 @@ void lane_candidate(inout Walk w, vec3 xi, uint j, uvec2 r) {
   w.sum += sph_density_term(r2, p);
   w.within += near ? 1u : 0u;
   w.bits = sph_mask_set(w.bits, j - r.x, near);
-  if (SPH_REACH == SphReach_record) w.reach_bits = sph_mask_set(w.reach_bits, j - r.x, r2 < p.reach2);
+  if (SPH_REACH == SphReach_record)
+    w.reach_bits = sph_mask_set(w.reach_bits, j - r.x, r2 < p.reach2);
 }
 
 // Stores row `row`'s two mask words of particle i in `rows` (neighbor_rows or reach_rows).
@@ -169,7 +170,8 @@ void main() {
   uint pending = 0u;
   uint spent = 0u;
   Walk w = Walk(0.0, 0u, uvec2(0u), uvec2(0u));
-  if (SPH_REACH == SphReach_walk) pending = walk_reach(w, live, i, xi, cc, candidates, overflow, rows);
+  if (SPH_REACH == SphReach_walk)
+    pending = walk_reach(w, live, i, xi, cc, candidates, overflow, rows);
   for (int dx = -1; SPH_REACH != SphReach_walk && dx <= 1; ++dx) {
     LOOP_TICK();
     for (int dy = -1; dy <= 1; ++dy) {
@@ -191,7 +193,8 @@ void main() {
       }
       const uint row = sph_row_index(dx, dy);
       const bool fits = sph_row_fits_mask(r);
-      if (p.neighbor_rows != 0u && live) SPH_STORE_MASK(neighbor_rows, row, fits ? w.bits : uvec2(0u))
+      if (p.neighbor_rows != 0u && live)
+        SPH_STORE_MASK(neighbor_rows, row, fits ? w.bits : uvec2(0u))
       if (SPH_REACH == SphReach_record && live)
         SPH_STORE_MASK(reach_rows, row, fits ? w.reach_bits : uvec2(0u))
       const SphRowWalk kept = sph_row_state(r, fits, w.bits);
@@ -200,7 +203,8 @@ void main() {
     }
   }
   // The wall images of the neighbours within h (sph_wall_image_density), one loop over the rows
-  // kept, after the neighbours' own terms: lavapipe runs every statement of a loop in every pass
+  // kept (the reach walk's rows, their bits a few more than the neighbours, each tested again),
+  // after the neighbours' own terms: lavapipe runs every statement of a loop in every pass
   // whatever its lanes take, so the seven images, a square root each, cost a pass several times
   // the pair's, and this loop runs ~35 passes over the neighbours instead of the walk's ~200
   // over its candidates. Where the backend splits the walls off (sph_walls_near), a subgroup with
