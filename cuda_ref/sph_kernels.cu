@@ -19,11 +19,12 @@
 namespace masav::cuda::launch {
 namespace {
 
-// Three blocks of kBlock threads per multiprocessor: forces fits 80 registers without spilling
-// (95 unbounded, 2 blocks), 37.5% occupancy instead of 25%. On an H100 (2026-11-26) forces at
-// 1,048,576 particles took 0.379 ms against 0.494 unbounded; 4 blocks (64 registers, spilling)
-// 0.407 ms.
-constexpr int kNeighborBlocks = 3;
+// Four blocks of kBlock threads per multiprocessor, 64 registers (50% occupancy): density fits
+// without spilling on sm_80-90, forces on sm_90 (sm_80-89: 4 bytes in wcsph), since sph::force_at
+// walks the wall images apart from the direct terms. Measured on an H100 (2026-11-26), when
+// forces walked both in one loop, at 1,048,576 particles: 95 registers unbounded (2 blocks)
+// 0.494 ms, 80 at three blocks 0.379 ms, 64 at four blocks with 124 bytes spilled 0.407 ms.
+constexpr int kNeighborBlocks = 4;
 
 // The layout with its model fixed at compile time.
 template <SphPressureModel M>

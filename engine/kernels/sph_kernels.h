@@ -107,6 +107,10 @@ MASAV_HD inline void for_each_wall_image_set(V3<T> xi, V3<T> xj, const WallMirro
   const T mirrored[3] = {(xi.x - m.plane[0]) + (xj.x - m.plane[0]),
                          (xi.y - m.plane[1]) + (xj.y - m.plane[1]),
                          (xi.z - m.plane[2]) + (xj.z - m.plane[2])};
+  // One image at a time on CUDA: unrolled, the seven sets' terms cost the force walk registers.
+#if defined(__CUDA_ARCH__)
+#pragma unroll 1
+#endif
   for (uint32_t s = 1; s < 8u; ++s) {
     if (s & ~m.axes) continue;
     const V3<T> d{(s & 1u) ? mirrored[0] : direct[0], (s & 2u) ? mirrored[1] : direct[1],
@@ -455,6 +459,10 @@ struct ForceResult {
 // positions), a row that fits a mask visits only its recorded neighbours, in the same ascending
 // order, so the result is the same bits; the distance test is repeated, so that a compiler
 // rounding r2 differently in the two kernels can drop a pair but never add one beyond h.
+// The wall images come after the direct terms, in a second walk over the same neighbours: the
+// particle's own images, then each neighbour's in the walk's order, as the CPU reference adds
+// them. The direct walk's loop then holds no image terms; on CUDA (sm_90) it needs 48
+// registers and the images' walk 61-64, where one loop holding both needed 95.
 template <class T, class PosAt, class Fetch>
 MASAV_HD inline ForceResult<T> force_at(uint32_t self, const Neighbor<T>& me, uint32_t cell,
                                         const uint32_t dims[3], const uint32_t* cell_start,
@@ -464,21 +472,25 @@ MASAV_HD inline ForceResult<T> force_at(uint32_t self, const Neighbor<T>& me, ui
   V3<T> acc{T(0), T(0), T(0)};
   uint32_t neighbors = 0;
   bool overflow = false;
+  const uint32_t candidates = walk_candidates(cell, dims, cell_start, cell_end, max_candidates,
+                                              masks, overflow, [&](uint32_t j) {
+                                                const V3<T> d = me.x - pos_at(j);
+                                                const T r2 = dot(d, d);
+                                                if (!(r2 < c.h2) || j == self) return;
+                                                ++neighbors;
+                                                acc = acc + pair_accel(me, fetch(j), d, r2, c);
+                                              });
   const WallMirrors<T> mirrors = c.walls ? wall_mirrors(me.x, c) : WallMirrors<T>{};
-  const uint32_t candidates = walk_candidates(
-      cell, dims, cell_start, cell_end, max_candidates, masks, overflow, [&](uint32_t j) {
-        const V3<T> d = me.x - pos_at(j);
-        const T r2 = dot(d, d);
-        if (!(r2 < c.h2)) return;
-        if (j == self) {  // only its own wall images
-          if (mirrors.axes) acc = acc + wall_image_accel(me, me, mirrors, c);
-          return;
-        }
-        const Neighbor<T> o = fetch(j);
-        if (mirrors.axes) acc = acc + wall_image_accel(me, o, mirrors, c);
-        ++neighbors;
-        acc = acc + pair_accel(me, o, d, r2, c);
-      });
+  if (mirrors.axes) {
+    acc = acc + wall_image_accel(me, me, mirrors, c);
+    bool again = false;
+    walk_candidates(cell, dims, cell_start, cell_end, max_candidates, masks, again,
+                    [&](uint32_t j) {
+                      const V3<T> d = me.x - pos_at(j);
+                      if (!(dot(d, d) < c.h2) || j == self) return;
+                      acc = acc + wall_image_accel(me, fetch(j), mirrors, c);
+                    });
+  }
   return {acc, neighbors, candidates, overflow};
 }
 
