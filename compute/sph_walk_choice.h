@@ -34,4 +34,16 @@ struct SphWallSplit {
 };
 SphWallSplit sph_wall_split(std::string_view device_type);
 
+// Whether sph_forces, over sph_density's neighbour row masks, adds the wall images in a loop of
+// their own after its walk's direct terms (specialisation constant 6 of shaders/sph_forces.comp),
+// as sph::force_at does, rather than per neighbour inside the walk. After: each loop is written
+// once, so no subgroup's copy depends on its neighbours in the subgroup (what keeps the forces
+// unsplit on a GPU), a subgroup with no lane near a wall skips the images' loop, and the walk's
+// loop holds none of the seven images' terms (CUDA's forces kernel on sm_90: 95 registers with
+// the images inside, 64 apart). Inside: the lanes near a wall make one pass per neighbour, not
+// two; on lavapipe, 32,768 particles, forces took 13.6-14.3 ms inside against 14.7-15.8 after
+// (dam break) and 12.4-13.4 against 12.8-13.5 (water). auto: after on a GPU, inside on a CPU
+// device. MASAV_VK_SPH_IMAGES_AFTER=on|off|auto overrides it. Throws on a bad value.
+bool sph_images_after(std::string_view device_type);
+
 }  // namespace masav::vk

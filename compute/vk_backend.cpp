@@ -69,6 +69,10 @@ SphWallSplit sph_wall_split(std::string_view device_type) {
   return {env_switch(name, true), env_switch(name, device_type == "cpu")};
 }
 
+bool sph_images_after(std::string_view device_type) {
+  return env_switch("MASAV_VK_SPH_IMAGES_AFTER", device_type != "cpu");
+}
+
 VulkanBackend::VulkanBackend(const BackendOptions& options)
     : options_(options),
       ctx_(options.context),
@@ -83,6 +87,7 @@ VulkanBackend::VulkanBackend(const BackendOptions& options)
   scatter_ = choose_sort_scatter(options.sort_scatter);
   sph_coop_walk_ = sph_coop_walk(ctx_.caps().device_type);
   sph_wall_split_ = sph_wall_split(ctx_.caps().device_type);
+  sph_images_after_ = sph_images_after(ctx_.caps().device_type);
   ray_quads_ = raymarch_quads_wanted(ctx_.caps().device_type);
   replays_ = env_switch("MASAV_VK_REPLAY", true);
   diag_ = allocate(ctx_, sizeof(Diagnostics), MemoryUse::readback, "diagnostics");

@@ -137,6 +137,8 @@ class VulkanBackend final : public Backend, public VulkanInterop {
   // The SPH kernels that skip the wall images where no lane is near a wall
   // (compute/sph_walk_choice.h).
   SphWallSplit sph_wall_split_;
+  // sph_forces adds the wall images after its masked walk (compute/sph_walk_choice.h).
+  bool sph_images_after_ = false;
   // raymarch reads its volume four voxels to a texel (compute/raymarch_quads_choice.h).
   bool ray_quads_ = false;
   bool replays_ = true;

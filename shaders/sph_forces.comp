@@ -147,24 +147,58 @@ void walk_cooperative(bool live, ivec3 cc, Me me, bool walls_near, inout Sum s) 
   }
 }
 
+// Candidate j's wall images, if it is another particle within h (walk_masked's second loop).
+void add_images(Me me, uint j, inout Sum s) {
+  const vec3 xj = position_at(j).xyz;
+  const vec3 d = me.x - xj;
+  if (!(dot(d, d) < p.h2) || j == me.i) return;
+  const float rho_j = density_at(j);
+  const float q_j = pressure_at(j) / (rho_j * rho_j);
+  s.acc += sph_wall_image_accel(me.x, me.v, me.rho, me.p_rho2, xj, velocity_at(j).xyz, rho_j, q_j,
+                                me.mirrors, p);
+}
+
+// Whether walk_masked adds the wall images after its direct terms or per neighbour inside its
+// walk (the backend's choice, specialisation constant 6: compute/sph_walk_choice.h).
+layout(constant_id = 6) const bool SPH_IMAGES_AFTER = false;
+
 // Per lane, each row's set mask bits in ascending order, or every candidate of a row too long
 // for its mask, in one loop over the nine rows (sph_row_walk.glsl). The distance test is
 // repeated: a compiler that rounds r2 differently here than in sph_density can then drop a pair
-// but never sum one beyond h. The loop is written twice too, as walk_cooperative's.
+// but never sum one beyond h. With SPH_IMAGES_AFTER the wall images come after the direct terms,
+// in a second loop over the same rows that a subgroup with no lane near a wall skips
+// (walls_near): the lane's own images, then its neighbours' in the walk's order, as
+// sph::force_at and the CPU reference add them; each loop is written once. Otherwise the walk is
+// written twice, as walk_cooperative's, with the images per neighbour in the copy that
+// walls_near subgroups take.
 void walk_masked(bool live, ivec3 cc, Me me, bool walls_near, inout Sum s) {
   SphRowWalk rows[9];
-  uint pending = sph_gather_rows(live, cc, me.i, true, p.dims, p.n, p.max_candidates,
-                                 s.candidates, s.overflow, rows);
+  const uint gathered = sph_gather_rows(live, cc, me.i, true, p.dims, p.n, p.max_candidates,
+                                        s.candidates, s.overflow, rows);
+  uint pending = gathered;
   SphRowWalk w = kSphNoRow;
-  while (walls_near && (pending != 0u || sph_row_left(w))) {
+  const bool inside = !SPH_IMAGES_AFTER && walls_near;
+  while (inside && (pending != 0u || sph_row_left(w))) {
     LOOP_TICK();
     if (!sph_row_left(w)) SPH_NEXT_ROW(w, rows, pending)
     add_candidate(me, sph_row_take(w), s, true);
   }
-  while (!walls_near && (pending != 0u || sph_row_left(w))) {
+  while (!inside && (pending != 0u || sph_row_left(w))) {
     LOOP_TICK();
     if (!sph_row_left(w)) SPH_NEXT_ROW(w, rows, pending)
     add_candidate(me, sph_row_take(w), s, false);
+  }
+  if (!SPH_IMAGES_AFTER || !walls_near) return;
+  const bool images = live && me.mirrors.axes != 0u;
+  if (images)
+    s.acc += sph_wall_image_accel(me.x, me.v, me.rho, me.p_rho2, me.x, me.v, me.rho, me.p_rho2,
+                                  me.mirrors, p);
+  pending = images ? gathered : 0u;
+  w = kSphNoRow;
+  while (pending != 0u || sph_row_left(w)) {
+    LOOP_TICK();
+    if (!sph_row_left(w)) SPH_NEXT_ROW(w, rows, pending)
+    add_images(me, sph_row_take(w), s);
   }
 }
 

@@ -1,8 +1,9 @@
 #!/bin/sh
 # gpu_report_summary.sh SCRIPT OUT: tools/gpu_report_summary.py on a GPU-mode report made up
-# here. A row of a variant run (CUDA graphs on, Vulkan replays off, RK4 reach masks off) must be
-# paired with the backend's default run of the same integrator, particles and timed steps, and
-# must never stand for the backend's throughput in the targets or the SPH table.
+# here. A row of a variant run (CUDA graphs on, Vulkan replays off, RK4 reach masks off, Vulkan
+# forces' wall images inside the walk) must be paired with the backend's default run of the same
+# integrator, particles and timed steps, and must never stand for the backend's throughput in the
+# targets or the SPH table.
 set -eu
 script=$1 out=$2
 rm -rf "$out" && mkdir -p "$out"
@@ -32,6 +33,11 @@ printf '{"benchmark": "sph", "throughput": [%s]}\n' \
 # RK4 with its reach masks off, against the default RK4 run.
 printf '{"benchmark": "sph", "throughput": [%s]}\n' \
   "$(row cuda rk4 1048576 50 4.4 0 0.15)" >"$out/bench_sph_noreach_cuda.json"
+# Vulkan's forces with the wall images inside the walk, against the default (replayed) run.
+printf '{"benchmark": "sph", "throughput": [%s]}\n' \
+  "$(row vulkan euler 1048576 50 0.95 0.125 0.02)" >"$out/bench_sph_imagesinside_vulkan.json"
+printf '{"benchmark": "sph", "throughput": [%s]}\n' \
+  "$(row vulkan euler 1048576 50 0.8 0.125 0.02)" >"$out/bench_sph_vulkan.json"
 python3 "$script" "$out" >/dev/null
 s=$out/summary.md
 fail() {
@@ -52,6 +58,11 @@ grep -q '^| 1,024 | euler | vulkan | no replays | 512 | 0.06 | 0.12 | 0.5 | 0.1 
   fail "the Vulkan run without replays is not paired with its default run"
 grep -q '^| 1,048,576 | rk4 | cuda | no reach masks | 50 | 4.4 | 3.7 | 1.19 | 0.15 | 0.15 |' "$s" ||
   fail "the RK4 run without reach masks is not paired with its default run"
+grep -q '^| 1,048,576 | euler | vulkan | wall images inside the walk | 50 | 0.95 | 0.8 | 1.19 | 0.02 | 0.02 |' "$s" ||
+  fail "the Vulkan run with the wall images inside the walk is not paired with its default run"
+if grep -q '^| 1,048,576 | euler | vulkan | 0.95 ' "$s"; then
+  fail "a row with the wall images inside the walk is listed as SPH throughput"
+fi
 if grep -q '^| 1,048,576 | rk4 | cuda | 4.4 ' "$s"; then
   fail "a row without reach masks is listed as SPH throughput"
 fi

@@ -74,8 +74,10 @@ def load_json(out, pattern):
 
 # The SPH runs with a choice switched from the backend's default: CUDA graphs on
 # (MASAV_CUDA_GRAPHS=1), Vulkan replays off (MASAV_VK_REPLAY=off), RK4's reach masks off
-# (MASAV_SPH_REACH=off).
-VARIANT_RUNS = ("bench_sph_graphs", "bench_sph_noreplay", "bench_sph_noreach")
+# (MASAV_SPH_REACH=off), Vulkan's sph_forces with the wall images inside its walk
+# (MASAV_VK_SPH_IMAGES_AFTER=off).
+VARIANT_RUNS = ("bench_sph_graphs", "bench_sph_noreplay", "bench_sph_noreach",
+                "bench_sph_imagesinside")
 
 
 def variant_row(f):
@@ -87,6 +89,8 @@ def variant_row(f):
 def variant_name(f, r):
     if os.path.basename(f).startswith("bench_sph_noreach"):
         return "no reach masks"
+    if os.path.basename(f).startswith("bench_sph_imagesinside"):
+        return "wall images inside the walk"
     graphs = (r.get("per_step", {}).get("graphs") or 0) > 0
     if r.get("backend") == "cuda":
         return "CUDA graphs" if graphs else "launches"

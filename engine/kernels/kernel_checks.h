@@ -21,8 +21,9 @@ constexpr uint32_t walk_candidates(uint32_t budget, uint32_t walks = 1) {
 // The candidates a neighbour walk may examine on `dev`: walk_candidates of its loop budget.
 uint32_t max_walk_candidates(const DeviceApi& dev);
 // The SPH kernels' walks per candidate: sph_density walks its candidates, then, near a wall,
-// its neighbours within h again for their wall images (shaders/sph_density.comp), so their
-// candidate cap is the budget's share of one of two walks.
+// its neighbours within h again for their wall images (shaders/sph_density.comp), as sph_forces
+// may over its row masks (compute/sph_walk_choice.h), so their candidate cap is the budget's
+// share of one of two walks.
 inline constexpr uint32_t kSphWalks = 2;
 // The most candidates an SPH kernel may examine on a device whose loop budget is `budget`.
 constexpr uint32_t max_sph_candidates(uint32_t budget) {
