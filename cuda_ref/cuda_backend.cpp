@@ -36,6 +36,18 @@ bool graphs_requested() {
               "default: each kernel launched from the host)");
 }
 
+// MASAV_CUDA_SPH_IMAGES_AFTER=on|off|auto (auto: on): sph_forces adds the wall images in a walk
+// of their own after the direct terms (64 registers, four blocks per multiprocessor), or per
+// neighbour inside its walk (72 registers, three blocks), which tools/gpu-report times against it.
+bool sph_images_after_requested() {
+  const char* v = std::getenv("MASAV_CUDA_SPH_IMAGES_AFTER");
+  if (!v || std::string_view(v) == "auto" || std::string_view(v) == "on") return true;
+  if (std::string_view(v) == "off") return false;
+  throw Error("cuda", "MASAV_CUDA_SPH_IMAGES_AFTER", fmt::format("'{}' is not auto, on or off", v),
+              "set MASAV_CUDA_SPH_IMAGES_AFTER=on (the default: sph_forces adds the wall images "
+              "after its walk) or off (inside it, per neighbour)");
+}
+
 }  // namespace
 
 CudaBuffer::~CudaBuffer() {
@@ -64,7 +76,8 @@ void* CudaBackend::scratch(const std::string& name, size_t bytes, const char* ke
 CudaBackend::CudaBackend(int device)
     : device_(device),
       sync_each_launch_(sync_each_launch_requested()),
-      graphs_(graphs_requested() && !sync_each_launch_) {
+      graphs_(graphs_requested() && !sync_each_launch_),
+      sph_images_after_(sph_images_after_requested()) {
   check(cudaSetDevice(device), "init", "cudaSetDevice");
   cudaDeviceProp prop{};
   check(cudaGetDeviceProperties(&prop, device), "init", "cudaGetDeviceProperties");

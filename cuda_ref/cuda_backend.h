@@ -123,6 +123,7 @@ class CudaBackend final : public Backend {
   void leave_capture();
   bool sync_each_launch_ = false;  // MASAV_CUDA_SYNC=1 at creation
   bool graphs_ = false;            // captures made (MASAV_CUDA_GRAPHS=1, not with SYNC)
+  bool sph_images_after_ = true;   // sph_forces' wall images after its walk (cuda_backend.cpp)
   bool capturing_ = false;
   std::array<cudaGraphExec_t, 2> graph_execs_{};
   uint32_t next_graph_exec_ = 0;

@@ -30,14 +30,14 @@ void CudaBackend::run_own(const KernelArgs<KernelId::sph_forces>& a) {
          stats, neighbor_rows] = a;
   const char* k = "sph_forces";
   const uint32_t* rows = neighbor_rows ? device_ptr<uint32_t>(*neighbor_rows, k) : nullptr;
-  launched(
-      launch::sph_forces(stream_, grid_for_items(sph_range_count(p), k),
-                         device_params<float>(p, neighbor_rows), device_ptr<V4>(positions, k),
-                         device_ptr<V4>(velocities, k), device_ptr<float>(density, k),
-                         device_ptr<float>(pressure, k), device_ptr<uint32_t>(cells, k),
-                         device_ptr<uint32_t>(cell_start, k), device_ptr<uint32_t>(cell_end, k),
-                         device_ptr<V4>(accel, k), device_ptr<uint32_t>(stats, k), rows),
-      k);
+  launched(launch::sph_forces(stream_, grid_for_items(sph_range_count(p), k),
+                              device_params<float>(p, neighbor_rows), device_ptr<V4>(positions, k),
+                              device_ptr<V4>(velocities, k), device_ptr<float>(density, k),
+                              device_ptr<float>(pressure, k), device_ptr<uint32_t>(cells, k),
+                              device_ptr<uint32_t>(cell_start, k),
+                              device_ptr<uint32_t>(cell_end, k), device_ptr<V4>(accel, k),
+                              device_ptr<uint32_t>(stats, k), rows, sph_images_after_),
+           k);
 }
 
 void CudaBackend::run_own(const KernelArgs<KernelId::sph_integrate>& a) {

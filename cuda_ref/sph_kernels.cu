@@ -20,11 +20,14 @@ namespace masav::cuda::launch {
 namespace {
 
 // Four blocks of kBlock threads per multiprocessor, 64 registers (50% occupancy): density fits
-// without spilling on sm_80-90, forces on sm_90 (sm_80-89: 4 bytes in wcsph), since sph::force_at
-// walks the wall images apart from the direct terms. Measured on an H100 (2026-11-26), when
-// forces walked both in one loop, at 1,048,576 particles: 95 registers unbounded (2 blocks)
-// 0.494 ms, 80 at three blocks 0.379 ms, 64 at four blocks with 124 bytes spilled 0.407 ms.
+// without spilling on sm_80-90, forces on sm_90 (sm_80-89: 4 bytes in wcsph), where
+// sph::force_at walks the wall images apart from the direct terms. With the images inside its
+// walk (MASAV_CUDA_SPH_IMAGES_AFTER=off) forces is bounded to three blocks (72 registers, sm_90):
+// measured on an H100 (2026-11-26), 1,048,576 particles, before the image sets' loop was kept
+// rolled: 95 registers unbounded (2 blocks) 0.494 ms, 80 at three blocks 0.379 ms, 64 at four
+// blocks with 124 bytes spilled 0.407 ms.
 constexpr int kNeighborBlocks = 4;
+constexpr int kInsideBlocks = 3;
 
 // The layout with its model fixed at compile time.
 template <SphPressureModel M>
@@ -89,8 +92,8 @@ __global__ void __launch_bounds__(kBlock, kNeighborBlocks)
   }
 }
 
-template <SphPressureModel M>
-__global__ void __launch_bounds__(kBlock, kNeighborBlocks)
+template <SphPressureModel M, bool ImagesAfter>
+__global__ void __launch_bounds__(kBlock, ImagesAfter ? kNeighborBlocks : kInsideBlocks)
     forces_kernel(SphStepLayout<float> layout, const V4* __restrict__ pos,
                   const V4* __restrict__ vel, const float* __restrict__ density,
                   const float* __restrict__ pressure, const uint32_t* __restrict__ cells,
@@ -107,9 +110,9 @@ __global__ void __launch_bounds__(kBlock, kNeighborBlocks)
     };
     const V4 pw = pos[i];
     const sph::Neighbor<float> me = fetch(uint32_t(i));
-    const auto r =
-        sph::force_at<float>(uint32_t(i), me, cells[i], dims, start, end, c.max_candidates, c,
-                             pos_at, fetch, sph::row_masks(neighbor_rows, uint32_t(i), c.n));
+    const auto r = sph::force_at<float, ImagesAfter>(
+        uint32_t(i), me, cells[i], dims, start, end, c.max_candidates, c, pos_at, fetch,
+        sph::row_masks(neighbor_rows, uint32_t(i), c.n));
     const sph::V3<float> a = sph::total_accel(r.accel, pw.w, c);
     accel[i] = V4{a.x, a.y, a.z, float(r.neighbors)};
     cand = r.candidates;
@@ -191,10 +194,15 @@ cudaError_t sph_density(cudaStream_t s, dim3 grid, const SphStepLayout<float>& c
 cudaError_t sph_forces(cudaStream_t s, dim3 grid, const SphStepLayout<float>& c, const V4* pos,
                        const V4* vel, const float* density, const float* pressure,
                        const uint32_t* cells, const uint32_t* start, const uint32_t* end, V4* accel,
-                       uint32_t* stats, const uint32_t* neighbor_rows) {
+                       uint32_t* stats, const uint32_t* neighbor_rows, bool images_after) {
   return for_model(c.model, [&](auto m) {
-    forces_kernel<decltype(m)::value><<<grid, kBlock, 0, s>>>(
-        c, pos, vel, density, pressure, cells, start, end, accel, stats, neighbor_rows);
+    constexpr SphPressureModel M = decltype(m)::value;
+    if (images_after)
+      forces_kernel<M, true><<<grid, kBlock, 0, s>>>(c, pos, vel, density, pressure, cells, start,
+                                                     end, accel, stats, neighbor_rows);
+    else
+      forces_kernel<M, false><<<grid, kBlock, 0, s>>>(c, pos, vel, density, pressure, cells, start,
+                                                      end, accel, stats, neighbor_rows);
     return cudaGetLastError();
   });
 }

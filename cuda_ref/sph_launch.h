@@ -13,7 +13,8 @@ namespace masav::cuda::launch {
 using V4 = hd::V4<float>;
 
 // neighbor_rows (the row masks, kSphRowMaskWords n words) may be null: none written / read.
-// reach_rows likewise (written or read as c.reach says).
+// reach_rows likewise (written or read as c.reach says). images_after: sph::force_at's
+// ImagesAfter (the wall images in a walk of their own after the direct terms).
 cudaError_t sph_density(cudaStream_t s, dim3 grid, const SphStepLayout<float>& c, const V4* pos,
                         const uint32_t* cells, const uint32_t* start, const uint32_t* end,
                         float* density, float* pressure, uint32_t* stats, uint32_t* reach_rows,
@@ -22,7 +23,7 @@ cudaError_t sph_density(cudaStream_t s, dim3 grid, const SphStepLayout<float>& c
 cudaError_t sph_forces(cudaStream_t s, dim3 grid, const SphStepLayout<float>& c, const V4* pos,
                        const V4* vel, const float* density, const float* pressure,
                        const uint32_t* cells, const uint32_t* start, const uint32_t* end, V4* accel,
-                       uint32_t* stats, const uint32_t* neighbor_rows);
+                       uint32_t* stats, const uint32_t* neighbor_rows, bool images_after);
 
 // Buffers the stage does not use are null (see sph::integrate_particle).
 cudaError_t sph_integrate(cudaStream_t s, dim3 grid, const SphIntegrateLayout<float>& p,

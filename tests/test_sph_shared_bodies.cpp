@@ -23,8 +23,9 @@ sph::V3<T> v3(const Vec4d& a) {
   return {T(a.x), T(a.y), T(a.z)};
 }
 
-// density_at and force_at over every sorted particle of the case, in precision T.
-template <class T>
+// density_at and force_at over every sorted particle of the case, in precision T, the wall
+// images after the walk or (ImagesAfter false, MASAV_CUDA_SPH_IMAGES_AFTER=off) inside it.
+template <class T, bool ImagesAfter = true>
 void host_bodies(const test::SphCase& c, const std::vector<Vec4d>& pos,
                  const std::vector<Vec4d>& vel, const std::vector<double>& rho,
                  const std::vector<double>& pr, const std::vector<uint32_t>& cells,
@@ -43,16 +44,17 @@ void host_bodies(const test::SphCase& c, const std::vector<Vec4d>& pos,
     const auto d = sph::density_at<T>(uint32_t(i), pos_at(i), cells[i], dims, start.data(),
                                       end.data(), p.max_candidates, k, pos_at);
     rho_out[i] = double(d.density);
-    const auto f = sph::force_at<T>(i, fetch(i), cells[i], dims, start.data(), end.data(),
-                                    p.max_candidates, k, pos_at, fetch);
+    const auto f = sph::force_at<T, ImagesAfter>(i, fetch(i), cells[i], dims, start.data(),
+                                                 end.data(), p.max_candidates, k, pos_at, fetch);
     const sph::V3<T> a = sph::total_accel(f.accel, T(pos[i].w), k);
     acc_out[i] = {double(a.x), double(a.y), double(a.z), double(f.neighbors)};
   }
 }
 
 // density_at recording row masks, then force_at walking every candidate and over the masks, in
-// precision T; true if the two force walks give the same bits (accelerations and neighbours).
-template <class T>
+// precision T, with the wall images after the walk or inside it; true if the two force walks
+// give the same bits (accelerations and neighbours).
+template <class T, bool ImagesAfter>
 bool masked_forces_same(const test::SphCase& c, const std::vector<Vec4d>& pos,
                         const std::vector<Vec4d>& vel, const std::vector<double>& rho,
                         const std::vector<double>& pr, const std::vector<uint32_t>& cells,
@@ -70,11 +72,11 @@ bool masked_forces_same(const test::SphCase& c, const std::vector<Vec4d>& pos,
     sph::density_at<T>(uint32_t(i), pos_at(i), cells[i], dims, start.data(), end.data(),
                        p.max_candidates, k, pos_at, sph::row_masks(rows.data(), i, p.n));
   for (uint32_t i = 0; i < p.n; ++i) {
-    const auto full = sph::force_at<T>(i, fetch(i), cells[i], dims, start.data(), end.data(),
-                                       p.max_candidates, k, pos_at, fetch);
-    const auto masked =
-        sph::force_at<T>(i, fetch(i), cells[i], dims, start.data(), end.data(), p.max_candidates, k,
-                         pos_at, fetch, sph::row_masks<const uint32_t>(rows.data(), i, p.n));
+    const auto full = sph::force_at<T, ImagesAfter>(i, fetch(i), cells[i], dims, start.data(),
+                                                    end.data(), p.max_candidates, k, pos_at, fetch);
+    const auto masked = sph::force_at<T, ImagesAfter>(
+        i, fetch(i), cells[i], dims, start.data(), end.data(), p.max_candidates, k, pos_at, fetch,
+        sph::row_masks<const uint32_t>(rows.data(), i, p.n));
     if (std::memcmp(&full.accel, &masked.accel, sizeof(full.accel)) != 0 ||
         full.neighbors != masked.neighbors || full.candidates != masked.candidates ||
         full.overflow != masked.overflow)
@@ -112,10 +114,12 @@ TEST_CASE("sph::force_at over row masks gives the full walk's bits, in double an
     const auto cells = r.download(s.grid.sorted_cells);
     const auto start = r.download(s.grid.cell_start), end = r.download(s.grid.cell_end);
     std::vector<uint32_t> rows;
-    CHECK(masked_forces_same<double>(c, pos, vel, rho, pr, cells, start, end, rows));
+    CHECK(masked_forces_same<double, true>(c, pos, vel, rho, pr, cells, start, end, rows));
     // The CPU reference derives its masks from its neighbour lists: the same bits.
     CHECK(rows == r.download(s.neighbor_rows));
-    CHECK(masked_forces_same<float>(c, pos, vel, rho, pr, cells, start, end, rows));
+    CHECK(masked_forces_same<float, true>(c, pos, vel, rho, pr, cells, start, end, rows));
+    CHECK(masked_forces_same<double, false>(c, pos, vel, rho, pr, cells, start, end, rows));
+    CHECK(masked_forces_same<float, false>(c, pos, vel, rho, pr, cells, start, end, rows));
   }
 }
 
@@ -152,6 +156,19 @@ TEST_CASE("sph::density_at and sph::force_at (the CUDA bodies) equal the CPU ref
     CHECK(ef.rel_l2 < 2e-6);
     CHECK(ef.max_rel < 2e-5);
     for (uint32_t i = 0; i < c.params.n; ++i) REQUIRE(acc_d[i].w == acc[i].w);  // neighbours
+    // The images inside the walk (MASAV_CUDA_SPH_IMAGES_AFTER=off): the same terms in another
+    // order where a wall is near.
+    std::vector<double> rho_in;
+    std::vector<Vec4d> acc_in_d, acc_in_f;
+    host_bodies<double, false>(c, pos, vel, rho, pr, cells, start, end, k, rho_in, acc_in_d);
+    host_bodies<float, false>(c, pos, vel, rho, pr, cells, start, end,
+                              device_params<float>(c.params), rho_in, acc_in_f);
+    CHECK(compare(xyz_components(acc_in_d), xyz_components(acc), acc_scale).max_rel < 1e-10);
+    const ErrorStats ei = compare(xyz_components(acc_in_f), xyz_components(acc), acc_scale);
+    INFO("float accel, images inside: " << describe(ei));
+    CHECK(ei.rel_l2 < 2e-6);
+    CHECK(ei.max_rel < 2e-5);
+    for (uint32_t i = 0; i < c.params.n; ++i) REQUIRE(acc_in_d[i].w == acc[i].w);
   });
 }
 

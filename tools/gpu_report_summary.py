@@ -74,8 +74,8 @@ def load_json(out, pattern):
 
 # The SPH runs with a choice switched from the backend's default: CUDA graphs on
 # (MASAV_CUDA_GRAPHS=1), Vulkan replays off (MASAV_VK_REPLAY=off), RK4's reach masks off
-# (MASAV_SPH_REACH=off), Vulkan's sph_forces with the wall images inside its walk
-# (MASAV_VK_SPH_IMAGES_AFTER=off).
+# (MASAV_SPH_REACH=off), sph_forces with the wall images inside its walk
+# (MASAV_VK_SPH_IMAGES_AFTER=off, MASAV_CUDA_SPH_IMAGES_AFTER=off).
 VARIANT_RUNS = ("bench_sph_graphs", "bench_sph_noreplay", "bench_sph_noreach",
                 "bench_sph_imagesinside")
 

@@ -459,11 +459,12 @@ struct ForceResult {
 // positions), a row that fits a mask visits only its recorded neighbours, in the same ascending
 // order, so the result is the same bits; the distance test is repeated, so that a compiler
 // rounding r2 differently in the two kernels can drop a pair but never add one beyond h.
-// The wall images come after the direct terms, in a second walk over the same neighbours: the
-// particle's own images, then each neighbour's in the walk's order, as the CPU reference adds
-// them. The direct walk's loop then holds no image terms; on CUDA (sm_90) it needs 48
-// registers and the images' walk 61-64, where one loop holding both needed 95.
-template <class T, class PosAt, class Fetch>
+// With ImagesAfter the wall images come after the direct terms, in a second walk over the same
+// neighbours: the particle's own images, then each neighbour's in the walk's order, as the CPU
+// reference adds them. The direct walk's loop then holds no image terms; on CUDA (sm_90) it
+// needs 48 registers and the images' walk 61-64, where one loop holding both (ImagesAfter
+// false: each neighbour's images with its pair term) needs 95.
+template <class T, bool ImagesAfter = true, class PosAt, class Fetch>
 MASAV_HD inline ForceResult<T> force_at(uint32_t self, const Neighbor<T>& me, uint32_t cell,
                                         const uint32_t dims[3], const uint32_t* cell_start,
                                         const uint32_t* cell_end, uint32_t max_candidates,
@@ -472,24 +473,45 @@ MASAV_HD inline ForceResult<T> force_at(uint32_t self, const Neighbor<T>& me, ui
   V3<T> acc{T(0), T(0), T(0)};
   uint32_t neighbors = 0;
   bool overflow = false;
-  const uint32_t candidates = walk_candidates(cell, dims, cell_start, cell_end, max_candidates,
-                                              masks, overflow, [&](uint32_t j) {
-                                                const V3<T> d = me.x - pos_at(j);
-                                                const T r2 = dot(d, d);
-                                                if (!(r2 < c.h2) || j == self) return;
-                                                ++neighbors;
-                                                acc = acc + pair_accel(me, fetch(j), d, r2, c);
-                                              });
-  const WallMirrors<T> mirrors = c.walls ? wall_mirrors(me.x, c) : WallMirrors<T>{};
-  if (mirrors.axes) {
-    acc = acc + wall_image_accel(me, me, mirrors, c);
-    bool again = false;
-    walk_candidates(cell, dims, cell_start, cell_end, max_candidates, masks, again,
-                    [&](uint32_t j) {
-                      const V3<T> d = me.x - pos_at(j);
-                      if (!(dot(d, d) < c.h2) || j == self) return;
-                      acc = acc + wall_image_accel(me, fetch(j), mirrors, c);
-                    });
+  uint32_t candidates = 0;
+  if constexpr (ImagesAfter) {
+    auto direct = [&](uint32_t j) {
+      const V3<T> d = me.x - pos_at(j);
+      const T r2 = dot(d, d);
+      if (!(r2 < c.h2) || j == self) return;
+      ++neighbors;
+      acc = acc + pair_accel(me, fetch(j), d, r2, c);
+    };
+    candidates =
+        walk_candidates(cell, dims, cell_start, cell_end, max_candidates, masks, overflow, direct);
+    const WallMirrors<T> mirrors = c.walls ? wall_mirrors(me.x, c) : WallMirrors<T>{};
+    if (mirrors.axes) {
+      acc = acc + wall_image_accel(me, me, mirrors, c);
+      auto images = [&](uint32_t j) {
+        const V3<T> d = me.x - pos_at(j);
+        if (!(dot(d, d) < c.h2) || j == self) return;
+        acc = acc + wall_image_accel(me, fetch(j), mirrors, c);
+      };
+      bool again = false;
+      walk_candidates(cell, dims, cell_start, cell_end, max_candidates, masks, again, images);
+    }
+  } else {  // each neighbour's images with its pair term, the particle's own where it is walked
+    const WallMirrors<T> mirrors = c.walls ? wall_mirrors(me.x, c) : WallMirrors<T>{};
+    auto both = [&](uint32_t j) {
+      const V3<T> d = me.x - pos_at(j);
+      const T r2 = dot(d, d);
+      if (!(r2 < c.h2)) return;
+      if (j == self) {
+        if (mirrors.axes) acc = acc + wall_image_accel(me, me, mirrors, c);
+        return;
+      }
+      const Neighbor<T> o = fetch(j);
+      if (mirrors.axes) acc = acc + wall_image_accel(me, o, mirrors, c);
+      ++neighbors;
+      acc = acc + pair_accel(me, o, d, r2, c);
+    };
+    candidates =
+        walk_candidates(cell, dims, cell_start, cell_end, max_candidates, masks, overflow, both);
   }
   return {acc, neighbors, candidates, overflow};
 }
