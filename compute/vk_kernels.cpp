@@ -60,8 +60,8 @@ void VulkanBackend::run_kernel(const Params& p, uint64_t items, Buffers&... buff
         // How it uses the reach masks (constant 6): a pipeline each, none paying for the others.
         constants.push_back(uint32_t(layout.reach));
       }
-      if constexpr (K ==
-                    KernelId::sph_forces) {  // ... velocities, density, pressure; neighbor_rows
+      if constexpr (K == KernelId::sph_forces) {
+        // ... velocities, density, pressure; neighbor_rows
         texels = {rgba32, rgba32, r32f, r32f, r32u, r32u, r32u, none, none, r32u};
         constants.push_back(sph_images_after_ ? 1u : 0u);  // the masked walk's wall images
       }

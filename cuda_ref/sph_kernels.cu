@@ -14,7 +14,7 @@
 #include "cuda_ref/cuda_launch.h"
 #include "cuda_ref/sph_launch.h"
 #include "cuda_ref/warp_reduce.cuh"
-#include "engine/kernels/sph_kernels.h"
+#include "engine/kernels/sph_integrate_body.h"
 
 namespace masav::cuda::launch {
 namespace {

@@ -11,7 +11,7 @@
 
 #include "engine/core/error.h"
 #include "engine/kernels/grid_cell.h"
-#include "engine/kernels/sph_kernels.h"
+#include "engine/kernels/sph_integrate_body.h"
 #include "engine/sph/dfsph_case_buffers.h"
 #include "engine/sph/sph_coefficients.h"
 #include "engine/sph/sph_kernel_calls.h"

@@ -11,7 +11,7 @@
 
 #include "engine/cpu/cpu_backend.h"
 #include "engine/cpu/cpu_sph_rows.h"
-#include "engine/kernels/sph_kernels.h"
+#include "engine/kernels/sph_integrate_body.h"
 
 namespace masav::cpu {
 namespace {

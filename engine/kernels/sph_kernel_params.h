@@ -20,7 +20,7 @@ MASAV_ENUMERATOR(SphPressureModel, thesis, 1)
 MASAV_ENUMERATOR(SphPressureModel, dfsph, 2)
 MASAV_ENUM_END(SphPressureModel)
 
-// Integrator stages (sph::integrate_stage in engine/kernels/sph_kernels.h).
+// Integrator stages (sph::integrate_stage in engine/kernels/sph_integrate_body.h).
 MASAV_ENUM_BEGIN(SphStageOp)
 MASAV_ENUMERATOR(SphStageOp, euler, 0)             // x1 = x0 + dt v0, v1 = v0 + dt a (Fig. 4.2)
 MASAV_ENUMERATOR(SphStageOp, symplectic_euler, 1)  // v1 = v0 + dt a, x1 = x0 + dt v1 (Harada)

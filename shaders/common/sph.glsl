@@ -1,5 +1,6 @@
 // SPH math: the GLSL twin of engine/kernels/sph_kernels.h (smoothing kernels, Tait equation of
-// state, pair terms of both pressure models, the 27-cell walk by rows, walls, integrator stages).
+// state, pair terms of both pressure models, the 27-cell walk by rows, walls) and of
+// engine/kernels/sph_integrate_body.h (integrator stages).
 // Formulas and conventions are documented there; keep the two in step.
 
 #include "engine/kernels/sph_kernel_params.h"
