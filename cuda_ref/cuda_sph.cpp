@@ -11,29 +11,32 @@ using V4 = hd::V4<float>;
 }  // namespace
 
 void CudaBackend::run_own(const KernelArgs<KernelId::sph_density>& a) {
-  auto& [p, items_, positions, cells, cell_start, cell_end, density, pressure, stats, reach_rows,
-         neighbor_rows] = a;
+  auto& [p, items_, positions, cells, cell_start, cell_end, density, pressure, stats, velocities,
+         neighbor_state, reach_rows, neighbor_rows] = a;
   const char* k = "sph_density";
   uint32_t* rows = neighbor_rows ? device_ptr<uint32_t>(*neighbor_rows, k) : nullptr;
   uint32_t* reach = reach_rows ? device_ptr<uint32_t>(*reach_rows, k) : nullptr;
+  V4* state = neighbor_state ? device_ptr<V4>(*neighbor_state, k) : nullptr;
+  const V4* vel = state ? device_ptr<V4>(*velocities, k) : nullptr;
   launched(launch::sph_density(stream_, grid_for_items(sph_range_count(p), k),
                                device_params<float>(p, neighbor_rows), device_ptr<V4>(positions, k),
                                device_ptr<uint32_t>(cells, k), device_ptr<uint32_t>(cell_start, k),
                                device_ptr<uint32_t>(cell_end, k), device_ptr<float>(density, k),
-                               device_ptr<float>(pressure, k), device_ptr<uint32_t>(stats, k),
-                               reach, rows),
+                               device_ptr<float>(pressure, k), device_ptr<uint32_t>(stats, k), vel,
+                               state, reach, rows),
            k);
 }
 
 void CudaBackend::run_own(const KernelArgs<KernelId::sph_forces>& a) {
   auto& [p, items_, positions, velocities, density, pressure, cells, cell_start, cell_end, accel,
-         stats, neighbor_rows] = a;
+         stats, neighbor_state, neighbor_rows] = a;
   const char* k = "sph_forces";
   const uint32_t* rows = neighbor_rows ? device_ptr<uint32_t>(*neighbor_rows, k) : nullptr;
+  const V4* state = neighbor_state ? device_ptr<V4>(*neighbor_state, k) : nullptr;
   launched(launch::sph_forces(stream_, grid_for_items(sph_range_count(p), k),
                               device_params<float>(p, neighbor_rows), device_ptr<V4>(positions, k),
                               device_ptr<V4>(velocities, k), device_ptr<float>(density, k),
-                              device_ptr<float>(pressure, k), device_ptr<uint32_t>(cells, k),
+                              device_ptr<float>(pressure, k), state, device_ptr<uint32_t>(cells, k),
                               device_ptr<uint32_t>(cell_start, k),
                               device_ptr<uint32_t>(cell_end, k), device_ptr<V4>(accel, k),
                               device_ptr<uint32_t>(stats, k), rows, sph_images_after_),

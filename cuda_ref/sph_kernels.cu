@@ -48,7 +48,8 @@ __global__ void __launch_bounds__(kBlock, kNeighborBlocks)
     density_kernel(SphStepLayout<float> layout, const V4* __restrict__ pos,
                    const uint32_t* __restrict__ cells, const uint32_t* __restrict__ start,
                    const uint32_t* __restrict__ end, float* density, float* pressure,
-                   uint32_t* stats, uint32_t* reach_rows, uint32_t* neighbor_rows) {
+                   uint32_t* stats, const V4* __restrict__ vel, V4* state, uint32_t* reach_rows,
+                   uint32_t* neighbor_rows) {
   const SphStepLayout<float> c = with_model<M>(layout);
   const uint64_t i = c.first + particle_thread();  // the range computed: [first, end)
   const bool live = i < c.end;
@@ -71,6 +72,8 @@ __global__ void __launch_bounds__(kBlock, kNeighborBlocks)
     const float p = sph::pressure_of(r.density, c);
     density[i] = r.density;
     pressure[i] = p;
+    if (state)
+      sph::store_state(state, uint32_t(i), sph::make_neighbor(xi, sph::xyz(vel[i]), r.density, p));
     cand = r.candidates;
     within = r.neighbors;
     if (r.overflow) over = ~uint32_t(i);
@@ -92,21 +95,33 @@ __global__ void __launch_bounds__(kBlock, kNeighborBlocks)
   }
 }
 
-template <SphPressureModel M, bool ImagesAfter>
+// Packed: the neighbours read from sph_density's neighbour state (one 32-byte record each,
+// p / rho^2 computed there) instead of from positions, velocities, density and pressure.
+template <SphPressureModel M, bool ImagesAfter, bool Packed>
 __global__ void __launch_bounds__(kBlock, ImagesAfter ? kNeighborBlocks : kInsideBlocks)
     forces_kernel(SphStepLayout<float> layout, const V4* __restrict__ pos,
                   const V4* __restrict__ vel, const float* __restrict__ density,
-                  const float* __restrict__ pressure, const uint32_t* __restrict__ cells,
-                  const uint32_t* __restrict__ start, const uint32_t* __restrict__ end, V4* accel,
-                  uint32_t* stats, const uint32_t* __restrict__ neighbor_rows) {
+                  const float* __restrict__ pressure, const V4* __restrict__ state,
+                  const uint32_t* __restrict__ cells, const uint32_t* __restrict__ start,
+                  const uint32_t* __restrict__ end, V4* accel, uint32_t* stats,
+                  const uint32_t* __restrict__ neighbor_rows) {
   const SphStepLayout<float> c = with_model<M>(layout);
   const uint64_t i = c.first + particle_thread();  // the range computed: [first, c.end)
   uint32_t cand = 0, over = 0, bad = 0, a2 = 0;
   if (i < c.end) {
     const uint32_t dims[3] = {c.dims.x, c.dims.y, c.dims.z};
-    auto pos_at = [pos](uint32_t j) { return sph::xyz(pos[j]); };
+    auto pos_at = [=](uint32_t j) {
+      if constexpr (Packed)
+        return sph::state_position(state, j);
+      else
+        return sph::xyz(pos[j]);
+    };
     auto fetch = [=](uint32_t j) {
-      return sph::make_neighbor<float>(sph::xyz(pos[j]), sph::xyz(vel[j]), density[j], pressure[j]);
+      if constexpr (Packed)
+        return sph::load_state(state, j);
+      else
+        return sph::make_neighbor<float>(sph::xyz(pos[j]), sph::xyz(vel[j]), density[j],
+                                         pressure[j]);
     };
     const V4 pw = pos[i];
     const sph::Neighbor<float> me = fetch(uint32_t(i));
@@ -182,27 +197,29 @@ cudaError_t for_model(SphPressureModel m, Launch&& launch) {
 
 cudaError_t sph_density(cudaStream_t s, dim3 grid, const SphStepLayout<float>& c, const V4* pos,
                         const uint32_t* cells, const uint32_t* start, const uint32_t* end,
-                        float* density, float* pressure, uint32_t* stats, uint32_t* reach_rows,
-                        uint32_t* neighbor_rows) {
+                        float* density, float* pressure, uint32_t* stats, const V4* vel, V4* state,
+                        uint32_t* reach_rows, uint32_t* neighbor_rows) {
   return for_model(c.model, [&](auto m) {
     density_kernel<decltype(m)::value><<<grid, kBlock, 0, s>>>(
-        c, pos, cells, start, end, density, pressure, stats, reach_rows, neighbor_rows);
+        c, pos, cells, start, end, density, pressure, stats, vel, state, reach_rows, neighbor_rows);
     return cudaGetLastError();
   });
 }
 
 cudaError_t sph_forces(cudaStream_t s, dim3 grid, const SphStepLayout<float>& c, const V4* pos,
-                       const V4* vel, const float* density, const float* pressure,
+                       const V4* vel, const float* density, const float* pressure, const V4* state,
                        const uint32_t* cells, const uint32_t* start, const uint32_t* end, V4* accel,
                        uint32_t* stats, const uint32_t* neighbor_rows, bool images_after) {
   return for_model(c.model, [&](auto m) {
     constexpr SphPressureModel M = decltype(m)::value;
+    auto run = [&](auto kernel) {
+      kernel<<<grid, kBlock, 0, s>>>(c, pos, vel, density, pressure, state, cells, start, end,
+                                     accel, stats, neighbor_rows);
+    };
     if (images_after)
-      forces_kernel<M, true><<<grid, kBlock, 0, s>>>(c, pos, vel, density, pressure, cells, start,
-                                                     end, accel, stats, neighbor_rows);
+      state ? run(forces_kernel<M, true, true>) : run(forces_kernel<M, true, false>);
     else
-      forces_kernel<M, false><<<grid, kBlock, 0, s>>>(c, pos, vel, density, pressure, cells, start,
-                                                      end, accel, stats, neighbor_rows);
+      state ? run(forces_kernel<M, false, true>) : run(forces_kernel<M, false, false>);
     return cudaGetLastError();
   });
 }

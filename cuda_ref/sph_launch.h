@@ -14,14 +14,15 @@ using V4 = hd::V4<float>;
 
 // neighbor_rows (the row masks, kSphRowMaskWords n words) may be null: none written / read.
 // reach_rows likewise (written or read as c.reach says). images_after: sph::force_at's
-// ImagesAfter (the wall images in a walk of their own after the direct terms).
+// ImagesAfter (the wall images in a walk of their own after the direct terms). state, the
+// neighbour state (kSphStateStride), may be null: not written (then vel is unread) / not read.
 cudaError_t sph_density(cudaStream_t s, dim3 grid, const SphStepLayout<float>& c, const V4* pos,
                         const uint32_t* cells, const uint32_t* start, const uint32_t* end,
-                        float* density, float* pressure, uint32_t* stats, uint32_t* reach_rows,
-                        uint32_t* neighbor_rows);
+                        float* density, float* pressure, uint32_t* stats, const V4* vel, V4* state,
+                        uint32_t* reach_rows, uint32_t* neighbor_rows);
 
 cudaError_t sph_forces(cudaStream_t s, dim3 grid, const SphStepLayout<float>& c, const V4* pos,
-                       const V4* vel, const float* density, const float* pressure,
+                       const V4* vel, const float* density, const float* pressure, const V4* state,
                        const uint32_t* cells, const uint32_t* start, const uint32_t* end, V4* accel,
                        uint32_t* stats, const uint32_t* neighbor_rows, bool images_after);
 

@@ -11,8 +11,10 @@
 // (p.neighbor_rows != 0), also records which candidates of each row lie within h, for
 // sph_forces (kSphRowMaskBits in engine/kernels/sph_kernel_params.h). With the reach masks
 // (SphReach, specialisation constant 6), also records which lie within the reach radius, or
-// walks only those. Twin of sph::density_walk (engine/kernels/sph_kernels.h), which adds a
-// neighbour's images with its own term.
+// walks only those. With the neighbour state (specialisation constant 7), also writes each
+// particle's (x, rho | v, p / rho^2) record for sph_forces (kSphStateStride). Twin of
+// sph::density_walk (engine/kernels/sph_kernels.h), which adds a neighbour's images with its own
+// term.
 #include "kernel_base.glsl"
 
 // What the kernel only reads are uniform texel buffers (compute/vk_kernels.cpp): lavapipe fetches
@@ -28,13 +30,17 @@ uint cell_end_at(uint cell) { return texelFetch(cell_end_texels, int(cell)).r; }
 layout(std430, binding = 5) writeonly buffer Density { float density[]; };
 layout(std430, binding = 6) writeonly buffer Pressure { float pressure[]; };
 layout(std430, binding = 7) buffer Stats { uint stats[]; };
-layout(std430, binding = 8) buffer ReachRows { uint reach_rows[]; };
-layout(std430, binding = 9) writeonly buffer NeighborRows { uint neighbor_rows[]; };
+layout(binding = 8) uniform samplerBuffer velocity_texels;  // rgba32f
+layout(std430, binding = 9) writeonly buffer NeighborState { vec4 neighbor_state[]; };
+layout(std430, binding = 10) buffer ReachRows { uint reach_rows[]; };
+layout(std430, binding = 11) writeonly buffer NeighborRows { uint neighbor_rows[]; };
 
 // How the walk uses the reach masks (SphReach: none, record, walk). A constant rather than
 // p.reach: lavapipe runs the code of a branch that no lane takes, so each use is a pipeline of
 // its own and the others carry none of its cost.
 layout(constant_id = 6) const uint SPH_REACH = 0u;
+// Whether the call passes the neighbour state (and the velocities it holds).
+layout(constant_id = 7) const bool SPH_STATE = false;
 
 #define SPH_MODEL_SPECIALIZED
 #include "sph.glsl"
@@ -229,6 +235,11 @@ void main() {
     const float pr = sph_pressure_of(rho, p);
     density[i] = rho;
     pressure[i] = pr;
+    if (SPH_STATE) {
+      neighbor_state[kSphStateStride * i] = vec4(xi, rho);
+      neighbor_state[kSphStateStride * i + 1u] =
+          vec4(texelFetch(velocity_texels, int(i)).xyz, sph_pressure_over_rho2(pr, rho));
+    }
     bad = !sph_finite(rho) || !sph_finite(pr);
     rho_bits = bad ? 0u : floatBitsToUint(max(rho, 0.0));
   }

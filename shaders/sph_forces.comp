@@ -9,8 +9,10 @@
 // (sph_coop.glsl) with p / rho^2 computed once per loaded candidate or, with neighbor_rows
 // bound (p.neighbor_rows != 0), per lane over only the candidates sph_density found within h.
 // The masked walk sums in ascending order within a row, the cooperative one in an order rotated
-// within chunks, so the two differ by float rounding (the neighbours are the same). Twin of
-// sph::force_at (engine/kernels/sph_kernels.h).
+// within chunks, so the two differ by float rounding (the neighbours are the same). With the
+// neighbour state (specialisation constant 7: sph_density's (x, rho | v, p / rho^2) records), a
+// candidate is one texel for the distance test and one more for a neighbour, in place of four
+// arrays and a division. Twin of sph::force_at (engine/kernels/sph_kernels.h).
 #include "kernel_base.glsl"
 
 // What the kernel only reads are uniform texel buffers (compute/vk_kernels.cpp): lavapipe fetches
@@ -24,7 +26,8 @@ layout(binding = 6) uniform usamplerBuffer cell_start_texels;    // r32ui
 layout(binding = 7) uniform usamplerBuffer cell_end_texels;      // r32ui
 layout(std430, binding = 8) writeonly buffer Accel { vec4 accel[]; };
 layout(std430, binding = 9) buffer Stats { uint stats[]; };
-layout(binding = 10) uniform usamplerBuffer neighbor_row_texels;  // r32ui
+layout(binding = 10) uniform samplerBuffer state_texels;          // rgba32f
+layout(binding = 11) uniform usamplerBuffer neighbor_row_texels;  // r32ui
 vec4 position_at(uint i) { return texelFetch(position_texels, int(i)); }
 vec4 velocity_at(uint i) { return texelFetch(velocity_texels, int(i)); }
 float density_at(uint i) { return texelFetch(density_texels, int(i)).r; }
@@ -39,6 +42,30 @@ uint neighbor_row_at(uint word) { return texelFetch(neighbor_row_texels, int(wor
 #include "sph_walk.glsl"
 #include "sph_coop.glsl"
 #include "sph_row_walk.glsl"
+
+// Whether the call passes sph_density's neighbour state (kSphStateStride): a constant, so that
+// each form is a pipeline of its own and neither carries the other's loads.
+layout(constant_id = 7) const bool SPH_STATE = false;
+
+// What the walk reads of candidate j: its position and density (the state's first record; the
+// density is read only for a neighbour within h), then for a neighbour its velocity and
+// p / rho^2 (the second).
+vec4 candidate_at(uint j) {
+  if (SPH_STATE) return texelFetch(state_texels, int(kSphStateStride * j));
+  return vec4(position_at(j).xyz, 0.0);
+}
+struct Other {
+  vec3 v;
+  float rho, p_rho2;
+};
+Other neighbor_at(uint j, vec4 candidate) {
+  if (SPH_STATE) {
+    const vec4 vq = texelFetch(state_texels, int(kSphStateStride * j + 1u));
+    return Other(vq.xyz, candidate.w, vq.w);
+  }
+  const float rho = density_at(j);
+  return Other(velocity_at(j).xyz, rho, sph_pressure_over_rho2(pressure_at(j), rho));
+}
 
 MASAV_PUSH(SphStepLayout);
 
@@ -61,18 +88,18 @@ struct Sum {
 // Candidate j's pair term, if it is another particle within h (the per-lane test), and, when
 // `images` (a constant at each call), the terms of its wall images (also of the particle's own).
 void add_candidate(Me me, uint j, inout Sum s, bool images) {
-  const vec3 xj = position_at(j).xyz;
+  const vec4 cj = candidate_at(j);
+  const vec3 xj = cj.xyz;
   const vec3 d = me.x - xj;
   const float r2 = dot(d, d);
   if (!(r2 < p.h2) || (j == me.i && me.mirrors.axes == 0u)) return;
-  const float rho_j = density_at(j);
-  const float q_j = pressure_at(j) / (rho_j * rho_j);
-  const vec3 vj = velocity_at(j).xyz;
+  const Other o = neighbor_at(j, cj);
   if (images && me.mirrors.axes != 0u)
-    s.acc += sph_wall_image_accel(me.x, me.v, me.rho, me.p_rho2, xj, vj, rho_j, q_j, me.mirrors, p);
+    s.acc += sph_wall_image_accel(me.x, me.v, me.rho, me.p_rho2, xj, o.v, o.rho, o.p_rho2,
+                                  me.mirrors, p);
   if (j == me.i) return;
   ++s.neighbors;
-  s.acc += sph_pair_accel(me.v, me.rho, me.p_rho2, vj, rho_j, q_j, d, r2, p);
+  s.acc += sph_pair_accel(me.v, me.rho, me.p_rho2, o.v, o.rho, o.p_rho2, d, r2, p);
 }
 
 // One chunk of a cooperative row: the cluster's kSphCoop candidates from `base` (position,
@@ -83,10 +110,12 @@ void coop_chunk(Me me, uint base, uvec2 u, uvec2 r, inout Sum s, bool images) {
   vec3 xc = vec3(0.0), vc = vec3(0.0);
   float rc = 1.0, qc = 0.0;
   if (mine < u.y) {
-    xc = position_at(mine).xyz;
-    vc = velocity_at(mine).xyz;
-    rc = density_at(mine);
-    qc = pressure_at(mine) / (rc * rc);
+    const vec4 c = candidate_at(mine);
+    const Other o = neighbor_at(mine, c);
+    xc = c.xyz;
+    vc = o.v;
+    rc = o.rho;
+    qc = o.p_rho2;
   }
   for (uint k = 0u; k < kSphCoop; ++k) {
     LOOP_TICK();
@@ -149,12 +178,11 @@ void walk_cooperative(bool live, ivec3 cc, Me me, bool walls_near, inout Sum s) 
 
 // Candidate j's wall images, if it is another particle within h (walk_masked's second loop).
 void add_images(Me me, uint j, inout Sum s) {
-  const vec3 xj = position_at(j).xyz;
-  const vec3 d = me.x - xj;
+  const vec4 cj = candidate_at(j);
+  const vec3 d = me.x - cj.xyz;
   if (!(dot(d, d) < p.h2) || j == me.i) return;
-  const float rho_j = density_at(j);
-  const float q_j = pressure_at(j) / (rho_j * rho_j);
-  s.acc += sph_wall_image_accel(me.x, me.v, me.rho, me.p_rho2, xj, velocity_at(j).xyz, rho_j, q_j,
+  const Other o = neighbor_at(j, cj);
+  s.acc += sph_wall_image_accel(me.x, me.v, me.rho, me.p_rho2, cj.xyz, o.v, o.rho, o.p_rho2,
                                 me.mirrors, p);
 }
 
@@ -215,10 +243,12 @@ void main() {
   ivec3 cc = ivec3(-4);
   if (live) {
     pw = position_at(i);
-    me.x = pw.xyz;
-    me.v = velocity_at(i).xyz;
-    me.rho = density_at(i);
-    me.p_rho2 = pressure_at(i) / (me.rho * me.rho);
+    const vec4 ci = candidate_at(i);
+    const Other o = neighbor_at(i, ci);
+    me.x = ci.xyz;
+    me.v = o.v;
+    me.rho = o.rho;
+    me.p_rho2 = o.p_rho2;
     cc = sph_cell_coords(cell_at(i), p.dims);
     me.mirrors = sph_wall_mirrors(me.x, p);
   }

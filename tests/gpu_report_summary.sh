@@ -1,7 +1,7 @@
 #!/bin/sh
 # gpu_report_summary.sh SCRIPT OUT: tools/gpu_report_summary.py on a GPU-mode report made up
 # here. A row of a variant run (CUDA graphs on, Vulkan replays off, RK4 reach masks off, Vulkan
-# forces' wall images inside the walk) must be paired with the backend's default run of the same
+# forces' wall images inside the walk, the forces without the neighbour state) must be paired with the backend's default run of the same
 # integrator, particles and timed steps, and must never stand for the backend's throughput in the
 # targets or the SPH table.
 set -eu
@@ -36,6 +36,9 @@ printf '{"benchmark": "sph", "throughput": [%s]}\n' \
 # Vulkan's forces with the wall images inside the walk, against the default (replayed) run.
 printf '{"benchmark": "sph", "throughput": [%s]}\n' \
   "$(row vulkan euler 1048576 50 0.95 0.125 0.02)" >"$out/bench_sph_imagesinside_vulkan.json"
+# CUDA's forces over the four arrays instead of the neighbour state, against the default run.
+printf '{"benchmark": "sph", "throughput": [%s]}\n' \
+  "$(row cuda rk4 1048576 50 3.9 0 0.15)" >"$out/bench_sph_nostate_cuda.json"
 printf '{"benchmark": "sph", "throughput": [%s]}\n' \
   "$(row vulkan euler 1048576 50 0.8 0.125 0.02)" >"$out/bench_sph_vulkan.json"
 python3 "$script" "$out" >/dev/null
@@ -60,6 +63,11 @@ grep -q '^| 1,048,576 | rk4 | cuda | no reach masks | 50 | 4.4 | 3.7 | 1.19 | 0.
   fail "the RK4 run without reach masks is not paired with its default run"
 grep -q '^| 1,048,576 | euler | vulkan | wall images inside the walk | 50 | 0.95 | 0.8 | 1.19 | 0.02 | 0.02 |' "$s" ||
   fail "the Vulkan run with the wall images inside the walk is not paired with its default run"
+grep -q '^| 1,048,576 | rk4 | cuda | no neighbour state | 50 | 3.9 | 3.7 | 1.05 | 0.15 | 0.15 |' "$s" ||
+  fail "the CUDA run without the neighbour state is not paired with its default run"
+if grep -q '^| 1,048,576 | rk4 | cuda | 3.9 ' "$s"; then
+  fail "a row without the neighbour state is listed as SPH throughput"
+fi
 if grep -q '^| 1,048,576 | euler | vulkan | 0.95 ' "$s"; then
   fail "a row with the wall images inside the walk is listed as SPH throughput"
 fi

@@ -75,9 +75,10 @@ def load_json(out, pattern):
 # The SPH runs with a choice switched from the backend's default: CUDA graphs on
 # (MASAV_CUDA_GRAPHS=1), Vulkan replays off (MASAV_VK_REPLAY=off), RK4's reach masks off
 # (MASAV_SPH_REACH=off), sph_forces with the wall images inside its walk
-# (MASAV_VK_SPH_IMAGES_AFTER=off, MASAV_CUDA_SPH_IMAGES_AFTER=off).
+# (MASAV_VK_SPH_IMAGES_AFTER=off, MASAV_CUDA_SPH_IMAGES_AFTER=off), sph_forces without the
+# neighbour state (MASAV_SPH_NEIGHBOR_STATE=off).
 VARIANT_RUNS = ("bench_sph_graphs", "bench_sph_noreplay", "bench_sph_noreach",
-                "bench_sph_imagesinside")
+                "bench_sph_imagesinside", "bench_sph_nostate")
 
 
 def variant_row(f):
@@ -91,6 +92,8 @@ def variant_name(f, r):
         return "no reach masks"
     if os.path.basename(f).startswith("bench_sph_imagesinside"):
         return "wall images inside the walk"
+    if os.path.basename(f).startswith("bench_sph_nostate"):
+        return "no neighbour state"
     graphs = (r.get("per_step", {}).get("graphs") or 0) > 0
     if r.get("backend") == "cuda":
         return "CUDA graphs" if graphs else "launches"
@@ -524,8 +527,11 @@ def markdown(run, steps, targets, sph, verify, dambreak, graphs):
         lines += md_table(
             "## Captured blocks against each backend's default (CUDA graphs, "
             "`MASAV_CUDA_GRAPHS=1`, against launches; Vulkan without replays, "
-            "`MASAV_VK_REPLAY=off`, against replays), and RK4 without its reach masks "
-            "(`MASAV_SPH_REACH=off`, every evaluation walking the inflated cells) against them",
+            "`MASAV_VK_REPLAY=off`, against replays); RK4 without its reach masks "
+            "(`MASAV_SPH_REACH=off`, every evaluation walking the inflated cells), the forces "
+            "with the wall images inside their walk (`MASAV_VK_SPH_IMAGES_AFTER=off "
+            "MASAV_CUDA_SPH_IMAGES_AFTER=off`) and the forces without the neighbour state "
+            "(`MASAV_SPH_NEIGHBOR_STATE=off`) against the default runs",
             ["particles", "integrator", "backend", "variant", "timed steps",
              "wall ms/step: variant", "default", "variant / default",
              "host CPU ms/step: variant", "default", "source JSON"],

@@ -221,8 +221,8 @@ void CpuBackend::ensure_sph_lists(const SphListInputs& in) {
 }
 
 void CpuBackend::run_own(const KernelArgs<KernelId::sph_density>& a) {
-  auto& [p, items_, positions, cells, cell_start, cell_end, density, pressure, stats, reach_rows,
-         neighbor_rows] = a;
+  auto& [p, items_, positions, cells, cell_start, cell_end, density, pressure, stats, velocities,
+         neighbor_state, reach_rows, neighbor_rows] = a;
   const char* k = "sph_density";
   const auto c = device_params<double>(p);
   SphListInputs in = sph_list_inputs(p, cells, cell_start, cell_end, c.h2, k);
@@ -231,6 +231,9 @@ void CpuBackend::run_own(const KernelArgs<KernelId::sph_density>& a) {
   double* pr = own(pressure.impl(), k).as<double>();
   uint32_t* words = own(stats.impl(), k).as<uint32_t>();
   uint32_t* rows = neighbor_rows ? own(neighbor_rows->impl(), k).as<uint32_t>() : nullptr;
+  hd::V4<double>* state =
+      neighbor_state ? own(neighbor_state->impl(), k).as<hd::V4<double>>() : nullptr;
+  const double* vel = state ? own(velocities->impl(), k).as<double>() : nullptr;
   SphListReach reach{p.reach, c.reach2, nullptr};
   if (reach_rows && p.reach != SphReach::none)
     reach.rows = own(reach_rows->impl(), k).as<uint32_t>();
@@ -254,6 +257,9 @@ void CpuBackend::run_own(const KernelArgs<KernelId::sph_density>& a) {
         if (!std::isfinite(rho[i]) || !std::isfinite(pr[i]))
           s.non_finite = std::min(s.non_finite, i);
         if (rows) write_row_masks(in, i, sph_lists_.list(i), count, rows);
+        if (state)
+          sph::store_state(
+              state, i, sph::make_neighbor(load3(in.positions, i), load3(vel, i), rho[i], pr[i]));
       },
       reach);
   merge(words, st);
@@ -264,7 +270,7 @@ void CpuBackend::run_own(const KernelArgs<KernelId::sph_forces>& a) {
   // itself, and the lists below are those lists (or a fresh walk that finds the same ones), so
   // the result is the same with or without them.
   auto& [p, items_, positions, velocities, density, pressure, cells, cell_start, cell_end, accel,
-         stats, neighbor_rows] = a;
+         stats, neighbor_state, neighbor_rows] = a;
   const char* k = "sph_forces";
   const auto c = device_params<double>(p);
   SphListInputs in = sph_list_inputs(p, cells, cell_start, cell_end, c.h2, k);
@@ -279,14 +285,20 @@ void CpuBackend::run_own(const KernelArgs<KernelId::sph_forces>& a) {
   std::vector<ChunkStats> st(chunks);
   // The lists sph_density left, if they belong to these positions and this grid; else new ones.
   ensure_sph_lists(in);
-  // p / rho^2 once per particle rather than once per pair (the same bits: the shared function).
+  // p / rho^2 once per particle rather than once per pair (the same bits: the shared function),
+  // here or in sph_density's neighbour state.
+  const hd::V4<double>* state =
+      neighbor_state ? own(neighbor_state->impl(), k).as<hd::V4<double>>() : nullptr;
   std::vector<double>& p_rho2 = sph_p_rho2_;
-  p_rho2.resize(p.n);
-  pool_.parallel_for(p.n, 8192, [&](size_t b, size_t e) {
-    for (size_t i = b; i < e; ++i) p_rho2[i] = sph::pressure_over_rho2(pr[i], rho[i]);
-  });
+  if (!state) {
+    p_rho2.resize(p.n);
+    pool_.parallel_for(p.n, 8192, [&](size_t b, size_t e) {
+      for (size_t i = b; i < e; ++i) p_rho2[i] = sph::pressure_over_rho2(pr[i], rho[i]);
+    });
+  }
   auto fetch = [&](uint32_t j) {
-    return sph::Neighbor<double>{load3(pos, j), load3(vel, j), rho[j], p_rho2[j]};
+    return state ? sph::load_state(state, j)
+                 : sph::Neighbor<double>{load3(pos, j), load3(vel, j), rho[j], p_rho2[j]};
   };
   // sph::force_at's pair terms over the neighbour list (the same neighbours in the same order),
   // for the particles of the range.
@@ -302,8 +314,9 @@ void CpuBackend::run_own(const KernelArgs<KernelId::sph_forces>& a) {
       V acc{0, 0, 0};
       for (uint32_t n = 0; n < count; ++n) {
         const uint32_t j = list[n];
-        const V d = me.x - load3(pos, j);
-        acc = acc + sph::pair_accel(me, fetch(j), d, sph::dot(d, d), c);
+        const sph::Neighbor<double> o = fetch(j);
+        const V d = me.x - o.x;
+        acc = acc + sph::pair_accel(me, o, d, sph::dot(d, d), c);
       }
       // The wall images of the particle itself and of its neighbours (sph::WallMirrors).
       const auto mirrors = c.walls ? sph::wall_mirrors(me.x, c) : sph::WallMirrors<double>{};

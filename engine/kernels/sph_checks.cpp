@@ -95,6 +95,16 @@ void check_neighbor_rows(const Buffer<uint32_t>* rows, const SphStepParams& p, c
                               need_words, kSphRowMaskWords, p.n));
 }
 
+// The optional neighbour state: kSphStateStride elements per particle when given.
+void check_neighbor_state(const Buffer<Real4>* state, const SphStepParams& p, const char* kernel) {
+  const size_t need_elems = size_t(kSphStateStride) * p.n;
+  if (state->size() < need_elems)
+    throw_invalid(kernel, "neighbor_state size", std::to_string(state->size()),
+                  fmt::format("at least {} elements ({} per particle, {} particles), or no "
+                              "neighbor_state buffer",
+                              need_elems, kSphStateStride, p.n));
+}
+
 // sph_density's reach masks (SphReach): the mode, the radius the record walk can reach within the
 // 27 cells, and a buffer of their own.
 void check_reach(const Buffer<uint32_t>* reach_rows, const Buffer<uint32_t>* neighbor_rows,
@@ -209,6 +219,7 @@ void validate(const DeviceApi& dev, const SphStepParams& p, const Buffer<Real4>&
               const Buffer<uint32_t>& cells, const Buffer<uint32_t>& cell_start,
               const Buffer<uint32_t>& cell_end, const Buffer<Real>& density,
               const Buffer<Real>& pressure, const Buffer<uint32_t>& stats,
+              const Buffer<Real4>* velocities, const Buffer<Real4>* neighbor_state,
               const Buffer<uint32_t>* reach_rows, const Buffer<uint32_t>* neighbor_rows) {
   const char* k = "sph_density";
   check_sph_step(dev, p, k);
@@ -219,6 +230,13 @@ void validate(const DeviceApi& dev, const SphStepParams& p, const Buffer<Real4>&
   need(dev, &stats, kSphStatWords, k, "stats");
   check_neighbor_rows(neighbor_rows, p, k);
   check_reach(reach_rows, neighbor_rows, p, k);
+  if (neighbor_state) {
+    check_neighbor_state(neighbor_state, p, k);
+    need(dev, velocities, p.n, k, "velocities");
+    if (neighbor_state == &positions || neighbor_state == velocities)
+      throw_invalid(k, "neighbor_state", "the positions or velocities buffer",
+                    "a buffer of its own (it is written while they are read)");
+  }
 }
 
 void validate(const DeviceApi& dev, const SphStepParams& p, const Buffer<Real4>& positions,
@@ -226,7 +244,7 @@ void validate(const DeviceApi& dev, const SphStepParams& p, const Buffer<Real4>&
               const Buffer<Real>& pressure, const Buffer<uint32_t>& cells,
               const Buffer<uint32_t>& cell_start, const Buffer<uint32_t>& cell_end,
               const Buffer<Real4>& accel, const Buffer<uint32_t>& stats,
-              const Buffer<uint32_t>* neighbor_rows) {
+              const Buffer<Real4>* neighbor_state, const Buffer<uint32_t>* neighbor_rows) {
   const char* k = "sph_forces";
   check_sph_step(dev, p, k);
   need(dev, &positions, p.n, k, "positions");
@@ -237,6 +255,11 @@ void validate(const DeviceApi& dev, const SphStepParams& p, const Buffer<Real4>&
   need(dev, &accel, p.n, k, "accel");
   need(dev, &stats, kSphStatWords, k, "stats");
   check_neighbor_rows(neighbor_rows, p, k);
+  if (neighbor_state) {
+    check_neighbor_state(neighbor_state, p, k);
+    if (neighbor_state == &accel)
+      throw_invalid(k, "neighbor_state", "the accel buffer", "a buffer of its own");
+  }
 }
 
 void validate(const DeviceApi& dev, const SphIntegrateParams& p, const Buffer<Real4>* x0,

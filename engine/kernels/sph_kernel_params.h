@@ -62,6 +62,14 @@ MASAV_CONSTANT(kSphDtInline, 0xFFFFFFFFu)
 MASAV_CONSTANT(kSphRowMaskBits, 64)
 MASAV_CONSTANT(kSphRowMaskWords, 18)
 
+// The neighbour state (sph_density's optional output, sph_forces' optional input): what the
+// force walk reads of a particle, as two Real4 per sorted particle i, side by side:
+// neighbor_state[2 i] = (x, y, z, density), [2 i + 1] = (vx, vy, vz, p / rho^2). The walk tests a
+// candidate's distance with the first and reads the second only for a neighbour within h: one
+// 32-byte record per neighbour instead of positions, velocities, density and pressure (four
+// arrays), and p / rho^2 (sph::pressure_over_rho2) computed once per particle, not per pair.
+MASAV_CONSTANT(kSphStateStride, 2)
+
 // Reach masks: sph_density's masks (the format above) of the candidates within a reach radius
 // R >= h, in a buffer of their own (reach_rows). RK4 sorts once per step into cells of
 // h + skin, and no particle drifts more than skin / 2 from the sorted positions within the step
@@ -203,6 +211,11 @@ struct SphDensityIO {
   Buffer<uint32_t>* neighbor_rows = nullptr;
   // The reach masks (kSphRowMaskWords n words), written or read as SphStepParams::reach says.
   Buffer<uint32_t>* reach_rows = nullptr;
+  // Optional: the neighbour state (kSphStateStride n elements, see kSphStateStride) of the
+  // particles computed, for a later sph_forces on the same positions and grid; it needs the
+  // velocities the viscosity term will use.
+  const Buffer<Real4>* velocities = nullptr;
+  Buffer<Real4>* neighbor_state = nullptr;
 };
 
 struct SphForcesIO {
@@ -216,6 +229,10 @@ struct SphForcesIO {
   // Optional: the masks sph_density wrote for these positions, grid and h. The result is the
   // same as without them (on Vulkan up to the order of summation: see sph_forces.comp).
   const Buffer<uint32_t>* neighbor_rows = nullptr;
+  // Optional: sph_density's neighbour state for these positions, velocities and grid, written
+  // for every particle the walk can reach; read in place of positions' xyz, velocities, density
+  // and pressure (positions' w, the inverse mass, is still read). The same result bit for bit.
+  const Buffer<Real4>* neighbor_state = nullptr;
 };
 
 struct SphIntegrateParams {
@@ -352,13 +369,14 @@ void validate(const DeviceApi& dev, const SphStepParams& p, const Buffer<Real4>&
               const Buffer<uint32_t>& cells, const Buffer<uint32_t>& cell_start,
               const Buffer<uint32_t>& cell_end, const Buffer<Real>& density,
               const Buffer<Real>& pressure, const Buffer<uint32_t>& stats,
+              const Buffer<Real4>* velocities, const Buffer<Real4>* neighbor_state,
               const Buffer<uint32_t>* reach_rows, const Buffer<uint32_t>* neighbor_rows);
 void validate(const DeviceApi& dev, const SphStepParams& p, const Buffer<Real4>& positions,
               const Buffer<Real4>& velocities, const Buffer<Real>& density,
               const Buffer<Real>& pressure, const Buffer<uint32_t>& cells,
               const Buffer<uint32_t>& cell_start, const Buffer<uint32_t>& cell_end,
               const Buffer<Real4>& accel, const Buffer<uint32_t>& stats,
-              const Buffer<uint32_t>* neighbor_rows);
+              const Buffer<Real4>* neighbor_state, const Buffer<uint32_t>* neighbor_rows);
 void validate(const DeviceApi& dev, const SphIntegrateParams& p, const Buffer<Real4>* x0,
               const Buffer<Real4>& v0, const Buffer<Real4>* vk, const Buffer<Real4>& accel,
               const Buffer<Real4>* x_out, const Buffer<Real4>& v_out, const Buffer<Real4>* sum_x,

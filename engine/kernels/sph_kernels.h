@@ -530,6 +530,23 @@ template <class T>
 MASAV_HD inline V3<T> xyz(const hd::V4<T>& v) {
   return V3<T>{v.x, v.y, v.z};
 }
+// The neighbour state of sorted particle i (kSphStateStride in engine/kernels/sph_kernel_params.h):
+// (x, rho) then (v, p / rho^2), side by side.
+template <class T>
+MASAV_HD inline void store_state(hd::V4<T>* state, uint32_t i, const Neighbor<T>& s) {
+  state[kSphStateStride * i] = hd::V4<T>{s.x.x, s.x.y, s.x.z, s.rho};
+  state[kSphStateStride * i + 1] = hd::V4<T>{s.v.x, s.v.y, s.v.z, s.p_rho2};
+}
+template <class T>
+MASAV_HD inline V3<T> state_position(const hd::V4<T>* state, uint32_t j) {
+  return xyz(state[kSphStateStride * j]);
+}
+template <class T>
+MASAV_HD inline Neighbor<T> load_state(const hd::V4<T>* state, uint32_t j) {
+  const hd::V4<T> a = state[kSphStateStride * j], b = state[kSphStateStride * j + 1];
+  return Neighbor<T>{V3<T>{a.x, a.y, a.z}, V3<T>{b.x, b.y, b.z}, a.w, b.w};
+}
+
 template <class T>
 MASAV_HD inline bool finite3(V3<T> v) {
   return isfinite(v.x) && isfinite(v.y) && isfinite(v.z);

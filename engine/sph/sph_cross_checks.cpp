@@ -14,6 +14,7 @@
 
 #include "engine/grid/hash_grid.h"
 #include "engine/kernels/philox.h"
+#include "engine/kernels/sph_kernels.h"
 #include "engine/sph/sph_case_buffers.h"
 #include "engine/sph/sph_check_case.h"
 #include "engine/sph/sph_kernel_calls.h"
@@ -65,7 +66,8 @@ std::vector<KernelCheck> sph_checks() {
   // uncancelled push of their images, and their fp32 rounding sets both); the neighbour counts
   // (accel w) exactly. Both backends get the same density and pressure
   // (a smooth field made on the host), so this checks the force kernel alone -- walking every
-  // candidate, and over the neighbour row masks sph_density records at these positions.
+  // candidate, and over the neighbour row masks sph_density records at these positions; each
+  // reading the four arrays, and the same field as a neighbour state.
   c.push_back(per_output_check(
       KernelId::sph_forces, {{"accel", {1e-5, 0, 2e-4, 1.0}, true}, {"neighbours", {0, 0, 0, 1.0}}},
       for_each_model([](Backend& b, const SphCheckCase& cs, SphCaseBuffers& s, const std::string& m,
@@ -82,17 +84,32 @@ std::vector<KernelCheck> sph_checks() {
         }
         b.upload(s.density, rho);
         b.upload(s.pressure, pr);
-        for (const bool masked : {false, true}) {
-          sph_forces(b, cs.params,
-                     {&s.sorted_pos, &s.sorted_vel, &s.density, &s.pressure, s.view(), &s.accel,
-                      &s.stats, masked ? &s.neighbor_rows : nullptr});
-          const auto a = b.download(s.accel);
-          std::vector<double> w(a.size());
-          for (size_t i = 0; i < a.size(); ++i) w[i] = a[i].w;
-          const std::string variant = masked ? m + " over row masks" : m;
-          out.push_back({"neighbours " + variant, {}, w});
-          out.push_back({"accel " + variant, {}, xyz_components(a)});
+        // The same field as the neighbour state sph_density would write (kSphStateStride).
+        const auto sv = b.download_f32(s.sorted_vel);
+        std::vector<Vec4d> records(size_t(kSphStateStride) * cs.params.n);
+        for (uint32_t i = 0; i < cs.params.n; ++i) {
+          records[kSphStateStride * i] = {sp[i].x, sp[i].y, sp[i].z, rho[i]};
+          records[kSphStateStride * i + 1] = {sv[i].x, sv[i].y, sv[i].z,
+                                              sph::pressure_over_rho2(pr[i], rho[i])};
         }
+        auto state = b.create<Real4>(records.size(), "check sph neighbour state");
+        b.upload(state, records);
+        for (const bool over_state : {false, true})
+          for (const bool masked : {false, true}) {
+            SphForcesIO io{
+                &s.sorted_pos, &s.sorted_vel, &s.density, &s.pressure,
+                s.view(),      &s.accel,      &s.stats,   masked ? &s.neighbor_rows : nullptr};
+            io.neighbor_state = over_state ? &state : nullptr;
+            sph_forces(b, cs.params, io);
+            const auto a = b.download(s.accel);
+            std::vector<double> w(a.size());
+            for (size_t i = 0; i < a.size(); ++i) w[i] = a[i].w;
+            std::string variant = masked ? m + " over row masks" : m;
+            if (over_state)
+              variant += masked ? " and the neighbour state" : " over the neighbour state";
+            out.push_back({"neighbours " + variant, {}, w});
+            out.push_back({"accel " + variant, {}, xyz_components(a)});
+          }
       })));
   // Every integrator stage: velocities within 5e-5 m/s, positions within 1e-6 m, the RK4
   // velocity sums within 1e-4 (dt = 2 ms, accelerations up to 30 m/s^2), walls on.

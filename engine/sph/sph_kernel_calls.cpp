@@ -37,8 +37,8 @@ void sph_density(Backend& b, const SphStepParams& p, const SphDensityIO& io) {
   b.sph_density(p, given(b, io.positions, k, "positions"), given(b, io.grid.cells, k, "cells"),
                 given(b, io.grid.cell_start, k, "cell_start"),
                 given(b, io.grid.cell_end, k, "cell_end"), given(b, io.density, k, "density"),
-                given(b, io.pressure, k, "pressure"), given(b, io.stats, k, "stats"), io.reach_rows,
-                io.neighbor_rows);
+                given(b, io.pressure, k, "pressure"), given(b, io.stats, k, "stats"), io.velocities,
+                io.neighbor_state, io.reach_rows, io.neighbor_rows);
 }
 
 void sph_forces(Backend& b, const SphStepParams& p, const SphForcesIO& io) {
@@ -48,7 +48,7 @@ void sph_forces(Backend& b, const SphStepParams& p, const SphForcesIO& io) {
                given(b, io.density, k, "density"), given(b, io.pressure, k, "pressure"),
                given(b, io.grid.cells, k, "cells"), given(b, io.grid.cell_start, k, "cell_start"),
                given(b, io.grid.cell_end, k, "cell_end"), given(b, io.accel, k, "accel"),
-               given(b, io.stats, k, "stats"), io.neighbor_rows);
+               given(b, io.stats, k, "stats"), io.neighbor_state, io.neighbor_rows);
 }
 
 void sph_integrate(Backend& b, const SphIntegrateParams& p, const SphIntegrateIO& io) {

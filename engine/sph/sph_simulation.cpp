@@ -52,6 +52,14 @@ SphSimulation::SphSimulation(Backend& backend, const SphScene& scene, SphComm* c
       throw_invalid("sph", "MASAV_SPH_REACH", v, "auto, on or off");
     reach_wanted_ = v != "off";
   }
+  // MASAV_SPH_NEIGHBOR_STATE=off: sph_forces reads positions, velocities, density and pressure
+  // per neighbour instead of sph_density's neighbour state (the same bits; its A/B).
+  if (const char* env = std::getenv("MASAV_SPH_NEIGHBOR_STATE"); env && *env) {
+    const std::string v = env;
+    if (v != "on" && v != "off" && v != "auto")
+      throw_invalid("sph", "MASAV_SPH_NEIGHBOR_STATE", v, "auto, on or off");
+    state_wanted_ = v != "off";
+  }
   const int ranks = comm ? comm->size() : 1;
   check_capacity(backend_, scene_, ranks);
   layout_ = build_particles(scene_);
@@ -239,10 +247,16 @@ void SphSimulation::evaluate(const Buffer<Real4>& x, const Buffer<Real4>& v, Sph
     density_params.reach_radius = double(step_params_.grid.cell_size);
     density_io.reach_rows = &reach_rows_;
   }
+  // The neighbour state is kept in one process only (neighbor_state_fits).
+  const Buffer<Real4>* state = neighbor_state_.valid() ? &neighbor_state_ : nullptr;
+  if (state) {
+    density_io.velocities = &v;
+    density_io.neighbor_state = &neighbor_state_;
+  }
   sph_density(backend_, density_params, density_io);
   mark(SphStage::density);
-  const SphForcesIO forces{&x,   &v,      &density_,   &pressure_,
-                           view, &accel_, &stats_buf_, neighbor_rows()};
+  SphForcesIO forces{&x, &v, &density_, &pressure_, view, &accel_, &stats_buf_, neighbor_rows()};
+  forces.neighbor_state = state;
   if (!ranks_) {
     sph_forces(backend_, step_params_, forces);
   } else {

@@ -164,6 +164,8 @@ class SphSimulation {
   uint64_t block_replays() const { return block_replays_; }  // blocks rolled back and replayed
   // RK4: whether its later evaluations walk the first one's reach masks (SphReach).
   bool keeps_reach_masks() const { return reach_rows_.valid(); }
+  // Whether sph_forces reads sph_density's neighbour state (kSphStateStride).
+  bool keeps_neighbor_state() const { return neighbor_state_.valid(); }
 
   double time() const { return time_; }
   uint64_t steps() const { return steps_; }
@@ -390,6 +392,9 @@ class SphSimulation {
   // h + skin rounded up), which its other three walk (SphReach); empty where not kept (see
   // keeps_reach_rows).
   Buffer<uint32_t> reach_rows_;
+  // sph_density's neighbour state (kSphStateStride) for sph_forces at the same positions and
+  // velocities; empty where not kept (see neighbor_state_fits).
+  Buffer<Real4> neighbor_state_;
   Buffer<Real> density_, pressure_;
   // dfsph: the factor at pos_ (or the step's new positions), one iteration's kappa, each
   // solve's kappa sum in pos_'s order (warm starts) and in the new order, the residual slots.
@@ -403,6 +408,7 @@ class SphSimulation {
   uint32_t last_iterations_[2] = {0, 0};
   bool dfsph_queue_ = true;
   bool reach_wanted_ = true;  // MASAV_SPH_REACH: RK4 keeps the reach masks where they fit
+  bool state_wanted_ = true;  // MASAV_SPH_NEIGHBOR_STATE: the neighbour state, where it fits
   uint64_t dfsph_residual_reads_ = 0;
   SphSolveStats solve_stats_;
   // The states at the start of run()'s pending block and of the one after it; empty where they

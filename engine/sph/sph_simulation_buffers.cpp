@@ -15,19 +15,22 @@ namespace {
 // Device memory the simulation needs per particle: 10 Real4 arrays, 2 Real (8 with dfsph's
 // factor and kappas), 2 ids, the grid's 4 words (cells, order, and the counting build's counts
 // and ranks), `mask_sets` sets of row masks (the neighbour rows and RK4's reach masks, where
-// kept), and with `checkpoint` one of run()'s checkpoints (3 Real4 and ids).
+// kept), with `state` the neighbour state (kSphStateStride Real4), and with `checkpoint` one of
+// run()'s checkpoints (3 Real4 and ids).
 uint64_t bytes_per_particle(const Backend& b, int mask_sets, bool checkpoint = false,
-                            bool dfsph = false) {
+                            bool dfsph = false, bool state = false) {
   return 10 * 4 * b.real_bytes() + (dfsph ? 8 : 2) * b.real_bytes() + 6 * 4 +
-         uint64_t(mask_sets) * kSphRowMaskWords * 4 + (checkpoint ? 3 * 4 * b.real_bytes() + 4 : 0);
+         uint64_t(mask_sets) * kSphRowMaskWords * 4 +
+         (state ? kSphStateStride * 4 * b.real_bytes() : 0) +
+         (checkpoint ? 3 * 4 * b.real_bytes() + 4 : 0);
 }
 
 // How many of the checkpoints run() keeps for its blocks (up to `wanted`) fit the memory budget
-// check_capacity applies (with the masks that are kept).
-int keeps_checkpoints(const Backend& b, uint64_t n, int mask_sets, int wanted) {
+// check_capacity applies (with the masks and the neighbour state that are kept).
+int keeps_checkpoints(const Backend& b, uint64_t n, int mask_sets, bool state, int wanted) {
   const Capabilities& caps = b.caps();
-  const uint64_t base = bytes_per_particle(b, mask_sets);
-  const uint64_t each = bytes_per_particle(b, mask_sets, true) - base;
+  const uint64_t base = bytes_per_particle(b, mask_sets, false, false, state);
+  const uint64_t each = bytes_per_particle(b, mask_sets, true, false, state) - base;
   int k = 0;
   while (k < wanted && (!caps.device_memory_bytes ||
                         n * (base + uint64_t(k + 1) * each) <= caps.device_memory_bytes / 2))
@@ -61,6 +64,20 @@ bool keeps_reach_rows(const Backend& b, uint64_t n, bool wanted, bool neighbor_r
   if (caps.max_buffer_bytes && mask_bytes > caps.max_buffer_bytes) return false;
   return !caps.device_memory_bytes ||
          n * bytes_per_particle(b, neighbor_rows ? 2 : 1) <= caps.device_memory_bytes / 2;
+}
+
+// Whether sph_density writes the neighbour state that sph_forces then reads (kSphStateStride):
+// where `wanted` (MASAV_SPH_NEIGHBOR_STATE), in one process (a rank's halos exchange density and
+// pressure, not the state), where it fits one buffer and, with the masks kept, the memory budget
+// check_capacity applies. dfsph never: its viscosity forces use the velocities its divergence
+// solve changed after sph_density.
+bool neighbor_state_fits(const Backend& b, uint64_t n, bool wanted, int mask_sets) {
+  if (!wanted) return false;
+  const Capabilities& caps = b.caps();
+  const uint64_t state_bytes = n * kSphStateStride * 4 * b.real_bytes();
+  if (caps.max_buffer_bytes && state_bytes > caps.max_buffer_bytes) return false;
+  return !caps.device_memory_bytes ||
+         n * bytes_per_particle(b, mask_sets, false, false, true) <= caps.device_memory_bytes / 2;
 }
 
 }  // namespace
@@ -137,15 +154,16 @@ void SphSimulation::allocate_particle_buffers() {
   if (scene_.integrator == SphIntegrator::rk4 && !dfsph() &&
       keeps_reach_rows(backend_, c, reach_wanted_, neighbor_rows_.valid()))
     reach_rows_ = backend_.create<uint32_t>(size_t(kSphRowMaskWords) * c, "sph rk4 reach masks");
+  const int mask_sets = int(neighbor_rows_.valid()) + int(reach_rows_.valid());
+  if (!dfsph() && !ranks_ && neighbor_state_fits(backend_, c, state_wanted_, mask_sets))
+    neighbor_state_ = backend_.create<Real4>(size_t(kSphStateStride) * c, "sph neighbour state");
   if (dfsph()) allocate_dfsph();
   // dfsph reads its solves' residuals every iteration: it steps one at a time (no blocks).
   // The second checkpoint lets run() record a block while the one before it is pending: in one
   // process, where both fit.
   const int checkpoints =
-      dfsph()
-          ? 0
-          : keeps_checkpoints(backend_, c, int(neighbor_rows_.valid()) + int(reach_rows_.valid()),
-                              ranks_ ? 1 : 2);
+      dfsph() ? 0
+              : keeps_checkpoints(backend_, c, mask_sets, neighbor_state_.valid(), ranks_ ? 1 : 2);
   for (int k = 0; k < checkpoints; ++k) {
     Checkpoint& cp = checkpoints_[size_t(k)];
     cp.pos = real4("sph checkpoint positions");
@@ -187,6 +205,7 @@ void SphSimulation::reserve(uint32_t local) {
     grow(backend_, *b, c);
   grow(backend_, neighbor_rows_, size_t(kSphRowMaskWords) * c);
   grow(backend_, reach_rows_, size_t(kSphRowMaskWords) * c);
+  grow(backend_, neighbor_state_, size_t(kSphStateStride) * c);
 }
 
 }  // namespace masav

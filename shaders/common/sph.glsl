@@ -27,6 +27,11 @@ float sph_pressure_of(float rho, SphStepLayout c) {
   return p;
 }
 
+// The pressure term's per-particle factor (sph::pressure_over_rho2): sph_forces computes it, or
+// sph_density writes it into the neighbour state, with this one expression, so both give the
+// same bits.
+float sph_pressure_over_rho2(float pr, float rho) { return pr / (rho * rho); }
+
 ivec3 sph_cell_coords(uint id, uvec3 dims) {
   const uint yz = dims.y * dims.z;
   return ivec3(int(id / yz), int((id % yz) / dims.z), int(id % dims.z));
