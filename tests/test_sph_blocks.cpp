@@ -16,6 +16,7 @@
 #include "engine/sph/sph_simulation.h"
 #include "registry/backends.h"
 #include "tests/backend_fixture.h"
+#include "tests/scoped_env.h"
 #include "tests/sph_state_compare.h"
 
 using namespace masav;
@@ -68,30 +69,12 @@ Outcome run_in_blocks(const SphScene& s, uint32_t block, uint64_t steps,
 // The backend under test created again with its captures off (Vulkan: no replays; CUDA: no
 // graphs); the variables are restored after.
 std::unique_ptr<Backend> backend_without_captures() {
-  struct Saved {
-    const char* name;
-    std::optional<std::string> value;
-  };
-  std::vector<Saved> saved;
-  for (const char* name : {"MASAV_VK_REPLAY", "MASAV_CUDA_GRAPHS"}) {
-    const char* v = std::getenv(name);
-    saved.push_back({name, v ? std::optional<std::string>(v) : std::nullopt});
-  }
-  setenv("MASAV_VK_REPLAY", "off", 1);
-  setenv("MASAV_CUDA_GRAPHS", "0", 1);
-  std::unique_ptr<Backend> b;
+  const test::ScopedEnv replay("MASAV_VK_REPLAY", "off"), graphs("MASAV_CUDA_GRAPHS", "0");
   try {
-    b = create_backend(test::backend_name());
+    return create_backend(test::backend_name());
   } catch (...) {
-    b.reset();
+    return nullptr;
   }
-  for (const Saved& s : saved) {
-    if (s.value)
-      setenv(s.name, s.value->c_str(), 1);
-    else
-      unsetenv(s.name);
-  }
-  return b;
 }
 
 }  // namespace

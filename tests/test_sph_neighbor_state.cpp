@@ -7,10 +7,8 @@
 #include <doctest/doctest.h>
 
 #include <cmath>
-#include <cstdlib>
 #include <cstring>
 #include <optional>
-#include <string>
 #include <vector>
 
 #include "engine/core/error.h"
@@ -19,6 +17,7 @@
 #include "engine/sph/sph_presets.h"
 #include "engine/sph/sph_simulation.h"
 #include "tests/backend_fixture.h"
+#include "tests/scoped_env.h"
 #include "tests/sph_fixture.h"
 #include "tests/sph_state_compare.h"
 
@@ -117,21 +116,13 @@ namespace {
 // A dam break of 1,000 particles with `integrator`, 24 steps in blocks of 8, with
 // MASAV_SPH_NEIGHBOR_STATE as given (restored after); whether the simulation kept the state.
 SphState run_dam_break(SphIntegrator integrator, const char* state, bool& kept) {
-  const char* name = "MASAV_SPH_NEIGHBOR_STATE";
-  const char* old = std::getenv(name);
-  const std::optional<std::string> saved = old ? std::optional<std::string>(old) : std::nullopt;
-  auto restore = [&] { saved ? setenv(name, saved->c_str(), 1) : unsetenv(name); };
-  setenv(name, state, 1);
   SphScene s = make_preset("dam-break", 1000);
   s.integrator = integrator;
   std::optional<SphSimulation> sim;
-  try {
+  {
+    const test::ScopedEnv env("MASAV_SPH_NEIGHBOR_STATE", state);
     sim.emplace(test::backend(), s);
-  } catch (...) {
-    restore();
-    throw;
   }
-  restore();
   sim->set_block_steps(8);
   CHECK(sim->run(24) == 24);
   kept = sim->keeps_neighbor_state();

@@ -23,6 +23,7 @@
 #include "engine/sph/sph_simulation.h"
 #include "engine/util/error_metrics.h"
 #include "tests/backend_fixture.h"
+#include "tests/scoped_env.h"
 #include "tests/sph_fixture.h"
 #include "tests/sph_state_compare.h"
 
@@ -195,19 +196,13 @@ namespace {
 // An RK4 dam break of 1,000 particles, 24 steps in blocks of 8, with MASAV_SPH_REACH as given
 // (restored after); whether the simulation kept the reach masks.
 SphState run_rk4(const char* reach, bool& kept) {
-  const char* old = std::getenv("MASAV_SPH_REACH");
-  const std::optional<std::string> saved = old ? std::optional<std::string>(old) : std::nullopt;
-  setenv("MASAV_SPH_REACH", reach, 1);
   SphScene s = make_preset("dam-break", 1000);
   s.integrator = SphIntegrator::rk4;
   std::optional<SphSimulation> sim;
-  try {
+  {
+    const test::ScopedEnv env("MASAV_SPH_REACH", reach);
     sim.emplace(test::backend(), s);
-  } catch (...) {
-    saved ? setenv("MASAV_SPH_REACH", saved->c_str(), 1) : unsetenv("MASAV_SPH_REACH");
-    throw;
   }
-  saved ? setenv("MASAV_SPH_REACH", saved->c_str(), 1) : unsetenv("MASAV_SPH_REACH");
   sim->set_block_steps(8);
   CHECK(sim->run(24) == 24);
   kept = sim->keeps_reach_masks();
