@@ -56,18 +56,19 @@ void VulkanBackend::run_kernel(const Params& p, uint64_t items, Buffers&... buff
           K == KernelId::sph_density ? sph_wall_split_.density : sph_wall_split_.others;
       constants.push_back(split ? 1u : 0u);
       // Whether the call passes the neighbour state (constant 7), its (x, rho | v, p / rho^2)
-      // records: sph_density's buffer 8, sph_forces' buffer 9 (kernels.inc).
+      // records, read by name from the call's arguments.
+      const bool state = KernelArgs<K>{p, items, buffers...}.neighbor_state != nullptr;
       if constexpr (K == KernelId::sph_density) {  // positions, cells, cell_start, cell_end
         texels = {rgba32, r32u, r32u, r32u, none, none, none, rgba32, none, none, none};
         // How it uses the reach masks (constant 6): a pipeline each, none paying for the others.
         constants.push_back(uint32_t(layout.reach));
-        constants.push_back(impls[8] ? 1u : 0u);
+        constants.push_back(state ? 1u : 0u);
       }
       if constexpr (K == KernelId::sph_forces) {
         // ... velocities, density, pressure; the neighbour state, neighbor_rows
         texels = {rgba32, rgba32, r32f, r32f, r32u, r32u, r32u, none, none, rgba32, r32u};
         constants.push_back(sph_images_after_ ? 1u : 0u);  // the masked walk's wall images
-        constants.push_back(impls[9] ? 1u : 0u);
+        constants.push_back(state ? 1u : 0u);
       }
     }
     // The nebula kernels' paths through the density grid, the DFSPH solves' neighbour walks, the

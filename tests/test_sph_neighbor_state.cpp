@@ -8,18 +8,16 @@
 
 #include <cmath>
 #include <cstring>
-#include <optional>
+#include <utility>
 #include <vector>
 
 #include "engine/core/error.h"
 #include "engine/kernels/sph_kernels.h"
 #include "engine/sph/sph_kernel_calls.h"
-#include "engine/sph/sph_presets.h"
-#include "engine/sph/sph_simulation.h"
 #include "tests/backend_fixture.h"
-#include "tests/scoped_env.h"
 #include "tests/sph_fixture.h"
 #include "tests/sph_state_compare.h"
+#include "tests/sph_switch_run.h"
 
 using namespace masav;
 
@@ -38,9 +36,12 @@ void check_state_and_forces(Backend& b, const test::SphCase& c) {
   const uint32_t n = c.params.n;
   test::SphBuffers s = test::upload_sph_case(b, c);
   auto state = b.create<Real4>(size_t(kSphStateStride) * n, "test neighbour state");
-  auto forces = [&](const Buffer<Real4>* with_state, const Buffer<uint32_t>* rows) {
-    SphForcesIO io{&s.sorted_pos, &s.sorted_vel, &s.density, &s.pressure,
-                   s.view(),      &s.accel,      &s.stats,   rows};
+  auto forces = [&](const Buffer<Real4>* with_state, const Buffer<uint32_t>* rows,
+                    const Buffer<Real4>* velocities = nullptr) {
+    SphForcesIO io{&s.sorted_pos, velocities ? velocities : &s.sorted_vel,
+                   &s.density,    &s.pressure,
+                   s.view(),      &s.accel,
+                   &s.stats,      rows};
     io.neighbor_state = with_state;
     sph_forces(b, c.params, io);
     return b.download(s.accel);
@@ -72,6 +73,15 @@ void check_state_and_forces(Backend& b, const test::SphCase& c) {
   // Over the state, the forces' bits are those over the four arrays, walked whole or by masks.
   CHECK(same_bits(forces(&state, nullptr), forces(nullptr, nullptr)));
   CHECK(same_bits(forces(&state, &s.neighbor_rows), forces(nullptr, &s.neighbor_rows)));
+  // And they are read from the state: one made with the particles at rest gives the forces of
+  // the particles at rest (the viscosity term differs), whatever the velocities array holds.
+  auto at_rest = b.create<Real4>(n, "test velocities at rest");
+  b.upload(at_rest, std::vector<Vec4d>(n, Vec4d{}));
+  io.velocities = &at_rest;
+  sph_density(b, c.params, io);
+  const auto over_rest_state = forces(&state, &s.neighbor_rows);
+  CHECK(same_bits(over_rest_state, forces(nullptr, &s.neighbor_rows, &at_rest)));
+  CHECK_FALSE(same_bits(over_rest_state, forces(nullptr, &s.neighbor_rows)));
 }
 
 }  // namespace
@@ -113,20 +123,12 @@ TEST_CASE("sph kernels reject a neighbour state that is too small, aliased or wi
 
 namespace {
 
-// A dam break of 1,000 particles with `integrator`, 24 steps in blocks of 8, with
-// MASAV_SPH_NEIGHBOR_STATE as given (restored after); whether the simulation kept the state.
+// A dam break with `integrator` and MASAV_SPH_NEIGHBOR_STATE as given; whether the simulation
+// kept the state.
 SphState run_dam_break(SphIntegrator integrator, const char* state, bool& kept) {
-  SphScene s = make_preset("dam-break", 1000);
-  s.integrator = integrator;
-  std::optional<SphSimulation> sim;
-  {
-    const test::ScopedEnv env("MASAV_SPH_NEIGHBOR_STATE", state);
-    sim.emplace(test::backend(), s);
-  }
-  sim->set_block_steps(8);
-  CHECK(sim->run(24) == 24);
-  kept = sim->keeps_neighbor_state();
-  return sim->download();
+  test::SwitchRun r = test::run_dam_break_with(integrator, "MASAV_SPH_NEIGHBOR_STATE", state);
+  kept = r.neighbor_state;
+  return std::move(r.state);
 }
 
 }  // namespace

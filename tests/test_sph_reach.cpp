@@ -12,20 +12,18 @@
 #include <cmath>
 #include <cstdlib>
 #include <cstring>
-#include <optional>
 #include <random>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "engine/core/error.h"
 #include "engine/sph/sph_kernel_calls.h"
-#include "engine/sph/sph_presets.h"
-#include "engine/sph/sph_simulation.h"
 #include "engine/util/error_metrics.h"
 #include "tests/backend_fixture.h"
-#include "tests/scoped_env.h"
 #include "tests/sph_fixture.h"
 #include "tests/sph_state_compare.h"
+#include "tests/sph_switch_run.h"
 
 using namespace masav;
 
@@ -193,20 +191,11 @@ TEST_CASE("sph_density rejects reach masks it cannot use, naming the field") {
 
 namespace {
 
-// An RK4 dam break of 1,000 particles, 24 steps in blocks of 8, with MASAV_SPH_REACH as given
-// (restored after); whether the simulation kept the reach masks.
+// An RK4 dam break with MASAV_SPH_REACH as given; whether the simulation kept the reach masks.
 SphState run_rk4(const char* reach, bool& kept) {
-  SphScene s = make_preset("dam-break", 1000);
-  s.integrator = SphIntegrator::rk4;
-  std::optional<SphSimulation> sim;
-  {
-    const test::ScopedEnv env("MASAV_SPH_REACH", reach);
-    sim.emplace(test::backend(), s);
-  }
-  sim->set_block_steps(8);
-  CHECK(sim->run(24) == 24);
-  kept = sim->keeps_reach_masks();
-  return sim->download();
+  test::SwitchRun r = test::run_dam_break_with(SphIntegrator::rk4, "MASAV_SPH_REACH", reach);
+  kept = r.reach_masks;
+  return std::move(r.state);
 }
 
 }  // namespace
