@@ -50,6 +50,7 @@ struct StepCounts {
   double host_ms = 0;       // CPU time of the calling thread: recording, submitting, reading stats
   double graphs = 0;        // captured blocks queued as one unit (CUDA graphs, Vulkan replays)
   double graph_builds = 0;  // of them, those that built their unit (the rest reused one)
+  double pipelines_built = 0;  // kernel forms compiled mid-run (DeviceCounters::pipelines_built)
 };
 
 struct Throughput {
@@ -90,7 +91,7 @@ Throughput measure(Backend& b, const SphScene& scene, int steps, uint32_t block_
                 double(c.device_copies) / counted,  double(c.bytes_to_device) / counted,
                 double(c.bytes_to_host) / counted,  double(c.async_reads) / counted,
                 (thread_cpu_ms() - cpu0) / counted, double(c.graphs) / counted,
-                double(c.graph_builds) / counted};
+                double(c.graph_builds) / counted,   double(c.pipelines_built) / counted};
   t.wall_ms = wall / counted;
   // Device time per stage, from timestamps, in a second run.
   sim.set_profiling(true);
@@ -203,11 +204,11 @@ int run_sph_bench(const SphBenchOptions& o, JsonWriter& j) {
               "  {:<7} {:<10} {:>9} per step: "
               "{:.1f} launches, {:.1f} barriers, {:.3f} host syncs, {:.3f} asynchronous reads, "
               "{:.3f} graphs ({:.3f} built), {:.1f} fills, {:.1f} device copies, "
-              "{:.0f} B to device, {:.0f} B to host, {:.3f} ms host CPU; "
+              "{:.0f} B to device, {:.0f} B to host, {:.3f} ms host CPU, {:.3f} pipelines built; "
               "compression (rho/rho0 - 1) mean {:.2f}%, max {:.2f}% at the end\n",
               "", "", "", c.launches, c.barriers, c.host_syncs, c.async_reads, c.graphs,
               c.graph_builds, c.fills, c.device_copies, c.bytes_to_device, c.bytes_to_host,
-              c.host_ms, 100 * t.mean_compression, 100 * t.max_compression);
+              c.host_ms, c.pipelines_built, 100 * t.mean_compression, 100 * t.max_compression);
           begin_row(j, *b);
           j.field("integrator", to_string(integ)).field("particles", t.particles);
           j.field("timed_steps", t.steps).field("dt_s", t.dt);
@@ -227,6 +228,7 @@ int run_sph_bench(const SphBenchOptions& o, JsonWriter& j) {
           j.field("graph_builds", c.graph_builds);
           j.field("device_copies", c.device_copies).field("bytes_to_device", c.bytes_to_device);
           j.field("bytes_to_host", c.bytes_to_host).field("host_cpu_ms", c.host_ms);
+          j.field("pipelines_built", c.pipelines_built);
           j.end_object();
           j.end_object();
         };

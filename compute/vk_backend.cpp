@@ -76,7 +76,7 @@ bool sph_images_after(std::string_view device_type) {
 VulkanBackend::VulkanBackend(const BackendOptions& options)
     : options_(options),
       ctx_(options.context),
-      pipelines_(ctx_, options.workgroup_size, options.count_loop_ticks),
+      pipelines_(ctx_, options.workgroup_size, options.count_loop_ticks, counters_),
       stream_(ctx_, 4096, counters_) {
   if (tile_size() >= 65536)
     throw_invalid("vulkan", "workgroup_size * items_per_thread", std::to_string(tile_size()),

@@ -40,8 +40,12 @@ std::string Pipelines::cache_path() const {
   return fmt::format("{}/vk_pipelines_{}.bin", dir, uuid);
 }
 
-Pipelines::Pipelines(const Context& ctx, uint32_t workgroup_size, bool count_loop_ticks)
-    : ctx_(ctx), workgroup_size_(workgroup_size), count_loop_ticks_(count_loop_ticks) {
+Pipelines::Pipelines(const Context& ctx, uint32_t workgroup_size, bool count_loop_ticks,
+                     DeviceCounters& counters)
+    : ctx_(ctx),
+      workgroup_size_(workgroup_size),
+      count_loop_ticks_(count_loop_ticks),
+      counters_(counters) {
   // The driver validates the blob's header against its own UUID and ignores a stale one.
   const std::string path = cache_path();
   const std::optional<std::string> blob =
@@ -116,6 +120,7 @@ const Kernel& Pipelines::get(const KernelSpec& spec) {
     throw Error("vulkan", spec.shader, fmt::format("pipeline creation failed: {}", e.what()),
                 "update the Vulkan driver; if it persists, report the device and driver");
   }
+  ++counters_.pipelines_built;
   return *kernels_.emplace(key, std::move(k)).first->second;
 }
 

@@ -9,6 +9,7 @@
 
 #include "compute/device/vk_context.h"
 #include "compute/device/vk_memory.h"
+#include "engine/core/device_api.h"
 
 namespace masav::vk {
 
@@ -39,7 +40,9 @@ inline ::vk::DescriptorType descriptor_type(const Kernel& k, uint32_t binding) {
 
 class Pipelines {
  public:
-  Pipelines(const Context& ctx, uint32_t workgroup_size, bool count_loop_ticks);
+  // Counts each pipeline it creates in counters.pipelines_built.
+  Pipelines(const Context& ctx, uint32_t workgroup_size, bool count_loop_ticks,
+            DeviceCounters& counters);
   ~Pipelines();  // writes the pipeline cache back to disk
 
   const Kernel& get(const KernelSpec& spec);
@@ -51,6 +54,7 @@ class Pipelines {
   const Context& ctx_;
   uint32_t workgroup_size_;
   bool count_loop_ticks_;
+  DeviceCounters& counters_;
   ::vk::raii::PipelineCache cache_ = nullptr;
   std::map<std::string, std::unique_ptr<Kernel>> kernels_;
 };

@@ -5,12 +5,14 @@
 
 #include <cstdlib>
 #include <cstring>
+#include <memory>
 #include <new>
 #include <numeric>
 #include <string>
 #include <vector>
 
 #include "engine/core/error.h"
+#include "registry/backends.h"
 #include "tests/backend_fixture.h"
 
 using namespace masav;
@@ -209,6 +211,24 @@ TEST_CASE("kernel timing records each call that ran, by kernel, in call order") 
   for (const KernelTiming& k : t) CHECK(b.timestamp_ns(k.end) >= b.timestamp_ns(k.begin));
   CHECK(b.timestamp_ns(t[1].begin) >= b.timestamp_ns(t[0].end));
   CHECK(b.take_kernel_timings().empty());  // taken once
+}
+
+TEST_CASE("a kernel form is built once per backend, and counted where it is built at run time") {
+  // DeviceCounters::pipelines_built: Vulkan creates a kernel form's pipeline at its first use on
+  // a backend (a fresh one here, so the shared one's earlier tests have built nothing of it);
+  // CUDA and the CPU reference compiled every kernel ahead of time.
+  const std::unique_ptr<Backend> fresh = create_backend(test::backend_name());
+  Backend& b = *fresh;
+  auto x = b.create<uint32_t>(1024, "x");
+  b.finish();
+  b.reset_counters();
+  b.philox_u32({1, 1, 0}, x);
+  b.finish();
+  const uint64_t first = b.counters().pipelines_built;
+  CHECK(first == (b.name() == "vulkan" ? 1u : 0u));
+  b.philox_u32({1, 2, 0}, x);
+  b.finish();
+  CHECK(b.counters().pipelines_built == first);  // the same form again: built already
 }
 
 TEST_CASE("a buffer over the device's limit is refused with the largest size that fits") {

@@ -31,6 +31,11 @@ struct DeviceCounters {
   // (CUDA: instantiated a graph; Vulkan: recorded the commands); the others reused one.
   uint64_t graphs = 0;
   uint64_t graph_builds = 0;
+  // Kernel forms compiled while running (Vulkan: pipelines created, each form's first use on
+  // this backend; a driver compile unless its pipeline cache holds it, ~0.1 s on lavapipe). CUDA
+  // and the CPU reference compile every kernel ahead of time: none. A step that builds one
+  // stalls the host, so a steady run should count none.
+  uint64_t pipelines_built = 0;
 };
 
 class DeviceApi;

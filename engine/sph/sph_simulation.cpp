@@ -238,25 +238,34 @@ Buffer<uint32_t>* SphSimulation::neighbor_rows() {
   return neighbor_rows_.valid() ? &neighbor_rows_ : nullptr;
 }
 
+SphDensityIO SphSimulation::density_io(const Buffer<Real4>& x, const Buffer<Real4>& v) {
+  SphDensityIO io{&x, sph_grid_view(grid_), &density_, &pressure_, &stats_buf_, neighbor_rows()};
+  // The neighbour state is kept in one process only (neighbor_state_fits).
+  if (neighbor_state_.valid()) {
+    io.velocities = &v;
+    io.neighbor_state = &neighbor_state_;
+  }
+  return io;
+}
+
+SphForcesIO SphSimulation::forces_io(const Buffer<Real4>& x, const Buffer<Real4>& v) {
+  SphForcesIO io{&x,      &v,          &density_,      &pressure_, sph_grid_view(grid_),
+                 &accel_, &stats_buf_, neighbor_rows()};
+  if (neighbor_state_.valid()) io.neighbor_state = &neighbor_state_;
+  return io;
+}
+
 void SphSimulation::evaluate(const Buffer<Real4>& x, const Buffer<Real4>& v, SphReach reach) {
-  const SphGridView view = sph_grid_view(grid_);
   SphStepParams density_params = step_params_;
-  SphDensityIO density_io{&x, view, &density_, &pressure_, &stats_buf_, neighbor_rows()};
+  SphDensityIO density = density_io(x, v);
   if (reach != SphReach::none && reach_rows_.valid()) {
     density_params.reach = reach;
     density_params.reach_radius = double(step_params_.grid.cell_size);
-    density_io.reach_rows = &reach_rows_;
+    density.reach_rows = &reach_rows_;
   }
-  // The neighbour state is kept in one process only (neighbor_state_fits).
-  const Buffer<Real4>* state = neighbor_state_.valid() ? &neighbor_state_ : nullptr;
-  if (state) {
-    density_io.velocities = &v;
-    density_io.neighbor_state = &neighbor_state_;
-  }
-  sph_density(backend_, density_params, density_io);
+  sph_density(backend_, density_params, density);
   mark(SphStage::density);
-  SphForcesIO forces{&x, &v, &density_, &pressure_, view, &accel_, &stats_buf_, neighbor_rows()};
-  forces.neighbor_state = state;
+  const SphForcesIO forces = forces_io(x, v);
   if (!ranks_) {
     sph_forces(backend_, step_params_, forces);
   } else {

@@ -310,6 +310,11 @@ class SphSimulation {
   // Density and forces at x, v; `reach`: how sph_density uses the reach masks, where kept.
   void evaluate(const Buffer<Real4>& x, const Buffer<Real4>& v, SphReach reach = SphReach::none);
   Buffer<uint32_t>* neighbor_rows();  // null where the masks are not kept
+  // sph_density's and sph_forces's buffers at x, v in the step's own forms (the row masks and
+  // the neighbour state where kept): every evaluation uses them, so a state read between steps
+  // runs the pipelines the steps built and compiles none mid-run.
+  SphDensityIO density_io(const Buffer<Real4>& x, const Buffer<Real4>& v);
+  SphForcesIO forces_io(const Buffer<Real4>& x, const Buffer<Real4>& v);
   void integrate(SphStageOp op, double dt, const Buffer<Real4>& x0, const Buffer<Real4>& v0,
                  const Buffer<Real4>* vk, Buffer<Real4>* x_out, Buffer<Real4>& v_out,
                  Buffer<Real4>* sum_x, Buffer<Real4>* sum_v);

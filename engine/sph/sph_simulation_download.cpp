@@ -50,12 +50,10 @@ SphSimulation::StateReads SphSimulation::queue_state_reads(std::optional<StatsKe
     // the positions, velocities and ids into a fresh grid (scratch buffers), evaluate there.
     rebuild_moving(pos_, ta_, vel_, tb_, ids_, ids_t_);
     keep.emplace(*this);
-    const SphGridView view = sph_grid_view(grid_);
-    sph_density(backend_, step_params_,
-                SphDensityIO{&ta_, view, &density_, &pressure_, &stats_buf_, neighbor_rows()});
-    sph_forces(backend_, step_params_,
-               SphForcesIO{&ta_, &tb_, &density_, &pressure_, view, &accel_, &stats_buf_,
-                           neighbor_rows()});
+    // The steps' own kernel forms: the watchdog's read every SphWatchdog::kEnergyEvery steps
+    // compiles no pipeline mid-run (the neighbour state it writes is the next step's to replace).
+    sph_density(backend_, step_params_, density_io(ta_, tb_));
+    sph_forces(backend_, step_params_, forces_io(ta_, tb_));
     accel_valid_ = false;
     px = &ta_;
     pv = &tb_;
