@@ -236,7 +236,9 @@ TEST_CASE("[sph-physics] run() takes each block's stats while the next block run
   for (SphIntegrator integ : {SphIntegrator::leapfrog, SphIntegrator::euler}) {
     const std::string name = to_string(integ);
     CAPTURE(name);
-    Backend& b = test::backend();
+    // A backend of its own: the suite's shared one may have built the other forms already.
+    const std::unique_ptr<Backend> fresh = create_backend(test::backend_name());
+    Backend& b = *fresh;
     SphScene scene = make_preset("water", 1000);
     scene.integrator = integ;
     SphSimulation sim(b, scene);
