@@ -69,7 +69,7 @@ std::vector<std::unique_ptr<Backend>> open_backends(const BackendChoice& choice,
                                                     const std::string& cpu_hint) {
   std::vector<std::unique_ptr<Backend>> out;
   if (choice.backend != "all") {
-    out.push_back(create_backend(choice.backend, choice.device));
+    out.push_back(open_backend(choice));
     note_cpu_devices(out, cpu_hint);
     return out;
   }
@@ -78,7 +78,7 @@ std::vector<std::unique_ptr<Backend>> open_backends(const BackendChoice& choice,
       fmt::print("  ({} skipped: {})\n", s.name, s.reason);
       continue;
     }
-    out.push_back(create_backend(s.name, s.name == "cpu" ? "" : choice.device));
+    out.push_back(open_backend(choice, s.name, s.name == "cpu" ? "" : choice.device));
   }
   note_cpu_devices(out, cpu_hint);
   return out;

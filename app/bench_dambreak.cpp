@@ -100,7 +100,7 @@ int run_dambreak(const DamBreakOptions& o) {
                   "drop it, or use --pressure wcsph");
     set_max_compression(s, *o.max_compression, "--max-compression");
   }
-  auto backend = create_backend(o.choice.backend, o.choice.device);
+  auto backend = open_backend(o.choice);
   SphSimulation sim(*backend, s);
   const SphParticles& lay = sim.layout();
   const double g = -s.gravity.y;

@@ -174,7 +174,7 @@ int run_atom(const AtomCliOptions& o) {
   // a moment and a second run cannot mix its files into this one's.
   ensure_writable_dir(o.out, "--out");
   const OutputLock lock(o.out, "--out");
-  auto backend = create_backend(o.choice.backend, o.choice.device);
+  auto backend = open_backend(o.choice);
   // The viewer of the nebula lighting sits where the raymarch camera does.
   const float half = float(atom::box_half_width(so.state, so.box_probability));
   const Vec3f eye = atom::view_eye(view, 1.9f * half * std::sqrt(3.0f));
@@ -253,7 +253,7 @@ int run_volume(const VolumeCliOptions& o) {
   const atom::ScalarVolume vol = atom::load_volume_file(o.source);
   const VolumeDesc desc = atom::volume_desc(vol);
   progress.advance(fmt::format("uploading {}x{}x{} values", desc.dims.x, desc.dims.y, desc.dims.z));
-  auto backend = create_backend(o.choice.backend, o.choice.device);
+  auto backend = open_backend(o.choice);
   auto buf = backend->create<Real>(vol.values.size(), "volume");
   backend->upload(buf, std::span<const float>(vol.values));
   progress.advance(fmt::format("raymarching {}x{} on {}", o.width, o.height, backend->name()));

@@ -88,7 +88,7 @@ Outcome check_grid(Backend& b, Backend& r, uint32_t n) {
 }
 
 int run_check(const BackendChoice& choice) {
-  auto backend = create_backend(choice.backend, choice.device);
+  auto backend = open_backend(choice);
   cpu::CpuBackend reference;
   fmt::print("self-check: {} ({}) against the CPU reference\n", backend->name(),
              backend->caps().device_name);

@@ -71,7 +71,7 @@ int run_export(const ExportOptions& o) {
   scene::SceneFile f = load_scene(o.scene);
   ensure_writable_dir(o.out, "--out");
   const OutputLock lock(o.out, "--out");
-  auto backend = create_backend(o.choice.backend, o.choice.device);
+  auto backend = open_backend(o.choice);
   const scene::SceneType& type = scene::find_scene_type(f.type);
   auto s = type.create(*backend, f.params);
   // Every frame up to the one asked for, on the clock `masav run` uses: a stepped scene (SPH)

@@ -45,13 +45,23 @@ int run_info(bool details) {
   return 0;
 }
 
+// Every tuning option (--tune KEY=VALUE), its values and what auto chooses.
+void print_tuning() {
+  fmt::print("tuning options (--tune KEY=VALUE; docs/backends.md says why each default):\n");
+  for (const TuningKey& k : tuning_keys())
+    fmt::print("  {:<24} {}\n  {:<24} {}; auto: {}\n", k.key, k.description, "", k.values,
+               k.automatic);
+}
+
 }  // namespace
 
 void add_info_command(CLI::App& app) {
   auto* cmd = app.add_subcommand("info", "list backends, devices and their limits");
-  static bool brief = false;
+  static bool brief = false, tuning = false;
   cmd->add_flag("--brief", brief, "skip opening each backend for its limits");
+  cmd->add_flag("--tuning", tuning, "list the tuning options --tune takes, with their defaults");
   cmd->callback([] {
+    if (tuning) return print_tuning();
     if (int rc = run_info(!brief)) throw CLI::RuntimeError(rc);
   });
 }

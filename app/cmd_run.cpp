@@ -48,6 +48,8 @@ int run(const RunOptions& o) {
   render::PlayerOptions po;
   po.backend = o.choice.backend;
   po.device = o.choice.device;
+  po.tuning = o.choice.tuning();
+  po.fault = fault_kernel(o.choice);
   po.graphics = render::graphics_options(o.choice.backend == "vulkan" ? o.choice.device : "");
   render::ScenePlayer player(std::move(file), po);
   const scene::ParamSet& p = player.scene().params();
@@ -144,6 +146,7 @@ void add_run_command(CLI::App& app) {
                                 "render a scene headless to PNG frames (and an MP4), "
                                 "after the cross-check",
                                 o, run);
+  add_fault_option(*cmd, o.choice);
   cmd->add_option("--frames", o.frames, "frames to render (default: the scene's run.frames)")
       ->check(CLI::Range(1, 1000000));
   add_old_option(*cmd, "-n", "--frames", o.frames)->check(CLI::Range(1, 1000000));

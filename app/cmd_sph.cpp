@@ -241,7 +241,7 @@ int run_sph(const SphOptions& given) {
   std::optional<CsvStream> csv;
   if (lead && !o.csv.empty()) csv.emplace(o.csv, diagnostics_columns(), "--csv");
   install_interrupt_handler();
-  auto backend = create_backend(o.choice.backend, rank_device(o.choice, comm));
+  auto backend = open_backend(o.choice, o.choice.backend, rank_device(o.choice, comm));
   SphSimulation sim(*backend, scene, comm);
   sim.set_block_steps(o.block_steps);
   if (resumed) {

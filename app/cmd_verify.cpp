@@ -25,9 +25,11 @@ int run_verify(const VerifyOptions& o) {
   refuse_set_conflict(o.scene, !o.reference.empty(), "--reference", "verify.reference");
   scene::SceneFile f = load_scene(o.scene);
   if (!o.reference.empty()) f.params.set("verify.reference", o.reference);
-  auto backend = create_backend(o.choice.backend, o.choice.device);
+  const std::optional<KernelId> fault = fault_kernel(o.choice);
+  auto backend = open_backend(o.choice);
   auto reference = verify::open_reference(*backend, f.params.get_text("verify.reference"));
-  const verify::CrossCheckReport r = verify::cross_check_scene(*backend, *reference, f.params);
+  const verify::CrossCheckReport r =
+      verify::cross_check_scene(*backend, *reference, f.params, fault);
   fmt::print("{}", verify::format_report(r));
   if (!o.json.empty()) {
     write_file_atomic(o.json, verify::report_json(r));
@@ -48,6 +50,7 @@ void add_verify_command(CLI::App& app) {
   cmd->add_option("--reference,-r", o.reference,
                   "second backend (default: the scene's verify.reference, auto)")
       ->check(CLI::IsMember({"auto", "cpu", "vulkan", "cuda"}));
+  add_fault_option(*cmd, o.choice);
   cmd->add_option("--json", o.json, "write the report here (\"\" for none)")->capture_default_str();
 }
 

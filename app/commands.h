@@ -1,7 +1,12 @@
 #pragma once
 // Subcommands of the masav command line; each registers its options on the CLI11 app.
 #include <CLI/CLI.hpp>
+#include <memory>
+#include <optional>
 #include <string>
+#include <vector>
+
+#include "engine/kernels/backend.h"
 
 namespace masav::app {
 
@@ -26,12 +31,25 @@ void add_raymarch_bench(CLI::App& bench);
 void add_sph_bench(CLI::App& bench);
 void add_dambreak_bench(CLI::App& bench);
 
-// Shared --backend / --device options.
+// Shared --backend / --device / --tune options.
 struct BackendChoice {
   std::string backend = "auto";
   std::string device;
+  std::vector<std::string> tune;  // key=value, in order (engine/core/tuning.h)
+  std::string inject_fault;       // verify, run, demo: see add_fault_option
+  Tuning tuning() const;          // the --tune assignments applied (throws on a bad one)
 };
 void add_backend_options(CLI::App& cmd, BackendChoice& choice, bool allow_all);
+// The backend `name` (default: the choice's) on `device` with the choice's tuning.
+std::unique_ptr<Backend> open_backend(const BackendChoice& choice);
+std::unique_ptr<Backend> open_backend(const BackendChoice& choice, const std::string& name,
+                                      const std::string& device);
+
+// The hidden --inject-fault KERNEL of the commands that cross-check (verify, run, demo): the
+// chosen backend perturbs that kernel's output during its check, so the tests can prove that a
+// mismatch is caught and stops the run.
+void add_fault_option(CLI::App& cmd, BackendChoice& choice);
+std::optional<KernelId> fault_kernel(const BackendChoice& choice);
 
 // Adds subcommand `name`. After parsing, its callback runs `run(o)`; a non-zero result is thrown
 // as CLI::RuntimeError, so main's app.exit() stays the one place that ends the process.

@@ -1,20 +1,21 @@
 #pragma once
 // How the Vulkan SPH kernels walk their neighbours: cooperatively or per lane, and split at the
-// walls or not (the device's automatic choices and the variables that override them).
+// walls or not: the automatic choice per device class of each VulkanTuning option, and why.
 //
 // Which neighbour walk the Vulkan SPH kernels take (specialisation constant 4 of
 // shaders/common/sph_coop.glsl). The cooperative walk turns a SIMD CPU driver's per-lane gathers
 // into contiguous loads and register permutes: on lavapipe it is the faster one. On a GPU the
 // per-lane walk is (an H100, 2026-11-26, 1,048,576 particles: density 0.357 ms per lane against
 // 0.878 together, the leapfrog step 0.953 against 1.479 ms), since the caches serve the lanes'
-// overlapping rows and the unions only add shuffles. MASAV_VK_SPH_COOP=on|off|auto overrides it.
+// overlapping rows and the unions only add shuffles. VulkanTuning::sph_walk overrides it.
 #include <string_view>
+
+#include "engine/core/tuning.h"
 
 namespace masav::vk {
 
-// device_type as Capabilities::device_type ("cpu" for lavapipe). Throws on a bad
-// MASAV_VK_SPH_COOP.
-bool sph_coop_walk(std::string_view device_type);
+// device_type as Capabilities::device_type ("cpu" for lavapipe).
+bool sph_coop_walk(const VulkanTuning& t, std::string_view device_type);
 
 // Which Vulkan SPH kernels skip the wall images in subgroups with no lane near a wall
 // (specialisation constant 5 of shaders/common/sph_walk.glsl): sph_forces and the DFSPH solves by
@@ -27,12 +28,12 @@ bool sph_coop_walk(std::string_view device_type);
 // a GPU (an H200, 2026-11-27, 1,048,576 particles, with the images in its walk: 0.266 ms split
 // against 0.326 in one copy). sph_forces and the DFSPH solves are not split there: unsplit,
 // forces took 0.371 ms against 0.391, the solves the same.
-// MASAV_VK_SPH_WALL_SPLIT=on|off|auto overrides both. Throws on a bad value.
+// VulkanTuning::sph_wall_split on or off sets both.
 struct SphWallSplit {
   bool density = true;
   bool others = true;  // sph_forces, dfsph_factor, dfsph_rate, dfsph_correct
 };
-SphWallSplit sph_wall_split(std::string_view device_type);
+SphWallSplit sph_wall_split(const VulkanTuning& t, std::string_view device_type);
 
 // Whether sph_forces, over sph_density's neighbour row masks, adds the wall images in a loop of
 // their own after its walk's direct terms (specialisation constant 6 of shaders/sph_forces.comp),
@@ -43,7 +44,8 @@ SphWallSplit sph_wall_split(std::string_view device_type);
 // the images inside, 64 apart). Inside: the lanes near a wall make one pass per neighbour, not
 // two; on lavapipe, 32,768 particles, forces took 13.6-14.3 ms inside against 14.7-15.8 after
 // (dam break) and 12.4-13.4 against 12.8-13.5 (water). auto: after on a GPU, inside on a CPU
-// device. MASAV_VK_SPH_IMAGES_AFTER=on|off|auto overrides it. Throws on a bad value.
-bool sph_images_after(std::string_view device_type);
+// device (tools/gpu-report times it against inside on a GPU). VulkanTuning::sph_images_after
+// overrides it.
+bool sph_images_after(const VulkanTuning& t, std::string_view device_type);
 
 }  // namespace masav::vk

@@ -5,7 +5,6 @@
 #include <cstdlib>
 #include <cstring>
 
-#include "compute/env_switch.h"
 #include "compute/raymarch_quads_choice.h"
 #include "compute/sph_walk_choice.h"
 #include "engine/core/error.h"
@@ -25,17 +24,6 @@ constexpr Diagnostics kCleanDiagnostics{0, 0, UINT32_MAX, 0};
 }  // namespace
 
 SortScatter VulkanBackend::choose_sort_scatter(SortScatter wanted) const {
-  if (wanted == SortScatter::automatic) {
-    if (const char* env = std::getenv("MASAV_VK_SORT")) {
-      const std::string v = env;
-      if (v == "tiled")
-        wanted = SortScatter::tiled;
-      else if (v == "subgroup")
-        wanted = SortScatter::subgroup;
-      else if (!v.empty() && v != "auto")
-        throw_invalid("vulkan", "MASAV_VK_SORT", v, "auto, tiled or subgroup");
-    }
-  }
   // The subgroup scatter needs one fixed-size subgroup per workgroup and ballots.
   const bool fixed = ctx_.caps().min_subgroup_size == ctx_.caps().subgroup_size;
   const bool ballot = ctx_.subgroup_ballot();
@@ -43,34 +31,23 @@ SortScatter VulkanBackend::choose_sort_scatter(SortScatter wanted) const {
     throw Error("vulkan", "radix_sort",
                 "the subgroup scatter needs a fixed subgroup size and "
                 "subgroup ballots, which this device lacks",
-                "use MASAV_VK_SORT=tiled");
+                "use --tune vulkan.sort_scatter=tiled");
   if (wanted == SortScatter::automatic)
     wanted = ctx_.caps().device_type == "cpu" && fixed && ballot ? SortScatter::subgroup
                                                                  : SortScatter::tiled;
   return wanted;
 }
 
-bool env_switch(const char* name, bool automatic) {
-  if (const char* env = std::getenv(name)) {
-    const std::string v = env;
-    if (v == "on") return true;
-    if (v == "off") return false;
-    if (!v.empty() && v != "auto") throw_invalid("vulkan", name, v, "auto, on or off");
-  }
-  return automatic;
+bool sph_coop_walk(const VulkanTuning& t, std::string_view device_type) {
+  return t.sph_walk == SphWalk::automatic ? device_type == "cpu" : t.sph_walk == SphWalk::cooperative;
 }
 
-bool sph_coop_walk(std::string_view device_type) {
-  return env_switch("MASAV_VK_SPH_COOP", device_type == "cpu");
+SphWallSplit sph_wall_split(const VulkanTuning& t, std::string_view device_type) {
+  return {resolve(t.sph_wall_split, true), resolve(t.sph_wall_split, device_type == "cpu")};
 }
 
-SphWallSplit sph_wall_split(std::string_view device_type) {
-  const char* name = "MASAV_VK_SPH_WALL_SPLIT";
-  return {env_switch(name, true), env_switch(name, device_type == "cpu")};
-}
-
-bool sph_images_after(std::string_view device_type) {
-  return env_switch("MASAV_VK_SPH_IMAGES_AFTER", device_type != "cpu");
+bool sph_images_after(const VulkanTuning& t, std::string_view device_type) {
+  return resolve(t.sph_images_after, device_type != "cpu");
 }
 
 VulkanBackend::VulkanBackend(const BackendOptions& options)
@@ -84,12 +61,15 @@ VulkanBackend::VulkanBackend(const BackendOptions& options)
   if (options.workgroup_size > ctx_.caps().max_workgroup_size || options.workgroup_size % 64)
     throw_invalid("vulkan", "workgroup_size", std::to_string(options.workgroup_size),
                   fmt::format("a multiple of 64 up to {}", ctx_.caps().max_workgroup_size));
-  scatter_ = choose_sort_scatter(options.sort_scatter);
-  sph_coop_walk_ = sph_coop_walk(ctx_.caps().device_type);
-  sph_wall_split_ = sph_wall_split(ctx_.caps().device_type);
-  sph_images_after_ = sph_images_after(ctx_.caps().device_type);
-  ray_quads_ = raymarch_quads_wanted(ctx_.caps().device_type);
-  replays_ = env_switch("MASAV_VK_REPLAY", true);
+  tuning_ = options.tuning;
+  const VulkanTuning& t = options.tuning.vulkan;
+  const std::string& type = ctx_.caps().device_type;
+  scatter_ = choose_sort_scatter(t.sort_scatter);
+  sph_coop_walk_ = sph_coop_walk(t, type);
+  sph_wall_split_ = sph_wall_split(t, type);
+  sph_images_after_ = sph_images_after(t, type);
+  ray_quads_ = raymarch_quads_wanted(t, type);
+  replays_ = resolve(t.replay, true);
   diag_ = allocate(ctx_, sizeof(Diagnostics), MemoryUse::readback, "diagnostics");
   std::memcpy(diag_->mapped, &kCleanDiagnostics, sizeof(Diagnostics));
 }

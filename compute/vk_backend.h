@@ -17,16 +17,12 @@
 
 namespace masav::vk {
 
-// How radix_sort scatters each pass (both portable: no workgroup waits on another).
-enum class SortScatter : uint8_t {
-  automatic,  // subgroup on CPU devices (lavapipe), tiled elsewhere; MASAV_VK_SORT overrides
-  tiled,      // workgroup sorts its tile in shared memory, then writes runs (GPUs)
-  subgroup,   // one subgroup per workgroup ranks keys with ballots (CPU devices)
-};
-
+// How radix_sort scatters each pass (VulkanTuning::sort_scatter; both portable: no workgroup
+// waits on another): tiled, a workgroup sorts its tile in shared memory, then writes runs (GPUs);
+// subgroup, one subgroup per workgroup ranks keys with ballots (CPU devices).
 struct BackendOptions {
   ContextOptions context;
-  SortScatter sort_scatter = SortScatter::automatic;
+  Tuning tuning;  // its `vulkan` part is this backend's (engine/core/tuning.h)
   bool count_loop_ticks = false;  // instrument every loop (tests of lavapipe's loop limit)
   uint32_t workgroup_size = 256;
   uint32_t items_per_thread = 8;  // sort and scan tile = workgroup_size * items_per_thread
@@ -54,7 +50,7 @@ class VulkanBackend final : public Backend, public VulkanInterop {
   double timestamp_ns(TimestampId id) override { return stream_.timestamp_ns(id); }
   void reset_timestamps() override { stream_.reset_timestamps(); }
   // Captured work replays a recording of the same commands (compute/vk_stream.h, "Replays"),
-  // where replays_ (MASAV_VK_REPLAY=on|off|auto, on by default) allows.
+  // where replays_ (VulkanTuning::replay, on by default) allows.
   void begin_capture() override {
     if (replays_) stream_.begin_capture();
   }

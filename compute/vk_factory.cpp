@@ -1,5 +1,6 @@
 #include "compute/vk_factory.h"
 
+#include "compute/device/vk_environment.h"
 #include "compute/vk_backend.h"
 #include "engine/core/error.h"
 
@@ -37,6 +38,9 @@ std::unique_ptr<Backend> create_backend(std::string_view device, const BackendRe
   BackendOptions o;
   o.context = request.vulkan ? *request.vulkan : options_from_env();
   if (!device.empty()) o.context.device_selector = std::string(device);
+  o.context.max_buffer_bytes = request.tuning.vulkan.max_buffer_mib << 20;
+  o.context.max_texels = request.tuning.vulkan.max_texels;
+  o.tuning = request.tuning;
   o.count_loop_ticks = request.count_loop_ticks;
   try {
     return std::make_unique<VulkanBackend>(o);

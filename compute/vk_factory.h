@@ -9,8 +9,8 @@
 namespace masav::vk {
 
 BackendStatus backend_status();
-// Options from the environment (MASAV_VK_DEVICE, MASAV_VK_VALIDATION) or the request's;
-// `device` overrides the device; the request may ask for loop counting.
+// The request's context options, else the environment's (compute/device/vk_environment.h);
+// `device` overrides the device; the request's tuning and loop counting are the backend's.
 std::unique_ptr<Backend> create_backend(std::string_view device, const BackendRequest& request);
 
 }  // namespace masav::vk

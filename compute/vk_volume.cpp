@@ -1,7 +1,6 @@
 // voxelize on Vulkan: an accumulate pass per particle into per-cell integer tallies, then a
 // finalize pass per cell (shaders/voxelize_*.comp), both on VoxelizeParams. raymarch's first
 // pass on a CPU device: its volume four voxels to a texel (shaders/raymarch_quads.comp).
-#include "compute/env_switch.h"
 #include "compute/raymarch_quads_choice.h"
 #include "compute/vk_backend.h"
 
@@ -21,8 +20,8 @@ void VulkanBackend::run_own(const KernelArgs<KernelId::voxelize>& a) {
       &p, (cells + wg - 1) / wg);
 }
 
-bool raymarch_quads_wanted(std::string_view device_type) {
-  return env_switch("MASAV_VK_RAY_QUADS", device_type == "cpu");
+bool raymarch_quads_wanted(const VulkanTuning& t, std::string_view device_type) {
+  return resolve(t.raymarch_quads, device_type == "cpu");
 }
 
 std::shared_ptr<Allocation> VulkanBackend::raymarch_quads(const RaymarchLayout& layout,

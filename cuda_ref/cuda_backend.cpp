@@ -15,39 +15,6 @@
 namespace masav::cuda {
 namespace {
 constexpr uint32_t kMaxTimestamps = 4096;
-
-// MASAV_CUDA_SYNC=1: wait for every kernel, so that a fault names its kernel (slow: for
-// debugging, never for timings).
-bool sync_each_launch_requested() {
-  const char* v = std::getenv("MASAV_CUDA_SYNC");
-  return v && std::string_view(v) == "1";
-}
-
-// MASAV_CUDA_GRAPHS=1: a block of SPH steps captured and launched as one CUDA graph. Off until
-// it measures faster: on an H200, 1 M particles, 64 steps, it took 20-30% less host CPU per
-// step and 1% less wall time; the runs at 1,024 and 32,768 particles (20 steps, two graphs
-// instantiated among them) were slower by up to 17% (README, "CUDA graphs").
-bool graphs_requested() {
-  const char* v = std::getenv("MASAV_CUDA_GRAPHS");
-  if (!v || std::string_view(v) == "0") return false;
-  if (std::string_view(v) == "1") return true;
-  throw Error("cuda", "MASAV_CUDA_GRAPHS", fmt::format("'{}' is not 0 or 1", v),
-              "set MASAV_CUDA_GRAPHS=1 (a block of SPH steps as one CUDA graph) or 0 (the "
-              "default: each kernel launched from the host)");
-}
-
-// MASAV_CUDA_SPH_IMAGES_AFTER=on|off|auto (auto: on): sph_forces adds the wall images in a walk
-// of their own after the direct terms (64 registers, four blocks per multiprocessor), or per
-// neighbour inside its walk (72 registers, three blocks), which tools/gpu-report times against it.
-bool sph_images_after_requested() {
-  const char* v = std::getenv("MASAV_CUDA_SPH_IMAGES_AFTER");
-  if (!v || std::string_view(v) == "auto" || std::string_view(v) == "on") return true;
-  if (std::string_view(v) == "off") return false;
-  throw Error("cuda", "MASAV_CUDA_SPH_IMAGES_AFTER", fmt::format("'{}' is not auto, on or off", v),
-              "set MASAV_CUDA_SPH_IMAGES_AFTER=on (the default: sph_forces adds the wall images "
-              "after its walk) or off (inside it, per neighbour)");
-}
-
 }  // namespace
 
 CudaBuffer::~CudaBuffer() {
@@ -73,11 +40,16 @@ void* CudaBackend::scratch(const std::string& name, size_t bytes, const char* ke
   return s.ptr;
 }
 
-CudaBackend::CudaBackend(int device)
+// The automatic choices (docs/backends.md): graphs off until tools/gpu-report measures them
+// faster (on an H200, 1 M particles, 64 steps: 20-30% less host CPU per step and 1% less wall
+// time, but up to 17% slower at 1,024 and 32,768 particles); the wall images after the walk (64
+// registers and four blocks per multiprocessor on sm_90, against 72 and three inside).
+CudaBackend::CudaBackend(int device, const Tuning& tuning)
     : device_(device),
-      sync_each_launch_(sync_each_launch_requested()),
-      graphs_(graphs_requested() && !sync_each_launch_),
-      sph_images_after_(sph_images_after_requested()) {
+      sync_each_launch_(tuning.cuda.sync_each_launch),
+      graphs_(resolve(tuning.cuda.graphs, false) && !sync_each_launch_),
+      sph_images_after_(resolve(tuning.cuda.sph_images_after, true)) {
+  tuning_ = tuning;
   check(cudaSetDevice(device), "init", "cudaSetDevice");
   cudaDeviceProp prop{};
   check(cudaGetDeviceProperties(&prop, device), "init", "cudaGetDeviceProperties");

@@ -36,7 +36,7 @@ struct DeviceScratch {
 
 class CudaBackend final : public Backend {
  public:
-  explicit CudaBackend(int device);
+  explicit CudaBackend(int device, const Tuning& tuning = {});
   ~CudaBackend() override;
 
   const Capabilities& caps() const override { return caps_; }
@@ -47,8 +47,8 @@ class CudaBackend final : public Backend {
   TimestampId timestamp() override;
   double timestamp_ns(TimestampId id) override;
   void reset_timestamps() override;
-  // A capture is a CUDA graph of the stream's work, with MASAV_CUDA_GRAPHS=1 (and not with
-  // MASAV_CUDA_SYNC=1); otherwise nothing. Each capture updates one of two executable graphs
+  // A capture is a CUDA graph of the stream's work, with CudaTuning::graphs on (and not with
+  // sync_each_launch); otherwise nothing. Each capture updates one of two executable graphs
   // kept, in turn (same shape: new parameters such as dt) or, where its shape differs, replaces
   // it (cuda_capture.cpp).
   void begin_capture() override;
@@ -79,7 +79,7 @@ class CudaBackend final : public Backend {
     return static_cast<T*>(ptr(b.impl(), kernel));
   }
   // Every launch ends here: checks and counts it and remembers it, so that a fault CUDA reports
-  // later can name it; with MASAV_CUDA_SYNC=1 it also waits for the kernel, so a fault names its
+  // later can name it; with sync_each_launch it also waits for the kernel, so a fault names its
   // kernel exactly. `step`: the kernel's pass within a multi-launch run, or null.
   void launched(cudaError_t status, const char* kernel, const char* step = nullptr);
   // Checks a call on the stream, where a fault of an earlier kernel may surface.
@@ -121,9 +121,9 @@ class CudaBackend final : public Backend {
   // Ends a capture in progress and launches its graph; every call that cannot be captured
   // (allocations, host copies, waits, events) calls it first.
   void leave_capture();
-  bool sync_each_launch_ = false;  // MASAV_CUDA_SYNC=1 at creation
-  bool graphs_ = false;            // captures made (MASAV_CUDA_GRAPHS=1, not with SYNC)
-  bool sph_images_after_ = true;   // sph_forces' wall images after its walk (cuda_backend.cpp)
+  bool sync_each_launch_ = false;  // CudaTuning::sync_each_launch
+  bool graphs_ = false;            // captures made (CudaTuning::graphs, not with the sync)
+  bool sph_images_after_ = true;   // sph_forces' wall images after its walk (CudaTuning)
   bool capturing_ = false;
   std::array<cudaGraphExec_t, 2> graph_execs_{};
   uint32_t next_graph_exec_ = 0;

@@ -17,8 +17,8 @@ namespace {
 // What a fault inside a graph can name: the graph, not the kernel (no launch returns between
 // its kernels).
 constexpr const char* kGraphLaunch =
-    "a block of steps launched as one CUDA graph (MASAV_CUDA_GRAPHS=0, or MASAV_CUDA_SYNC=1, "
-    "to name the kernel)";
+    "a block of steps launched as one CUDA graph (--tune cuda.graphs=off, or "
+    "cuda.sync_each_launch=on, to name the kernel)";
 
 struct GraphGuard {
   cudaGraph_t g = nullptr;

@@ -56,13 +56,13 @@ void throw_kernel_fault(cudaError_t status, std::string_view where, std::string_
                           "kernel launched before that was {} (this one or an earlier one is the "
                           "culprit: kernels run asynchronously)",
                           describe(status), where, last_launch),
-              "run with MASAV_CUDA_SYNC=1 to name the faulting kernel exactly");
+              "run with --tune cuda.sync_each_launch=on to name the faulting kernel exactly");
 }
 
 void throw_fault_of(cudaError_t status, std::string_view kernel) {
   throw Error("cuda", std::string(kernel),
               fmt::format("the kernel failed while it ran: {} (found by waiting for it, "
-                          "MASAV_CUDA_SYNC=1)",
+                          "cuda.sync_each_launch)",
                           describe(status)),
               remedy_for(status));
 }

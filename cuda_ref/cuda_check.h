@@ -17,7 +17,7 @@ bool is_kernel_fault(cudaError_t status);
 [[noreturn]] void throw_kernel_fault(cudaError_t status, std::string_view where,
                                      std::string_view last_launch);
 
-// A kernel fault found by waiting right after `kernel`'s launch (MASAV_CUDA_SYNC=1): it is the
+// A kernel fault found by waiting right after `kernel`'s launch (--tune cuda.sync_each_launch=on): it is the
 // culprit.
 [[noreturn]] void throw_fault_of(cudaError_t status, std::string_view kernel);
 

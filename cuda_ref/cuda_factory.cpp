@@ -49,7 +49,7 @@ BackendStatus backend_status() {
   return s;
 }
 
-std::unique_ptr<Backend> create_backend(std::string_view device) {
+std::unique_ptr<Backend> create_backend(std::string_view device, const Tuning& tuning) {
   const BackendStatus s = backend_status();
   if (!s.available) throw Error("cuda", "", s.reason, "use --backend vulkan or --backend cpu");
   int chosen = 0;
@@ -69,7 +69,7 @@ std::unique_ptr<Backend> create_backend(std::string_view device) {
                     fmt::format("an index in [0, {}] or part of a device name",
                                 s.devices.size() - 1));
   }
-  return std::make_unique<CudaBackend>(chosen);
+  return std::make_unique<CudaBackend>(chosen, tuning);
 }
 
 }  // namespace masav::cuda

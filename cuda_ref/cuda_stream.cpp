@@ -33,7 +33,7 @@ void CudaBackend::launched(cudaError_t status, const char* kernel, const char* s
   ++counters_.host_syncs;
   const cudaError_t ran = cudaStreamSynchronize(stream_);
   if (is_kernel_fault(ran)) throw_fault_of(ran, last_launch());
-  check(ran, kernel, "cudaStreamSynchronize (MASAV_CUDA_SYNC=1)");
+  check(ran, kernel, "cudaStreamSynchronize (cuda.sync_each_launch)");
 }
 
 void CudaBackend::check_stream(cudaError_t status, const char* where, const char* what) const {

@@ -22,7 +22,7 @@ namespace {
 // Four blocks of kBlock threads per multiprocessor, 64 registers (50% occupancy): density fits
 // without spilling on sm_80-90, forces on sm_90 (sm_80-89: 4 bytes in wcsph), where
 // sph::force_at walks the wall images apart from the direct terms. With the images inside its
-// walk (MASAV_CUDA_SPH_IMAGES_AFTER=off) forces is bounded to three blocks (72 registers, sm_90):
+// walk (cuda.sph_images_after=off) forces is bounded to three blocks (72 registers, sm_90):
 // measured on an H100 (2026-11-26), 1,048,576 particles, before the image sets' loop was kept
 // rolled: 95 registers unbounded (2 blocks) 0.494 ms, 80 at three blocks 0.379 ms, 64 at four
 // blocks with 124 bytes spilled 0.407 ms.

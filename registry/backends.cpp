@@ -77,10 +77,11 @@ std::unique_ptr<Backend> create_backend(std::string_view name_in, std::string_vi
     if (!device.empty() && device != "0")
       throw_invalid(
           "cpu backend", "device", std::string(device),
-          "empty or 0 (the CPU backend has one device; set MASAV_CPU_THREADS for threads)");
+          "empty or 0 (the CPU backend has one device; --tune cpu.threads=N sets its threads)");
     // A CPU device renders like the GPUs, in fp32; the reference (CpuBackend's default) in fp64.
-    return std::make_unique<cpu::CpuBackend>(cpu::default_cpu_threads(),
-                                             cpu::CpuRenderPrecision::fp32);
+    const unsigned threads = request.tuning.cpu.threads;
+    return std::make_unique<cpu::CpuBackend>(threads ? threads : cpu::default_cpu_threads(),
+                                             cpu::CpuRenderPrecision::fp32, request.tuning);
   }
   if (name == "vulkan") {
 #if MASAV_HAVE_VULKAN
@@ -91,7 +92,7 @@ std::unique_ptr<Backend> create_backend(std::string_view name_in, std::string_vi
   }
   if (name == "cuda") {
 #if MASAV_HAVE_CUDA
-    return cuda::create_backend(device);
+    return cuda::create_backend(device, request.tuning);
 #else
     throw Error("cuda", "", status_of("cuda").reason, "use --backend vulkan or cpu, or rebuild");
 #endif

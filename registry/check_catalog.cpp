@@ -27,15 +27,16 @@ const KernelCheck* find_kernel_check(KernelId kernel) {
 }
 
 CrossCheckReport cross_check(Backend& backend, Backend& reference,
-                             const std::vector<std::string>& kernels, const CheckInputs& in) {
-  return cross_check(backend, reference, kernels, in, kernel_checks());
+                             const std::vector<std::string>& kernels, const CheckInputs& in,
+                             std::optional<KernelId> fault) {
+  return cross_check(backend, reference, kernels, in, kernel_checks(), fault);
 }
 
 CrossCheckReport cross_check_scene(Backend& backend, Backend& reference,
-                                   const scene::ParamSet& params) {
+                                   const scene::ParamSet& params, std::optional<KernelId> fault) {
   return cross_check_scene(backend, reference,
                            scene::find_scene_type(params.get_text("scene.type")), params,
-                           kernel_checks());
+                           kernel_checks(), fault);
 }
 
 std::unique_ptr<Backend> open_reference(const Backend& chosen, const std::string& choice) {

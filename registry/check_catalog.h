@@ -17,10 +17,12 @@ const KernelCheck* find_kernel_check(KernelId kernel);
 
 // The built-in checks of `kernels` (see verify::cross_check).
 CrossCheckReport cross_check(Backend& backend, Backend& reference,
-                             const std::vector<std::string>& kernels, const CheckInputs& in);
+                             const std::vector<std::string>& kernels, const CheckInputs& in,
+                             std::optional<KernelId> fault = std::nullopt);
 // Every kernel the scene of `params` runs, with the built-in checks.
 CrossCheckReport cross_check_scene(Backend& backend, Backend& reference,
-                                   const scene::ParamSet& params);
+                                   const scene::ParamSet& params,
+                                   std::optional<KernelId> fault = std::nullopt);
 // The reference backend `choice` names, from the backend registry (see verify::open_reference).
 std::unique_ptr<Backend> open_reference(const Backend& chosen, const std::string& choice);
 

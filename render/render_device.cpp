@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include "compute/device/vk_environment.h"
 #include "engine/core/error.h"
 #include "registry/backends.h"
 
@@ -15,8 +16,9 @@ vk::ContextOptions graphics_options(const std::string& device) {
 }
 
 std::unique_ptr<Backend> open_compute_backend(const std::string& name, const std::string& device,
-                                              const vk::ContextOptions& options) {
-  return create_backend(name, device, BackendRequest{.vulkan = &options});
+                                              const vk::ContextOptions& options,
+                                              const Tuning& tuning) {
+  return create_backend(name, device, BackendRequest{.vulkan = &options, .tuning = tuning});
 }
 
 RenderDevice::RenderDevice(Backend& compute, const vk::ContextOptions& options)

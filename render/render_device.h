@@ -18,9 +18,11 @@ namespace masav::render {
 vk::ContextOptions graphics_options(const std::string& device = "");
 
 // The compute backend for a scene that is drawn, from the registry: a Vulkan one (also "auto"
-// when it resolves to Vulkan) on a device that can also draw, with `options`.
+// when it resolves to Vulkan) on a device that can also draw, with `options`; `tuning` as the
+// caller was given it (--tune).
 std::unique_ptr<Backend> open_compute_backend(const std::string& name, const std::string& device,
-                                              const vk::ContextOptions& options);
+                                              const vk::ContextOptions& options,
+                                              const Tuning& tuning = {});
 
 class RenderDevice {
  public:

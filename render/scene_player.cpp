@@ -19,7 +19,8 @@ uint32_t frame_height(const scene::ParamSet& p) {
 }
 
 ScenePlayer::ScenePlayer(scene::SceneFile file, const PlayerOptions& options) : options_(options) {
-  backend_ = open_compute_backend(options.backend, options.device, options.graphics);
+  backend_ = open_compute_backend(options.backend, options.device, options.graphics,
+                                  options.tuning);
   make_scene(std::move(file));
   render_device_ = std::make_unique<RenderDevice>(*backend_, options.graphics);
   // ImGui's 13 px font stays legible on large frames.
@@ -70,7 +71,7 @@ void ScenePlayer::reset() {
 
 verify::CrossCheckReport ScenePlayer::verify() {
   auto reference = verify::open_reference(*backend_, scene_->params().get_text("verify.reference"));
-  verify::CrossCheckReport r = verify::cross_check_scene(*backend_, *reference, scene_->params());
+  verify::CrossCheckReport r = verify::cross_check_scene(*backend_, *reference, scene_->params(), options_.fault);
   verify_status_ =
       r.pass() ? fmt::format("cross-check: {} kernels agree with {}", r.rows.size(), r.reference)
                : fmt::format("cross-check FAILED: {}", verify::failure_summary(r));

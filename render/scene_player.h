@@ -5,6 +5,7 @@
 // backend under it).
 #include <functional>
 #include <memory>
+#include <optional>
 #include <string>
 
 #include "engine/scene/scene.h"
@@ -19,6 +20,8 @@ struct PlayerOptions {
   std::string backend = "auto";
   std::string device;
   vk::ContextOptions graphics;  // render context options (the demo adds window extensions)
+  Tuning tuning;                // the compute backend's (--tune)
+  std::optional<KernelId> fault;  // perturbed in verify() (the tests' --inject-fault)
 };
 
 class ScenePlayer {

@@ -126,10 +126,11 @@ log=$("$mpiexec" -np 2 "$masav" info 2>&1) && fail "info on 2 ranks accepted"
 grep -q "only \`masav sph\` runs on several ranks" <<<"$log" || fail "no refusal of info: $log"
 # A rank's buffers hold its share and its halos, not every particle: with buffers of 1 MiB
 # (65,536 positions), 90,000 particles are refused in one process and run on 2 ranks.
-big=(sph --backend vulkan --preset dambreak --particles 90000 --steps 2 -q)
-log=$(MASAV_VK_MAX_BUFFER_MIB=1 "$masav" "${big[@]}" 2>&1) && fail "90,000 particles in 1 MiB buffers"
+big=(sph --backend vulkan --preset dambreak --particles 90000 --steps 2 -q
+     --tune vulkan.max_buffer_mib=1)
+log=$("$masav" "${big[@]}" 2>&1) && fail "90,000 particles in 1 MiB buffers"
 grep -q "particles = 90000 .*at most 65536 on" <<<"$log" || fail "no refusal naming the limit: $log"
-log=$(MASAV_VK_MAX_BUFFER_MIB=1 run "$mpiexec" -np 2 "$masav" "${big[@]}")
+log=$(run "$mpiexec" -np 2 "$masav" "${big[@]}")
 grep -qE "^ +1 +[0-9]+ +[0-9]+ +[0-9.]+% +[0-9]+ " <<<"$log" || fail "no rank table: $log"
 printf '90,000 particles on 2 ranks with 1 MiB buffers:\n%s\n' "$(grep -A3 '^ranks:' <<<"$log")"
 echo "sph_mpi: ok"

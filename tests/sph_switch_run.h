@@ -1,15 +1,12 @@
 #pragma once
-// A 1,000-particle dam break on the backend under test, 24 steps in blocks of 8, with one
-// environment switch read when the simulation is built (set for that, restored after): the run
-// behind the tests that a switch keeps the trajectory (MASAV_SPH_REACH, MASAV_SPH_NEIGHBOR_STATE).
+// A 1,000-particle dam break, 24 steps in blocks of 8, on a given backend: the run behind the
+// tests that a choice keeps the trajectory (the neighbour state, sph.neighbor_state; RK4's reach
+// masks against the walk of the inflated cells, SphSimulation::drop_reach_masks).
 #include <doctest/doctest.h>
-
-#include <optional>
 
 #include "engine/sph/sph_presets.h"
 #include "engine/sph/sph_simulation.h"
 #include "tests/backend_fixture.h"
-#include "tests/scoped_env.h"
 
 namespace masav::test {
 
@@ -19,17 +16,14 @@ struct SwitchRun {
   bool neighbor_state = false;  // SphSimulation::keeps_neighbor_state()
 };
 
-inline SwitchRun run_dam_break_with(SphIntegrator integrator, const char* name, const char* value) {
+inline SwitchRun run_dam_break_on(Backend& b, SphIntegrator integrator, bool drop_reach = false) {
   SphScene s = make_preset("dam-break", 1000);
   s.integrator = integrator;
-  std::optional<SphSimulation> sim;
-  {
-    const ScopedEnv env(name, value);
-    sim.emplace(backend(), s);
-  }
-  sim->set_block_steps(8);
-  CHECK(sim->run(24) == 24);
-  return {sim->download(), sim->keeps_reach_masks(), sim->keeps_neighbor_state()};
+  SphSimulation sim(b, s);
+  if (drop_reach) sim.drop_reach_masks();
+  sim.set_block_steps(8);
+  CHECK(sim.run(24) == 24);
+  return {sim.download(), sim.keeps_reach_masks(), sim.keeps_neighbor_state()};
 }
 
 }  // namespace masav::test

@@ -168,8 +168,7 @@ TEST_CASE("captures of one call replay, whatever the padding of its parameters h
   const auto got = b.download(unsorted);
   for (uint32_t i = 0; i < n; ++i) REQUIRE(got[i] < n);
   for (uint32_t s = 0; s < n; ++s) CHECK(cell_of[got[s]] == s / (n / cells));
-  const char* replay = std::getenv("MASAV_VK_REPLAY");
-  if (b.name() != "vulkan" || (replay && std::string(replay) == "off")) {
+  if (b.name() != "vulkan" || !resolve(b.tuning().vulkan.replay, true)) {
     MESSAGE("skipped the replay count: " << b.name() << " does not replay captures here");
     return;
   }
@@ -217,7 +216,7 @@ TEST_CASE("a kernel form is built once per backend, and counted where it is buil
   // DeviceCounters::pipelines_built: Vulkan creates a kernel form's pipeline at its first use on
   // a backend (a fresh one here, so the shared one's earlier tests have built nothing of it);
   // CUDA and the CPU reference compiled every kernel ahead of time.
-  const std::unique_ptr<Backend> fresh = create_backend(test::backend_name());
+  const std::unique_ptr<Backend> fresh = test::backend_with(test::tuning());
   Backend& b = *fresh;
   auto x = b.create<uint32_t>(1024, "x");
   b.finish();

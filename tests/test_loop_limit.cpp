@@ -391,7 +391,7 @@ LOOP_LIMIT_CASE("sph kernels: loop ticks = rows + cells + candidates, capped bel
   // 102 extra), else per lane (C = 8 on lavapipe: 375 extra). sph_forces spells the wall
   // images out per neighbour, not looped over: they add no tick to its walk.
 #if MASAV_HAVE_VULKAN
-  const bool coop = vk::sph_coop_walk(b.caps().device_type);
+  const bool coop = vk::sph_coop_walk(b.tuning().vulkan, b.caps().device_type);
 #else
   const bool coop = false;  // only Vulkan counts loop ticks
 #endif
@@ -420,7 +420,7 @@ LOOP_LIMIT_CASE("sph kernels: loop ticks = rows + cells + candidates, capped bel
   // its walk (compute/sph_walk_choice.h), a lane near a wall walks its rows a second time. Its
   // worst case, 3 + 9 + 2 x 32,500, is then sph_density's bound above.
 #if MASAV_HAVE_VULKAN
-  const uint32_t walks = vk::sph_images_after(b.caps().device_type) ? 2 : 1;
+  const uint32_t walks = vk::sph_images_after(b.tuning().vulkan, b.caps().device_type) ? 2 : 1;
 #else
   const uint32_t walks = 1;
 #endif

@@ -1,4 +1,5 @@
-// Entry point of the per-backend kernel tests. `--backend=NAME` picks the backend. A backend
+// Entry point of the per-backend kernel tests. `--backend=NAME` picks the backend and each
+// `--tune=KEY=VALUE` sets one of its tuning options (engine/core/tuning.h). A backend
 // that is not built or has no device exits 77 (ctest: skipped, never passed) after printing why;
 // MASAV_REQUIRE_BACKENDS=a,b turns such a skip into a failure (CI requires vulkan and cpu).
 // Under Vulkan, every validation-layer message fails the test that caused it.
@@ -45,9 +46,16 @@ const std::string& backend_name() {
 bool is_lavapipe() {
   return g_name == "vulkan" && g_backend->caps().device_type == "cpu";
 }
+const Tuning& tuning() {
+  return g_backend->tuning();
+}
+std::unique_ptr<Backend> backend_with(const Tuning& t) {
+  return create_backend(g_name, "", BackendRequest{.tuning = t});
+}
 bool sph_sums_follow_lanes() {
 #if MASAV_HAVE_VULKAN
-  return g_name == "vulkan" && vk::sph_coop_walk(g_backend->caps().device_type);
+  return g_name == "vulkan" &&
+         vk::sph_coop_walk(g_backend->tuning().vulkan, g_backend->caps().device_type);
 #else
   return false;
 #endif
@@ -72,13 +80,22 @@ bool required(const std::string& name) {
 int main(int argc, char** argv) {
   using namespace masav;
   std::string name = "cpu";
+  Tuning tuning;
   std::vector<char*> rest;
   for (int i = 0; i < argc; ++i) {
     std::string a = argv[i];
-    if (a.rfind("--backend=", 0) == 0)
+    if (a.rfind("--backend=", 0) == 0) {
       name = a.substr(10);
-    else
+    } else if (a.rfind("--tune=", 0) == 0) {
+      try {
+        set_tuning(tuning, a.substr(7));
+      } catch (const Error& e) {
+        fmt::print(stderr, "{}\n", e.what());
+        return 2;
+      }
+    } else {
       rest.push_back(argv[i]);
+    }
   }
   test::g_name = name;
 
@@ -107,7 +124,7 @@ int main(int argc, char** argv) {
     return 77;
   }
   try {
-    test::g_backend = create_backend(name);
+    test::g_backend = create_backend(name, "", BackendRequest{.tuning = tuning});
   } catch (const Error& e) {
     // The backend reports a device, so failing to create it is a bug, not a skip.
     fmt::print(stderr, "FAILED: backend '{}' lists a usable device but could not be created: {}\n",
@@ -116,12 +133,14 @@ int main(int argc, char** argv) {
   }
   test::g_reference = std::make_unique<cpu::CpuBackend>();
   const auto& c = test::g_backend->caps();
-  fmt::print("backend {}: {} ({}, {}), subgroup {}, max buffer {} MiB\n", name, c.device_name,
-             c.device_type, c.driver, c.subgroup_size, c.max_buffer_bytes >> 20);
+  fmt::print("backend {}: {} ({}, {}), subgroup {}, max buffer {} MiB{}\n", name, c.device_name,
+             c.device_type, c.driver, c.subgroup_size, c.max_buffer_bytes >> 20,
+             describe(tuning).empty() ? "" : ", tuned " + describe(tuning));
 
   // The loop-limit suite needs a backend that counts loop iterations.
   try {
-    auto counter = create_backend(name, "", BackendRequest{.count_loop_ticks = true});
+    auto counter =
+        create_backend(name, "", BackendRequest{.count_loop_ticks = true, .tuning = tuning});
     if (counter->take_max_loop_ticks()) test::g_loop_counter = std::move(counter);
   } catch (const Error& e) {
     fmt::print(stderr, "FAILED: backend '{}' could not be created to count loops: {}\n", name,

@@ -5,7 +5,6 @@
 #include <doctest/doctest.h>
 
 #include <cmath>
-#include <cstdlib>
 #include <memory>
 #include <optional>
 #include <string>
@@ -16,7 +15,6 @@
 #include "engine/sph/sph_simulation.h"
 #include "registry/backends.h"
 #include "tests/backend_fixture.h"
-#include "tests/scoped_env.h"
 #include "tests/sph_state_compare.h"
 
 using namespace masav;
@@ -32,16 +30,12 @@ struct Outcome {
   double time = 0;
 };
 
-bool env_is(const char* name, const char* value) {
-  const char* v = std::getenv(name);
-  return v && std::string(v) == value;
-}
-
-// Vulkan replays each block's recording unless MASAV_VK_REPLAY=off; CUDA captures each block as
-// a graph where MASAV_CUDA_GRAPHS=1 (and not MASAV_CUDA_SYNC=1).
+// Vulkan replays each block's recording unless vulkan.replay=off; CUDA captures each block as
+// a graph where cuda.graphs=on (and not with cuda.sync_each_launch).
 bool captures_blocks(const Backend& b) {
-  if (b.name() == "vulkan") return !env_is("MASAV_VK_REPLAY", "off");
-  return b.name() == "cuda" && env_is("MASAV_CUDA_GRAPHS", "1") && !env_is("MASAV_CUDA_SYNC", "1");
+  const Tuning& t = b.tuning();
+  if (b.name() == "vulkan") return resolve(t.vulkan.replay, true);
+  return b.name() == "cuda" && resolve(t.cuda.graphs, false) && !t.cuda.sync_each_launch;
 }
 
 Outcome run_in_blocks(const SphScene& s, uint32_t block, uint64_t steps,
@@ -67,11 +61,13 @@ Outcome run_in_blocks(const SphScene& s, uint32_t block, uint64_t steps,
 }
 
 // The backend under test created again with its captures off (Vulkan: no replays; CUDA: no
-// graphs); the variables are restored after.
+// graphs).
 std::unique_ptr<Backend> backend_without_captures() {
-  const test::ScopedEnv replay("MASAV_VK_REPLAY", "off"), graphs("MASAV_CUDA_GRAPHS", "0");
+  Tuning t = test::tuning();
+  t.vulkan.replay = Choice::off;
+  t.cuda.graphs = Choice::off;
   try {
-    return create_backend(test::backend_name());
+    return test::backend_with(t);
   } catch (...) {
     return nullptr;
   }
@@ -237,7 +233,7 @@ TEST_CASE("[sph-physics] run() takes each block's stats while the next block run
     const std::string name = to_string(integ);
     CAPTURE(name);
     // A backend of its own: the suite's shared one may have built the other forms already.
-    const std::unique_ptr<Backend> fresh = create_backend(test::backend_name());
+    const std::unique_ptr<Backend> fresh = test::backend_with(test::tuning());
     Backend& b = *fresh;
     SphScene scene = make_preset("water", 1000);
     scene.integrator = integ;

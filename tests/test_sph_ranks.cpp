@@ -66,7 +66,7 @@ RankRun on_ranks(int ranks, const SphScene& s, uint64_t steps,
   };
   std::vector<PerRank> per(static_cast<size_t>(ranks));
   test::run_ranks(ranks, [&](SphComm& comm) {
-    auto backend = create_backend(test::backend_name());
+    auto backend = test::backend_with(test::tuning());
     SphSimulation sim(*backend, s, &comm);
     if (resume) sim.restore_resume_state(*resume);
     sim.run(steps);
@@ -293,7 +293,7 @@ TEST_CASE("[sph-ranks] dfsph on 1 to 4 ranks follows the one-process trajectory"
     };
     std::vector<PerRank> per(static_cast<size_t>(ranks));
     test::run_ranks(ranks, [&](SphComm& comm) {
-      auto backend = create_backend(test::backend_name());
+      auto backend = test::backend_with(test::tuning());
       SphSimulation sim(*backend, s, &comm);
       sim.run(steps);
       PerRank& mine = per[size_t(comm.rank())];
@@ -367,7 +367,7 @@ TEST_CASE("[sph-ranks] a rejected block replays and stops at the step one proces
   };
   std::vector<PerRank> per(3);
   test::run_ranks(3, [&](SphComm& comm) {
-    auto backend = create_backend(test::backend_name());
+    auto backend = test::backend_with(test::tuning());
     SphSimulation sim(*backend, s, &comm);
     PerRank& mine = per[size_t(comm.rank())];
     run(sim, mine.error);
@@ -396,7 +396,7 @@ TEST_CASE("[sph-ranks] reading the state between steps leaves the trajectory alo
   const RankRun one = one_process(s, 45);
   SphState got;
   test::run_ranks(2, [&](SphComm& comm) {
-    auto backend = create_backend(test::backend_name());
+    auto backend = test::backend_with(test::tuning());
     SphSimulation sim(*backend, s, &comm);
     for (int k = 0; k < 9; ++k) {
       sim.run(5);

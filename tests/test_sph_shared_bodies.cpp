@@ -24,7 +24,7 @@ sph::V3<T> v3(const Vec4d& a) {
 }
 
 // density_at and force_at over every sorted particle of the case, in precision T, the wall
-// images after the walk or (ImagesAfter false, MASAV_CUDA_SPH_IMAGES_AFTER=off) inside it.
+// images after the walk or (ImagesAfter false, cuda.sph_images_after=off) inside it.
 template <class T, bool ImagesAfter = true>
 void host_bodies(const test::SphCase& c, const std::vector<Vec4d>& pos,
                  const std::vector<Vec4d>& vel, const std::vector<double>& rho,
@@ -156,7 +156,7 @@ TEST_CASE("sph::density_at and sph::force_at (the CUDA bodies) equal the CPU ref
     CHECK(ef.rel_l2 < 2e-6);
     CHECK(ef.max_rel < 2e-5);
     for (uint32_t i = 0; i < c.params.n; ++i) REQUIRE(acc_d[i].w == acc[i].w);  // neighbours
-    // The images inside the walk (MASAV_CUDA_SPH_IMAGES_AFTER=off): the same terms in another
+    // The images inside the walk (cuda.sph_images_after=off): the same terms in another
     // order where a wall is near.
     std::vector<double> rho_in;
     std::vector<Vec4d> acc_in_d, acc_in_f;

@@ -72,11 +72,11 @@ def load_json(out, pattern):
     return records
 
 
-# The SPH runs with a choice switched from the backend's default: CUDA graphs on
-# (MASAV_CUDA_GRAPHS=1), Vulkan replays off (MASAV_VK_REPLAY=off), RK4's reach masks off
-# (MASAV_SPH_REACH=off), sph_forces with the wall images inside its walk
-# (MASAV_VK_SPH_IMAGES_AFTER=off, MASAV_CUDA_SPH_IMAGES_AFTER=off), sph_forces without the
-# neighbour state (MASAV_SPH_NEIGHBOR_STATE=off).
+# The SPH runs with a tuning option switched from the backend's default: CUDA graphs on
+# (--tune cuda.graphs=on), Vulkan replays off (vulkan.replay=off), sph_forces with the wall
+# images inside its walk (vulkan.sph_images_after=off, cuda.sph_images_after=off), sph_forces
+# without the neighbour state (sph.neighbor_state=off); and, in records made before RK4's reach
+# masks were settled, RK4 without them.
 VARIANT_RUNS = ("bench_sph_graphs", "bench_sph_noreplay", "bench_sph_noreach",
                 "bench_sph_imagesinside", "bench_sph_nostate")
 
@@ -526,12 +526,12 @@ def markdown(run, steps, targets, sph, verify, dambreak, graphs):
     if graphs:
         lines += md_table(
             "## Captured blocks against each backend's default (CUDA graphs, "
-            "`MASAV_CUDA_GRAPHS=1`, against launches; Vulkan without replays, "
-            "`MASAV_VK_REPLAY=off`, against replays); RK4 without its reach masks "
-            "(`MASAV_SPH_REACH=off`, every evaluation walking the inflated cells), the forces "
-            "with the wall images inside their walk (`MASAV_VK_SPH_IMAGES_AFTER=off "
-            "MASAV_CUDA_SPH_IMAGES_AFTER=off`) and the forces without the neighbour state "
-            "(`MASAV_SPH_NEIGHBOR_STATE=off`) against the default runs",
+            "`--tune cuda.graphs=on`, against launches; Vulkan without replays, "
+            "`--tune vulkan.replay=off`, against replays); the forces with the wall images "
+            "inside their walk (`--tune vulkan.sph_images_after=off --tune "
+            "cuda.sph_images_after=off`) and the forces without the neighbour state "
+            "(`--tune sph.neighbor_state=off`) against the default runs (older records: RK4 "
+            "without its reach masks too)",
             ["particles", "integrator", "backend", "variant", "timed steps",
              "wall ms/step: variant", "default", "variant / default",
              "host CPU ms/step: variant", "default", "source JSON"],

@@ -153,6 +153,8 @@ class Demo {
     render::PlayerOptions po;
     po.backend = backend;
     po.device = options_.choice.device;
+    po.tuning = options_.choice.tuning();
+    po.fault = fault_kernel(options_.choice);
     po.graphics = window_.graphics_options(backend == "vulkan" ? options_.choice.device : "");
     player_ = std::make_unique<render::ScenePlayer>(std::move(file), po);
     forget_tf_scene(state_.tf);
@@ -634,6 +636,7 @@ void add_demo_command(CLI::App& app) {
                                 "the desktop demo: the scene in a window with a control "
                                 "panel (needs a display; `masav run` renders headless)",
                                 o, run_demo);
+  add_fault_option(*cmd, o.choice);
   cmd->add_option("--script", o.script,
                   "drive the demo from a script (wait N, set K V, view V, scene F, backend B, "
                   "pause, step, reset, verify, panel on|off, key K, button B, rate R, "

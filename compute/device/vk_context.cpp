@@ -10,6 +10,7 @@
 #include <cstdlib>
 #include <cstring>
 
+#include "compute/device/vk_environment.h"
 #include "engine/core/error.h"
 
 namespace masav::vk {
@@ -42,14 +43,12 @@ const char* kNoDriverRemedy =
     "install mesa-vulkan-drivers (lavapipe, any CPU) or your GPU vendor's Vulkan driver; on an "
     "NVIDIA machine without a display, point VK_DRIVER_FILES at nvidia_icd.json";
 
-// Opened with dlopen (never linked), once per process: MASAV_VULKAN_LOADER overrides the name,
-// which is also how the tests simulate a machine without the loader.
+// Opened with dlopen (never linked), once per process, by the name vk_environment.h resolves.
 std::unique_ptr<raii::Context> open_loader() {
   static void* handle = nullptr;
   static std::string error;
   if (!handle && error.empty()) {
-    const char* name = std::getenv("MASAV_VULKAN_LOADER");
-    handle = dlopen(name && *name ? name : "libvulkan.so.1", RTLD_NOW | RTLD_LOCAL);
+    handle = dlopen(loader_library().c_str(), RTLD_NOW | RTLD_LOCAL);
     if (!handle) error = dlerror();
   }
   auto gipa =
@@ -241,49 +240,6 @@ uint64_t validation_message_count() {
   return g_validation_messages.load();
 }
 
-// A device limit lowered (never raised) from the environment, so that the refusal of a size too
-// large for a device is tested the same on every device: `name` as a whole number of `unit`s
-// from 1 to `most`; 0 when unset.
-static uint64_t limit_from_env(const char* name, const char* unit, uint64_t most) {
-  const char* v = std::getenv(name);
-  if (!v || !*v) return 0;
-  char* end = nullptr;
-  errno = 0;
-  const unsigned long long n = std::strtoull(v, &end, 10);
-  if (errno || *end || v[0] == '-' || n < 1 || n > most)
-    throw Error("", "environment", fmt::format("invalid {} = {}", name, v),
-                fmt::format("{} must be a whole number of {} from 1 to {}", name, unit, most));
-  return n;
-}
-
-// MASAV_VK_MAX_BUFFER_MIB: the largest buffer a kernel may bind (the tests set lavapipe's
-// 128 MiB).
-static uint64_t max_buffer_from_env() {
-  return limit_from_env("MASAV_VK_MAX_BUFFER_MIB", "MiB", uint64_t(1) << 20) << 20;
-}
-
-// MASAV_VK_MAX_TEXELS: the most texels a uniform texel buffer may span (maxTexelBufferElements,
-// 2^27 on lavapipe and NVIDIA: a test could not otherwise reach it within 128 MiB buffers).
-static uint64_t max_texels_from_env() {
-  return limit_from_env("MASAV_VK_MAX_TEXELS", "texels", uint64_t(1) << 32);
-}
-
-ContextOptions options_from_env() {
-  ContextOptions o;
-  if (const char* d = std::getenv("MASAV_VK_DEVICE")) o.device_selector = d;
-  if (const char* v = std::getenv("MASAV_VK_VALIDATION")) {
-    const std::string s = v;
-    if (s == "1" || s == "on" || s == "true")
-      o.validation = true;
-    else if (s == "0" || s == "off" || s == "false" || s.empty())
-      o.validation = false;
-    else
-      throw Error("", "environment", fmt::format("invalid MASAV_VK_VALIDATION = {}", s),
-                  "MASAV_VK_VALIDATION must be 1/on/true or 0/off/false");
-  }
-  return o;
-}
-
 std::vector<DeviceListing> Context::list_devices() {
   auto ctx = open_loader();
   auto instance = make_instance(*ctx, false);
@@ -436,13 +392,13 @@ Context::Context(const ContextOptions& options) {
   }
   caps_.max_workgroup_size = props.limits.maxComputeWorkGroupInvocations;
   max_texel_buffer_elements_ = props.limits.maxTexelBufferElements;
-  if (const uint64_t cap = max_texels_from_env(); cap && cap < max_texel_buffer_elements_)
+  if (const uint64_t cap = options.max_texels; cap && cap < max_texel_buffer_elements_)
     max_texel_buffer_elements_ = cap;
   caps_.max_workgroups_x = props.limits.maxComputeWorkGroupCount[0];
   caps_.shared_memory_bytes = props.limits.maxComputeSharedMemorySize;
   caps_.max_buffer_bytes =
       std::min<uint64_t>(props.limits.maxStorageBufferRange, m3.maxMemoryAllocationSize);
-  if (const uint64_t cap = max_buffer_from_env(); cap && cap < caps_.max_buffer_bytes)
+  if (const uint64_t cap = options.max_buffer_bytes; cap && cap < caps_.max_buffer_bytes)
     caps_.max_buffer_bytes = cap;
   uint64_t largest_heap = 0;
   const auto mem = physical_->getMemoryProperties();

@@ -30,6 +30,10 @@ using PresentSupport = std::function<bool(VkInstance, VkPhysicalDevice, uint32_t
 struct ContextOptions {
   std::string device_selector;  // "" = best ranked
   bool validation = false;      // VK_LAYER_KHRONOS_validation with a debug messenger
+  // Device limits lowered, never raised (0: the device's own): VulkanTuning::max_buffer_mib and
+  // max_texels, so that the refusal of a size too large is tested the same on every device.
+  uint64_t max_buffer_bytes = 0;  // the largest buffer a kernel may bind
+  uint64_t max_texels = 0;        // the most texels a uniform texel buffer may span
   // Rendering (render/): a graphics queue and large points are required; instance and device
   // extensions for a window surface and swapchain; present_support restricts the choice to
   // devices and queues that can show the window.
@@ -43,9 +47,6 @@ struct ContextOptions {
 using ValidationHandler = std::function<void(const std::string&)>;
 void set_validation_handler(ValidationHandler handler);
 uint64_t validation_message_count();
-
-// Options from the environment: MASAV_VK_DEVICE, MASAV_VK_VALIDATION=1.
-ContextOptions options_from_env();
 
 class Context {
  public:

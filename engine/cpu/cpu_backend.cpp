@@ -38,8 +38,9 @@ CpuBuffer::CpuBuffer(const DeviceApi* owner, ElemKind kind, size_t count, size_t
                      std::string label)
     : BufferImpl(owner, kind, count, bytes, std::move(label)), storage_((bytes + 7) / 8) {}
 
-CpuBackend::CpuBackend(unsigned threads, CpuRenderPrecision render)
+CpuBackend::CpuBackend(unsigned threads, CpuRenderPrecision render, const Tuning& tuning)
     : pool_(threads), render_(render) {
+  tuning_ = tuning;
   caps_.backend = "cpu";
   caps_.device_name = cpuinfo_field("model name");
   caps_.vendor = cpuinfo_field("vendor_id");
@@ -53,11 +54,6 @@ CpuBackend::CpuBackend(unsigned threads, CpuRenderPrecision render)
   caps_.device_memory_bytes = uint64_t(sysconf(_SC_PHYS_PAGES)) * uint64_t(sysconf(_SC_PAGE_SIZE));
   caps_.real_is_double = true;
   caps_.threads = pool_.size();
-  if (const char* env = std::getenv("MASAV_CPU_DFSPH_TERMS")) {
-    if (std::strcmp(env, "0") != 0 && std::strcmp(env, "1") != 0)
-      throw_invalid("cpu backend", "MASAV_CPU_DFSPH_TERMS", env, "0 or 1");
-    dfsph_terms_on_ = env[0] == '1';
-  }
 }
 
 CpuBuffer& CpuBackend::own(BufferImpl& b, std::string_view kernel) {

@@ -38,7 +38,8 @@ enum class CpuRenderPrecision { fp64, fp32 };
 class CpuBackend final : public Backend {
  public:
   explicit CpuBackend(unsigned threads = default_cpu_threads(),
-                      CpuRenderPrecision render = CpuRenderPrecision::fp64);
+                      CpuRenderPrecision render = CpuRenderPrecision::fp64,
+                      const Tuning& tuning = {});
 
   const Capabilities& caps() const override { return caps_; }
   std::unique_ptr<BufferImpl> create_buffer(ElemKind kind, size_t count,
@@ -50,9 +51,9 @@ class CpuBackend final : public Backend {
   void reset_timestamps() override { stamps_.clear(); }
 
   ThreadPool& pool() { return pool_; }
-  // Whether the DFSPH solves read each pair's gradient back from DfsphTerms (the default) or
-  // recompute it on every call through the shared bodies; the results are the same bits.
-  // MASAV_CPU_DFSPH_TERMS=0 starts a backend without them.
+  // Whether the DFSPH solves read each pair's gradient back from DfsphTerms (the default, faster)
+  // or recompute it on every call through the shared bodies CUDA runs: the tests' oracle that the
+  // kept terms give the same bits.
   void set_dfsph_terms(bool on) { dfsph_terms_on_ = on; }
 
  protected:

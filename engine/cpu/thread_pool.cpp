@@ -1,7 +1,6 @@
 #include "engine/cpu/thread_pool.h"
 
 #include <algorithm>
-#include <cstdlib>
 #include <string>
 #include <utility>
 
@@ -113,13 +112,6 @@ void ThreadPool::parallel_for(size_t n, size_t grain,
 }
 
 unsigned default_cpu_threads() {
-  if (const char* env = std::getenv("MASAV_CPU_THREADS")) {
-    char* end = nullptr;
-    const long v = std::strtol(env, &end, 10);
-    if (!end || *end != '\0' || v < 1 || v > 1024)
-      throw_invalid("cpu backend", "MASAV_CPU_THREADS", env, "an integer in [1, 1024]");
-    return unsigned(v);
-  }
   return std::max(1u, std::thread::hardware_concurrency());
 }
 

@@ -49,7 +49,7 @@ class ThreadPool {
   std::exception_ptr error_;
 };
 
-// Threads the CPU backend uses: MASAV_CPU_THREADS if set, else the hardware's.
+// Threads the CPU backend uses unless told (CpuTuning::threads): the hardware's.
 unsigned default_cpu_threads();
 
 }  // namespace masav::cpu

@@ -16,6 +16,7 @@
 
 #include "engine/core/device_api.h"
 #include "engine/core/interop.h"
+#include "engine/core/tuning.h"
 #include "engine/kernels/kernel_id.h"
 #include "engine/kernels/kernel_macros.h"
 #define MASAV_KERNEL_PARAMS
@@ -58,6 +59,13 @@ class Backend : public DeviceApi {
   // Calls recorded since the last take, in call order; read their times after finish().
   std::vector<KernelTiming> take_kernel_timings();
 
+  // The tuning options the backend was created with (BackendRequest::tuning). Each backend
+  // reads its own part; the SPH simulation its `sph` part; a cross-check's reference backend is
+  // created with the same.
+  const Tuning& tuning() const {
+    return tuning_;
+  }
+
   // What the backend hands other Vulkan code without a copy (null: it computes elsewhere).
   virtual const VulkanInterop* vulkan_interop() const {
     return nullptr;
@@ -77,6 +85,8 @@ class Backend : public DeviceApi {
   }
 
  protected:
+  Tuning tuning_;
+
 #define MASAV_KERNEL(name, Params, items, ...) \
   virtual void do_##name(const Params& p, uint64_t items_ MASAV_BUFFER_PARAMS(__VA_ARGS__)) = 0;
 #include "engine/kernels/kernels.inc"

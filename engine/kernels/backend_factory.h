@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "engine/core/backend_status.h"
+#include "engine/core/tuning.h"
 #include "engine/kernels/backend.h"
 
 namespace masav {
@@ -21,6 +22,7 @@ struct BackendRequest {
   // renderer that borrows its device (null: the environment's defaults; other backends ignore it).
   const vk::ContextOptions* vulkan = nullptr;
   bool count_loop_ticks = false;  // instrument every loop: Backend::take_max_loop_ticks
+  Tuning tuning;                  // every option automatic unless set (engine/core/tuning.h)
 };
 
 class BackendFactory {

@@ -38,28 +38,6 @@ const char* to_string(SphStage s) {
 SphSimulation::SphSimulation(Backend& backend, const SphScene& scene, SphComm* comm)
     : backend_(backend), scene_(scene) {
   validate(scene_);
-  // MASAV_DFSPH_QUEUE=off: one DFSPH iteration per residual read (the same bits), to measure
-  // what queueing them saves.
-  if (const char* env = std::getenv("MASAV_DFSPH_QUEUE"); env && *env) {
-    if (std::strcmp(env, "on") != 0 && std::strcmp(env, "off") != 0)
-      throw_invalid("sph", "MASAV_DFSPH_QUEUE", env, "on or off");
-    dfsph_queue_ = env[1] == 'n';
-  }
-  // MASAV_SPH_REACH=off: every RK4 evaluation walks the inflated cells (the reach masks' A/B).
-  if (const char* env = std::getenv("MASAV_SPH_REACH"); env && *env) {
-    const std::string v = env;
-    if (v != "on" && v != "off" && v != "auto")
-      throw_invalid("sph", "MASAV_SPH_REACH", v, "auto, on or off");
-    reach_wanted_ = v != "off";
-  }
-  // MASAV_SPH_NEIGHBOR_STATE=off: sph_forces reads positions, velocities, density and pressure
-  // per neighbour instead of sph_density's neighbour state (the same bits; its A/B).
-  if (const char* env = std::getenv("MASAV_SPH_NEIGHBOR_STATE"); env && *env) {
-    const std::string v = env;
-    if (v != "on" && v != "off" && v != "auto")
-      throw_invalid("sph", "MASAV_SPH_NEIGHBOR_STATE", v, "auto, on or off");
-    state_wanted_ = v != "off";
-  }
   const int ranks = comm ? comm->size() : 1;
   check_capacity(backend_, scene_, ranks);
   layout_ = build_particles(scene_);

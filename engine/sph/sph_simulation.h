@@ -19,7 +19,7 @@
 //    per stage would cost three more sorts and re-gathers of six arrays per step. The first
 //    evaluation walks the 27 inflated cells and records which candidates lie within h + skin
 //    (the reach masks, SphReach); the other three test only those, not the 27 cells' 27 / (4/3 pi)
-//    ~ 6.4 times as many (MASAV_SPH_REACH=off: every evaluation walks the cells).
+//    ~ 6.4 times as many (where the masks do not fit, every evaluation walks the cells).
 //
 // CFL guard. dt is limited by C_v h / (c + v_max), C_f sqrt(h / a_max) and C_nu h^2 / nu (and
 // the skin for RK4). Adaptive mode takes the smallest (growing at most 25% per step). A fixed dt
@@ -164,7 +164,11 @@ class SphSimulation {
   uint64_t block_replays() const { return block_replays_; }  // blocks rolled back and replayed
   // RK4: whether its later evaluations walk the first one's reach masks (SphReach).
   bool keeps_reach_masks() const { return reach_rows_.valid(); }
-  // Whether sph_forces reads sph_density's neighbour state (kSphStateStride).
+  // From now on every RK4 evaluation walks the inflated cells, as where the masks do not fit:
+  // the tests' way to compare the two walks.
+  void drop_reach_masks() { reach_rows_ = {}; }
+  // Whether sph_forces reads sph_density's neighbour state (kSphStateStride): where the
+  // backend's SphTuning::neighbor_state allows and it fits.
   bool keeps_neighbor_state() const { return neighbor_state_.valid(); }
 
   double time() const { return time_; }
@@ -412,8 +416,6 @@ class SphSimulation {
   // reads a residual.
   uint32_t last_iterations_[2] = {0, 0};
   bool dfsph_queue_ = true;
-  bool reach_wanted_ = true;  // MASAV_SPH_REACH: RK4 keeps the reach masks where they fit
-  bool state_wanted_ = true;  // MASAV_SPH_NEIGHBOR_STATE: the neighbour state, where it fits
   uint64_t dfsph_residual_reads_ = 0;
   SphSolveStats solve_stats_;
   // The states at the start of run()'s pending block and of the one after it; empty where they

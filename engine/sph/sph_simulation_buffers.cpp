@@ -54,11 +54,12 @@ bool keeps_neighbor_rows(const Backend& b, uint64_t n, bool dfsph) {
 }
 
 // Whether RK4's first evaluation records the reach masks that its other three walk (SphReach):
-// where `wanted` (MASAV_SPH_REACH), on every backend (the CPU reference's lists use them too),
-// where they fit one buffer and, with the neighbour rows when kept, the memory budget
-// check_capacity applies; elsewhere every evaluation walks the inflated cells.
-bool keeps_reach_rows(const Backend& b, uint64_t n, bool wanted, bool neighbor_rows) {
-  if (!wanted) return false;
+// on every backend (the CPU reference's lists use them too), where they fit one buffer and, with
+// the neighbour rows when kept, the memory budget check_capacity applies; elsewhere every
+// evaluation walks the inflated cells. The masks cost what they save on a CPU device (the CPU
+// reference's RK4 step at 32,768 particles 71.7-73.2 against 70.8-84.1 ms without) and save a
+// tenth of lavapipe's density pass (59.7-64.2 against 64.3-66.9 ms), docs/performance.md.
+bool keeps_reach_rows(const Backend& b, uint64_t n, bool neighbor_rows) {
   const Capabilities& caps = b.caps();
   const uint64_t mask_bytes = n * kSphRowMaskWords * 4;
   if (caps.max_buffer_bytes && mask_bytes > caps.max_buffer_bytes) return false;
@@ -67,7 +68,7 @@ bool keeps_reach_rows(const Backend& b, uint64_t n, bool wanted, bool neighbor_r
 }
 
 // Whether sph_density writes the neighbour state that sph_forces then reads (kSphStateStride):
-// where `wanted` (MASAV_SPH_NEIGHBOR_STATE), in one process (a rank's halos exchange density and
+// where SphTuning::neighbor_state allows (auto: on), in one process (a rank's halos exchange density and
 // pressure, not the state), where it fits one buffer and, with the masks kept, the memory budget
 // check_capacity applies. dfsph never: its viscosity forces use the velocities its divergence
 // solve changed after sph_density.
@@ -152,10 +153,11 @@ void SphSimulation::allocate_particle_buffers() {
     neighbor_rows_ =
         backend_.create<uint32_t>(size_t(kSphRowMaskWords) * c, "sph neighbour row masks");
   if (scene_.integrator == SphIntegrator::rk4 && !dfsph() &&
-      keeps_reach_rows(backend_, c, reach_wanted_, neighbor_rows_.valid()))
+      keeps_reach_rows(backend_, c, neighbor_rows_.valid()))
     reach_rows_ = backend_.create<uint32_t>(size_t(kSphRowMaskWords) * c, "sph rk4 reach masks");
   const int mask_sets = int(neighbor_rows_.valid()) + int(reach_rows_.valid());
-  if (!dfsph() && !ranks_ && neighbor_state_fits(backend_, c, state_wanted_, mask_sets))
+  if (!dfsph() && !ranks_ && neighbor_state_fits(backend_, c, resolve(backend_.tuning().sph.neighbor_state, true),
+                                             mask_sets))
     neighbor_state_ = backend_.create<Real4>(size_t(kSphStateStride) * c, "sph neighbour state");
   if (dfsph()) allocate_dfsph();
   // dfsph reads its solves' residuals every iteration: it steps one at a time (no blocks).

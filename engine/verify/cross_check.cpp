@@ -4,7 +4,6 @@
 
 #include <chrono>
 #include <cmath>
-#include <cstdlib>
 #include <optional>
 
 #include "engine/core/error.h"
@@ -15,15 +14,6 @@ namespace {
 
 double ms_since(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-}
-
-// The kernel MASAV_VERIFY_FAULT names (see cross_check.h), if any.
-std::optional<KernelId> fault_from_env() {
-  const char* env = std::getenv("MASAV_VERIFY_FAULT");
-  if (!env || !*env) return std::nullopt;
-  if (auto id = find_kernel(env)) return id;
-  throw_invalid("cross-check", "MASAV_VERIFY_FAULT", env,
-                fmt::format("a kernel name: {}", kernel_names_list()));
 }
 
 // Arms the backend's fault for the one check of that kernel, so no other row sees it.
@@ -53,7 +43,8 @@ size_t CrossCheckReport::failures() const {
 
 CrossCheckReport cross_check(Backend& backend, Backend& reference,
                              const std::vector<std::string>& kernels, const CheckInputs& in,
-                             const std::vector<KernelCheck>& checks) {
+                             const std::vector<KernelCheck>& checks,
+                             std::optional<KernelId> fault) {
   CrossCheckReport rep;
   rep.backend = backend.name();
   rep.device = backend.caps().device_name;
@@ -61,7 +52,6 @@ CrossCheckReport cross_check(Backend& backend, Backend& reference,
   rep.reference_device = reference.caps().device_name;
   rep.points = in.points;
   rep.seed = in.seed;
-  const std::optional<KernelId> fault = fault_from_env();
   for (const auto& kernel : kernels) {
     CheckRow row;
     row.kernel = kernel;
@@ -99,17 +89,20 @@ CrossCheckReport cross_check(Backend& backend, Backend& reference,
 
 CrossCheckReport cross_check_scene(Backend& backend, Backend& reference,
                                    const scene::SceneType& type, const scene::ParamSet& params,
-                                   const std::vector<KernelCheck>& checks) {
+                                   const std::vector<KernelCheck>& checks,
+                                   std::optional<KernelId> fault) {
   std::vector<std::string> kernels;
   for (KernelId k : type.kernels(params)) kernels.emplace_back(kernel_name(k));
-  CrossCheckReport r = cross_check(backend, reference, kernels, type.check_inputs(params), checks);
+  CrossCheckReport r =
+      cross_check(backend, reference, kernels, type.check_inputs(params), checks, fault);
   r.scene = type.name;
   return r;
 }
 
 std::unique_ptr<Backend> open_reference(const Backend& chosen, const std::string& choice,
                                         const BackendFactory& factory) {
-  if (choice != "auto") return factory.create(choice);
+  const BackendRequest same{.tuning = chosen.tuning()};
+  if (choice != "auto") return factory.create(choice, "", same);
   // The other GPU backend when the chosen one is a GPU backend; a GPU backend when the chosen
   // one is the CPU reference; else (none available, or it fails to open) the CPU reference.
   const std::string me = chosen.name();
@@ -121,11 +114,11 @@ std::unique_ptr<Backend> open_reference(const Backend& chosen, const std::string
     for (const auto& s : factory.list())
       if (s.name == other && s.available) {
         try {
-          return factory.create(other);
+          return factory.create(other, "", same);
         } catch (const Error&) {
         }
       }
-  return factory.create("cpu");
+  return factory.create("cpu", "", same);
 }
 
 std::string format_report(const CrossCheckReport& r) {

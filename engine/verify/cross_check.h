@@ -3,6 +3,7 @@
 // backend and on a second one with identical inputs; the report names each kernel, both
 // backends and devices, the errors and the tolerances, and is printed and saved as JSON.
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -34,20 +35,23 @@ struct CrossCheckReport {
 };
 
 // Runs the checks of `kernels` (found in `checks`) on `backend` and `reference`. A kernel
-// without a check fails (every kernel a scene uses must be checked). MASAV_VERIFY_FAULT=<kernel>
-// makes `backend` perturb that kernel's output during its own check (Backend::inject_fault):
-// how the tests prove a mismatch is caught and stops the run.
+// without a check fails (every kernel a scene uses must be checked). `fault` makes `backend`
+// perturb that kernel's output during its own check (Backend::inject_fault): how the tests prove
+// a mismatch is caught and stops the run (the command line's hidden --inject-fault).
 CrossCheckReport cross_check(Backend& backend, Backend& reference,
                              const std::vector<std::string>& kernels, const CheckInputs& in,
-                             const std::vector<KernelCheck>& checks);
+                             const std::vector<KernelCheck>& checks,
+                             std::optional<KernelId> fault = std::nullopt);
 // Every kernel `type` runs with `params`, on the inputs it asks for.
 CrossCheckReport cross_check_scene(Backend& backend, Backend& reference,
                                    const scene::SceneType& type, const scene::ParamSet& params,
-                                   const std::vector<KernelCheck>& checks);
+                                   const std::vector<KernelCheck>& checks,
+                                   std::optional<KernelId> fault = std::nullopt);
 
-// The second backend: `choice` (verify.reference: auto, cpu, vulkan, cuda) from `factory`.
-// auto = the other GPU backend if it is available, else the CPU reference (a second instance
-// when the chosen backend is the CPU itself and no GPU backend is present).
+// The second backend: `choice` (verify.reference: auto, cpu, vulkan, cuda) from `factory`, with
+// the chosen backend's tuning. auto = the other GPU backend if it is available, else the CPU
+// reference (a second instance when the chosen backend is the CPU itself and no GPU backend is
+// present).
 std::unique_ptr<Backend> open_reference(const Backend& chosen, const std::string& choice,
                                         const BackendFactory& factory);
 
