@@ -261,6 +261,7 @@ int run_sph(const SphOptions& given) {
   SphComm* comm = world_comm();
   const bool lead = !comm || comm->rank() == 0;  // prints and writes
   if (!lead) o.quiet = true;
+  validate(scene);  // every check of the scene before any output is opened
   SphRun run(run_options(o), comm);  // outputs held before any work: a bad path fails at once
   install_interrupt_handler();
   auto backend = open_backend(o.choice, o.choice.backend, rank_device(o.choice, comm));

@@ -153,6 +153,9 @@ SphRunResult SphRun::run(SphSimulation& sim, const SphRunEvents& events) {
       result.last_good_skipped = true;
   }
   result.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  // The rows written become the file (the old one stayed whole until now), whatever ended the
+  // run: its end, an interrupt or an error.
+  if (outputs_->csv) outputs_->csv->commit();
   result.steps = sim.steps() - steps0;
   result.substeps = sim.substeps() - substeps0;
   result.csv_rows = outputs_->csv ? outputs_->csv->rows() : 0;

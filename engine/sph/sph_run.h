@@ -4,7 +4,8 @@
 //   - opens and holds its outputs before any simulation exists, so a bad path fails at once: the
 //     output directory (.vtp snapshots, the last good state) and the checkpoint directory, each
 //     locked against a second run (engine/io/output_lock.h), and the per-step CSV, whose rows
-//     reach the file as their steps end;
+//     reach a partial file as their steps end and replace the old file when the run ends,
+//     however it ends (a run refused before its first step leaves the old file whole);
 //   - steps the simulation in calls of at most one block, from one event to the next (a CSV row,
 //     a snapshot, a checkpoint, a progress report), so the events fall on the same steps however
 //     the run is split by restarts, and an interrupt is seen within a block;
