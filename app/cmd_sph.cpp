@@ -99,6 +99,13 @@ SphScene scene_from(const SphOptions& o) {
   if (o.kp) s.kp = *o.kp;
   if (o.smoothing_radius) s.smoothing_radius = *o.smoothing_radius;
   if (o.restitution) s.restitution = *o.restitution;
+  // The presets place their particles on a lattice; a seed would change nothing.
+  if (g_sph_command && g_sph_command->count("--seed") > 0 && s.jitter == 0)
+    throw Error("", "--seed",
+                fmt::format("--seed changes nothing: the preset {} places its particles on a "
+                            "lattice without jitter",
+                            o.preset),
+                "drop --seed");
   s.seed = o.seed;
   return s;
 }
@@ -249,6 +256,9 @@ int report(const SphRunResult& r, SphSimulation& sim, const SphOptions& o) {
 int run_sph(const SphOptions& given) {
   SphOptions o = given;  // a restart takes the preset's name (for file names) from its scene
   check_restart_flags(o);
+  if (g_sph_command && g_sph_command->count("--restart") > 0 && o.restart.empty())
+    throw Error("", "--restart", "--restart was given an empty directory",
+                "give the --checkpoint-dir of the run to resume");
   std::optional<SphCheckpoint> resumed;
   const std::string restart_file = SphRun::checkpoint_path(o.restart);
   if (!o.restart.empty()) {
@@ -328,7 +338,9 @@ void add_sph_command(CLI::App& app) {
   cmd->add_option("--kp", o.kp, "thesis pressure constant");
   cmd->add_option("--smoothing-radius", o.smoothing_radius, "support radius h (m)");
   cmd->add_option("--restitution", o.restitution, "wall restitution in [0, 1]");
-  cmd->add_option("--seed", o.seed, "seed of the particles' jitter")->capture_default_str();
+  cmd->add_option("--seed", o.seed, "seed of the particles' jitter (presets with jitter only)")
+      ->check(CLI::Range(uint64_t(0), uint64_t(1) << 62))
+      ->capture_default_str();
   cmd->add_option("--vtp-every", o.vtp_every, "write particles (.vtp) every k steps (0: never)")
       ->check(CLI::Range(uint64_t(0), uint64_t(1) << 40));
   add_ranged_option(*cmd, "--diag-every", o.diag_every, "CSV diagnostics every k steps",
