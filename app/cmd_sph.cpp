@@ -17,6 +17,7 @@
 #include "app/commands.h"
 #include "app/interrupt.h"
 #include "app/mpi_comm.h"
+#include "app/number_checks.h"
 #include "app/scene_options.h"
 #include "app/vocabulary.h"
 #include "engine/core/error.h"
@@ -321,24 +322,32 @@ void add_sph_command(CLI::App& app) {
   cmd->add_option("--time", o.time,
                   "run until this simulated time (s) instead of --steps (with --restart: the "
                   "time since the first run's start)")
-      ->check(CLI::Range(0.0, 1e6))
+      ->check(number_in(0, 1e6, true))
       ->excludes("--steps");
   cmd->add_option("--integrator", o.integrator, "euler, symplectic-euler, rk4 or leapfrog");
   cmd->add_option("--pressure", o.pressure,
                   "pressure model: wcsph, thesis or dfsph (incompressible; symplectic-euler)");
-  cmd->add_option("--dt", o.dt, "fixed time step (s); default: CFL-adaptive");
+  cmd->add_option("--dt", o.dt, "fixed time step (s); default: CFL-adaptive")
+      ->check(number_in(0, 10, true));
   cmd->add_option("--cfl-guard", o.cfl_guard, "reduce (split unstable steps), stop, or off");
-  cmd->add_option("--viscosity", o.viscosity, "kinematic viscosity nu (m^2/s)");
-  auto* c0 = cmd->add_option("--sound-speed", o.sound_speed, "wcsph speed of sound c0 (m/s)");
+  cmd->add_option("--viscosity", o.viscosity, "kinematic viscosity nu (m^2/s; 0: inviscid)")
+      ->check(number_in(0, 1e3));
+  auto* c0 = cmd->add_option("--sound-speed", o.sound_speed, "wcsph speed of sound c0 (m/s)")
+                 ->check(number_in(0, 1e5, true));
   cmd->add_option("--max-compression", o.max_compression,
                   "wcsph: c0 for this largest compression at impacts, c0 = fall speed / it "
                   "(water, mud, dam break, obstacle; the presets' 0.1 is 10 x the fall speed, "
                   "0.03 takes 3.3x the steps)")
+      ->check(number_in(0.001, 0.5))
       ->excludes(c0);
-  cmd->add_option("--kp", o.kp, "thesis pressure constant");
-  cmd->add_option("--smoothing-radius", o.smoothing_radius, "support radius h (m)");
-  cmd->add_option("--restitution", o.restitution, "wall restitution in [0, 1]");
-  cmd->add_option("--seed", o.seed, "seed of the particles' jitter (presets with jitter only)")
+  cmd->add_option("--kp", o.kp, "thesis pressure constant (0: no pressure)")
+      ->check(number_in(0, 1e12));
+  cmd->add_option("--smoothing-radius", o.smoothing_radius, "support radius h (m)")
+      ->check(number_in(0, 10, true));
+  cmd->add_option("--restitution", o.restitution,
+                  "wall restitution in [0, 1] (0: the walls take the normal speed)")
+      ->check(number_in(0, 1));
+  cmd->add_option("--seed", o.seed, "seed of the particles' jitter (presets with jitter only; 0 is a seed like any other)")
       ->check(CLI::Range(uint64_t(0), uint64_t(1) << 62))
       ->capture_default_str();
   cmd->add_option("--vtp-every", o.vtp_every, "write particles (.vtp) every k steps (0: never)")
