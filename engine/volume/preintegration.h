@@ -7,7 +7,7 @@
 #include "engine/core/types.h"
 #include "engine/kernels/backend.h"
 
-namespace masav::atom {
+namespace masav::volume {
 
 // Optical depth is capped at -ln(kMinTransmittance) per reference step, so that an entry of
 // alpha 1 (transmittance 0) has a finite depth: beyond it a reference step is opaque anyway.
@@ -18,4 +18,4 @@ std::vector<Vec4d> preintegrate_transfer(const std::vector<Vec4d>& tf);
 // That table on backend b.
 Buffer<Real4> upload_preintegrated(Backend& b, const std::vector<Vec4d>& tf);
 
-}  // namespace masav::atom
+}  // namespace masav::volume
