@@ -1,7 +1,8 @@
 #pragma once
 // The pre-integrated table of a transfer function, which raymarch reads (its tf_integral) when
 // RaymarchParams::preintegrate is on: per entry, the emission and optical depth there and their
-// integrals from the first entry (layout: volume::segment_mean in engine/kernels/volume_math.h).
+// integrals from the first entry (layout: volume::segment_mean in
+// engine/kernels/volume_transfer.h).
 #include <vector>
 
 #include "engine/core/types.h"
