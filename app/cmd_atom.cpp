@@ -17,12 +17,12 @@
 #include "app/vocabulary.h"
 #include "engine/atom/atom_export.h"
 #include "engine/atom/atom_schema.h"
-#include "engine/atom/transfer_function.h"
-#include "engine/atom/volume_file.h"
 #include "engine/core/error.h"
 #include "engine/io/output_lock.h"
 #include "engine/io/png_writer.h"
 #include "engine/io/staged_files.h"
+#include "engine/volume/transfer_function.h"
+#include "engine/volume/volume_file.h"
 #include "registry/backends.h"
 #include "registry/scene_catalog.h"
 
@@ -54,7 +54,7 @@ struct AtomCliOptions {
 
 struct VolumeCliOptions {
   BackendChoice choice;
-  atom::VolumeFileOptions source;
+  volume::VolumeFileOptions source;
   std::string out = "out/volume", tf, view = "front", mode = "front_to_back";
   std::string preintegrate = "off";
   std::string clip;  // AXIS:POSITION[:above|below]
@@ -66,8 +66,8 @@ struct VolumeCliOptions {
 };
 
 std::vector<Vec4d> transfer(const std::string& file) {
-  return atom::resample_transfer(file.empty() ? atom::default_transfer_points()
-                                              : atom::load_transfer_points(file));
+  return volume::resample_transfer(file.empty() ? volume::default_transfer_points()
+                                                : volume::load_transfer_points(file));
 }
 
 // The nebula as the thesis shows it: particles projected along the view, coloured by their light
@@ -236,7 +236,7 @@ int run_volume(const VolumeCliOptions& o) {
   if (o.preintegrate == "on" && o.mode != "front_to_back")
     throw_invalid("masav volume", "--preintegrate", "on with --mode " + o.mode,
                   "off, or on with --mode front_to_back (lerp has no step to integrate over)");
-  atom::check_volume_file_options(o.source);
+  volume::check_volume_file_options(o.source);
   const RaymarchParams::Clip clip = parse_clip(o.clip, "masav volume");
   // --out names a directory, as for every command; a .png name is the file it used to name.
   std::string png = o.out + "/volume.png";
@@ -250,8 +250,8 @@ int run_volume(const VolumeCliOptions& o) {
   // Reading, uploading and raymarching a large volume take seconds each on a CPU device.
   Progress progress("volume steps", 4);
   progress.update(0, "reading " + o.source.file);
-  const atom::ScalarVolume vol = atom::load_volume_file(o.source);
-  const VolumeDesc desc = atom::volume_desc(vol);
+  const volume::ScalarVolume vol = volume::load_volume_file(o.source);
+  const VolumeDesc desc = volume::volume_desc(vol);
   progress.advance(fmt::format("uploading {}x{}x{} values", desc.dims.x, desc.dims.y, desc.dims.z));
   auto backend = open_backend(o.choice);
   auto buf = backend->create<Real>(vol.values.size(), "volume");

@@ -1,4 +1,4 @@
-#include "engine/atom/nrrd_header.h"
+#include "engine/volume/nrrd_header.h"
 
 #include <fmt/format.h>
 
@@ -11,7 +11,7 @@
 #include "engine/core/error.h"
 #include "engine/util/checked_size.h"
 
-namespace masav::atom {
+namespace masav::volume {
 namespace {
 
 // Fields that describe the data without changing the samples masav reads.
@@ -213,4 +213,4 @@ NrrdHeader parse_nrrd_header(std::string_view head, const std::string& where) {
   return h;
 }
 
-}  // namespace masav::atom
+}  // namespace masav::volume

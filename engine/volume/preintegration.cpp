@@ -1,6 +1,6 @@
 // Depth and emission at each entry, and their integrals by the trapezoid rule (exact for the
 // linear pieces the raymarch assumes), summed in double.
-#include "engine/atom/preintegration.h"
+#include "engine/volume/preintegration.h"
 
 #include <algorithm>
 #include <cmath>
@@ -8,7 +8,7 @@
 #include "engine/core/error.h"
 #include "engine/kernels/atom_params.h"
 
-namespace masav::atom {
+namespace masav::volume {
 
 std::vector<Vec4d> preintegrate_transfer(const std::vector<Vec4d>& tf) {
   if (tf.size() < 2)
@@ -52,4 +52,4 @@ Buffer<Real4> upload_preintegrated(Backend& b, const std::vector<Vec4d>& tf) {
   return out;
 }
 
-}  // namespace masav::atom
+}  // namespace masav::volume

@@ -9,7 +9,7 @@
 
 #include "engine/core/types.h"
 
-namespace masav::atom {
+namespace masav::volume {
 
 struct TransferPoint {
   double value;  // in [0, 1], ascending
@@ -31,4 +31,4 @@ std::string format_transfer_file(const std::vector<TransferPoint>& points);
 // Piecewise-linear resampling to `size` entries (constant beyond the first and last points).
 std::vector<Vec4d> resample_transfer(const std::vector<TransferPoint>& points, uint32_t size = 256);
 
-}  // namespace masav::atom
+}  // namespace masav::volume

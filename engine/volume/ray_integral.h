@@ -5,7 +5,7 @@
 #include <cmath>
 #include <utility>
 
-namespace masav::atom {
+namespace masav::volume {
 
 // int_{t0}^{t1} clamp(o + t d, lo, hi) dt, exactly.
 inline double clamped_linear_integral(double o, double d, double lo, double hi, double t0,
@@ -69,4 +69,4 @@ struct PeakedExtinction {
   }
 };
 
-}  // namespace masav::atom
+}  // namespace masav::volume

@@ -10,10 +10,10 @@
 //   bricks    volume_bricks + volume_brick_skip  [load, transfer]
 //   raymarch  raymarch with the camera  [bricks, view, render.width/height,
 //                                        raymarch.step_voxels/compositing/preintegrate]
-#include "engine/atom/volume_file.h"
 #include "engine/scene/scene.h"
+#include "engine/volume/volume_file.h"
 
-namespace masav::atom {
+namespace masav::volume {
 
 scene::SceneType volume_scene_type();
 
@@ -21,4 +21,4 @@ scene::SceneType volume_scene_type();
 VolumeFileOptions volume_file_options(const scene::ParamSet& p);
 void set_volume_file_options(scene::ParamSet& p, const VolumeFileOptions& o);
 
-}  // namespace masav::atom
+}  // namespace masav::volume

@@ -1,16 +1,16 @@
-#include "engine/atom/volume_render.h"
+#include "engine/volume/volume_render.h"
 
 #include <fmt/format.h>
 
 #include <algorithm>
 
-#include "engine/atom/brick_skip.h"
-#include "engine/atom/preintegration.h"
 #include "engine/core/error.h"
 #include "engine/kernels/atom_checks.h"
 #include "engine/scene/scene.h"
+#include "engine/volume/brick_skip.h"
+#include "engine/volume/preintegration.h"
 
-namespace masav::atom {
+namespace masav::volume {
 
 void add_inline_transfer_key(scene::TableSchema& s) {
   s.text("transfer", "",
@@ -125,4 +125,4 @@ std::optional<scene::ImageLayer> VolumeRender::image_layer(float gain, std::stri
   return img;
 }
 
-}  // namespace masav::atom
+}  // namespace masav::volume

@@ -1,8 +1,8 @@
-#include "engine/atom/brick_skip.h"
+#include "engine/volume/brick_skip.h"
 
 #include "engine/kernels/atom_checks.h"
 
-namespace masav::atom {
+namespace masav::volume {
 
 void fill_bricks(Backend& b, const VolumeBrickParams& p, const Buffer<Real>& volume,
                  const Buffer<Real4>& tf, Buffer<Real4>& bricks, uint32_t radius) {
@@ -21,4 +21,4 @@ void fill_bricks(Backend& b, const VolumeBrickParams& p, const Buffer<Real>& vol
   }
 }
 
-}  // namespace masav::atom
+}  // namespace masav::volume

@@ -1,4 +1,4 @@
-#include "engine/atom/volume_scene.h"
+#include "engine/volume/volume_scene.h"
 
 #include <fmt/format.h>
 
@@ -8,12 +8,12 @@
 #include <span>
 #include <sstream>
 
-#include "engine/atom/value_histogram.h"
-#include "engine/atom/volume_render.h"
 #include "engine/core/error.h"
 #include "engine/scene/camera_pose.h"
+#include "engine/volume/value_histogram.h"
+#include "engine/volume/volume_render.h"
 
-namespace masav::atom {
+namespace masav::volume {
 namespace {
 
 using scene::ParamSet;
@@ -114,8 +114,8 @@ class VolumeFileScene final : public scene::SceneInstance {
   }
 
   std::vector<uint32_t> value_histogram(uint32_t bins) const override {
-    return atom::value_histogram(backend_.download(volume_), desc_.value_min, desc_.value_max,
-                                 bins);
+    return volume::value_histogram(backend_.download(volume_), desc_.value_min, desc_.value_max,
+                                   bins);
   }
   uint64_t volume_version() const override { return graph_.version("load"); }
 
@@ -203,7 +203,7 @@ scene::SceneType volume_scene_type() {
     return std::vector<KernelId>{KernelId::volume_bricks, KernelId::volume_brick_skip,
                                  KernelId::raymarch};
   };
-  // The volume kernels' checks build their own small volume (atom_cross_checks.cpp).
+  // The volume kernels' checks build their own small volume (engine/atom/atom_cross_checks.cpp).
   t.check_inputs = [](const ParamSet& p) {
     scene::CheckInputs c;
     c.points = uint32_t(std::min<int64_t>(1000, p.get_int("verify.max_points")));
@@ -216,4 +216,4 @@ scene::SceneType volume_scene_type() {
   return t;
 }
 
-}  // namespace masav::atom
+}  // namespace masav::volume

@@ -1,11 +1,11 @@
-#include "engine/atom/value_histogram.h"
+#include "engine/volume/value_histogram.h"
 
 #include <algorithm>
 #include <cmath>
 
 #include "engine/core/error.h"
 
-namespace masav::atom {
+namespace masav::volume {
 
 std::vector<uint32_t> value_histogram(std::span<const double> values, double lo, double hi,
                                       uint32_t bins) {
@@ -30,4 +30,4 @@ std::vector<float> log_heights(const std::vector<uint32_t>& counts) {
   return h;
 }
 
-}  // namespace masav::atom
+}  // namespace masav::volume

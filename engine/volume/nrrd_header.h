@@ -8,9 +8,9 @@
 #include <string>
 #include <string_view>
 
-#include "engine/atom/volume_io.h"
+#include "engine/volume/volume_io.h"
 
-namespace masav::atom {
+namespace masav::volume {
 
 enum class NrrdEncoding { raw, ascii };
 
@@ -32,4 +32,4 @@ struct NrrdHeader {
 // header). `where` names the file in messages.
 NrrdHeader parse_nrrd_header(std::string_view head, const std::string& where);
 
-}  // namespace masav::atom
+}  // namespace masav::volume

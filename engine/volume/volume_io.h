@@ -12,7 +12,7 @@
 
 #include "engine/kernels/atom_params.h"
 
-namespace masav::atom {
+namespace masav::volume {
 
 enum class SampleType { u8, i8, u16, i16, u32, i32, f32, f64 };
 SampleType parse_sample_type(const std::string& name);  // uint8, int16, float32, ...
@@ -36,4 +36,4 @@ ScalarVolume load_vti(const std::string& path, const std::string& array = "");
 // the volume is constant).
 VolumeDesc volume_desc(const ScalarVolume& v);
 
-}  // namespace masav::atom
+}  // namespace masav::volume

@@ -5,7 +5,7 @@
 #include <span>
 #include <vector>
 
-namespace masav::atom {
+namespace masav::volume {
 
 // `bins` counts over [lo, hi]: value v falls in bin floor((v - lo) / (hi - lo) * bins), the top
 // value in the last bin. Values outside [lo, hi] count at its ends, as raymarch clamps them;
@@ -17,4 +17,4 @@ std::vector<uint32_t> value_histogram(std::span<const double> values, double lo,
 // voxels of a volume's bright core still show beside its empty space.
 std::vector<float> log_heights(const std::vector<uint32_t>& counts);
 
-}  // namespace masav::atom
+}  // namespace masav::volume

@@ -5,9 +5,9 @@
 #include <string>
 #include <vector>
 
-#include "engine/atom/volume_io.h"
+#include "engine/volume/volume_io.h"
 
-namespace masav::atom {
+namespace masav::volume {
 
 struct VolumeFileOptions {
   std::string file;
@@ -24,4 +24,4 @@ void check_volume_file_options(const VolumeFileOptions& o);
 // Checks the options, then reads the file with its format's loader.
 ScalarVolume load_volume_file(const VolumeFileOptions& o);
 
-}  // namespace masav::atom
+}  // namespace masav::volume

@@ -1,4 +1,4 @@
-#include "engine/atom/volume_io.h"
+#include "engine/volume/volume_io.h"
 
 #include <fmt/format.h>
 
@@ -11,12 +11,12 @@
 #include <optional>
 #include <sstream>
 
-#include "engine/atom/nrrd_header.h"
 #include "engine/core/error.h"
 #include "engine/util/bounded_file.h"
 #include "engine/util/checked_size.h"
+#include "engine/volume/nrrd_header.h"
 
-namespace masav::atom {
+namespace masav::volume {
 namespace {
 
 // Text data (ASCII NRRD or VTI) may spend at most this many bytes per value, and an XML file this
@@ -496,4 +496,4 @@ VolumeDesc volume_desc(const ScalarVolume& v) {
   return d;
 }
 
-}  // namespace masav::atom
+}  // namespace masav::volume

@@ -1,4 +1,4 @@
-#include "engine/atom/transfer_function.h"
+#include "engine/volume/transfer_function.h"
 
 #include <fmt/format.h>
 
@@ -9,7 +9,7 @@
 #include "engine/core/error.h"
 #include "engine/util/bounded_file.h"
 
-namespace masav::atom {
+namespace masav::volume {
 
 std::vector<TransferPoint> default_transfer_points() {
   return {{0.00, 0.0, 0.0, 1.0, 0.00},
@@ -117,4 +117,4 @@ std::vector<Vec4d> resample_transfer(const std::vector<TransferPoint>& pts, uint
   return out;
 }
 
-}  // namespace masav::atom
+}  // namespace masav::volume

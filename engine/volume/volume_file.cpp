@@ -1,4 +1,4 @@
-#include "engine/atom/volume_file.h"
+#include "engine/volume/volume_file.h"
 
 #include <fmt/format.h>
 
@@ -7,7 +7,7 @@
 
 #include "engine/core/error.h"
 
-namespace masav::atom {
+namespace masav::volume {
 namespace {
 
 std::string extension_of(const std::string& file) {
@@ -58,4 +58,4 @@ ScalarVolume load_volume_file(const VolumeFileOptions& o) {
                   o.big_endian, sp);
 }
 
-}  // namespace masav::atom
+}  // namespace masav::volume

@@ -5,7 +5,7 @@
 // lookup instead of one per brick.
 #include "engine/kernels/backend.h"
 
-namespace masav::atom {
+namespace masav::volume {
 
 // The farthest stride looked for, in bricks. A ray then crosses up to 2 x 16 - 1 bricks of one
 // kind per lookup; the transform reads 2 radius + 1 bricks per brick and pass.
@@ -17,4 +17,4 @@ void fill_bricks(Backend& b, const VolumeBrickParams& p, const Buffer<Real>& vol
                  const Buffer<Real4>& tf, Buffer<Real4>& bricks,
                  uint32_t radius = kBrickSkipRadius);
 
-}  // namespace masav::atom
+}  // namespace masav::volume

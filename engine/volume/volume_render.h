@@ -6,13 +6,13 @@
 #include <string>
 #include <vector>
 
-#include "engine/atom/transfer_function.h"
 #include "engine/kernels/backend.h"
 #include "engine/scene/camera_pose.h"
 #include "engine/scene/param_schema.h"
 #include "engine/scene/scene_view.h"
+#include "engine/volume/transfer_function.h"
 
-namespace masav::atom {
+namespace masav::volume {
 
 // The clipping plane's and the shading's keys (clip, clip_position, clip_keep, shade,
 // shade_specular) of a table raymarch() reads.
@@ -55,4 +55,4 @@ class VolumeRender {
   uint32_t image_w_ = 0, image_h_ = 0;
 };
 
-}  // namespace masav::atom
+}  // namespace masav::volume
