@@ -135,8 +135,10 @@ namespace {
 // schema formats them.
 std::string toml_value(const ParamValue& v) {
   if (const auto* text = std::get_if<std::string>(&v)) {
+    // A basic "..." string, escaped where needed (UTF-8 text kept as it is).
     std::ostringstream out;
-    out << toml::value<std::string>(*text);
+    out << toml::toml_formatter{toml::value<std::string>(*text),
+                                toml::format_flags::allow_unicode_strings};
     return out.str();
   }
   return format_value(v);

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
+#include <filesystem>
 #include <fstream>
 
 #include "engine/core/error.h"
@@ -140,6 +141,12 @@ void report(TfEditorState& e, std::string text, bool error) {
 }  // namespace
 
 void save_tf_file(TfEditorState& e, const std::string& path) {
+  const std::filesystem::path parent = std::filesystem::path(path).parent_path();
+  std::error_code ec;
+  if (!parent.empty() && !std::filesystem::is_directory(parent, ec)) {
+    report(e, fmt::format("Save TF: cannot write {}: the folder does not exist", path), true);
+    return;
+  }
   try {
     write_output(path, volume::format_transfer_file(e.points), "Save TF");
   } catch (const Error& err) {
