@@ -1,13 +1,13 @@
-// SphSimulation's per-particle device buffers: what a particle costs, what fits the device, and
-// on several ranks buffers sized for a rank's share and its halos rather than for every
-// particle (so that memory per rank falls as ranks are added), grown when a rank takes more.
+// SphDeviceState: what a particle costs on the device, what fits (the masks, the neighbour state,
+// run()'s checkpoints), the buffers' allocation and, on several ranks, their growth.
+#include "engine/sph/sph_device_state.h"
+
 #include <fmt/format.h>
 
 #include <algorithm>
 
 #include "engine/core/error.h"
 #include "engine/kernels/kernel_checks.h"
-#include "engine/sph/sph_simulation.h"
 
 namespace masav {
 namespace {
@@ -68,10 +68,10 @@ bool keeps_reach_rows(const Backend& b, uint64_t n, bool neighbor_rows) {
 }
 
 // Whether sph_density writes the neighbour state that sph_forces then reads (kSphStateStride):
-// where SphTuning::neighbor_state allows (auto: on), in one process (a rank's halos exchange density and
-// pressure, not the state), where it fits one buffer and, with the masks kept, the memory budget
-// check_capacity applies. dfsph never: its viscosity forces use the velocities its divergence
-// solve changed after sph_density.
+// where SphTuning::neighbor_state allows (auto: on), in one process (a rank's halos exchange
+// density and pressure, not the state), where it fits one buffer and, with the masks kept, the
+// memory budget check_capacity applies. dfsph never: its viscosity forces use the velocities its
+// divergence solve changed after sph_density.
 bool neighbor_state_fits(const Backend& b, uint64_t n, bool wanted, int mask_sets) {
   if (!wanted) return false;
   const Capabilities& caps = b.caps();
@@ -85,7 +85,7 @@ bool neighbor_state_fits(const Backend& b, uint64_t n, bool wanted, int mask_set
 
 // The particles a rank's buffers start with room for: all of them in one process; on several
 // ranks an equal share and a quarter more (plus 1,024) for its halos (reserve() grows them).
-uint32_t SphSimulation::initial_capacity(uint64_t particles, int ranks) {
+uint32_t SphDeviceState::initial_capacity(uint64_t particles, int ranks) {
   if (ranks <= 1) return uint32_t(particles);
   const uint64_t share = (particles + uint64_t(ranks) - 1) / uint64_t(ranks);
   return uint32_t(std::min<uint64_t>(particles, share + share / 4 + 1024));
@@ -104,7 +104,7 @@ std::string per_rank_note(uint64_t n, int ranks) {
 
 }  // namespace
 
-void SphSimulation::check_buffer_size(const Backend& b, uint64_t particles, int ranks) {
+void SphDeviceState::check_buffer_size(const Backend& b, uint64_t particles, int ranks) {
   const Capabilities& caps = b.caps();
   const uint64_t n = initial_capacity(particles, ranks);
   const uint64_t real4 = 4 * b.real_bytes();
@@ -116,7 +116,7 @@ void SphSimulation::check_buffer_size(const Backend& b, uint64_t particles, int 
                               caps.device_name, caps.max_buffer_bytes >> 20));
 }
 
-void SphSimulation::check_capacity(const Backend& b, const SphScene& s, int ranks) {
+void SphDeviceState::check_capacity(const Backend& b, const SphScene& s, int ranks) {
   // The obstacle is checked once its size is known (check_buffer_size again).
   check_buffer_size(b, s.particles, ranks);
   const Capabilities& caps = b.caps();
@@ -130,49 +130,71 @@ void SphSimulation::check_capacity(const Backend& b, const SphScene& s, int rank
                               caps.device_name, per_particle, caps.device_memory_bytes >> 20));
 }
 
-void SphSimulation::allocate_particle_buffers() {
+SphDeviceState::SphDeviceState(Backend& backend, const SphScene& scene, uint32_t particles,
+                               int ranks)
+    : backend_(backend),
+      scene_(scene),
+      n_(particles),
+      ranks_(ranks > 1),
+      capacity_(initial_capacity(particles, ranks)) {}
+
+void SphDeviceState::allocate() {
+  stats = backend_.create<uint32_t>(kSphStatWords, "sph stats");
+  const bool dfsph = scene_.model == SphPressureModel::dfsph;
   const size_t c = capacity_;
   auto real4 = [&](const char* label) { return backend_.create<Real4>(c, label); };
-  pos_ = real4("sph positions");
-  vel_ = real4("sph velocities");
-  xs_ = real4("sph stage positions");
-  vs_ = real4("sph stage velocities");
-  sum_x_ = real4("sph rk4 position sums");
-  sum_v_ = real4("sph rk4 velocity sums");
-  ta_ = real4("sph sorted positions");
-  tb_ = real4("sph sorted velocities");
-  tc_ = real4("sph sorted predicted velocities");
-  accel_ = real4("sph accelerations");
-  density_ = backend_.create<Real>(c, "sph density");
-  pressure_ = backend_.create<Real>(c, "sph pressure");
-  ids_ = backend_.create<uint32_t>(c, "sph ids");
-  ids_t_ = backend_.create<uint32_t>(c, "sph sorted ids");
+  pos = real4("sph positions");
+  vel = real4("sph velocities");
+  xs = real4("sph stage positions");
+  vs = real4("sph stage velocities");
+  sum_x = real4("sph rk4 position sums");
+  sum_v = real4("sph rk4 velocity sums");
+  ta = real4("sph sorted positions");
+  tb = real4("sph sorted velocities");
+  tc = real4("sph sorted predicted velocities");
+  accel = real4("sph accelerations");
+  density = backend_.create<Real>(c, "sph density");
+  pressure = backend_.create<Real>(c, "sph pressure");
+  ids = backend_.create<uint32_t>(c, "sph ids");
+  ids_t = backend_.create<uint32_t>(c, "sph sorted ids");
   // Whether the row masks and the block checkpoint fit is decided once, for the buffers' first
   // size; a rank's growth keeps what it has.
-  if (keeps_neighbor_rows(backend_, c, dfsph()))
-    neighbor_rows_ =
+  if (keeps_neighbor_rows(backend_, c, dfsph))
+    neighbor_rows =
         backend_.create<uint32_t>(size_t(kSphRowMaskWords) * c, "sph neighbour row masks");
-  if (scene_.integrator == SphIntegrator::rk4 && !dfsph() &&
-      keeps_reach_rows(backend_, c, neighbor_rows_.valid()))
-    reach_rows_ = backend_.create<uint32_t>(size_t(kSphRowMaskWords) * c, "sph rk4 reach masks");
-  const int mask_sets = int(neighbor_rows_.valid()) + int(reach_rows_.valid());
-  if (!dfsph() && !ranks_ && neighbor_state_fits(backend_, c, resolve(backend_.tuning().sph.neighbor_state, true),
-                                             mask_sets))
-    neighbor_state_ = backend_.create<Real4>(size_t(kSphStateStride) * c, "sph neighbour state");
-  if (dfsph()) allocate_dfsph();
+  if (scene_.integrator == SphIntegrator::rk4 && !dfsph &&
+      keeps_reach_rows(backend_, c, neighbor_rows.valid()))
+    reach_rows = backend_.create<uint32_t>(size_t(kSphRowMaskWords) * c, "sph rk4 reach masks");
+  const int mask_sets = int(neighbor_rows.valid()) + int(reach_rows.valid());
+  if (!dfsph && !ranks_ &&
+      neighbor_state_fits(backend_, c, resolve(backend_.tuning().sph.neighbor_state, true),
+                          mask_sets))
+    neighbor_state = backend_.create<Real4>(size_t(kSphStateStride) * c, "sph neighbour state");
+  if (dfsph) allocate_dfsph();
   // dfsph reads its solves' residuals every iteration: it steps one at a time (no blocks).
   // The second checkpoint lets run() record a block while the one before it is pending: in one
   // process, where both fit.
-  const int checkpoints =
-      dfsph() ? 0
-              : keeps_checkpoints(backend_, c, mask_sets, neighbor_state_.valid(), ranks_ ? 1 : 2);
-  for (int k = 0; k < checkpoints; ++k) {
-    Checkpoint& cp = checkpoints_[size_t(k)];
+  const int kept =
+      dfsph ? 0 : keeps_checkpoints(backend_, c, mask_sets, neighbor_state.valid(), ranks_ ? 1 : 2);
+  for (int k = 0; k < kept; ++k) {
+    SphBlockCheckpoint& cp = checkpoints[size_t(k)];
     cp.pos = real4("sph checkpoint positions");
     cp.vel = real4("sph checkpoint velocities");
     cp.accel = real4("sph checkpoint accelerations");
     cp.ids = backend_.create<uint32_t>(c, "sph checkpoint ids");
   }
+}
+
+// The solves' buffers (sph_dfsph_scheme.h).
+void SphDeviceState::allocate_dfsph() {
+  auto real = [&](const char* label) { return backend_.create<Real>(capacity_, label); };
+  factor = real("dfsph factor");
+  kappa = real("dfsph kappa");
+  kappa_density = real("dfsph density kappa sums");
+  kappa_divergence = real("dfsph divergence kappa sums");
+  kappa_density_t = real("dfsph sorted density kappa sums");
+  kappa_divergence_t = real("dfsph sorted divergence kappa sums");
+  residual = backend_.create<uint32_t>(kDfsphResidualWords, "dfsph residuals");
 }
 
 namespace {
@@ -188,26 +210,26 @@ void grow(Backend& backend, Buffer<T>& b, size_t count) {
 
 }  // namespace
 
-void SphSimulation::reserve(uint32_t local) {
+void SphDeviceState::reserve(uint32_t local, HashGrid& grid) {
   if (local <= capacity_) return;
   // A quarter more than asked, so that a rank whose share creeps up grows a few times only.
   capacity_ = uint32_t(std::min<uint64_t>(n_, uint64_t(local) + local / 4 + 1024));
   ++capacity_growths_;
   const size_t c = capacity_;
-  for (Buffer<Real4>* b : {&pos_, &vel_, &xs_, &vs_, &sum_x_, &sum_v_, &ta_, &tb_, &tc_, &accel_})
+  for (Buffer<Real4>* b : {&pos, &vel, &xs, &vs, &sum_x, &sum_v, &ta, &tb, &tc, &accel})
     grow(backend_, *b, c);
-  for (Checkpoint& cp : checkpoints_) {
+  for (SphBlockCheckpoint& cp : checkpoints) {
     for (Buffer<Real4>* b : {&cp.pos, &cp.vel, &cp.accel}) grow(backend_, *b, c);
     grow(backend_, cp.ids, c);
   }
-  for (Buffer<Real>* b : {&density_, &pressure_, &factor_, &kappa_, &kappa_density_,
-                          &kappa_divergence_, &kappa_density_t_, &kappa_divergence_t_})
+  for (Buffer<Real>* b : {&density, &pressure, &factor, &kappa, &kappa_density, &kappa_divergence,
+                          &kappa_density_t, &kappa_divergence_t})
     grow(backend_, *b, c);
-  for (Buffer<uint32_t>* b : {&ids_, &ids_t_, &grid_.sorted_cells, &grid_.sorted_index})
+  for (Buffer<uint32_t>* b : {&ids, &ids_t, &grid.sorted_cells, &grid.sorted_index})
     grow(backend_, *b, c);
-  grow(backend_, neighbor_rows_, size_t(kSphRowMaskWords) * c);
-  grow(backend_, reach_rows_, size_t(kSphRowMaskWords) * c);
-  grow(backend_, neighbor_state_, size_t(kSphStateStride) * c);
+  grow(backend_, neighbor_rows, size_t(kSphRowMaskWords) * c);
+  grow(backend_, reach_rows, size_t(kSphRowMaskWords) * c);
+  grow(backend_, neighbor_state, size_t(kSphStateStride) * c);
 }
 
 }  // namespace masav
