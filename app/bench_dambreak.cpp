@@ -11,6 +11,7 @@
 #include <sstream>
 
 #include "app/bench_common.h"
+#include "app/number_checks.h"
 #include "app/progress.h"
 #include "app/vocabulary.h"
 #include "engine/core/error.h"
@@ -220,10 +221,13 @@ void add_dambreak_bench(CLI::App& bench) {
                   "euler, symplectic-euler, rk4 or leapfrog; default: leapfrog (dfsph: "
                   "symplectic-euler)");
   cmd->add_option("--pressure", o.pressure, "wcsph, thesis or dfsph")->capture_default_str();
-  cmd->add_option("--viscosity", o.viscosity, "kinematic viscosity (m^2/s); default: preset's");
+  cmd->add_option("--viscosity", o.viscosity,
+                  "kinematic viscosity (m^2/s; 0: inviscid); default: preset's")
+      ->check(number_in(0, 1e3));
   cmd->add_option("--max-compression", o.max_compression,
                   "wcsph: c0 for this largest compression at the impacts (default 0.1: c0 = 10 x "
-                  "the fall speed)");
+                  "the fall speed)")
+      ->check(number_in(0.001, 0.5));
   cmd->add_option("--data", o.data, "measurements (CSV: source,T,Z)")->capture_default_str();
   cmd->add_option("--json", o.json, "write the simulated front and the comparison as JSON");
   cmd->add_option("--csv", o.csv, "write the comparison table as CSV");

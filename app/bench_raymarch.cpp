@@ -10,10 +10,10 @@
 #include "app/bench_atom_common.h"
 #include "app/progress.h"
 #include "engine/atom/atom_scene.h"
-#include "engine/atom/ray_integral.h"
-#include "engine/atom/transfer_function.h"
 #include "engine/core/error.h"
 #include "engine/kernels/atom_checks.h"
+#include "engine/volume/ray_integral.h"
+#include "engine/volume/transfer_function.h"
 
 namespace masav::app {
 
@@ -66,7 +66,7 @@ int run_raymarch_bench(const RaymarchBenchOptions& o, JsonWriter& j) {
   auto backends = open_backends(o.choice, "--reps 1");
   // Per backend: 6 rows at 60^3 (+1 at 256^3), then 2 transfer functions x 5 steps x 2.
   Progress progress("raymarch rows", backends.size() * ((o.large ? 7 : 6) + 20));
-  const auto tf = atom::resample_transfer(atom::default_transfer_points());
+  const auto tf = volume::resample_transfer(volume::default_transfer_points());
   fmt::print("  {:<8} {:>10} {:>12} {:>10} {:>8} {:>12}\n", "backend", "volume", "image",
              "ms/frame", "fps", "Mrays/s");
   int rc = for_each_backend(backends, [&](Backend& b) {
@@ -140,10 +140,10 @@ int run_raymarch_bench(const RaymarchBenchOptions& o, JsonWriter& j) {
   const double ref = 0.01;
   // The peak a fifth of a voxel wide along the steepest rays (the value changes by up to 0.0098
   // per voxel): a step of a voxel or two steps over it.
-  atom::PeakedExtinction peaked;
+  volume::PeakedExtinction peaked;
   peaked.width = 0.002;
   peaked.height = 50;
-  atom::PeakedExtinction linear;
+  volume::PeakedExtinction linear;
   linear.height = 0;
   const VolumeDesc d = make_volume_desc({n, n, n}, {-1, -1, -1}, {1, 1, 1});
   RaymarchParams rp = atom::default_raymarch(d, atom::ViewPreset::front, 128, 128);
@@ -155,7 +155,7 @@ int run_raymarch_bench(const RaymarchBenchOptions& o, JsonWriter& j) {
   const double spacing = 2.0 / n;
   const RaymarchLayout cam = raymarch_layout(rp);
   // The analytic opacity of each pixel through extinction e.
-  auto analytic = [&](const atom::PeakedExtinction& e) {
+  auto analytic = [&](const volume::PeakedExtinction& e) {
     std::vector<double> want(size_t(rp.width) * rp.height, 0.0);
     for (uint32_t y = 0; y < rp.height; ++y)
       for (uint32_t x = 0; x < rp.width; ++x) {
@@ -169,12 +169,12 @@ int run_raymarch_bench(const RaymarchBenchOptions& o, JsonWriter& j) {
           o[a] = (hd::comp(eye, a) + 1) / spacing - 0.5;
           du[a] = hd::comp(dir, a) / spacing;
         }
-        want[size_t(y) * rp.width + x] = 1 - std::exp(-atom::clamped_ramp_depth(
+        want[size_t(y) * rp.width + x] = 1 - std::exp(-volume::clamped_ramp_depth(
                                                  o, du, 0, n - 1, 1 / (3.0 * (n - 1)), t0, t1, e));
       }
     return want;
   };
-  auto transfer = [&](const atom::PeakedExtinction& e) {
+  auto transfer = [&](const volume::PeakedExtinction& e) {
     std::vector<Vec4d> tf(4096);
     for (uint32_t k = 0; k < 4096; ++k) tf[k] = {1, 1, 1, 1 - std::exp(-e(k / 4095.0) * ref)};
     return tf;

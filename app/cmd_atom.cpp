@@ -17,12 +17,12 @@
 #include "app/vocabulary.h"
 #include "engine/atom/atom_export.h"
 #include "engine/atom/atom_schema.h"
-#include "engine/atom/transfer_function.h"
-#include "engine/atom/volume_file.h"
 #include "engine/core/error.h"
 #include "engine/io/output_lock.h"
 #include "engine/io/png_writer.h"
 #include "engine/io/staged_files.h"
+#include "engine/volume/transfer_function.h"
+#include "engine/volume/volume_file.h"
 #include "registry/backends.h"
 #include "registry/scene_catalog.h"
 
@@ -54,7 +54,7 @@ struct AtomCliOptions {
 
 struct VolumeCliOptions {
   BackendChoice choice;
-  atom::VolumeFileOptions source;
+  volume::VolumeFileOptions source;
   std::string out = "out/volume", tf, view = "front", mode = "front_to_back";
   std::string preintegrate = "off";
   std::string clip;  // AXIS:POSITION[:above|below]
@@ -66,8 +66,8 @@ struct VolumeCliOptions {
 };
 
 std::vector<Vec4d> transfer(const std::string& file) {
-  return atom::resample_transfer(file.empty() ? atom::default_transfer_points()
-                                              : atom::load_transfer_points(file));
+  return volume::resample_transfer(file.empty() ? volume::default_transfer_points()
+                                                : volume::load_transfer_points(file));
 }
 
 // The nebula as the thesis shows it: particles projected along the view, coloured by their light
@@ -236,7 +236,7 @@ int run_volume(const VolumeCliOptions& o) {
   if (o.preintegrate == "on" && o.mode != "front_to_back")
     throw_invalid("masav volume", "--preintegrate", "on with --mode " + o.mode,
                   "off, or on with --mode front_to_back (lerp has no step to integrate over)");
-  atom::check_volume_file_options(o.source);
+  volume::check_volume_file_options(o.source);
   const RaymarchParams::Clip clip = parse_clip(o.clip, "masav volume");
   // --out names a directory, as for every command; a .png name is the file it used to name.
   std::string png = o.out + "/volume.png";
@@ -250,8 +250,8 @@ int run_volume(const VolumeCliOptions& o) {
   // Reading, uploading and raymarching a large volume take seconds each on a CPU device.
   Progress progress("volume steps", 4);
   progress.update(0, "reading " + o.source.file);
-  const atom::ScalarVolume vol = atom::load_volume_file(o.source);
-  const VolumeDesc desc = atom::volume_desc(vol);
+  const volume::ScalarVolume vol = volume::load_volume_file(o.source);
+  const VolumeDesc desc = volume::volume_desc(vol);
   progress.advance(fmt::format("uploading {}x{}x{} values", desc.dims.x, desc.dims.y, desc.dims.z));
   auto backend = open_backend(o.choice);
   auto buf = backend->create<Real>(vol.values.size(), "volume");
@@ -315,13 +315,15 @@ void add_atom_command(CLI::App& app) {
   for (auto* q :
        {cmd->add_option("--n", o.n, "principal quantum number")->check(CLI::Range(1, atom::kMaxN)),
         cmd->add_option("--l", o.l, "azimuthal quantum number, 0 <= l < n"),
-        cmd->add_option("--m", o.m, "magnetic quantum number, -l <= m <= l")})
+        cmd->add_option("--m", o.m, "magnetic quantum number, -l <= m <= l (0: no angular momentum about z)")})
     state->excludes(q);
   cmd->add_flag("--real", o.real, "real orbital (cos/sin of m phi) instead of e^{i m phi}");
   cmd->add_option("--placement", o.placement, "exact (inverse CDF) or shells (thesis Alg. 2.1)")
       ->capture_default_str();
   add_scene_ranged(*cmd, "--particles", o.particles, "cloud size", "atom.count");
-  cmd->add_option("--seed", o.seed, "random seed (Philox key)")->capture_default_str();
+  cmd->add_option("--seed", o.seed, "random seed (Philox key; 0 is a key like any other)")
+      ->check(CLI::Range(uint64_t(0), uint64_t(1) << 62))
+      ->capture_default_str();
   cmd->add_option("--out,-o", o.out, "output directory")->capture_default_str();
   add_scene_ranged(*cmd, "--power", o.power, "source power Phi in lumens", "nebula.power_lm");
   cmd->add_option("--view", o.view, "top, left or front")->capture_default_str();
@@ -333,9 +335,12 @@ void add_atom_command(CLI::App& app) {
   add_scene_ranged(*cmd, "--photons", o.photons, "photons per tau row of the scattering table",
                    "scatter.photons");
   add_scene_ranged(*cmd, "--tau-peak", o.tau_peak,
-                   "scattering depth of one cell at the peak density", "nebula.tau_peak");
-  add_scene_ranged(*cmd, "--s", o.s, "volume mix: weight of the light g", "volume.s");
-  add_scene_ranged(*cmd, "--t", o.t, "volume mix: weight of the density p", "volume.t");
+                   "scattering depth of one cell at the peak density (0: a transparent cloud)",
+                   "nebula.tau_peak");
+  add_scene_ranged(*cmd, "--s", o.s, "volume mix: weight of the light g (0: the density alone)",
+                   "volume.s");
+  add_scene_ranged(*cmd, "--t", o.t, "volume mix: weight of the density p (0: the light alone)",
+                   "volume.t");
   cmd->add_option("--tf", o.tf, "transfer function file (lines: value r g b a)");
   cmd->add_option("--clip", o.clip,
                   "AXIS:POSITION[:above|below]: raymarch only the volume above (or below) the "
@@ -344,7 +349,7 @@ void add_atom_command(CLI::App& app) {
   cmd->add_flag("--shade", o.shade,
                 "Blinn-Phong shading of the raymarch from the volume's gradient, lit from the "
                 "camera (scene key volume.shade)");
-  add_scene_ranged(*cmd, "--shade-specular", o.shade_specular, "specular weight of --shade",
+  add_scene_ranged(*cmd, "--shade-specular", o.shade_specular, "specular weight of --shade (0: diffuse only)",
                    "volume.shade_specular");
   cmd->add_flag("--no-cache", o.no_cache, "recompute the scattering table");
 
@@ -378,9 +383,9 @@ void add_atom_command(CLI::App& app) {
   vc->add_flag("--shade", v.shade,
                "Blinn-Phong shading from the volume's gradient, lit from the camera");
   add_ranged_option(*vc, "--shade-specular", v.shade_specular,
-                    "specular weight of --shade (ambient 0.3, diffuse 0.7, shininess 24)", 0.0f,
+                    "specular weight of --shade (ambient 0.3, diffuse 0.7, shininess 24; 0: diffuse only)", 0.0f,
                     1.0f);
-  vc->add_option("--reps", v.reps, "also time this many more frames and print ms/frame")
+  vc->add_option("--reps", v.reps, "also time this many more frames and print ms/frame (0: none)")
       ->check(CLI::Range(0, 1000));
 }
 

@@ -131,7 +131,7 @@ void add_export_command(CLI::App& app) {
                                 "write a scene's particles (.vtp), resolved scene "
                                 "(.toml) and stage counters (.csv) at a frame",
                                 o, run_export);
-  add_ranged_option(*cmd, "--frame", o.frame, "frame to export", 0, 10000000);
+  add_ranged_option(*cmd, "--frame", o.frame, "frame to export (0: the first)", 0, 10000000);
   cmd->add_option("--out,-o", o.out, "output directory")->capture_default_str();
 }
 

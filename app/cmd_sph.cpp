@@ -9,7 +9,6 @@
 #include <fmt/format.h>
 
 #include <algorithm>
-#include <chrono>
 #include <cstring>
 #include <filesystem>
 #include <limits>
@@ -18,15 +17,13 @@
 #include "app/commands.h"
 #include "app/interrupt.h"
 #include "app/mpi_comm.h"
+#include "app/number_checks.h"
 #include "app/scene_options.h"
 #include "app/vocabulary.h"
 #include "engine/core/error.h"
-#include "engine/io/csv_stream.h"
-#include "engine/io/output_lock.h"
 #include "engine/sph/sph_checkpoint.h"
-#include "engine/sph/sph_diagnostics.h"
-#include "engine/sph/sph_export.h"
 #include "engine/sph/sph_presets.h"
+#include "engine/sph/sph_run.h"
 #include "engine/sph/sph_simulation.h"
 #include "registry/backends.h"
 
@@ -59,9 +56,6 @@ constexpr const char* kSceneFlags[] = {"--preset",          "--particles", "-n",
                                        "--restitution",     "--seed",      "--block-steps"};
 CLI::App* g_sph_command = nullptr;
 
-std::string checkpoint_path(const std::string& dir) {
-  return (std::filesystem::path(dir) / "checkpoint.masav").string();
-}
 
 // --out, where the .vtp files go: out/sph unless given.
 std::string out_dir(const SphOptions& o) {
@@ -106,33 +100,18 @@ SphScene scene_from(const SphOptions& o) {
   if (o.kp) s.kp = *o.kp;
   if (o.smoothing_radius) s.smoothing_radius = *o.smoothing_radius;
   if (o.restitution) s.restitution = *o.restitution;
+  // The presets place their particles on a lattice; a seed would change nothing.
+  if (g_sph_command && g_sph_command->count("--seed") > 0 && s.jitter == 0)
+    throw Error("", "--seed",
+                fmt::format("--seed changes nothing: the preset {} places its particles on a "
+                            "lattice without jitter",
+                            o.preset),
+                "drop --seed");
   s.seed = o.seed;
   return s;
 }
 
-std::string snapshot_path(const SphOptions& o, const std::string& tag) {
-  return (std::filesystem::path(out_dir(o)) / fmt::format("{}_{}.vtp", o.preset, tag)).string();
-}
-// On several ranks: rank r's piece (its name in the .pvtp, relative) and the index.
-std::string piece_name(const SphOptions& o, const std::string& tag, int rank) {
-  return fmt::format("{}_{}_r{}.vtp", o.preset, tag, rank);
-}
-std::string index_path(const SphOptions& o, const std::string& tag) {
-  return (std::filesystem::path(out_dir(o)) / fmt::format("{}_{}.pvtp", o.preset, tag)).string();
-}
 
-// Steps from step k (counted from the run's start, a restart's included) to the next one that
-// records diagnostics, writes a snapshot or a checkpoint or prints progress (or to `end` in a
-// step-count run), at most one block.
-uint64_t steps_to_next_event(const SphOptions& o, uint64_t k, uint64_t end) {
-  auto to_multiple = [k](uint64_t every) { return every - k % every; };
-  uint64_t n = o.time > 0 ? std::numeric_limits<uint64_t>::max() : end - k;
-  if (!o.csv.empty()) n = std::min(n, to_multiple(o.diag_every));
-  if (o.vtp_every) n = std::min(n, to_multiple(o.vtp_every));
-  if (o.checkpoint_every) n = std::min(n, to_multiple(o.checkpoint_every));
-  if (!o.quiet) n = std::min(n, to_multiple(100));
-  return std::min<uint64_t>(n, o.block_steps);
-}
 
 // --restart with an option that would change the trajectory: refused, naming it.
 void check_restart_flags(const SphOptions& o) {
@@ -207,13 +186,83 @@ std::string rank_device(const BackendChoice& c, const SphComm* comm) {
   return c.device;
 }
 
+// The run's first line: the scene, the particles, the model and the device.
+void print_header(SphSimulation& sim, const SphOptions& o, const SphComm* comm) {
+  const SphParticles& lay = sim.layout();
+  const SphScene& scene = sim.scene();
+  fmt::print(
+      "sph {}: {} particles ({} fluid, {} obstacle), dx {:.4g} m, h {:.4g} m, {} / {}, "
+      "{} on {}{}\n",
+      o.preset, sim.particle_count(), lay.fluid, lay.obstacle, lay.dx, lay.h,
+      to_string(scene.model), to_string(scene.integrator),
+      scene.dt ? fmt::format("dt {:.3g} s", *scene.dt) : std::string("adaptive dt"),
+      sim.backend().caps().device_name, comm ? fmt::format(" x {} ranks", comm->size()) : "");
+}
+
+// What the run writes, from the options (the snapshots' directory out/sph unless given).
+SphRunOptions run_options(const SphOptions& o) {
+  SphRunOptions r;
+  r.steps = o.steps;
+  r.t_end = o.time;
+  r.csv = o.csv;
+  r.diag_every = o.diag_every;
+  r.out_dir = !o.out.empty() || o.vtp_every ? out_dir(o) : "";
+  r.name = o.preset;
+  r.vtp_every = o.vtp_every;
+  r.checkpoint_dir = o.checkpoint_dir;
+  r.checkpoint_every = o.checkpoint_every;
+  r.progress_every = o.quiet ? 0 : 100;
+  return r;
+}
+
+// The run's end: the failure and where its last good state went, the rates, dfsph's solves.
+// Returns the exit status.
+int report(const SphRunResult& r, SphSimulation& sim, const SphOptions& o) {
+  if (r.error) {
+    fmt::print(stderr, "masav: error: {}\n", *r.error);
+    if (!r.last_good.empty())
+      fmt::print(stderr, "masav: the last good state (step {}) is in {}\n", sim.steps(),
+                 r.last_good);
+    else if (r.last_good_skipped)
+      fmt::print(stderr,
+                 "masav: on several ranks the last good state is written only after the "
+                 "simulation's own checks fail (this error may have stopped one rank alone)\n");
+  } else if (!r.final_checkpoint.empty()) {
+    fmt::print("checkpoint {}: step {}, t = {:.6g} s\n", r.final_checkpoint, sim.steps(),
+               sim.time());
+  }
+  if (!o.csv.empty()) fmt::print("wrote {} ({} rows)\n", o.csv, r.csv_rows);
+  fmt::print(
+      "{} steps ({} integrator steps, {} retried) to t = {:.5g} s in {:.2f} s: {:.1f} "
+      "steps/s, {:.3g} M particle-steps/s\n",
+      sim.steps(), sim.substeps(), sim.retries(), sim.time(), r.wall_s,
+      double(r.steps) / r.wall_s, double(r.substeps) * sim.particle_count() / r.wall_s * 1e-6);
+  if (const SphSolveStats& ss = sim.solve_stats(); ss.steps > 0)
+    fmt::print(
+        "dfsph: {:.2f} density and {:.2f} divergence iterations per step ({:.2f} residual reads), "
+        "last mean residuals {:.3g}% and {:.3g}%, {} solves stopped at the iteration limit\n",
+        double(ss.density_iterations) / double(ss.steps),
+        double(ss.divergence_iterations) / double(ss.steps),
+        double(sim.dfsph_residual_reads()) / double(ss.steps), 100 * ss.last_density_error,
+        100 * ss.last_divergence_error, ss.unconverged);
+  if (r.error) return 1;
+  if (r.interrupted || interrupted()) {
+    fmt::print(stderr, "masav: interrupted after step {}; every row and file written is complete\n",
+               sim.steps());
+    return 130;
+  }
+  return 0;
+}
+
 int run_sph(const SphOptions& given) {
   SphOptions o = given;  // a restart takes the preset's name (for file names) from its scene
   check_restart_flags(o);
+  if (g_sph_command && g_sph_command->count("--restart") > 0 && o.restart.empty())
+    throw Error("", "--restart", "--restart was given an empty directory",
+                "give the --checkpoint-dir of the run to resume");
   std::optional<SphCheckpoint> resumed;
-  std::string restart_file;
+  const std::string restart_file = SphRun::checkpoint_path(o.restart);
   if (!o.restart.empty()) {
-    restart_file = checkpoint_path(o.restart);
     resumed = read_sph_checkpoint(restart_file);
     o.preset = resumed->scene.preset;  // the command line's name of it, where it has one
     for (const std::string& name : sph_preset_names())
@@ -223,23 +272,8 @@ int run_sph(const SphOptions& given) {
   SphComm* comm = world_comm();
   const bool lead = !comm || comm->rank() == 0;  // prints and writes
   if (!lead) o.quiet = true;
-  if (lead && !o.checkpoint_dir.empty()) ensure_writable_dir(o.checkpoint_dir, "--checkpoint-dir");
-  // Outputs are opened (and held) before any work: a bad path fails at once, and a CSV row is
-  // in the file as soon as its step ran. The directory is only made when something goes there.
-  std::optional<OutputLock> out_lock;
-  if (lead && (!o.out.empty() || o.vtp_every)) {
-    ensure_writable_dir(out_dir(o), "--out");
-    out_lock.emplace(out_dir(o), "--out");
-  }
-  // Two runs checkpointing into one directory would overwrite each other's state: held too,
-  // unless it is the output directory, already held.
-  std::optional<OutputLock> checkpoint_lock;
-  std::error_code same_error;
-  if (lead && !o.checkpoint_dir.empty() &&
-      !(out_lock && std::filesystem::equivalent(o.checkpoint_dir, out_dir(o), same_error)))
-    checkpoint_lock.emplace(o.checkpoint_dir, "--checkpoint-dir");
-  std::optional<CsvStream> csv;
-  if (lead && !o.csv.empty()) csv.emplace(o.csv, diagnostics_columns(), "--csv");
+  validate(scene);  // every check of the scene before any output is opened
+  SphRun run(run_options(o), comm);  // outputs held before any work: a bad path fails at once
   install_interrupt_handler();
   auto backend = open_backend(o.choice, o.choice.backend, rank_device(o.choice, comm));
   SphSimulation sim(*backend, scene, comm);
@@ -251,140 +285,23 @@ int run_sph(const SphOptions& given) {
                  resumed->writer, sim.steps(), sim.time());
     resumed.reset();  // the state lives in the simulation now
   }
-  uint64_t checkpointed = UINT64_MAX;  // the step of the last checkpoint written
-  // Writes one unless the last holds this step already; returns its path.
-  auto checkpoint = [&] {
-    const std::string path = checkpoint_path(o.checkpoint_dir);
-    if (checkpointed != sim.steps()) {
-      const SphResumeState state = sim.export_resume_state();  // every rank's part
-      if (lead) write_sph_checkpoint(path, sim.scene(), state);
-    }
-    checkpointed = sim.steps();
-    return path;
+  if (lead) print_header(sim, o, comm);
+  SphRankCounters counters0;
+  SphRunEvents events;
+  events.started = [&](const SphSimulation& s) {
+    if (s.ranks()) counters0 = s.ranks()->counters();
   };
-  const SphParticles& lay = sim.layout();
-  if (lead)
-    fmt::print(
-        "sph {}: {} particles ({} fluid, {} obstacle), dx {:.4g} m, h {:.4g} m, {} / {}, "
-        "{} on {}{}\n",
-        o.preset, sim.particle_count(), lay.fluid, lay.obstacle, lay.dx, lay.h,
-        to_string(scene.model), to_string(scene.integrator),
-        scene.dt ? fmt::format("dt {:.3g} s", *scene.dt) : std::string("adaptive dt"),
-        backend->caps().device_name, comm ? fmt::format(" x {} ranks", comm->size()) : "");
-
-  auto record = [&](const SphState& st) {
-    if (csv) csv->row(diagnostics_row(sim, compute_diagnostics(st, sim)));
+  events.progress = [](const SphSimulation& s) {
+    fmt::print("  step {:>7}  t = {:.5f} s  dt = {:.3g} s  max speed {:.3g} m/s\n", s.steps(),
+               s.time(), s.last_dt(), s.last_stats().max_speed);
   };
-  // One .vtp of every particle; on several ranks each rank's piece and rank 0's .pvtp index.
-  auto snapshot = [&](const std::optional<SphState>& all, const std::string& tag) {
-    if (!comm) {
-      const std::string path = snapshot_path(o, tag);
-      write_sph_vtp(path, all ? *all : sim.download());
-      return path;
-    }
-    std::vector<uint32_t> ids;
-    const SphState mine = sim.download_own(ids);
-    write_sph_vtp((std::filesystem::path(out_dir(o)) / piece_name(o, tag, comm->rank())).string(),
-                  mine, ids);
-    std::vector<std::string> pieces;
-    for (int r = 0; r < comm->size(); ++r) pieces.push_back(piece_name(o, tag, r));
-    const std::string path = index_path(o, tag);
-    if (lead) write_sph_pvtp(path, pieces);
-    return path;
+  events.checkpoint = [&](const std::string& path, uint64_t step) {
+    if (!o.quiet) fmt::print("  wrote checkpoint {} (step {})\n", path, step);
   };
-  // Whether any rank was interrupted: they stop together, at the same step.
-  auto stop_requested = [&] {
-    uint32_t flag = interrupted() ? 1u : 0u;
-    if (comm) comm->max(std::span<uint32_t>(&flag, 1));
-    return flag != 0;
-  };
-  const bool want_state = !o.csv.empty() || o.vtp_every;
-  if (want_state) {
-    std::optional<SphState> st;
-    if (!o.csv.empty()) record(*(st = sim.download()));
-    if (o.vtp_every) snapshot(st, fmt::format("{:06}", 0));
-  }
-
-  const auto t0 = std::chrono::steady_clock::now();
-  const SphRankCounters counters0 = sim.ranks() ? sim.ranks()->counters() : SphRankCounters{};
-  // The rates count this run's steps (a restart's totals include the earlier runs').
-  const uint64_t steps0 = sim.steps(), substeps0 = sim.substeps();
-  int rc = 0;
-  try {
-    const double t_end = o.time > 0 ? o.time : std::numeric_limits<double>::infinity();
-    // Steps are counted from the run's start: a restart continues the count, and the events
-    // (and with them the blocks) fall on the same steps as in an uninterrupted run.
-    const uint64_t end = sim.steps() + o.steps;
-    for (uint64_t k = sim.steps();
-         (o.time > 0 ? sim.time() < o.time : k < end) && !stop_requested();) {
-      // Up to the next step that prints or writes something (at most one block, so that an
-      // interrupt is seen): the simulation reads its stats back once per block.
-      k += sim.run(steps_to_next_event(o, k, end), t_end);
-      const bool diag = !o.csv.empty() && k % o.diag_every == 0;
-      const bool vtp = o.vtp_every && k % o.vtp_every == 0;
-      if (diag || vtp) {
-        std::optional<SphState> st;  // every particle: for the CSV, and one process's .vtp
-        if (diag) record(*(st = sim.download()));
-        if (vtp) snapshot(st, fmt::format("{:06}", k));
-      }
-      if (!o.quiet && k % 100 == 0)
-        fmt::print("  step {:>7}  t = {:.5f} s  dt = {:.3g} s  max speed {:.3g} m/s\n", k,
-                   sim.time(), sim.last_dt(), sim.last_stats().max_speed);
-      if (o.checkpoint_every && k % o.checkpoint_every == 0) {
-        const std::string path = checkpoint();
-        if (!o.quiet) fmt::print("  wrote checkpoint {} (step {})\n", path, k);
-      }
-    }
-    // At the step where the run ends or an interrupt stopped it (a failed run keeps the last).
-    if (!o.checkpoint_dir.empty()) {
-      const std::string path = checkpoint();
-      if (lead) fmt::print("checkpoint {}: step {}, t = {:.6g} s\n", path, sim.steps(), sim.time());
-    }
-    if (sim.ranks())
-      print_rank_table(sim, counters0, lead,
-                       std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(),
-                       sim.steps() - steps0);
-  } catch (const Error& e) {
-    if (lead) fmt::print(stderr, "masav: error: {}\n", e.what());
-    // On several ranks, an error of the simulation's own checks (decided on reduced values) was
-    // raised by every rank at the same step, so they write the last good state together (a
-    // piece each and the index); any other error may have stopped one rank alone, and a
-    // collective write would wait for the others forever.
-    const bool has_out = !o.out.empty() || o.vtp_every;  // rank 0 holds its lock
-    if (has_out && (!comm || sim.failed_together())) {
-      const std::string path = snapshot(std::nullopt, "last_good");
-      if (lead)
-        fmt::print(stderr, "masav: the last good state (step {}) is in {}\n", sim.steps(), path);
-    } else if (comm && lead) {
-      fmt::print(stderr,
-                 "masav: on several ranks the last good state is written only after the "
-                 "simulation's own checks fail (this error may have stopped one rank alone)\n");
-    }
-    rc = 1;
-  }
-  const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  if (!lead) return rc;
-  if (csv) fmt::print("wrote {} ({} rows)\n", o.csv, csv->rows());
-  fmt::print(
-      "{} steps ({} integrator steps, {} retried) to t = {:.5g} s in {:.2f} s: {:.1f} "
-      "steps/s, {:.3g} M particle-steps/s\n",
-      sim.steps(), sim.substeps(), sim.retries(), sim.time(), wall,
-      double(sim.steps() - steps0) / wall,
-      double(sim.substeps() - substeps0) * sim.particle_count() / wall * 1e-6);
-  if (const SphSolveStats& ss = sim.solve_stats(); ss.steps > 0)
-    fmt::print(
-        "dfsph: {:.2f} density and {:.2f} divergence iterations per step ({:.2f} residual reads), "
-        "last mean residuals {:.3g}% and {:.3g}%, {} solves stopped at the iteration limit\n",
-        double(ss.density_iterations) / double(ss.steps),
-        double(ss.divergence_iterations) / double(ss.steps),
-        double(sim.dfsph_residual_reads()) / double(ss.steps), 100 * ss.last_density_error,
-        100 * ss.last_divergence_error, ss.unconverged);
-  if (interrupted() && rc == 0) {
-    fmt::print(stderr, "masav: interrupted after step {}; every row and file written is complete\n",
-               sim.steps());
-    return 130;
-  }
-  return rc;
+  events.interrupted = [] { return interrupted(); };
+  const SphRunResult r = run.run(sim, events);
+  if (sim.ranks() && !r.error) print_rank_table(sim, counters0, lead, r.wall_s, r.steps);
+  return lead ? report(r, sim, o) : (r.error ? 1 : 0);
 }
 
 }  // namespace
@@ -405,24 +322,34 @@ void add_sph_command(CLI::App& app) {
   cmd->add_option("--time", o.time,
                   "run until this simulated time (s) instead of --steps (with --restart: the "
                   "time since the first run's start)")
-      ->check(CLI::Range(0.0, 1e6))
+      ->check(number_in(0, 1e6, true))
       ->excludes("--steps");
   cmd->add_option("--integrator", o.integrator, "euler, symplectic-euler, rk4 or leapfrog");
   cmd->add_option("--pressure", o.pressure,
                   "pressure model: wcsph, thesis or dfsph (incompressible; symplectic-euler)");
-  cmd->add_option("--dt", o.dt, "fixed time step (s); default: CFL-adaptive");
+  cmd->add_option("--dt", o.dt, "fixed time step (s); default: CFL-adaptive")
+      ->check(number_in(0, 10, true));
   cmd->add_option("--cfl-guard", o.cfl_guard, "reduce (split unstable steps), stop, or off");
-  cmd->add_option("--viscosity", o.viscosity, "kinematic viscosity nu (m^2/s)");
-  auto* c0 = cmd->add_option("--sound-speed", o.sound_speed, "wcsph speed of sound c0 (m/s)");
+  cmd->add_option("--viscosity", o.viscosity, "kinematic viscosity nu (m^2/s; 0: inviscid)")
+      ->check(number_in(0, 1e3));
+  auto* c0 = cmd->add_option("--sound-speed", o.sound_speed, "wcsph speed of sound c0 (m/s)")
+                 ->check(number_in(0, 1e5, true));
   cmd->add_option("--max-compression", o.max_compression,
                   "wcsph: c0 for this largest compression at impacts, c0 = fall speed / it "
                   "(water, mud, dam break, obstacle; the presets' 0.1 is 10 x the fall speed, "
                   "0.03 takes 3.3x the steps)")
+      ->check(number_in(0.001, 0.5))
       ->excludes(c0);
-  cmd->add_option("--kp", o.kp, "thesis pressure constant");
-  cmd->add_option("--smoothing-radius", o.smoothing_radius, "support radius h (m)");
-  cmd->add_option("--restitution", o.restitution, "wall restitution in [0, 1]");
-  cmd->add_option("--seed", o.seed, "seed of the particles' jitter")->capture_default_str();
+  cmd->add_option("--kp", o.kp, "thesis pressure constant (0: no pressure)")
+      ->check(number_in(0, 1e12));
+  cmd->add_option("--smoothing-radius", o.smoothing_radius, "support radius h (m)")
+      ->check(number_in(0, 10, true));
+  cmd->add_option("--restitution", o.restitution,
+                  "wall restitution in [0, 1] (0: the walls take the normal speed)")
+      ->check(number_in(0, 1));
+  cmd->add_option("--seed", o.seed, "seed of the particles' jitter (presets with jitter only; 0 is a seed like any other)")
+      ->check(CLI::Range(uint64_t(0), uint64_t(1) << 62))
+      ->capture_default_str();
   cmd->add_option("--vtp-every", o.vtp_every, "write particles (.vtp) every k steps (0: never)")
       ->check(CLI::Range(uint64_t(0), uint64_t(1) << 40));
   add_ranged_option(*cmd, "--diag-every", o.diag_every, "CSV diagnostics every k steps",

@@ -7,6 +7,7 @@
 #include "app/build_info.h"
 #include "app/commands.h"
 #include "app/mpi_comm.h"
+#include "app/number_checks.h"
 #include "engine/core/error.h"
 
 namespace {
@@ -61,6 +62,14 @@ int main(int argc, char** argv) {
   masav::app::add_demo_command(app);
 #endif
   masav::app::add_sph_command(app);
+  masav::app::require_finite_numbers(app);
+  // The tests' hidden first word: parse and check the command line, run nothing.
+  if (argc > 1 && std::string_view(argv[1]) == "--parse-only") {
+    masav::app::skip_commands(app);
+    argv[1] = argv[0];
+    ++argv;
+    --argc;
+  }
   if (!known_command_words(app, argc, argv)) return 1;
   // mpirun starts one masav per rank: only `masav sph` shares its work among them; any other
   // command would run N times over.

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "app/commands.h"
+#include "engine/io/writable_paths.h"
 #include "registry/scene_file.h"
 
 namespace masav::app {
@@ -32,11 +33,6 @@ scene::SceneFile load_scene(const SceneChoice& choice);
 // both when the option was given (`given`) and a --set names the same parameter.
 void refuse_set_conflict(const SceneChoice& choice, bool given, const std::string& option,
                          const std::string& path);
-// Creates `dir` if needed and proves it writable (a probe file, written then removed).
-void ensure_writable_dir(const std::string& dir, const std::string& option);
-// Proves that the file `path` can be written (its directory created if needed, writable, and
-// the path not a directory), before any work that would be lost if it could not.
-void ensure_writable_file(const std::string& path, const std::string& option);
 // The ffmpeg executable on PATH, or "" when there is none.
 std::string find_ffmpeg();
 

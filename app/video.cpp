@@ -1,11 +1,15 @@
 #include "app/video.h"
 
 #include <fmt/format.h>
+#include <sys/wait.h>
 
 #include <cstdlib>
 #include <filesystem>
+#include <fstream>
+#include <iterator>
 
 #include "engine/core/error.h"
+#include "engine/util/output_file.h"
 
 namespace masav::app {
 
@@ -23,13 +27,24 @@ bool write_video(const std::string& ffmpeg, const std::string& dir, const std::s
   if (rc != 0) {
     std::filesystem::remove(tmp, ec);
     fmt::print(stderr,
-               "masav: warning: ffmpeg could not encode the video (exit {}); the PNG "
+               "masav: warning: ffmpeg could not encode the video ({}); the PNG "
                "frames are complete\n",
-               rc);
+               WIFEXITED(rc) ? fmt::format("exit status {}", WEXITSTATUS(rc))
+                             : fmt::format("stopped by signal {}", WTERMSIG(rc)));
     return false;
   }
-  std::filesystem::rename(tmp, out, ec);
-  if (ec) {
+  // The video's name resolved as every output's (engine/util/output_file.h): a link replaced
+  // through to its file, never renamed over.
+  const OutputTarget target = resolve_output(out, "--out");
+  if (target.in_place) {
+    std::ifstream in(tmp, std::ios::binary);
+    const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    std::filesystem::remove(tmp, ec);
+    write_output(out, bytes, "--out");
+  } else {
+    std::filesystem::rename(tmp, target.path, ec);
+  }
+  if (ec && !target.in_place) {
     std::filesystem::remove(tmp, ec);
     throw Error("", "--out", fmt::format("cannot rename the video onto '{}'", out),
                 "choose a writable output directory");

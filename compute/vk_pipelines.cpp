@@ -3,11 +3,11 @@
 #include <fmt/format.h>
 
 #include <algorithm>
-#include <cstdlib>
 #include <filesystem>
 #include <optional>
 
 #include "engine/core/error.h"
+#include "engine/util/cache_dir.h"
 #include "engine/util/cache_file.h"
 #include "shaders/embedded.h"
 #include "shaders/spec_ids.h"
@@ -28,18 +28,11 @@ CacheFileId pipeline_cache_id(const std::string& path) {
 }  // namespace
 
 std::string Pipelines::cache_path() const {
-  std::string dir;
-  if (const char* d = std::getenv("MASAV_CACHE_DIR"))
-    dir = d;
-  else if (const char* x = std::getenv("XDG_CACHE_HOME"))
-    dir = std::string(x) + "/masav";
-  else if (const char* h = std::getenv("HOME"))
-    dir = std::string(h) + "/.cache/masav";
-  else
-    return "";
+  const std::optional<std::filesystem::path> dir = default_cache_dir();
+  if (!dir) return "";
   std::string uuid;
   for (uint8_t b : ctx_.pipeline_cache_uuid()) uuid += fmt::format("{:02x}", b);
-  return fmt::format("{}/vk_pipelines_{}.bin", dir, uuid);
+  return fmt::format("{}/vk_pipelines_{}.bin", dir->string(), uuid);
 }
 
 Pipelines::Pipelines(const Context& ctx, uint32_t workgroup_size, bool count_loop_ticks,

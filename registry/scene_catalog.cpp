@@ -2,10 +2,10 @@
 #include "registry/scene_catalog.h"
 
 #include "engine/atom/atom_scene_types.h"
-#include "engine/atom/volume_scene.h"
 #include "engine/core/error.h"
 #include "engine/points/particles_scene.h"
 #include "engine/sph/sph_scene_type.h"
+#include "engine/volume/volume_scene.h"
 #include "registry/common_tables.h"
 
 namespace masav::scene {
@@ -16,7 +16,7 @@ const std::vector<SceneType>& scene_types() {
       points::particles_scene_type(),
       atom::atom_scene_type(),
       atom::atom_volume_scene_type(),
-      atom::volume_scene_type(),
+      volume::volume_scene_type(),
       sph::sph_scene_type(),
   };
   // clang-format on

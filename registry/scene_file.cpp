@@ -128,16 +128,42 @@ SceneFile default_scene(std::string_view type) {
   return f;
 }
 
+namespace {
+
+// A value as TOML: strings through toml++'s serializer, which escapes quotes, backslashes and
+// control characters (a scene file masav writes always reads back); numbers and flags as the
+// schema formats them.
+std::string toml_value(const ParamValue& v) {
+  if (const auto* text = std::get_if<std::string>(&v)) {
+    // A basic "..." string, escaped where needed (UTF-8 text kept as it is).
+    std::ostringstream out;
+    out << toml::toml_formatter{toml::value<std::string>(*text),
+                                toml::format_flags::allow_unicode_strings};
+    return out.str();
+  }
+  return format_value(v);
+}
+
+// A comment's text on one line: a help string never breaks the file.
+std::string one_line(std::string text) {
+  for (char& c : text)
+    if (c == '\n' || c == '\r') c = ' ';
+  return text;
+}
+
+}  // namespace
+
 std::string scene_to_toml(const ParamSet& params, bool with_help) {
   std::string out;
   for (const TableSchema* t : params.tables()) {
-    if (with_help) out += fmt::format("# {}\n", t->help());
+    if (with_help) out += fmt::format("# {}\n", one_line(t->help()));
     out += fmt::format("[{}]\n", t->name());
     for (const ParamSpec& p : t->params()) {
       const std::string path = t->name() + "." + p.key;
       if (with_help)
-        out += fmt::format("# {} ({}; default {})\n", p.help, p.allowed(), format_value(p.def));
-      out += fmt::format("{} = {}\n", p.key, format_value(params.get(path)));
+        out += fmt::format("# {} ({}; default {})\n", one_line(p.help), one_line(p.allowed()),
+                           one_line(format_value(p.def)));
+      out += fmt::format("{} = {}\n", p.key, toml_value(params.get(path)));
     }
     out += "\n";
   }

@@ -1,9 +1,12 @@
 #!/usr/bin/env bash
 # outputs_safe.sh MASAV WORKDIR
 # Outputs that cannot be lost or mixed, driven through the command line:
-#  - `sph --csv`: rows are in the file as soon as each step ran (SIGINT keeps every completed
-#    row and exits 130); a write failure stops at that row with the file named (/dev/full, and
-#    a file size limit standing in for a disk that fills up mid-run);
+#  - `sph --csv`: rows are in a partial file as soon as each step ran, moved over the old file
+#    when the run ends (SIGINT keeps every completed row and exits 130); a run refused before its
+#    first step leaves the old file whole; a write failure stops at that row with the file named
+#    (a private full device, and a file size limit standing in for a disk that fills up mid-run);
+#  - an output naming a device, a pipe or a link writes through it: the device stays a device,
+#    the link a link (private nodes and links in WORKDIR, never the machine's own);
 #  - an output directory locked by another process is refused, naming it; a lock file left
 #    behind by a dead process is taken over;
 #  - `export` and `atom` leave the old set whole when a write fails (a file size limit again);
@@ -19,13 +22,41 @@ lines() { wc -l <"$1" | tr -d ' '; }
 # Every row of a CSV has as many cells as its header (no half-written row).
 complete_rows() { awk -F, 'NR == 1 { n = NF } NF != n { bad = 1 } END { exit bad }' "$1"; }
 
-# --- sph --csv on a full disk: fails at the header, before any step.
-out=$("$m" sph --backend cpu --particles 500 --steps 20 --csv /dev/full -q 2>&1)
-rc=$?
-[[ $rc -ne 0 && $rc -lt 128 ]] || fail "sph --csv /dev/full: exit $rc" "$out"
-grep -q "writing '/dev/full' failed after 0 rows: No space left on device" <<<"$out" ||
-  fail "sph --csv /dev/full: message" "$out"
-grep -q "steps/s" <<<"$out" && fail "sph --csv /dev/full: stepped before failing" "$out"
+# --- sph --csv on a full device: fails at the header, before any step; the device stays one.
+if mknod "$work/full" c 1 7 2>/dev/null && mknod "$work/null" c 1 3 2>/dev/null; then
+  out=$("$m" sph --backend cpu --particles 500 --steps 20 --csv "$work/full" -q 2>&1)
+  rc=$?
+  [[ $rc -ne 0 && $rc -lt 128 ]] || fail "sph --csv FULL: exit $rc" "$out"
+  grep -q "writing '$work/full' failed after 0 rows: No space left on device" <<<"$out" ||
+    fail "sph --csv FULL: message" "$out"
+  grep -q "steps/s" <<<"$out" && fail "sph --csv FULL: stepped before failing" "$out"
+  out=$("$m" verify --backend cpu --set particles.count=500 --json "$work/full" 2>&1)
+  rc=$?
+  [[ $rc -ne 0 && $rc -lt 128 ]] || fail "verify --json FULL: exit $rc" "$out"
+  grep -q "wrote $work/full" <<<"$out" && fail "verify --json FULL: said it wrote" "$out"
+  out=$("$m" sph --backend cpu --particles 500 --steps 3 --csv "$work/null" -q 2>&1) ||
+    fail "sph --csv NULL" "$out"
+  "$m" verify --backend cpu --set particles.count=500 --json "$work/null" >/dev/null 2>&1 ||
+    fail "verify --json NULL"
+  [[ -c "$work/full" && -c "$work/null" ]] || fail "a device was replaced" "$(ls -la "$work")"
+else
+  echo "SKIPPED: the private device cases (mknod not permitted here); pipes and links below"
+fi
+# --- an output through a link replaces the file it names; the link stays a link.
+echo old >"$work/real.json"
+ln -s real.json "$work/link.json"
+"$m" verify --backend cpu --set particles.count=500 --json "$work/link.json" >/dev/null 2>&1 ||
+  fail "verify --json LINK"
+[[ -L "$work/link.json" ]] || fail "verify --json LINK replaced the link"
+grep -q '"kernel"' "$work/real.json" || fail "verify --json LINK: the file it names was not written"
+# --- a refused run leaves an existing CSV whole.
+"$m" sph --backend cpu --particles 500 --steps 3 --csv "$work/good.csv" -q >/dev/null 2>&1 ||
+  fail "sph --csv good.csv"
+good=$(md5sum <"$work/good.csv")
+out=$("$m" sph --backend cpu --particles 500 --steps 3 --csv "$work/good.csv" --dt nan -q 2>&1) &&
+  fail "sph --dt nan accepted" "$out"
+[[ $(md5sum <"$work/good.csv") == "$good" ]] || fail "a refused run changed good.csv" "$out"
+[[ -z "$(ls -A "$work" | grep masav-partial)" ]] || fail "a partial CSV left" "$(ls -A "$work")"
 
 # --- sph --csv when the file cannot grow past 4 KiB: fails at that row; the rows before stay.
 out=$(trap '' XFSZ; ulimit -f 4; "$m" sph --backend cpu --particles 500 --steps 200 --csv "$work/limit.csv" -q 2>&1)
@@ -38,8 +69,8 @@ grep -Eq "writing '.*limit.csv' failed after [0-9]+ rows: File too large" <<<"$o
 # --- sph --csv interrupted: every completed row is in the file, and the exit says so.
 "$m" sph --backend cpu --particles 500 --steps 1000000 --csv "$work/int.csv" -q >"$work/int.log" 2>&1 &
 pid=$!
-for _ in $(seq 200); do
-  [[ -f "$work/int.csv" && $(lines "$work/int.csv") -ge 5 ]] && break
+for _ in $(seq 200); do  # the rows go to the partial file until the run ends
+  [[ -f "$work/.int.csv.masav-partial" && $(lines "$work/.int.csv.masav-partial") -ge 5 ]] && break
   sleep 0.05
 done
 kill -INT $pid

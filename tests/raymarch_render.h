@@ -5,10 +5,10 @@
 #include <random>
 #include <vector>
 
-#include "engine/atom/brick_skip.h"
-#include "engine/atom/preintegration.h"
 #include "engine/kernels/atom_checks.h"
 #include "engine/kernels/backend.h"
+#include "engine/volume/brick_skip.h"
+#include "engine/volume/preintegration.h"
 
 namespace masav::test {
 
@@ -26,9 +26,9 @@ inline std::vector<Vec4d> render(Backend& b, const RaymarchParams& rp, const Vol
   b.upload(t, tf);
   const UVec3 nb = brick_dims(rp.volume, rp.brick);
   auto bricks = b.create<Real4>(size_t(nb.x) * nb.y * nb.z, "bricks");
-  atom::fill_bricks(b, {rp.volume, rp.brick, rp.tf_size}, v, t, bricks);
+  volume::fill_bricks(b, {rp.volume, rp.brick, rp.tf_size}, v, t, bricks);
   auto img = b.create<Real4>(size_t(rp.width) * rp.height, "image");
-  const Buffer<Real4> table = atom::upload_preintegrated(b, tf);
+  const Buffer<Real4> table = volume::upload_preintegrated(b, tf);
   b.raymarch(rp, v, t, bricks, img, &table);
   return b.download(img);
 }

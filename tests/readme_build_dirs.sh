@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # readme_build_dirs.sh SOURCE_DIR
-# The README's commands name a binary: it must be one that tools/run or tools/test builds. Reads
-# the preset each script configures, that preset's binaryDir in CMakePresets.json, and checks
-# that the README names `<binaryDir>/masav` for both, and no other build directory's masav.
+# The commands of the README and docs/*.md name a binary: it must be one that tools/run or
+# tools/test builds. Reads the preset each script configures, that preset's binaryDir in
+# CMakePresets.json, and checks that the README names `<binaryDir>/masav` for both, and that
+# neither the README nor a docs page names another build directory's masav.
 set -u
 src=$1
 fail() { printf 'readme_build_dirs: %s\n' "$1"; exit 1; }
@@ -24,6 +25,6 @@ done
 while read -r used; do
   ok=0
   for d in "${dirs[@]}"; do [[ "$used" == "$d/masav" ]] && ok=1; done
-  [[ $ok -eq 1 ]] || fail "the README runs $used, which neither tools/run nor tools/test builds"
-done < <(grep -Eo 'build/[a-z]+/masav' "$src/README.md" | sort -u)
+  [[ $ok -eq 1 ]] || fail "the README or docs/ run $used, which neither tools/run nor tools/test builds"
+done < <(cat "$src/README.md" "$src"/docs/*.md | grep -Eo 'build/[a-z-]+/masav' | sort -u)
 echo "README binaries: ${dirs[*]/%//masav} (tools/run, tools/test)"

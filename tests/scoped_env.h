@@ -1,6 +1,7 @@
 #pragma once
-// An environment variable set for a scope and put back as it was (value or unset) when the scope
-// ends, also by an exception: the tests that switch a MASAV_* choice read at construction.
+// An environment variable set (or unset) for a scope and put back as it was (value or unset) when
+// the scope ends, also by an exception: the tests that switch a MASAV_* choice read at
+// construction.
 #include <cstdlib>
 #include <optional>
 #include <string>
@@ -9,9 +10,10 @@ namespace masav::test {
 
 class ScopedEnv {
  public:
+  // value nullptr: unset for the scope.
   ScopedEnv(const char* name, const char* value) : name_(name) {
     if (const char* old = std::getenv(name)) saved_ = old;
-    setenv(name, value, 1);
+    value ? setenv(name, value, 1) : unsetenv(name);
   }
   ~ScopedEnv() { saved_ ? setenv(name_.c_str(), saved_->c_str(), 1) : unsetenv(name_.c_str()); }
   ScopedEnv(const ScopedEnv&) = delete;

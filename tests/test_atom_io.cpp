@@ -12,13 +12,14 @@
 
 #include "engine/atom/atom_export.h"
 #include "engine/atom/scatter_cache.h"
-#include "engine/atom/transfer_function.h"
-#include "engine/atom/volume_io.h"
 #include "engine/core/error.h"
+#include "engine/volume/transfer_function.h"
+#include "engine/volume/volume_io.h"
 #include "tests/temp_dir.h"
 
 using namespace masav;
 using namespace masav::atom;
+using namespace masav::volume;
 
 namespace {
 

@@ -13,17 +13,17 @@
 #include <string>
 #include <vector>
 
-#include "engine/atom/transfer_function.h"
-#include "engine/atom/volume_io.h"
 #include "engine/core/error.h"
 #include "engine/util/bounded_file.h"
 #include "engine/util/cache_file.h"
 #include "engine/util/checked_size.h"
+#include "engine/volume/transfer_function.h"
+#include "engine/volume/volume_io.h"
 #include "registry/scene_file.h"
 #include "tests/temp_dir.h"
 
 using namespace masav;
-using namespace masav::atom;
+using namespace masav::volume;
 
 namespace {
 

@@ -11,12 +11,12 @@
 #include <cstdio>
 #include <vector>
 
-#include "engine/atom/brick_skip.h"
-#include "engine/atom/preintegration.h"
 #include "engine/cpu/cpu_backend.h"
 #include "engine/cpu/cpu_raymarch_lanes.h"
 #include "engine/kernels/atom_body.h"
 #include "engine/kernels/atom_checks.h"
+#include "engine/volume/brick_skip.h"
+#include "engine/volume/preintegration.h"
 #include "tests/raymarch_render.h"
 
 using namespace masav;
@@ -66,9 +66,9 @@ Compared compare(const Scene& s, const RaymarchParams& rp, cpu::RayLanes lanes) 
   b.upload(tf, s.tf);
   const UVec3 nb = brick_dims(rp.volume, rp.brick);
   auto bricks = b.create<Real4>(size_t(nb.x) * nb.y * nb.z, "bricks");
-  atom::fill_bricks(b, {rp.volume, rp.brick, rp.tf_size}, vol, tf, bricks);
+  volume::fill_bricks(b, {rp.volume, rp.brick, rp.tf_size}, vol, tf, bricks);
   const std::vector<hd::V4<float>> tf32 = to_float4(s.tf), bricks32 = to_float4(b.download(bricks));
-  const std::vector<hd::V4<float>> integral32 = to_float4(atom::preintegrate_transfer(s.tf));
+  const std::vector<hd::V4<float>> integral32 = to_float4(volume::preintegrate_transfer(s.tf));
   std::vector<float> vol32(s.vol.values.begin(), s.vol.values.end());
   const UVec3 d = rp.volume.dims;
   std::vector<float> padded(size_t(d.x + 1) * (d.y + 1) * (d.z + 1));

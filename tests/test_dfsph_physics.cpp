@@ -7,6 +7,7 @@
 #include <string>
 
 #include "engine/core/error.h"
+#include "engine/sph/sph_dfsph_scheme.h"
 #include "engine/sph/sph_diagnostics.h"
 #include "engine/sph/sph_presets.h"
 #include "engine/sph/sph_simulation.h"

@@ -12,8 +12,8 @@
 #include <vector>
 
 #include "engine/atom/orbital_tables.h"
-#include "engine/atom/preintegration.h"
 #include "engine/core/error.h"
+#include "engine/volume/preintegration.h"
 #if MASAV_HAVE_VULKAN
 #include "compute/sph_walk_choice.h"
 #endif
@@ -312,7 +312,7 @@ LOOP_LIMIT_CASE(
     b.upload(v, std::vector<double>(64 * 64 * 64, value));
     b.upload(tf, std::vector<Vec4d>{{1, 1, 1, alpha}, {1, 1, 1, alpha}});
     b.volume_bricks({vol, rp.brick, 2}, v, tf, bricks);
-    b.upload(table, atom::preintegrate_transfer({{1, 1, 1, alpha}, {1, 1, 1, alpha}}));
+    b.upload(table, volume::preintegrate_transfer({{1, 1, 1, alpha}, {1, 1, 1, alpha}}));
     (void)test::ticks_of(b);
     b.raymarch(rp, v, tf, bricks, img, &table);
     return test::ticks_of(b);

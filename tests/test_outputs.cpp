@@ -1,6 +1,7 @@
-// Outputs that cannot be lost or mixed: CSV rows streamed to the file as they are made (a full
-// disk fails at the first row it cannot take), an output directory held by one process at a
-// time (a lock left by a dead process taken over), and file sets that appear whole or not at all.
+// Outputs that cannot be lost or mixed: CSV rows streamed to a partial file as they are made and
+// moved over the old file at the end (a refused run leaves it whole), an output directory held
+// by one process at a time (a lock left by a dead process taken over), and file sets that appear
+// whole or not at all. Devices, pipes and links: tests/test_output_targets.cpp.
 #include <doctest/doctest.h>
 #include <fcntl.h>
 #include <sys/file.h>
@@ -40,25 +41,48 @@ size_t entries(const fs::path& dir) {
 
 }  // namespace
 
-TEST_CASE("CSV stream: every row is in the file as soon as it is written") {
+TEST_CASE("CSV stream: every row is in the partial file as soon as it is written") {
   test::TempDir dir("masav_test_csv_stream");
   const fs::path file = dir.path / "d.csv";
   CsvStream csv(file.string(), {"step", "energy"}, "--csv");
-  CHECK(slurp(file) == "step,energy\n");  // the header before any row
+  const fs::path partial = csv.partial_path();
+  CHECK(partial.parent_path() == dir.path);
+  CHECK(slurp(partial) == "step,energy\n");  // the header before any row
   csv.row({1, 0.5});
-  CHECK(slurp(file) == "step,energy\n1,0.5\n");  // not held back in a buffer
-  csv.row({2, 0.25});
+  CHECK(slurp(partial) == "step,energy\n1,0.5\n");  // not held back in a buffer
+  CHECK_FALSE(fs::exists(file));                     // the file itself only on commit
+  csv.commit();
+  CHECK(slurp(file) == "step,energy\n1,0.5\n");
+  CHECK_FALSE(fs::exists(partial));
+  csv.row({2, 0.25});  // later rows go on into the file
   CHECK(slurp(file) == "step,energy\n1,0.5\n2,0.25\n");
   CHECK(csv.rows() == 2);
   CHECK_THROWS_WITH_AS(csv.row({3}), doctest::Contains("row of 1 cells for 2 columns"), Error);
 }
 
-TEST_CASE("CSV stream: a full disk fails at the header, naming the file and the reason") {
-  CHECK_THROWS_WITH_AS(CsvStream("/dev/full", {"a"}, "--csv"),
-                       doctest::Contains("writing '/dev/full' failed after 0 rows: No space left"),
-                       Error);
+TEST_CASE("CSV stream: an existing file stays whole until the rows replace it") {
+  test::TempDir dir("masav_test_csv_keep");
+  const fs::path file = dir.path / "good.csv";
+  write_file_atomic(file.string(), "a\n1\n2\n");
+  {
+    CsvStream refused(file.string(), {"a"}, "--csv");  // a run refused before it commits
+    refused.row({9});
+    CHECK(slurp(file) == "a\n1\n2\n");
+  }
+  CHECK(slurp(file) == "a\n1\n2\n");
+  CHECK(entries(dir.path) == 1);  // its partial removed
+  CsvStream kept(file.string(), {"a"}, "--csv");
+  kept.row({3});
+  kept.commit();
+  CHECK(slurp(file) == "a\n3\n");
+}
+
+TEST_CASE("CSV stream: a file that cannot be written fails at the header, naming it") {
   CHECK_THROWS_WITH_AS(CsvStream("/proc/masav/x.csv", {"a"}, "--csv"),
                        doctest::Contains("cannot create '/proc/masav/x.csv'"), Error);
+  test::TempDir dir("masav_test_csv_dir");
+  CHECK_THROWS_WITH_AS(CsvStream(dir.path.string(), {"a"}, "--csv"),
+                       doctest::Contains("is a directory"), Error);
 }
 
 TEST_CASE("CSV stream: a second writer of the same file is refused and leaves it intact") {
@@ -68,7 +92,7 @@ TEST_CASE("CSV stream: a second writer of the same file is refused and leaves it
   first.row({1});
   CHECK_THROWS_WITH_AS(CsvStream(file.string(), {"a"}, "--csv"),
                        doctest::Contains("is being written by another process"), Error);
-  CHECK(slurp(file) == "a\n1\n");
+  CHECK(slurp(first.partial_path()) == "a\n1\n");
 }
 
 TEST_CASE("output lock: one holder at a time, released on exit, a dead holder's file taken over") {

@@ -224,7 +224,7 @@ TEST_CASE("sph kernels over two ranges that split the particles report the whole
 }
 
 TEST_CASE("dfsph kernels over a particle range: the whole call's values inside, nothing outside") {
-  // A rank's solve (engine/sph/sph_simulation_dfsph.cpp) runs the three kernels over its own
+  // A rank's solve (engine/sph/sph_dfsph_scheme.cpp) runs the three kernels over its own
   // particles, the halos' factor, kappa and velocities coming from their owners.
   Backend& b = test::backend();
   test::SphCase c = test::make_sph_case(12, SphPressureModel::dfsph, 8);

@@ -11,11 +11,11 @@
 #include <vector>
 
 #include "app/demo/tf_points.h"
-#include "engine/atom/transfer_function.h"
-#include "engine/atom/value_histogram.h"
-#include "engine/atom/volume_scene.h"
 #include "engine/core/error.h"
 #include "engine/cpu/cpu_backend.h"
+#include "engine/volume/transfer_function.h"
+#include "engine/volume/value_histogram.h"
+#include "engine/volume/volume_scene.h"
 #include "registry/scene_catalog.h"
 #include "temp_dir.h"
 
@@ -60,7 +60,7 @@ void write_ramp(const std::string& path) {
 
 std::unique_ptr<scene::SceneInstance> ramp_scene(Backend& b, const std::string& file) {
   scene::ParamSet p = scene::default_params(scene::find_scene_type("volume"));
-  atom::set_volume_file_options(p, {file, {8, 6, 4}, "uint8"});
+  volume::set_volume_file_options(p, {file, {8, 6, 4}, "uint8"});
   p.set("render.width", int64_t(40));
   p.set("render.height", int64_t(28));
   return scene::find_scene_type("volume").create(b, p);
@@ -89,8 +89,8 @@ TEST_CASE("tf editor: a point added between two takes the function's colour ther
   CHECK(pts[1].b == doctest::Approx(0.75));
   CHECK(pts[1].a == doctest::Approx(0.25));
   // The function is unchanged until the point is edited.
-  const auto before = atom::resample_transfer({{0.0, 0, 0, 1, 0}, {1.0, 1, 0, 0, 1}}, 64);
-  const auto after = atom::resample_transfer(pts, 64);
+  const auto before = volume::resample_transfer({{0.0, 0, 0, 1, 0}, {1.0, 1, 0, 0, 1}}, 64);
+  const auto after = volume::resample_transfer(pts, 64);
   for (size_t k = 0; k < before.size(); ++k) CHECK(after[k].x == doctest::Approx(before[k].x));
   // Outside [0, 1] clamps; on top of a point (closer than kMinTfGap) adds nothing.
   CHECK_FALSE(add_tf_point(pts, -0.5));
@@ -100,7 +100,7 @@ TEST_CASE("tf editor: a point added between two takes the function's colour ther
 }
 
 TEST_CASE("tf editor: a dragged point stays between its neighbours and in [0, 1]") {
-  std::vector<TransferPoint> pts = atom::default_transfer_points();
+  std::vector<TransferPoint> pts = volume::default_transfer_points();
   move_tf_point(pts, 2, 0.99, 2.0);  // past the next point, opacity over 1
   CHECK(pts[2].value == doctest::Approx(pts[3].value - kMinTfGap));
   CHECK(pts[2].a == 1.0);
@@ -117,11 +117,11 @@ TEST_CASE("tf editor: a dragged point stays between its neighbours and in [0, 1]
   CHECK(pts[1].b == 0.5);
   CHECK(ascending_in_unit_range(pts));
   // Every edit leaves what the `--tf` parser accepts.
-  CHECK_NOTHROW(atom::parse_inline_transfer(atom::format_inline_transfer(pts), "t"));
+  CHECK_NOTHROW(volume::parse_inline_transfer(volume::format_inline_transfer(pts), "t"));
 }
 
 TEST_CASE("tf editor: delete keeps at least two points") {
-  std::vector<TransferPoint> pts = atom::default_transfer_points();
+  std::vector<TransferPoint> pts = volume::default_transfer_points();
   while (pts.size() > kMinTfPoints) CHECK(delete_tf_point(pts, 1));
   CHECK_FALSE(delete_tf_point(pts, 0));
   CHECK(pts.size() == kMinTfPoints);
@@ -136,20 +136,20 @@ TEST_CASE(
   auto s = ramp_scene(cpu, t.file("ramp.raw"));
   TfEditorState e;
   sync_tf_editor(e, s->params(), "raymarch");
-  CHECK(same_points(e.points, atom::default_transfer_points()));
+  CHECK(same_points(e.points, volume::default_transfer_points()));
   // Points with values no short decimal holds.
   e.points = {
       {0.0, 0.1, 0.2, 0.3, 0.0}, {1.0 / 3, 2.0 / 3, 0.123456789, 1.0 / 7, 0.5}, {1.0, 1, 0, 0, 1}};
   const std::vector<TransferPoint> saved = e.points;
   save_tf_file(e, t.file("tf.txt"));
   CHECK_FALSE(e.message_is_error);
-  CHECK(same_points(atom::load_transfer_points(t.file("tf.txt")), saved));
+  CHECK(same_points(volume::load_transfer_points(t.file("tf.txt")), saved));
   TfEditorState other;
   load_tf_file(other, *s, "raymarch", t.file("tf.txt"));
   CHECK_FALSE(other.message_is_error);
   CHECK(same_points(other.points, saved));
   // The scene holds them inline, and they read back the same.
-  CHECK(same_points(atom::parse_inline_transfer(s->params().get_text("raymarch.transfer"), "t"),
+  CHECK(same_points(volume::parse_inline_transfer(s->params().get_text("raymarch.transfer"), "t"),
                     saved));
   // A refused file: the message names the file, the line and the field; the scene keeps its points.
   std::ofstream(t.file("bad.txt")) << "0 0 0 1 0\n0.5 0 1.5 0 1\n";
@@ -158,7 +158,7 @@ TEST_CASE(
   CHECK(other.message.find("bad.txt") != std::string::npos);
   CHECK(other.message.find("line 2 field g = 1.5") != std::string::npos);
   CHECK(other.message.find("[0, 1]") != std::string::npos);
-  CHECK(same_points(atom::parse_inline_transfer(s->params().get_text("raymarch.transfer"), "t"),
+  CHECK(same_points(volume::parse_inline_transfer(s->params().get_text("raymarch.transfer"), "t"),
                     saved));
   load_tf_file(other, *s, "raymarch", t.file("missing.txt"));
   CHECK(other.message_is_error);
@@ -171,14 +171,14 @@ TEST_CASE("tf editor: the histogram of a known volume") {
   const std::vector<double> values = {0, 0, 0, 0, 1, 2, 3, 4, 4, -5, 9, std::nan("")};
   // Over [0, 4] in 4 bins: [0, 1) holds 0 x4 and the clamped -5; the top value in the last bin,
   // with the clamped 9; NaN not counted.
-  CHECK(atom::value_histogram(values, 0, 4, 4) == std::vector<uint32_t>{5, 1, 1, 4});
-  CHECK(atom::value_histogram(values, 2, 2, 2) == std::vector<uint32_t>{11, 0});
-  CHECK_THROWS_AS(atom::value_histogram(values, 0, 1, 0), Error);
-  const std::vector<float> h = atom::log_heights({0, 1, 3, 0});
+  CHECK(volume::value_histogram(values, 0, 4, 4) == std::vector<uint32_t>{5, 1, 1, 4});
+  CHECK(volume::value_histogram(values, 2, 2, 2) == std::vector<uint32_t>{11, 0});
+  CHECK_THROWS_AS(volume::value_histogram(values, 0, 1, 0), Error);
+  const std::vector<float> h = volume::log_heights({0, 1, 3, 0});
   CHECK(h[0] == 0.0f);
   CHECK(h[2] == doctest::Approx(1.0));
   CHECK(h[1] == doctest::Approx(std::log(2.0) / std::log(4.0)));
-  CHECK(atom::log_heights({0, 0}) == std::vector<float>{0, 0});
+  CHECK(volume::log_heights({0, 0}) == std::vector<float>{0, 0});
   // The scene's own: a ramp 0..199 repeating over 192 voxels (values 0..191), 4 bins of 48.
   test::TempDir t("masav_tf_editor_histogram");
   write_ramp(t.file("ramp.raw"));
@@ -272,5 +272,5 @@ TEST_CASE("tf editor: an edit reruns only transfer, bricks and raymarch, and ren
           check_tf_words({"point", "0.5", "0", "1", "0", "1.5"}, "s:6");
         }).find("tf point field a = 1.5") != std::string::npos);
   run_tf_words(e, *s, {"reset"}, "test");
-  CHECK(same_points(e.points, atom::default_transfer_points()));
+  CHECK(same_points(e.points, volume::default_transfer_points()));
 }

@@ -10,12 +10,12 @@
 #include <random>
 #include <vector>
 
-#include "engine/atom/preintegration.h"
-#include "engine/atom/ray_integral.h"
 #include "engine/core/error.h"
 #include "engine/kernels/atom_checks.h"
 #include "engine/kernels/grid_cell.h"
 #include "engine/util/error_metrics.h"
+#include "engine/volume/preintegration.h"
+#include "engine/volume/ray_integral.h"
 #include "tests/backend_fixture.h"
 #include "tests/raymarch_render.h"
 
@@ -105,7 +105,7 @@ std::vector<double> analytic_alpha(const RaymarchParams& rp, uint32_t dims, cons
         du[a] = hd::comp(d, a) / spacing;
       }
       const double depth =
-          atom::clamped_ramp_depth(o, du, 0, dims - 1, 1.0 / (3.0 * (dims - 1)), t0, t1, e);
+          volume::clamped_ramp_depth(o, du, 0, dims - 1, 1.0 / (3.0 * (dims - 1)), t0, t1, e);
       want[y * rp.width + x] = 1 - std::exp(-depth);
     }
   return want;
@@ -373,7 +373,7 @@ TEST_CASE(
   };
   const LinearExtinction linear{1.5};
   sweep(extinction_tf(4096, linear, ref), analytic_alpha(rp, 24, linear), false);
-  const atom::PeakedExtinction peak;
+  const volume::PeakedExtinction peak;
   sweep(extinction_tf(4096, peak, ref), analytic_alpha(rp, 24, peak), true);
 }
 
@@ -381,9 +381,9 @@ TEST_CASE(
     "preintegrate_transfer: depth and emission per entry, their integrals as float and remainder") {
   // Colour 0.5 -> 1 -> 1 with alpha 0 -> 1 - e^-2 -> 1 (transmittance capped at kMinTransmittance).
   const std::vector<Vec4d> tf = {{0.5, 0, 0, 0}, {1, 0, 0, 1 - std::exp(-2.0)}, {1, 0, 0, 1}};
-  const auto t = atom::preintegrate_transfer(tf);
+  const auto t = volume::preintegrate_transfer(tf);
   REQUIRE(t.size() == kPreintegratedPerEntry * 3);
-  const double cap = -std::log(atom::kMinTransmittance);
+  const double cap = -std::log(volume::kMinTransmittance);
   CHECK(t[0].w == 0);
   CHECK(t[3].w == doctest::Approx(2.0).epsilon(1e-12));
   CHECK(t[3].x == doctest::Approx(2.0).epsilon(1e-12));  // emission = colour * depth
@@ -399,7 +399,7 @@ TEST_CASE(
   CHECK(double(float(t[7].w)) == t[7].w);
   CHECK(t[8].w != 0);  // 1 + (2 + 13.8) / 2 is not a float
   CHECK(std::abs(t[8].w) <= 1e-7 * t[7].w);
-  CHECK_THROWS_WITH_AS(atom::preintegrate_transfer({{1, 1, 1, 1}}),
+  CHECK_THROWS_WITH_AS(volume::preintegrate_transfer({{1, 1, 1, 1}}),
                        doctest::Contains("at least 2 entries"), Error);
 }
 
@@ -481,7 +481,7 @@ TEST_CASE("raymarch: a volume rewritten between frames renders as a fresh volume
   auto bricks = b.create<Real4>(size_t(nb.x) * nb.y * nb.z, "bricks");
   auto img = b.create<Real4>(size_t(c.rp.width) * c.rp.height, "image");
   auto frame = [&] {
-    atom::fill_bricks(b, {c.rp.volume, c.rp.brick, c.rp.tf_size}, v, t, bricks);
+    volume::fill_bricks(b, {c.rp.volume, c.rp.brick, c.rp.tf_size}, v, t, bricks);
     b.raymarch(c.rp, v, t, bricks, img, nullptr);
     return b.download(img);
   };

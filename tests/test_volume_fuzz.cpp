@@ -16,11 +16,12 @@
 #include <vector>
 
 #include "engine/atom/atom_export.h"
-#include "engine/atom/volume_io.h"
 #include "engine/core/error.h"
+#include "engine/volume/volume_io.h"
 
 using namespace masav;
 using namespace masav::atom;
+using namespace masav::volume;
 
 namespace {
 

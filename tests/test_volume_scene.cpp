@@ -7,10 +7,10 @@
 #include <string>
 #include <vector>
 
-#include "engine/atom/volume_file.h"
-#include "engine/atom/volume_scene.h"
 #include "engine/core/error.h"
 #include "engine/cpu/cpu_backend.h"
+#include "engine/volume/volume_file.h"
+#include "engine/volume/volume_scene.h"
 #include "registry/scene_catalog.h"
 #include "temp_dir.h"
 
@@ -24,18 +24,18 @@ void write_ramp(const std::string& path, size_t bytes) {
   std::ofstream(path, std::ios::binary).write(v.data(), std::streamsize(v.size()));
 }
 
-scene::ParamSet volume_params(const atom::VolumeFileOptions& o) {
+scene::ParamSet volume_params(const volume::VolumeFileOptions& o) {
   scene::ParamSet p = scene::default_params(scene::find_scene_type("volume"));
-  atom::set_volume_file_options(p, o);
+  volume::set_volume_file_options(p, o);
   p.set("render.width", int64_t(48));
   p.set("render.height", int64_t(32));
   return p;
 }
 
 // What the loader of `masav volume` says about these options ("" if it reads the file).
-std::string cli_refusal(const atom::VolumeFileOptions& o) {
+std::string cli_refusal(const volume::VolumeFileOptions& o) {
   try {
-    (void)atom::load_volume_file(o);
+    (void)volume::load_volume_file(o);
   } catch (const Error& e) {
     return e.what();
   }
@@ -77,7 +77,7 @@ TEST_CASE("volume scene: refused files and options read as masav volume words th
   write_ramp(t.file("a.nrrd"), 10);
   cpu::CpuBackend cpu(2);
   const scene::SceneType& type = scene::find_scene_type("volume");
-  const std::vector<atom::VolumeFileOptions> bad = {
+  const std::vector<volume::VolumeFileOptions> bad = {
       {t.file("short.raw"), {8, 8, 8}, "uint8"},   // shorter than its dims
       {t.file("short.raw"), {8, 8}, "uint8"},      // two sizes
       {t.file("short.raw"), {8, 8, 8}, "uint12"},  // no such type
@@ -85,7 +85,7 @@ TEST_CASE("volume scene: refused files and options read as masav volume words th
       {t.file("a.nrrd"), {8, 8, 8}, ""},           // a raw option for an NRRD
       {t.file("missing.vti"), {}, ""},             // no file
   };
-  for (const atom::VolumeFileOptions& o : bad) {
+  for (const volume::VolumeFileOptions& o : bad) {
     CAPTURE(o.file);
     const std::string cli = cli_refusal(o);
     REQUIRE(!cli.empty());

@@ -8,8 +8,8 @@
 #include <cstring>
 
 #include "app/demo/tooltip.h"
-#include "engine/atom/value_histogram.h"
 #include "engine/core/error.h"
+#include "engine/volume/value_histogram.h"
 
 namespace masav::app {
 namespace {
@@ -43,7 +43,7 @@ void refresh_histogram(render::ScenePlayer& player, TfEditorState& e) {
   const uint64_t version = player.scene().volume_version();
   if (version == e.histogram_version) return;
   e.histogram_version = version;
-  e.histogram = atom::log_heights(player.scene().value_histogram(kHistogramBins));
+  e.histogram = volume::log_heights(player.scene().value_histogram(kHistogramBins));
 }
 
 // The canvas: histogram, opacity curve and points; returns whether the points changed.
@@ -121,7 +121,7 @@ bool point_canvas(TfEditorState& e) {
 
 // The resampled function as the raymarch reads it: colour above, colour times opacity below.
 void preview_strip(const std::vector<TransferPoint>& points) {
-  const std::vector<Vec4d> tf = atom::resample_transfer(points);
+  const std::vector<Vec4d> tf = volume::resample_transfer(points);
   const float width = std::max(ImGui::GetContentRegionAvail().x, 64.0f);
   const float height = 24;
   const ImVec2 origin = ImGui::GetCursorScreenPos();

@@ -5,10 +5,12 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
+#include <filesystem>
 #include <fstream>
 
-#include "engine/atom/volume_render.h"
 #include "engine/core/error.h"
+#include "engine/util/output_file.h"
+#include "engine/volume/volume_render.h"
 
 namespace masav::app {
 
@@ -106,9 +108,9 @@ void sync_tf_editor(TfEditorState& e, const scene::ParamSet& p, const std::strin
   if (keys == e.keys && !e.points.empty()) return;
   e.keys = keys;
   try {
-    e.points = atom::transfer_points_of(p, table);
+    e.points = volume::transfer_points_of(p, table);
   } catch (const Error& err) {
-    e.points = atom::default_transfer_points();
+    e.points = volume::default_transfer_points();
     e.message = err.what();
     e.message_is_error = true;
   }
@@ -118,8 +120,8 @@ void sync_tf_editor(TfEditorState& e, const scene::ParamSet& p, const std::strin
 
 void apply_tf_points(scene::SceneInstance& s, const std::string& table,
                      const std::vector<TransferPoint>& pts) {
-  const std::string text = atom::format_inline_transfer(pts);
-  (void)atom::parse_inline_transfer(text, table + ".transfer");  // refused before any change
+  const std::string text = volume::format_inline_transfer(pts);
+  (void)volume::parse_inline_transfer(text, table + ".transfer");  // refused before any change
   s.set(table + ".transfer_file", std::string());
   s.set(table + ".transfer", text);
 }
@@ -139,21 +141,25 @@ void report(TfEditorState& e, std::string text, bool error) {
 }  // namespace
 
 void save_tf_file(TfEditorState& e, const std::string& path) {
-  std::ofstream out(path, std::ios::binary | std::ios::trunc);
-  out << atom::format_transfer_file(e.points);
-  out.close();
-  if (!out)
-    report(e,
-           fmt::format("Save TF: cannot write {} (check the folder exists and is writable)", path),
-           true);
-  else
-    report(e, fmt::format("saved {} points to {}", e.points.size(), path), false);
+  const std::filesystem::path parent = std::filesystem::path(path).parent_path();
+  std::error_code ec;
+  if (!parent.empty() && !std::filesystem::is_directory(parent, ec)) {
+    report(e, fmt::format("Save TF: cannot write {}: the folder does not exist", path), true);
+    return;
+  }
+  try {
+    write_output(path, volume::format_transfer_file(e.points), "Save TF");
+  } catch (const Error& err) {
+    report(e, fmt::format("Save TF: cannot write {}: {}", path, err.problem()), true);
+    return;
+  }
+  report(e, fmt::format("saved {} points to {}", e.points.size(), path), false);
 }
 
 void load_tf_file(TfEditorState& e, scene::SceneInstance& s, const std::string& table,
                   const std::string& path) {
   try {
-    const std::vector<TransferPoint> pts = atom::load_transfer_points(path);
+    const std::vector<TransferPoint> pts = volume::load_transfer_points(path);
     apply_tf_points(s, table, pts);
     e.points = pts;
     e.keys.clear();
@@ -179,7 +185,7 @@ void check_tf_words(const std::vector<std::string>& words, const std::string& wh
                   (verb == "reset" && args == 0) || (verb == "point" && args == 5);
   if (!ok) throw_invalid(where, "tf", verb + fmt::format(" with {} arguments", args), forms);
   if (verb == "point") {
-    std::vector<TransferPoint> scratch = atom::default_transfer_points();
+    std::vector<TransferPoint> scratch = volume::default_transfer_points();
     put_tf_point(scratch, {words.begin() + 1, words.end()}, where);
   }
   if (verb == "delete") {

@@ -8,12 +8,12 @@
 #include <string>
 #include <vector>
 
-#include "engine/atom/transfer_function.h"
 #include "engine/scene/scene.h"
+#include "engine/volume/transfer_function.h"
 
 namespace masav::app {
 
-using atom::TransferPoint;
+using volume::TransferPoint;
 
 // Fewer than two points would make the function one constant colour, which the editor's
 // value axis could no longer change.

@@ -1,7 +1,7 @@
 #pragma once
 // Opening a volume file from the demo: the panel's path field and "Open" button, a file dropped
 // on the window and the script's `open` all fill the same fields and make the same request. The
-// demo then switches to a `volume` scene of the file (engine/atom/volume_scene.h), which reads it
+// demo then switches to a `volume` scene of the file (engine/volume/volume_scene.h), which reads it
 // with the loader and the checks of `masav volume`; a file that is refused leaves the current
 // scene, with the message in the panel.
 #include <string>

@@ -10,15 +10,15 @@
 #include <mutex>
 
 #include "engine/atom/atom_schema.h"
-#include "engine/atom/brick_skip.h"
 #include "engine/atom/orbital.h"
 #include "engine/atom/orbital_tables.h"
-#include "engine/atom/preintegration.h"
 #include "engine/atom/scatter_cache.h"
-#include "engine/atom/transfer_function.h"
 #include "engine/cpu/cpu_backend.h"
 #include "engine/grid/hash_grid.h"
 #include "engine/kernels/atom_checks.h"
+#include "engine/volume/brick_skip.h"
+#include "engine/volume/preintegration.h"
+#include "engine/volume/transfer_function.h"
 
 namespace masav::verify {
 namespace {
@@ -223,7 +223,7 @@ CheckVolume check_volume(const CheckInputs& in) {
     for (uint32_t j = 0; j < d; ++j)
       for (uint32_t i = 0; i < d; ++i)
         v.values.push_back(0.5 + 0.4 * std::sin(0.4 * i) * std::cos(0.3 * j) + 0.1 * k / d);
-  v.tf = atom::resample_transfer(atom::default_transfer_points());
+  v.tf = volume::resample_transfer(volume::default_transfer_points());
   return v;
 }
 
@@ -243,8 +243,8 @@ BrickedVolume upload_bricked(Backend& b, const CheckVolume& v) {
   const uint32_t brick = RaymarchParams{}.brick;
   const UVec3 nb = brick_dims(v.desc, brick);
   bv.bricks = b.create<Real4>(size_t(nb.x) * nb.y * nb.z, "check bricks");
-  atom::fill_bricks(b, {v.desc, brick, uint32_t(v.tf.size())}, bv.volume, bv.transfer, bv.bricks);
-  bv.preintegrated = atom::upload_preintegrated(b, v.tf);
+  volume::fill_bricks(b, {v.desc, brick, uint32_t(v.tf.size())}, bv.volume, bv.transfer, bv.bricks);
+  bv.preintegrated = volume::upload_preintegrated(b, v.tf);
   return bv;
 }
 

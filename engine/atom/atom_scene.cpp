@@ -6,11 +6,11 @@
 #include <chrono>
 #include <cmath>
 
-#include "engine/atom/brick_skip.h"
-#include "engine/atom/preintegration.h"
 #include "engine/core/error.h"
 #include "engine/grid/hash_grid.h"
 #include "engine/kernels/atom_checks.h"
+#include "engine/volume/brick_skip.h"
+#include "engine/volume/preintegration.h"
 
 namespace masav::atom {
 
@@ -236,8 +236,8 @@ RaymarchBuffers prepare_raymarch(Backend& b, const Buffer<Real>& volume,
   b.upload(r.tf, tf);
   const UVec3 nb = brick_dims(rp.volume, rp.brick);
   r.bricks = b.create<Real4>(size_t(nb.x) * nb.y * nb.z, "bricks");
-  fill_bricks(b, {rp.volume, rp.brick, rp.tf_size}, volume, r.tf, r.bricks);
-  if (rp.preintegrate) r.tf_integral = upload_preintegrated(b, tf);
+  volume::fill_bricks(b, {rp.volume, rp.brick, rp.tf_size}, volume, r.tf, r.bricks);
+  if (rp.preintegrate) r.tf_integral = volume::upload_preintegrated(b, tf);
   r.image = b.create<Real4>(size_t(rp.width) * rp.height, "image");
   return r;
 }

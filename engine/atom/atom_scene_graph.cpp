@@ -8,10 +8,10 @@
 #include "engine/atom/atom_scene.h"
 #include "engine/atom/atom_schema.h"
 #include "engine/atom/orbital.h"
-#include "engine/atom/value_histogram.h"
-#include "engine/atom/volume_render.h"
 #include "engine/core/error.h"
 #include "engine/scene/camera_pose.h"
+#include "engine/volume/value_histogram.h"
+#include "engine/volume/volume_render.h"
 
 namespace masav::atom {
 namespace {
@@ -82,7 +82,7 @@ class AtomCloudScene final : public scene::SceneInstance {
     add("voxelize", {"light", "volume.dims", "volume.s", "volume.t"},
         [this] { core_.voxelize(light_to_unit_); });
     add("transfer", {"volume.transfer_file", "volume.transfer"},
-        [this] { render_.load_transfer(transfer_points_of(params_, "volume")); });
+        [this] { render_.load_transfer(volume::transfer_points_of(params_, "volume")); });
     add("bricks", {"voxelize", "transfer"},
         [this] { render_.build_bricks(core_.volume(), core_.sample); });
     add("raymarch",
@@ -98,7 +98,7 @@ class AtomCloudScene final : public scene::SceneInstance {
   std::vector<uint32_t> value_histogram(uint32_t bins) const override {
     if (!volume_ || graph_.version("voxelize") == 0) return {};
     const VolumeDesc d = core_.volume();
-    return atom::value_histogram(backend_.download(core_.sample), d.value_min, d.value_max, bins);
+    return volume::value_histogram(backend_.download(core_.sample), d.value_min, d.value_max, bins);
   }
   uint64_t volume_version() const override { return volume_ ? graph_.version("voxelize") : 0; }
 
@@ -168,7 +168,7 @@ class AtomCloudScene final : public scene::SceneInstance {
                                 limit / (4 * backend_.real_bytes()), backend_.caps().device_name,
                                 limit >> 20));
     if (p.has_table("volume")) {
-      check_transfer_keys(p, "volume");
+      volume::check_transfer_keys(p, "volume");
       const double s = p.get_real("volume.s"), t = p.get_real("volume.t");
       if (s + t <= 0)
         throw Error("", "atom-volume",
@@ -258,7 +258,7 @@ class AtomCloudScene final : public scene::SceneInstance {
   double time_s_ = 0;
   uint64_t lit_view_ = 0;  // the version of "view" the volume was last lit for
   float light_to_unit_ = 1;
-  VolumeRender render_;
+  volume::VolumeRender render_;
 };
 
 }  // namespace

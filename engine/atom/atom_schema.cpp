@@ -4,8 +4,8 @@
 
 #include "engine/atom/orbital.h"
 #include "engine/atom/scatter_threshold.h"
-#include "engine/atom/volume_render.h"
 #include "engine/core/error.h"
+#include "engine/volume/volume_render.h"
 
 namespace masav::atom {
 
@@ -84,14 +84,14 @@ const scene::TableSchema& volume_table() {
     s.steps(0.05);
     s.text("transfer_file", "",
            "transfer function: lines 'value r g b a' ('' = the thesis's blue -> green -> red)");
-    add_inline_transfer_key(s);
+    volume::add_inline_transfer_key(s);
     s.real("step_voxels", 0.5, 0.05, 4.0, "raymarch step", "voxels");
     s.choice("compositing", "front_to_back", {"front_to_back", "lerp"},
              "emission-absorption front to back, or the thesis's lerp");
     s.flag("preintegrate", false,
            "integrate the transfer function over each step (front_to_back only): a step of a "
            "voxel keeps the accuracy of a finer one");
-    add_clip_shade_keys(s);
+    volume::add_clip_shade_keys(s);
     s.real("gain", 1.0, 0.0, 16.0, "multiplies the raymarched image");
     s.flag("show_particles", false, "draw the lit particles over the volume as well");
     return s;

@@ -4,11 +4,12 @@
 
 #include <chrono>
 #include <cmath>
-#include <cstdlib>
 #include <cstring>
+#include <filesystem>
 
 #include "engine/core/error.h"
 #include "engine/io/csv_writer.h"
+#include "engine/util/cache_dir.h"
 #include "engine/util/cache_file.h"
 #include "engine/util/checked_size.h"
 #include "engine/util/checksum.h"
@@ -22,12 +23,10 @@ constexpr uint32_t kPayloadVersion = 2;
 constexpr uint64_t kMaxBackendName = 64;
 constexpr uint64_t kEntryBytes = sizeof(double) + sizeof(uint32_t);
 
-std::string cache_dir(const std::string& dir) {
-  if (!dir.empty()) return dir;
-  if (const char* d = std::getenv("MASAV_CACHE_DIR")) return d;
-  if (const char* x = std::getenv("XDG_CACHE_HOME")) return std::string(x) + "/masav";
-  if (const char* h = std::getenv("HOME")) return std::string(h) + "/.cache/masav";
-  return ".masav-cache";
+// `dir`, or the default cache directory; none when there is neither.
+std::optional<std::filesystem::path> cache_dir(const std::string& dir) {
+  if (!dir.empty()) return std::filesystem::path(dir);
+  return default_cache_dir();
 }
 
 uint64_t entries(const ScatterTableParams& p) {
@@ -63,7 +62,9 @@ std::string scatter_cache_key(const ScatterTableParams& p) {
 }
 
 std::string scatter_cache_path(const ScatterTableParams& p, const std::string& dir) {
-  return fmt::format("{}/scatter/{:016x}.bin", cache_dir(dir), fnv1a64(scatter_cache_key(p)));
+  const std::optional<std::filesystem::path> root = cache_dir(dir);
+  if (!root) return "";
+  return fmt::format("{}/scatter/{:016x}.bin", root->string(), fnv1a64(scatter_cache_key(p)));
 }
 
 ScatterTable compute_scatter_table(Backend& b, const ScatterTableParams& p) {
@@ -80,6 +81,7 @@ ScatterTable compute_scatter_table(Backend& b, const ScatterTableParams& p) {
 std::optional<ScatterTable> load_scatter_cache(const ScatterTableParams& p,
                                                const std::string& dir) {
   const std::string path = scatter_cache_path(p, dir);
+  if (path.empty()) return std::nullopt;
   const uint64_t n = entries(p);
   auto payload = load_cache_file(path, cache_id(p), kMaxBackendName + 1 + n * kEntryBytes);
   if (!payload) return std::nullopt;
@@ -100,13 +102,17 @@ std::optional<ScatterTable> load_scatter_cache(const ScatterTableParams& p,
 }
 
 void save_scatter_cache(const ScatterTable& t, const std::string& dir) {
+  const std::string path = scatter_cache_path(t.params, dir);
+  if (path.empty())
+    throw Error("", "cache", "no cache directory for the scattering table",
+                "set MASAV_CACHE_DIR or HOME");
   std::string payload = t.backend.substr(0, kMaxBackendName) + "\n";
   const size_t head = payload.size();
   payload.resize(head + t.weight.size() * sizeof(double) + t.hits.size() * sizeof(uint32_t));
   std::memcpy(payload.data() + head, t.weight.data(), t.weight.size() * sizeof(double));
   std::memcpy(payload.data() + head + t.weight.size() * sizeof(double), t.hits.data(),
               t.hits.size() * sizeof(uint32_t));
-  write_cache_file(scatter_cache_path(t.params, dir), cache_id(t.params), payload);
+  write_cache_file(path, cache_id(t.params), payload);
 }
 
 ScatterTable scatter_table_cached(Backend& b, const ScatterTableParams& p, const std::string& dir,

@@ -17,7 +17,7 @@
 #include "engine/kernels/atom_params.h"
 #include "engine/kernels/grid_cell.h"
 #include "engine/kernels/hd_vec.h"
-#include "engine/kernels/volume_math.h"
+#include "engine/kernels/volume_sample.h"
 
 namespace masav::nebula {
 

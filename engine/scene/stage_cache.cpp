@@ -2,9 +2,10 @@
 
 #include <fmt/format.h>
 
-#include <cstdlib>
+#include <filesystem>
 
 #include "engine/core/error.h"
+#include "engine/util/cache_dir.h"
 #include "engine/util/cache_file.h"
 #include "engine/util/checksum.h"
 
@@ -18,12 +19,10 @@ CacheFileId cache_id(const std::string& key) {
   return {"stage-output", 1, key};
 }
 
+// <the cache directory>/stages, or "" (no cache) when there is none.
 std::string default_dir() {
-  if (const char* d = std::getenv("MASAV_CACHE_DIR"); d && *d) return std::string(d) + "/stages";
-  if (const char* x = std::getenv("XDG_CACHE_HOME"); x && *x)
-    return std::string(x) + "/masav/stages";
-  if (const char* h = std::getenv("HOME"); h && *h) return std::string(h) + "/.cache/masav/stages";
-  return "";
+  const std::optional<std::filesystem::path> root = default_cache_dir();
+  return root ? fmt::format("{}/stages", root->string()) : "";
 }
 
 }  // namespace

@@ -20,7 +20,7 @@ namespace masav::scene {
 
 class StageCache {
  public:
-  // dir "" = MASAV_CACHE_DIR/stages, else $XDG_CACHE_HOME/masav/stages, else ~/.cache/masav/stages.
+  // dir "" = default_cache_dir()/stages (engine/util/cache_dir.h); none there: no cache.
   explicit StageCache(std::string dir = "");
 
   // The key of a stage's output: its name, a format version, and the listed parameters' values.

@@ -19,7 +19,7 @@ enum class SphIntegrator : uint8_t {
   leapfrog,          // kick-drift-kick (velocity Verlet): second order, symplectic, 1 force pass
 };
 
-// What the CFL guard does when the step would be unstable (see SphSimulation).
+// What the CFL guard does when the step would be unstable (sph_step_control.h).
 enum class SphCflGuard : uint8_t {
   reduce,  // split the step into smaller ones / retry a rejected step with a smaller dt
   stop,    // stop with an error that says which limit was exceeded and what to change

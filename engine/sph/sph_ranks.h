@@ -1,7 +1,8 @@
 #pragma once
 // One SPH simulation shared among ranks (processes, or threads in the tests), each driving its
 // own backend: the decomposition, the migration of particles between ranks and the halo
-// exchange. SphSimulation calls it where one process would rebuild its grid.
+// exchange. The field evaluator (sph_field_evaluator.h) calls it where one process would
+// rebuild its grid; sph_rank_gather.h reads and gathers the ranks' own particles.
 //
 // Identical to one process. One process keeps its particles sorted by cell, stably (within a
 // cell in the order of the previous sort), and sums over neighbours in that order. A rank owns a
@@ -166,16 +167,17 @@ class SphRanks {
   SphRankCounters counters_;
 };
 
-// The own particles' values of `b` in the committed layout, read from the device alone (not
-// the whole buffer).
-std::vector<Vec4d> own_values(Backend& backend, const SphRanks& ranks, const Buffer<Real4>& b);
-std::vector<double> own_values(Backend& backend, const SphRanks& ranks, const Buffer<Real>& b);
-std::vector<uint32_t> own_values(Backend& backend, const SphRanks& ranks,
-                                 const Buffer<uint32_t>& b);
-// The own particles' values of `b` (the committed layout) of every rank, in rank order (the
-// one-process order), on every rank.
-std::vector<Vec4d> gather_own(Backend& backend, SphRanks& ranks, const Buffer<Real4>& b);
-std::vector<double> gather_own(Backend& backend, SphRanks& ranks, const Buffer<Real>& b);
-std::vector<uint32_t> gather_own(Backend& backend, SphRanks& ranks, const Buffer<uint32_t>& b);
+// Adds the scope's wall time to a counter (SphRankCounters).
+class SphRanks::Timer {
+ public:
+  explicit Timer(double& total) : total_(total), start_(std::chrono::steady_clock::now()) {}
+  ~Timer() {
+    total_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+  }
+
+ private:
+  double& total_;
+  std::chrono::steady_clock::time_point start_;
+};
 
 }  // namespace masav

@@ -15,7 +15,7 @@
 //    block's stats, so the check waits for nothing); the run goes back to the last state that
 //    passed (at most kEnergyEvery steps earlier). Gravity's work is part of the potential energy; a
 //    scene has no inflow.
-//  - a NaN or Inf: the guard's own check (SphSimulation), which names the particle.
+//  - a NaN or Inf: the guard's own check (sph_step_control.h), which names the particle.
 #include <cstdint>
 #include <string>
 

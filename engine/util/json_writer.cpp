@@ -105,30 +105,7 @@ JsonWriter& JsonWriter::value(bool v) {
 }
 
 void write_file_atomic(const std::string& path, std::string_view content) {
-  namespace fs = std::filesystem;
-  const fs::path target(path);
-  std::error_code ec;
-  if (target.has_parent_path()) fs::create_directories(target.parent_path(), ec);
-  const std::string tmp = fmt::format("{}.tmp.{}", path, ::getpid());
-  {
-    std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
-    if (!out)
-      throw Error("", "output", fmt::format("cannot write '{}'", path),
-                  "choose a writable output path (check the directory exists and permissions)");
-    out.write(content.data(), std::streamsize(content.size()));
-    out.flush();
-    if (!out) {
-      fs::remove(tmp, ec);
-      throw Error("", "output", fmt::format("writing '{}' failed (disk full?)", path),
-                  "free disk space or choose another path");
-    }
-  }
-  fs::rename(tmp, path, ec);
-  if (ec) {
-    fs::remove(tmp, ec);
-    throw Error("", "output", fmt::format("cannot rename the temporary file onto '{}'", path),
-                "choose a writable output path");
-  }
+  write_output(path, content, "output");
 }
 
 }  // namespace masav

@@ -6,6 +6,8 @@
 #include <string_view>
 #include <vector>
 
+#include "engine/util/output_file.h"
+
 namespace masav {
 
 class JsonWriter {
@@ -39,7 +41,8 @@ class JsonWriter {
 };
 
 std::string json_escape(std::string_view s);
-// Writes `content` to path via a temporary file in the same directory and a rename.
+// Writes `content` to path: a regular file via a temporary file in the same directory and a
+// rename, a device or pipe in place (write_output, engine/util/output_file.h).
 void write_file_atomic(const std::string& path, std::string_view content);
 
 }  // namespace masav

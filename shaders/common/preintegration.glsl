@@ -1,5 +1,5 @@
 // Pre-integrated transfer function: the GLSL twin of volume::tf_pos and volume::segment_mean
-// (engine/kernels/volume_math.h, which describes the table). The including kernel defines
+// (engine/kernels/volume_transfer.h, which describes the table). The including kernel defines
 // `vec4 tf_integral_at(uint index)`.
 struct TfPos {
   uint k;   // the piece, <= size - 2

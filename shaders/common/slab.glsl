@@ -1,5 +1,5 @@
 // Kay-Kajiya slab ray-box test (thesis Alg. 3.1): the GLSL twin of volume::slab in
-// engine/kernels/volume_math.h. Unrolled, with no loop: lavapipe runs a loop nested in a
+// engine/kernels/volume_sample.h. Unrolled, with no loop: lavapipe runs a loop nested in a
 // conditional at least once per pass of the enclosing loop even when every lane skips it, and
 // counts that pass against its 65,535-iteration limit (raymarch was cut at 32,768 samples).
 const float VOLUME_FAR = 1e30;

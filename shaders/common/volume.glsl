@@ -1,8 +1,9 @@
-// Ray casting pieces: the GLSL twin of engine/kernels/volume_math.h (trilinear sampling,
-// transfer function, the clipping plane, gradient shading; the slab test is in slab.glsl). The
-// including kernel defines `float volume_at(uint index)`, `vec4 tf_at(uint entry)`, the constant
-// `bool VOLUME_QUADS` and `vec4 volume_quad_at(uint index)` (raymarch_quads.comp's texels). No loops:
-// raymarch calls these inside its sample loop (see slab.glsl).
+// Ray casting pieces: the GLSL twin of engine/kernels/volume_sample.h (trilinear sampling, the
+// clipping plane, gradient shading; the slab test is in slab.glsl) and of volume_transfer.h's
+// transfer function. The including kernel defines `float volume_at(uint index)`,
+// `vec4 tf_at(uint entry)`, the constant `bool VOLUME_QUADS` and `vec4 volume_quad_at(uint index)`
+// (raymarch_quads.comp's texels). No loops: raymarch calls these inside its sample loop (see
+// slab.glsl).
 
 // The eight corners' indices as one base index plus offsets: lavapipe multiplies each lane's
 // 32-bit integers with a slow vector instruction, so a sample multiplies twice, not sixteen times.

@@ -1,5 +1,0 @@
-#!/bin/bash
-set -u
-for f in .gl/*.deb; do dpkg -x "$f" /; done; ldconfig
-tools/gpu-unpack .gl/ci.tar.xz -- bash .gl/inner4.sh; echo "gpu-unpack rc=$?"
-tar czf "$OUT/r4.tgz" -C /tmp r4
