@@ -209,7 +209,7 @@ void VulkanBackend::dispatch_kernel(KernelId kernel, std::span<const BufferImpl*
                                     std::shared_ptr<Allocation> extra) {
   const std::string_view name = kernel_name(kernel);
   if (bool(extra) != kernel_extra(kernel).has_value())
-    throw Error("vulkan", name,
+    throw Error("vulkan", std::string(name),
                 "the binding after the kernel's buffers does not match "
                 "kernel_extra (compute/vk_bindings.h)",
                 "internal error: report it");
