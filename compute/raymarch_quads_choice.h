@@ -1,10 +1,10 @@
 #pragma once
 // Whether the Vulkan raymarch reads its volume four voxels to a texel (shaders/raymarch_quads.comp,
-// specialisation constant 6 of shaders/raymarch.comp). lavapipe fetches a one-float texel with a
-// gather per lane and a four-float texel with contiguous loads, so two quad texels cost it less
-// than eight voxels: on a CPU device, yes. A GPU's texture path serves the eight voxels from its
-// cache, and the quads would only add a pass of four times the volume's bytes per frame.
-// VulkanTuning::raymarch_quads overrides it.
+// specialisation constant kSpecVolumeQuads of shaders/raymarch.comp). lavapipe fetches a one-float
+// texel with a gather per lane and a four-float texel with contiguous loads, so two quad texels
+// cost it less than eight voxels: on a CPU device, yes. A GPU's texture path serves the eight
+// voxels from its cache, and the quads would only add a pass of four times the volume's bytes per
+// frame. VulkanTuning::raymarch_quads overrides it.
 #include <cstdint>
 #include <string_view>
 

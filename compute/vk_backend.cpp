@@ -7,6 +7,7 @@
 
 #include "compute/raymarch_quads_choice.h"
 #include "compute/sph_walk_choice.h"
+#include "compute/vk_bindings.h"
 #include "engine/core/error.h"
 #include "engine/kernels/kernel_checks.h"
 
@@ -39,7 +40,8 @@ SortScatter VulkanBackend::choose_sort_scatter(SortScatter wanted) const {
 }
 
 bool sph_coop_walk(const VulkanTuning& t, std::string_view device_type) {
-  return t.sph_walk == SphWalk::automatic ? device_type == "cpu" : t.sph_walk == SphWalk::cooperative;
+  return t.sph_walk == SphWalk::automatic ? device_type == "cpu"
+                                          : t.sph_walk == SphWalk::cooperative;
 }
 
 SphWallSplit sph_wall_split(const VulkanTuning& t, std::string_view device_type) {
@@ -203,19 +205,22 @@ void VulkanBackend::run_bytes(const KernelSpec& spec,
 
 void VulkanBackend::dispatch_kernel(KernelId kernel, std::span<const BufferImpl* const> buffers,
                                     const void* push, uint32_t push_bytes, uint64_t items,
-                                    uint32_t written, std::span<const uint32_t> constants,
-                                    std::span<const Texels> texels,
+                                    uint32_t written, SpecConstants constants,
                                     std::shared_ptr<Allocation> extra) {
   const std::string_view name = kernel_name(kernel);
+  if (bool(extra) != kernel_extra(kernel).has_value())
+    throw Error("vulkan", std::string(name),
+                "the binding after the kernel's buffers does not match "
+                "kernel_extra (compute/vk_bindings.h)",
+                "internal error: report it");
   const BufferImpl* any = nullptr;
   for (const BufferImpl* b : buffers) any = any ? any : b;
   std::vector<std::shared_ptr<Allocation>> allocs;
   for (const BufferImpl* b : buffers) allocs.push_back(alloc(b ? *b : *any, name));
   if (extra) allocs.push_back(std::move(extra));
   const uint32_t wg = options_.workgroup_size;
-  const KernelSpec spec{name.data(), uint32_t(allocs.size()),
-                        push_bytes,  std::vector<uint32_t>(constants.begin(), constants.end()),
-                        0,           std::vector<Texels>(texels.begin(), texels.end())};
+  const KernelSpec spec{name.data(), uint32_t(allocs.size()), push_bytes, std::move(constants),
+                        0,           kernel_texels(kernel)};
   stream_.dispatch(pipelines_.get(spec), diag_, allocs, push, (items + wg - 1) / wg, written);
 }
 

@@ -22,7 +22,7 @@ namespace masav::vk {
 // subgroup, one subgroup per workgroup ranks keys with ballots (CPU devices).
 struct BackendOptions {
   ContextOptions context;
-  Tuning tuning;  // its `vulkan` part is this backend's (engine/core/tuning.h)
+  Tuning tuning;                  // its `vulkan` part is this backend's (engine/core/tuning.h)
   bool count_loop_ticks = false;  // instrument every loop (tests of lavapipe's loop limit)
   uint32_t workgroup_size = 256;
   uint32_t items_per_thread = 8;  // sort and scan tile = workgroup_size * items_per_thread
@@ -93,16 +93,13 @@ class VulkanBackend final : public Backend, public VulkanInterop {
   void run_bytes(const KernelSpec& spec, std::initializer_list<std::shared_ptr<Allocation>> buffers,
                  const void* push, uint64_t groups, uint32_t written);
   // One dispatch of shaders/<kernel>.comp over `items` invocations: `buffers` bound at 1..n in
-  // the order of kernels.inc (a null one, unused by the call, gets the first non-null one's
-  // memory), `push` the kernel's layout, `written` the buffers it writes (bit i: buffers[i]),
-  // `constants` its specialization constants from 3 on, `texels` how it reads each buffer (empty:
-  // every one a storage buffer).
-  // `extra`, if any, binds after them (a buffer of the backend's own, read only).
+  // the order of kernels.inc, each as its binding kind there says (compute/vk_bindings.h; a null
+  // one, unused by the call, gets the first non-null one's memory), `push` the kernel's layout,
+  // `written` the buffers it writes (bit i: buffers[i]), `constants` its variant
+  // (compute/vk_variants.h). `extra` binds after them where the kernel has one (kernel_extra).
   void dispatch_kernel(KernelId kernel, std::span<const BufferImpl* const> buffers,
                        const void* push, uint32_t push_bytes, uint64_t items, uint32_t written,
-                       std::span<const uint32_t> constants = {},
-                       std::span<const Texels> texels = {},
-                       std::shared_ptr<Allocation> extra = nullptr);
+                       SpecConstants constants, std::shared_ptr<Allocation> extra);
   // raymarch's first pass where ray_quads_ asks for it and the quads fit (vk_volume.cpp): the
   // volume's trilinear corners four to a texel (shaders/raymarch_quads.comp), made again only
   // when the volume or its contents changed; null where not used.

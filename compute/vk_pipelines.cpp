@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <optional>
 
@@ -9,6 +10,7 @@
 #include "engine/util/cache_dir.h"
 #include "engine/util/cache_file.h"
 #include "shaders/embedded.h"
+#include "shaders/spec_ids.h"
 
 namespace masav::vk {
 
@@ -66,8 +68,20 @@ Pipelines::~Pipelines() {
 
 const Kernel& Pipelines::get(const KernelSpec& spec) {
   const uint32_t wg = spec.workgroup_size ? spec.workgroup_size : workgroup_size_;
+  // By id, so that the order a caller names them in does not matter.
+  SpecConstants constants = spec.constants;
+  std::sort(constants.begin(), constants.end(),
+            [](const SpecConstant& a, const SpecConstant& b) { return a.id < b.id; });
   std::string key = fmt::format("{}/{}", spec.shader, wg);
-  for (uint32_t c : spec.constants) key += fmt::format(":{}", c);
+  for (size_t i = 0; i < constants.size(); ++i) {
+    if (constants[i].id < kSpecFirstVariant || (i > 0 && constants[i].id == constants[i - 1].id))
+      throw Error("vulkan", spec.shader,
+                  fmt::format("specialisation constant {} set twice, or one of 0-2 that "
+                              "every kernel has (shaders/spec_ids.h)",
+                              constants[i].id),
+                  "internal error: report it");
+    key += fmt::format(":{}={}", constants[i].id, constants[i].value);
+  }
   for (const Texels& t : spec.texels) key += fmt::format("/t{}", uint32_t(t.format));
   if (auto it = kernels_.find(key); it != kernels_.end()) return *it->second;
 
@@ -98,11 +112,17 @@ const Kernel& Pipelines::get(const KernelSpec& spec) {
   ::vk::ShaderModuleCreateInfo minfo({}, words.size_bytes(), words.data());
   ::vk::raii::ShaderModule module(ctx_.device(), minfo);
 
-  // Constants 0..2 are common to every kernel (shaders/common/kernel_base.glsl).
-  std::vector<uint32_t> values = {wg, ctx_.caps().min_subgroup_size, count_loop_ticks_ ? 1u : 0u};
-  values.insert(values.end(), spec.constants.begin(), spec.constants.end());
+  // Every kernel's constants (shaders/common/kernel_base.glsl), then its variant's.
+  SpecConstants all = {{kSpecWorkgroupSize, wg},
+                       {kSpecSubgroupMin, ctx_.caps().min_subgroup_size},
+                       {kSpecCountLoopTicks, count_loop_ticks_ ? 1u : 0u}};
+  all.insert(all.end(), constants.begin(), constants.end());
+  std::vector<uint32_t> values;
   std::vector<::vk::SpecializationMapEntry> entries;
-  for (uint32_t i = 0; i < values.size(); ++i) entries.emplace_back(i, 4 * i, 4);
+  for (const SpecConstant& c : all) {
+    entries.emplace_back(c.id, uint32_t(4 * values.size()), 4);
+    values.push_back(c.value);
+  }
   ::vk::SpecializationInfo sinfo(entries, ::vk::ArrayProxyNoTemporaries<const uint32_t>(values));
   ::vk::PipelineShaderStageCreateInfo stage({}, ::vk::ShaderStageFlagBits::eCompute, *module,
                                             "main", &sinfo);

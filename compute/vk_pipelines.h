@@ -9,6 +9,7 @@
 
 #include "compute/device/vk_context.h"
 #include "compute/device/vk_memory.h"
+#include "compute/vk_variants.h"
 #include "engine/core/device_api.h"
 
 namespace masav::vk {
@@ -27,7 +28,7 @@ struct KernelSpec {
   const char* shader;
   uint32_t buffers;
   uint32_t push_bytes;
-  std::vector<uint32_t> constants;  // specialization constants 3, 4, ...
+  SpecConstants constants;          // the shader's variant; ids 0-2 are set for every kernel
   uint32_t workgroup_size = 0;      // 0: the backend's default
   std::vector<Texels> texels = {};  // per buffer; empty: all storage buffers
 };

@@ -2,6 +2,7 @@
 // integer tallies (shaders/scatter_table.comp), then a pass that turns them into fractions.
 #include "compute/vk_backend.h"
 #include "engine/kernels/scatter_math.h"
+#include "shaders/spec_ids.h"
 
 namespace masav::vk {
 
@@ -15,7 +16,7 @@ void VulkanBackend::run_own(const KernelArgs<KernelId::scatter_table>& a) {
   stream_.fill(h, 0);
   const uint32_t wg = options_.workgroup_size;
   const uint32_t groups_per_row = (p.photons_per_row + wg - 1) / wg;
-  run({"scatter_table", 2, sizeof p, {entries_per_row}}, {tallies, h}, &p,
+  run({"scatter_table", 2, sizeof p, {{kSpecScatterEntries, entries_per_row}}}, {tallies, h}, &p,
       uint64_t(p.rows) * groups_per_row);
   const ScatterFinalizeParams fin{
       uint32_t(entries), float(1.0 / (double(1u << scatter::kFixedShift) * p.photons_per_row))};

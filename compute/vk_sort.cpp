@@ -10,6 +10,7 @@
 #include "engine/kernels/kernel_checks.h"
 #include "engine/kernels/radix.h"
 #include "engine/kernels/sort_params.h"
+#include "shaders/spec_ids.h"
 
 namespace masav::vk {
 namespace {
@@ -28,14 +29,14 @@ void VulkanBackend::exclusive_scan(const std::shared_ptr<Allocation>& data, uint
   const uint32_t tiles = (count + tile - 1) / tile;
   auto sums = scratch(fmt::format("{} scan level {}", kernel, level), size_t(tiles) * 4);
   const ScanParams push{count, tiles};
-  run({"scan_tiles", 2, sizeof push, {items}}, {data, sums}, &push, tiles);
+  run({"scan_tiles", 2, sizeof push, {{kSpecItems, items}}}, {data, sums}, &push, tiles);
   if (tiles > tile) {
     exclusive_scan(sums, tiles, kernel, level + 1);
-    run({"scan_add", 2, sizeof push, {items}}, {data, sums}, &push, tiles);
+    run({"scan_add", 2, sizeof push, {{kSpecItems, items}}}, {data, sums}, &push, tiles);
   } else if (tiles > 1) {
     // At most one tile of totals: each tile adds up those before it itself (one dispatch
     // instead of a scan of the totals and then the add).
-    run({"scan_add_prefix", 2, sizeof push, {items}}, {data, sums}, &push, tiles);
+    run({"scan_add_prefix", 2, sizeof push, {{kSpecItems, items}}}, {data, sums}, &push, tiles);
   }
 }
 
@@ -75,12 +76,13 @@ void VulkanBackend::run_own(const KernelArgs<KernelId::radix_sort>& args) {
     const auto dst =
         radix::pass_target(radix::pass_buffer(passes, pass), home, first_pair, second_pair);
     const RadixPassParams push{p.n, pass * radix::kDigitBits, bits, num_tiles};
-    run({"radix_histogram", 2, sizeof push, {items}, wg}, {src.first, hist}, &push, num_tiles);
+    run({"radix_histogram", 2, sizeof push, {{kSpecItems, items}}, wg}, {src.first, hist}, &push,
+        num_tiles);
     exclusive_scan(hist, (1u << bits) * num_tiles, "radix_sort");
     run({by_subgroup ? "radix_scatter_subgroup" : "radix_scatter",
          5,
          sizeof push,
-         {items, has_values ? 1u : 0u},
+         {{kSpecItems, items}, {kSpecHasValues, has_values ? 1u : 0u}},
          wg},
         {src.first, src.second, dst.first, dst.second, hist}, &push, num_tiles);
     src = dst;

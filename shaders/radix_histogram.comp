@@ -7,7 +7,7 @@
 #include "engine/kernels/sort_params.h"
 #include "radix.glsl"
 
-layout(constant_id = 3) const uint ITEMS = 8u;
+layout(constant_id = kSpecItems) const uint ITEMS = 8u;
 const uint TILE = WG_SIZE * ITEMS;
 
 layout(std430, binding = 1) readonly buffer Keys { uint keys[]; };

@@ -8,8 +8,8 @@
 #include "workgroup_scan.glsl"
 #include "radix.glsl"
 
-layout(constant_id = 3) const uint ITEMS = 8u;
-layout(constant_id = 4) const bool HAS_VALUES = true;
+layout(constant_id = kSpecItems) const uint ITEMS = 8u;
+layout(constant_id = kSpecHasValues) const bool HAS_VALUES = true;
 const uint TILE = WG_SIZE * ITEMS;  // < 65536: split counts are packed in 16-bit fields
 
 layout(std430, binding = 1) readonly buffer KeysIn { uint keys_in[]; };

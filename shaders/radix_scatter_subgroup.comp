@@ -11,8 +11,8 @@
 #include "engine/kernels/sort_params.h"
 #include "radix.glsl"
 
-layout(constant_id = 3) const uint ITEMS = 256u;  // rounds per tile
-layout(constant_id = 4) const bool HAS_VALUES = true;
+layout(constant_id = kSpecItems) const uint ITEMS = 256u;  // rounds per tile
+layout(constant_id = kSpecHasValues) const bool HAS_VALUES = true;
 const uint TILE = WG_SIZE * ITEMS;
 
 layout(std430, binding = 1) readonly buffer KeysIn { uint keys_in[]; };

@@ -22,17 +22,17 @@ vec4 tf_at(uint entry) { return texelFetch(tf_texels, int(entry)); }
 vec4 tf_integral_at(uint index) { return texelFetch(tf_integral_texels, int(index)); }
 // bits & kRayModeFlags, as a constant: the paths a pipeline does not take compile out (lavapipe
 // would otherwise run each branch that no lane takes, its loads included).
-layout(constant_id = 3) const uint RAY_MODES = 0u;
+layout(constant_id = kSpecRayModes) const uint RAY_MODES = 0u;
 bool ray_mode(uint flag) { return (RAY_MODES & flag) != 0u; }
 // The brick size (bits >> kRayBrickShift & 31), as a constant: the brick of a sample is then a
 // shift or a multiplication, where lavapipe divided each lane's three coordinates one by one.
-layout(constant_id = 4) const uint RAY_BRICK = 4u;
+layout(constant_id = kSpecRayBrick) const uint RAY_BRICK = 4u;
 // The form of x^(step / reference_step) (kRayPow*: volume::pow_step_form, on the host), as a
 // constant: lavapipe would otherwise compute all five forms, pow's logarithm and exponential
 // included, for every sample.
-layout(constant_id = 5) const uint RAY_POW = 0u;
+layout(constant_id = kSpecRayPow) const uint RAY_POW = 0u;
 // Whether the trilinear corners come four to a texel from quad_texels (compute/vk_volume.cpp).
-layout(constant_id = 6) const bool VOLUME_QUADS = false;
+layout(constant_id = kSpecVolumeQuads) const bool VOLUME_QUADS = false;
 vec4 volume_quad_at(uint index) { return texelFetch(quad_texels, int(index)); }
 
 #include "volume.glsl"

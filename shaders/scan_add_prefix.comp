@@ -7,7 +7,7 @@
 #include "kernel_base.glsl"
 #include "engine/kernels/sort_params.h"
 
-layout(constant_id = 3) const uint ITEMS = 8u;
+layout(constant_id = kSpecItems) const uint ITEMS = 8u;
 const uint TILE = WG_SIZE * ITEMS;
 
 layout(std430, binding = 1) buffer Data { uint data[]; };

@@ -6,7 +6,7 @@
 #include "engine/kernels/sort_params.h"
 #include "workgroup_scan.glsl"
 
-layout(constant_id = 3) const uint ITEMS = 8u;
+layout(constant_id = kSpecItems) const uint ITEMS = 8u;
 const uint TILE = WG_SIZE * ITEMS;
 
 layout(std430, binding = 1) buffer Data { uint data[]; };

@@ -9,7 +9,7 @@
 #include "engine/kernels/atom_params.h"
 #include "scatter.glsl"
 
-layout(constant_id = 3) const uint ENTRIES = 75u;  // bins + 3 extras
+layout(constant_id = kSpecScatterEntries) const uint ENTRIES = 75u;  // bins + 3 extras
 
 layout(std430, binding = 1) buffer Tallies { uint tallies[]; };  // (lo, hi) per row and entry
 layout(std430, binding = 2) buffer Hits { uint hits[]; };

@@ -10,8 +10,8 @@
 // and an overflow is reported, never silently truncated. With neighbor_rows bound
 // (p.neighbor_rows != 0), also records which candidates of each row lie within h, for
 // sph_forces (kSphRowMaskBits in engine/kernels/sph_kernel_params.h). With the reach masks
-// (SphReach, specialisation constant 6), also records which lie within the reach radius, or
-// walks only those. With the neighbour state (specialisation constant 7), also writes each
+// (SphReach, kSpecSphReach), also records which lie within the reach radius, or
+// walks only those. With the neighbour state (kSpecSphState), also writes each
 // particle's (x, rho | v, p / rho^2) record for sph_forces (kSphStateStride). Twin of
 // sph::density_walk (engine/kernels/sph_kernels.h), which adds a neighbour's images with its own
 // term.
@@ -38,9 +38,9 @@ layout(std430, binding = 11) writeonly buffer NeighborRows { uint neighbor_rows[
 // How the walk uses the reach masks (SphReach: none, record, walk). A constant rather than
 // p.reach: lavapipe runs the code of a branch that no lane takes, so each use is a pipeline of
 // its own and the others carry none of its cost.
-layout(constant_id = 6) const uint SPH_REACH = 0u;
+layout(constant_id = kSpecSphReach) const uint SPH_REACH = 0u;
 // Whether the call passes the neighbour state (and the velocities it holds).
-layout(constant_id = 7) const bool SPH_STATE = false;
+layout(constant_id = kSpecSphState) const bool SPH_STATE = false;
 
 #define SPH_MODEL_SPECIALIZED
 #include "sph.glsl"

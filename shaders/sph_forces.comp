@@ -10,7 +10,7 @@
 // bound (p.neighbor_rows != 0), per lane over only the candidates sph_density found within h.
 // The masked walk sums in ascending order within a row, the cooperative one in an order rotated
 // within chunks, so the two differ by float rounding (the neighbours are the same). With the
-// neighbour state (specialisation constant 7: sph_density's (x, rho | v, p / rho^2) records), a
+// neighbour state (kSpecSphState: sph_density's (x, rho | v, p / rho^2) records), a
 // candidate is one texel for the distance test and one more for a neighbour, in place of four
 // arrays and a division. Twin of sph::force_at (engine/kernels/sph_kernels.h).
 #include "kernel_base.glsl"
@@ -45,7 +45,7 @@ uint neighbor_row_at(uint word) { return texelFetch(neighbor_row_texels, int(wor
 
 // Whether the call passes sph_density's neighbour state (kSphStateStride): a constant, so that
 // each form is a pipeline of its own and neither carries the other's loads.
-layout(constant_id = 7) const bool SPH_STATE = false;
+layout(constant_id = kSpecSphState) const bool SPH_STATE = false;
 
 // What the walk reads of candidate j: its position and density (the state's first record; the
 // density is read only for a neighbour within h), then for a neighbour its velocity and
@@ -187,8 +187,8 @@ void add_images(Me me, uint j, inout Sum s) {
 }
 
 // Whether walk_masked adds the wall images after its direct terms or per neighbour inside its
-// walk (the backend's choice, specialisation constant 6: compute/sph_walk_choice.h).
-layout(constant_id = 6) const bool SPH_IMAGES_AFTER = false;
+// walk (the backend's choice, kSpecSphImagesAfter: compute/sph_walk_choice.h).
+layout(constant_id = kSpecSphImagesAfter) const bool SPH_IMAGES_AFTER = false;
 
 // Per lane, each row's set mask bits in ascending order, or every candidate of a row too long
 // for its mask, in one loop over the nine rows (sph_row_walk.glsl). The distance test is

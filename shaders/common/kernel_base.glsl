@@ -5,11 +5,12 @@
 // COUNT_LOOP_TICKS set, every loop body calls LOOP_TICK() and the largest count any invocation
 // reached lands in diag.max_loop_ticks, so a test can prove each kernel's worst case stays below.
 #extension GL_KHR_shader_subgroup_basic : require
+#include "shaders/spec_ids.h"  // the constants' ids, shared with the Vulkan backend
 
-layout(local_size_x_id = 0) in;
-layout(constant_id = 0) const uint WG_SIZE = 256u;
-layout(constant_id = 1) const uint SUBGROUP_MIN = 4u;  // smallest subgroup the device may use
-layout(constant_id = 2) const bool COUNT_LOOP_TICKS = false;
+layout(local_size_x_id = kSpecWorkgroupSize) in;
+layout(constant_id = kSpecWorkgroupSize) const uint WG_SIZE = 256u;
+layout(constant_id = kSpecSubgroupMin) const uint SUBGROUP_MIN = 4u;  // smallest subgroup the device may use
+layout(constant_id = kSpecCountLoopTicks) const bool COUNT_LOOP_TICKS = false;
 
 layout(std430, set = 0, binding = 0) buffer Diagnostics {
   uint max_loop_ticks;

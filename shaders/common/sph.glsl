@@ -6,12 +6,12 @@
 #include "engine/kernels/sph_kernel_params.h"
 
 // The pressure model. A kernel that defines SPH_MODEL_SPECIALIZED before including this file
-// reads it from specialization constant 3, which the host sets from the layout's model
+// reads it from specialization constant kSpecSphModel, which the host sets from the layout's model
 // (compute/vk_kernels.cpp): the other models' arithmetic then folds away instead of running for
 // every lane (a CPU driver evaluates both sides of a select, so every density term took a square
 // root and every pair term divisions it did not use). Elsewhere the layout's field.
 #ifdef SPH_MODEL_SPECIALIZED
-layout(constant_id = 3) const uint SPH_MODEL = 0u;
+layout(constant_id = kSpecSphModel) const uint SPH_MODEL = 0u;
 uint sph_model(SphStepLayout c) { return SPH_MODEL; }
 #else
 uint sph_model(SphStepLayout c) { return c.model; }

@@ -20,7 +20,7 @@
 const uint kSphCoopExtraTicks = 260u;
 const uint kSphCoop = SUBGROUP_MIN < 32u ? SUBGROUP_MIN : 32u;
 // Off: every row is walked per lane (the backend's choice: compute/sph_walk_choice.h).
-layout(constant_id = 4) const bool SPH_COOP_WALK = true;
+layout(constant_id = kSpecSphCoopWalk) const bool SPH_COOP_WALK = true;
 
 uint sph_coop_lane() { return gl_SubgroupInvocationID & (kSphCoop - 1u); }
 // The lane of the cluster that holds, at rotation step k, the candidate this lane examines.

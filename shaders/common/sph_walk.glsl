@@ -4,7 +4,7 @@
 // The includer enables GL_KHR_shader_subgroup_arithmetic.
 
 // Whether a subgroup with no lane within h of a wall skips the wall images (the backend's choice
-// per kernel, specialisation constant 5: compute/sph_walk_choice.h): sph_forces and the DFSPH
+// per kernel, kSpecSphWallSplit: compute/sph_walk_choice.h): sph_forces and the DFSPH
 // solves write their walk twice, with and without the images, and such a subgroup takes the copy
 // without them; sph_density adds the images in a loop of its own after its walk, which such a
 // subgroup skips. lavapipe runs every statement of a loop body in every pass, whatever its lanes
@@ -12,7 +12,7 @@
 // no lane of the subgroup takes, but its compiler may round two copies of a walk differently: a
 // particle's sums would then depend on which particles share its subgroup, and a rank's
 // particles, at other indices than in one process, would leave the one-process trajectory.
-layout(constant_id = 5) const bool SPH_WALL_SPLIT = true;
+layout(constant_id = kSpecSphWallSplit) const bool SPH_WALL_SPLIT = true;
 
 // Whether a lane's subgroup computes the wall images (axes: the lane's sph_wall_mirrors axes).
 bool sph_walls_near(uint axes) { return !SPH_WALL_SPLIT || subgroupMax(axes) != 0u; }
