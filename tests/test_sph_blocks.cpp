@@ -4,6 +4,7 @@
 // Blocks captured as units (Vulkan replays, CUDA graphs) against the same blocks uncaptured.
 #include <doctest/doctest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <memory>
 #include <optional>
@@ -200,8 +201,7 @@ TEST_CASE("[sph-physics] reading the state inside a block leaves the trajectory 
   // download() evaluates density at the current positions where the fields are stale, which
   // runs kernels that write the stats words: the open block's stats (the next block's dt) must
   // survive it. The explosion slows down and speeds up again at the walls, so a block's maxima
-  // are not simply its last step's. (Without replays: a rejected block replays from the start of
-  // the part that ended it, which calls of 3 steps move.)
+  // are not simply its last step's. (Without replays; the next case has them.)
   for (SphIntegrator integ : {SphIntegrator::symplectic_euler, SphIntegrator::leapfrog}) {
     const std::string name = to_string(integ);
     CAPTURE(name);
@@ -220,6 +220,41 @@ TEST_CASE("[sph-physics] reading the state inside a block leaves the trajectory 
     CHECK(sim.time() == whole.time);
     CHECK(test::same_state(sim.download(), whole.state));
   }
+}
+
+TEST_CASE("[sph-physics] blocks the guard rejects end at the same step however run() is split") {
+  // The thesis model's water at the adaptive dt: the guard rejects blocks, and each rejection
+  // must end its block at the step where a run of one step per call (a CSV row every step)
+  // ends it, whether run() took the block whole, in calls of one step, or in calls of 3, 5, ...
+  // with the state read between them. Every integrator; the replays are counted so the case
+  // cannot pass without any.
+  uint64_t replays = 0;
+  for (SphIntegrator integ : {SphIntegrator::euler, SphIntegrator::symplectic_euler,
+                              SphIntegrator::leapfrog, SphIntegrator::rk4}) {
+    const std::string name = to_string(integ);
+    CAPTURE(name);
+    SphScene s = make_preset("water", 1000);
+    s.model = SphPressureModel::thesis;
+    s.integrator = integ;
+    const Outcome whole = run_in_blocks(s, 8, 120);
+    REQUIRE(whole.error.empty());
+    replays += whole.replays;
+    SphSimulation single(test::backend(), s), uneven(test::backend(), s);
+    for (SphSimulation* x : {&single, &uneven}) x->set_block_steps(8);
+    for (int k = 0; k < 120; ++k) REQUIRE(single.run(1) == 1);
+    for (uint64_t done = 0, k = 0; done < 120; ++k) {
+      const uint64_t part = std::min<uint64_t>(120 - done, 1 + (k * 3) % 7);
+      REQUIRE(uneven.run(part) == part);
+      (void)uneven.download();
+      done += part;
+    }
+    for (SphSimulation* x : {&single, &uneven}) {
+      CHECK(x->block_replays() == whole.replays);
+      CHECK(x->time() == whole.time);
+      CHECK(test::same_state(x->download(), whole.state));
+    }
+  }
+  CHECK(replays > 0);
 }
 
 TEST_CASE("[sph-physics] run() takes each block's stats while the next block runs") {

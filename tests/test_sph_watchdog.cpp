@@ -30,9 +30,12 @@ std::string run_until_stopped(SphSimulation& sim, uint64_t steps) {
 }  // namespace
 
 TEST_CASE("[sph-physics] the watchdog stops a run whose speeds blow up, at the step") {
-  // 10 ms steps with the guard off: ~25x the CFL limit; speeds pass 1e3 m/s within 15 steps.
+  // The thesis gas at kp = 1e9 and 10 us steps with the guard off: its first step flings
+  // particles to ~7e5 m/s. (Slower blow-ups move a particle past h first: the next case.)
   SphScene s = make_preset("water", 1000);
-  s.dt = 0.01;
+  s.model = SphPressureModel::thesis;
+  s.kp = 1e9;
+  s.dt = 1e-5;
   s.cfl_guard = SphCflGuard::off;
   SphSimulation sim(test::backend(), s);
   const std::string msg = run_until_stopped(sim, 200);
@@ -72,6 +75,34 @@ TEST_CASE("[sph-physics] the watchdog stops a run whose energy doubles, back at 
   CHECK(e > e0);  // it was on its way up
   // The run can go on from there (and stops again further on).
   CHECK_FALSE(run_until_stopped(sim, 4000).empty());
+}
+
+TEST_CASE("[sph-physics] the watchdog stops a step past h under every pressure model") {
+  // 0.1 s steps with the guard off: the water falls 0.1 m in its first steps, past h = 0.1 m
+  // neighbours it never saw. The thesis gas's energy check cannot see it (its isothermal
+  // expansion energy has no floor: the run kept "conserving" energy at 20-40 m/s in a 1 m box),
+  // so the step's own reach is the bound, for every model and integrator.
+  for (const char* model : {"wcsph", "thesis", "dfsph"})
+    for (SphIntegrator integ : {SphIntegrator::euler, SphIntegrator::symplectic_euler,
+                                SphIntegrator::leapfrog, SphIntegrator::rk4}) {
+      SphScene s = make_preset("water", 500);
+      s.model = parse_pressure_model(model);
+      if (s.model == SphPressureModel::dfsph && integ != SphIntegrator::symplectic_euler) continue;
+      s.integrator = integ;
+      s.dt = 0.1;
+      s.cfl_guard = SphCflGuard::off;
+      const std::string name = std::string(model) + " " + to_string(integ);
+      CAPTURE(name);
+      SphSimulation sim(test::backend(), s);
+      const std::string msg = run_until_stopped(sim, 400);
+      // RK4's own check of its stages' reach (the grid's skin) stops it first.
+      const bool rk4 = integ == SphIntegrator::rk4;
+      CHECK(msg.find(rk4 ? "sph cfl guard: step " : "sph watchdog: step ") != std::string::npos);
+      CHECK(msg.find(rk4 ? "an RK4 stage moved a particle" : "more than the support radius h") !=
+            std::string::npos);
+      CHECK(sim.steps() < 5);
+      CHECK(compute_diagnostics(sim.download(), sim).finite);
+    }
 }
 
 TEST_CASE("[sph-physics] the watchdog leaves a sane run alone; its density statistic is exact") {

@@ -86,31 +86,36 @@ bool SphBlockScheduler::leapfrog_accel() const {
   return c_.scene.integrator == SphIntegrator::leapfrog && c_.progress.accel_valid;
 }
 
-void SphBlockScheduler::take_checkpoint(SphBlockCheckpoint& cp) {
+void SphBlockScheduler::take_checkpoint(SphBlockCheckpoint& cp, bool continuing) {
   c_.backend.copy(c_.device.pos, cp.pos);
   c_.backend.copy(c_.device.vel, cp.vel);
   c_.backend.copy(c_.device.ids, cp.ids);
   if (leapfrog_accel()) c_.backend.copy(c_.device.accel, cp.accel);
+  if (continuing) c_.backend.copy(c_.device.stats, cp.stats);
 }
 
-void SphBlockScheduler::restore_checkpoint(const SphBlockCheckpoint& cp, const HostState& h) {
+void SphBlockScheduler::restore_checkpoint(const SphBlockCheckpoint& cp, const HostState& h,
+                                           bool continuing) {
   restore_host_state(h);
   c_.backend.copy(cp.pos, c_.device.pos);
   c_.backend.copy(cp.vel, c_.device.vel);
   c_.backend.copy(cp.ids, c_.device.ids);
   if (leapfrog_accel()) c_.backend.copy(cp.accel, c_.device.accel);
+  if (continuing) c_.backend.copy(cp.stats, c_.device.stats);
   c_.progress.fields_current = false;  // density and pressure belong to a later state
 }
 
-void SphBlockScheduler::record_block(uint64_t k, double t_end) {
+void SphBlockScheduler::record_block(uint64_t k, double t_end, const Retake* retake) {
   // A later part of a block keeps its dt limit and adds to its stats on the device.
-  const bool continuing = c_.progress.block_open && c_.progress.steps % block_steps() != 0;
+  const bool continuing = retake ? retake->continuing
+                                 : c_.progress.block_open && c_.progress.steps % block_steps() != 0;
   // Block b's limit is block b-2's stats: the last taken where block b-1's first part is
   // pending, else the ones before them (b-1's first part moved them back a place when taken).
   const double limit =
-      continuing ? c_.progress.block_limit
-                 : control_.limit_for(pending_ && !pending_->continuing ? c_.progress.stats
-                                                                        : c_.progress.lag_stats);
+      retake       ? retake->limit
+      : continuing ? c_.progress.block_limit
+                   : control_.limit_for(pending_ && !pending_->continuing ? c_.progress.stats
+                                                                          : c_.progress.lag_stats);
   uint64_t parts = 1;
   bool single = false;  // a step of step()'s own decides (and stops with its message)
   if (c_.scene.dt && *c_.scene.dt > limit && c_.scene.cfl_guard != SphCflGuard::off) {
@@ -137,11 +142,12 @@ void SphBlockScheduler::record_block(uint64_t k, double t_end) {
   p.start = save_host_state();
   p.checkpoint = slot;
   p.continuing = continuing;
+  p.limit = limit;
   // The block's work as one unit where the backend can (a CUDA graph). Not with ranks: their
   // exchanges go through the host.
   std::optional<CaptureScope> capture;
   if (pipelines_blocks()) capture.emplace(c_.backend);
-  take_checkpoint(c_.device.checkpoints[size_t(slot)]);
+  take_checkpoint(c_.device.checkpoints[size_t(slot)], continuing);
   if (!continuing) c_.backend.fill(c_.device.stats, 0u);
   c_.progress.block_limit = limit;
   for (; p.taken < k && c_.progress.time < t_end; ++p.taken) {
@@ -237,17 +243,35 @@ bool SphBlockScheduler::settle(PendingBlock& p, PendingBlock* later) {
     }
     return true;
   }
-  // Something went wrong within the block: replay it step by step from its start, reading the
-  // stats after every step, so the guard retries or stops at the very step, as step() does.
-  // A block recorded after it started from its end: it goes too, its stats unread.
+  // Something went wrong within the part. A block recorded after it started from its end: it
+  // goes too, its stats unread.
   if (p.probe) reads_.drop(*p.probe);
   if (later) drop_block(*later);
-  restore_checkpoint(c_.device.checkpoints[size_t(p.checkpoint)], p.start);
+  restore_checkpoint(c_.device.checkpoints[size_t(p.checkpoint)], p.start, p.continuing);
+  if (p.taken > 1) {
+    retake_by_steps(p);
+    return false;
+  }
+  // Its one step is replayed by step(), which reads the stats after it, so the guard retries or
+  // stops at the very step, as it does without blocks.
   c_.progress.block_open = false;  // a replay ends the block where it stands
   ++block_replays_;
-  for (uint64_t replayed = 0; replayed < p.taken && c_.progress.time < p.t_end; ++replayed)
-    control_.step();
+  if (c_.progress.time < p.t_end) control_.step();
   return false;
+}
+
+void SphBlockScheduler::retake_by_steps(const PendingBlock& p) {
+  // The step the guard rejects is the first whose part of one step it rejects: taken again from
+  // the part's start (restored, with the block's stats so far), a step per part, until one is
+  // rejected and replayed or all are accepted. So a block ends at the same step whether run()
+  // was asked for all its steps at once or for one at a time (a CSV row every step).
+  const Retake first{p.continuing, p.limit};
+  const uint64_t replays = block_replays_;
+  for (uint64_t taken = 0;
+       taken < p.taken && c_.progress.time < p.t_end && block_replays_ == replays; ++taken) {
+    record_block(1, p.t_end, taken == 0 ? &first : nullptr);
+    settle_block();
+  }
 }
 
 }  // namespace masav

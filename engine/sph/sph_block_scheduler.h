@@ -24,7 +24,10 @@
 // split them (a CSV row, a snapshot or a checkpoint every few steps): a block's later parts keep
 // its first part's dt limit, and the device keeps accumulating its stats, so the dt of every
 // step, and with it the trajectory, is the same whatever is written on the way. Only a replay
-// (a block the guard rejects) ends a block where it stands.
+// (a block the guard rejects) ends a block where it stands. Where it stands must not depend on
+// the split either: a rejected part of several steps is taken again as parts of one step each,
+// judged on the block's stats so far, until one is rejected; that step is the one step() then
+// replays, as it is when every part is one step long.
 #include <cstdint>
 #include <optional>
 
@@ -70,15 +73,21 @@ class SphBlockScheduler {
     int checkpoint = 0;   // SphDeviceState::checkpoints[checkpoint]
     uint64_t taken = 0;   // steps recorded
     double max_dt = 0;
+    double limit = 0;         // its block's dt limit
     bool continuing = false;  // a later part of a block run() left open
     double t_end = 0;         // run()'s, for a replay
     // The energy watchdog's check of its end state, queued behind it where one is due there.
     std::optional<SphStateReads> probe;
   };
 
+  // How a rejected part is taken again, a step at a time: as the part it was.
+  struct Retake {
+    bool continuing;
+    double limit;
+  };
   // Records up to k steps of the block the current step falls in and submits them; settles the
-  // block before it.
-  void record_block(uint64_t k, double t_end);
+  // block before it. `retake`: the first step of a rejected part taken again.
+  void record_block(uint64_t k, double t_end, const Retake* retake = nullptr);
   // Takes the pending block's stats: accepts it, or rolls it back and replays it step by step.
   void settle_block();
   // Settles `p`; `later`: the block recorded after it, not yet pending, or null. False: `p` was
@@ -90,8 +99,10 @@ class SphBlockScheduler {
   HostState save_host_state() const;
   void restore_host_state(const HostState& h);
   bool leapfrog_accel() const;  // accel is part of the state (leapfrog's carried force)
-  void take_checkpoint(SphBlockCheckpoint& cp);
-  void restore_checkpoint(const SphBlockCheckpoint& cp, const HostState& h);
+  void take_checkpoint(SphBlockCheckpoint& cp, bool continuing);
+  void restore_checkpoint(const SphBlockCheckpoint& cp, const HostState& h, bool continuing);
+  // Takes a rejected part of several steps again a step at a time (see settle()).
+  void retake_by_steps(const PendingBlock& p);
 
   SphContext c_;
   SphStepControl& control_;

@@ -182,6 +182,7 @@ void SphDeviceState::allocate() {
     cp.vel = real4("sph checkpoint velocities");
     cp.accel = real4("sph checkpoint accelerations");
     cp.ids = backend_.create<uint32_t>(c, "sph checkpoint ids");
+    cp.stats = backend_.create<uint32_t>(kSphStatWords, "sph checkpoint block stats");
   }
 }
 

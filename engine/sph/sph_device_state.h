@@ -21,6 +21,7 @@ namespace masav {
 struct SphBlockCheckpoint {
   Buffer<Real4> pos, vel, accel;
   Buffer<uint32_t> ids;
+  Buffer<uint32_t> stats;  // a later part's block stats so far (the first part's start from 0)
 };
 
 class SphDeviceState {

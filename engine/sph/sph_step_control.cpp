@@ -107,6 +107,16 @@ SphStepControl::Verdict SphStepControl::judge(const uint32_t w[kSphStatWords],
         "the density reached {:.4g} kg/m^3, above the watchdog's bound {:.4g} kg/m^3 (2x the "
         "rest or initial density; 3x for the thesis model)",
         s.max_density, watch_.bounds().max_density);
+  } else if (s.max_speed * dt > c_.layout.h) {
+    // Past h in one step a particle can pass a neighbour it never saw: the pair's force, which
+    // every pressure model relies on to keep particles apart, is skipped and the energy budget
+    // no longer says anything (the thesis gas's unbounded expansion energy hides the gain).
+    a.ok = false;
+    a.watchdog = true;
+    a.reason = fmt::format(
+        "a particle at {:.3g} m/s moved up to {:.3g} m in a step, more than the support radius "
+        "h = {:.3g} m (its neighbours' forces are skipped)",
+        s.max_speed, s.max_speed * dt, c_.layout.h);
   }
   return a;
 }

@@ -15,6 +15,10 @@
 //    block's stats, so the check waits for nothing); the run goes back to the last state that
 //    passed (at most kEnergyEvery steps earlier). Gravity's work is part of the potential energy; a
 //    scene has no inflow.
+//  - a step that moves a particle (max speed x dt) further than the support radius h, past
+//    neighbours whose forces it never saw: the same way. The CFL guard keeps steps far below
+//    it; with the guard off, this is what stops a dt no pressure model can take (the thesis
+//    model's energy check cannot: its isothermal gas has an expansion energy with no floor);
 //  - a NaN or Inf: the guard's own check (sph_step_control.h), which names the particle.
 #include <cstdint>
 #include <string>
