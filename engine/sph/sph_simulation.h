@@ -115,6 +115,8 @@ class SphSimulation {
   const Buffer<Real4>& velocities() const { return device_.vel; }
   const Buffer<Real>& density() const { return device_.density; }
   const Buffer<Real>& pressure() const { return device_.pressure; }
+  // The particle id of each element of the four above (the order they are in).
+  const Buffer<uint32_t>& ids() const { return device_.ids; }
   // Replaces the velocities (indexed by particle id), e.g. to start from a velocity field.
   void set_velocities(const std::vector<Vec4d>& by_id);
 
