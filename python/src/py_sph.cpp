@@ -13,6 +13,7 @@
 #include "engine/sph/sph_checkpoint.h"
 #include "engine/sph/sph_presets.h"
 #include "engine/sph/sph_run.h"
+#include "engine/sph/sph_scene_options.h"
 #include "engine/sph/sph_simulation.h"
 #include "python/src/py_arrays.h"
 #include "python/src/py_casters.h"
@@ -27,60 +28,10 @@ struct PySph {
 };
 
 // The overrides masav.Sph takes, as `masav sph` names them (without the dashes).
-struct SceneOptions {
-  std::string preset = "water";
-  uint32_t particles = 32768;
-  std::optional<std::string> integrator, pressure, cfl_guard;
-  std::optional<double> dt, viscosity, sound_speed, max_compression, kp, smoothing_radius,
-      restitution;
-  std::optional<uint64_t> seed;
-};
+using SceneOptions = SphSceneOptions;
 
-// The scene as `masav sph` builds it from its options (app/cmd_sph.cpp, scene_from), with the
-// same refusals of a constant the pressure model does not read.
 SphScene scene_from(const SceneOptions& o) {
-  const std::string preset = o.preset == "dambreak" ? "dam-break" : o.preset;
-  if (o.particles == 0) bad_argument("masav.Sph", "particles", "0", "at least 1");
-  SphScene s = make_preset(preset, o.particles);
-  if (o.integrator) s.integrator = parse_integrator(*o.integrator, "integrator");
-  if (o.pressure) s.model = parse_pressure_model(*o.pressure, "pressure");
-  if (s.model == SphPressureModel::dfsph && !o.integrator)
-    s.integrator = SphIntegrator::symplectic_euler;
-  const bool dfsph = s.model == SphPressureModel::dfsph;
-  const bool wcsph = s.model == SphPressureModel::wcsph;
-  const bool c0 = o.sound_speed || o.max_compression;
-  const char* c0_name = o.sound_speed ? "sound_speed" : "max_compression";
-  if (dfsph && (o.kp || c0))
-    throw Error("", "masav.Sph",
-                fmt::format("{} conflicts with the dfsph pressure model, which solves for its "
-                            "pressure instead",
-                            o.kp ? "kp" : c0_name),
-                "drop it, or use pressure='wcsph' (sound_speed, max_compression) or 'thesis' (kp)");
-  if (wcsph ? bool(o.kp) : c0)
-    throw Error("", "masav.Sph",
-                fmt::format("{} conflicts with the {} pressure model, which does not read it",
-                            wcsph ? "kp" : c0_name, to_string(s.model)),
-                wcsph ? "drop kp, or use pressure='thesis'"
-                      : fmt::format("drop {}, or use pressure='wcsph'", c0_name));
-  if (o.cfl_guard) s.cfl_guard = parse_cfl_guard(*o.cfl_guard, "cfl_guard");
-  if (o.dt) s.dt = *o.dt;
-  if (o.viscosity) s.viscosity = *o.viscosity;
-  if (o.sound_speed) s.sound_speed = *o.sound_speed;
-  if (o.max_compression) set_max_compression(s, *o.max_compression, "max_compression");
-  if (o.kp) s.kp = *o.kp;
-  if (o.smoothing_radius) s.smoothing_radius = *o.smoothing_radius;
-  if (o.restitution) s.restitution = *o.restitution;
-  if (o.seed) {
-    if (s.jitter == 0)
-      throw Error("", "masav.Sph",
-                  fmt::format("seed changes nothing: the preset {} places its particles on a "
-                              "lattice without jitter",
-                              o.preset),
-                  "drop seed");
-    s.seed = *o.seed;
-  }
-  validate(s);
-  return s;
+  return make_sph_scene(o, "masav.Sph");
 }
 
 std::unique_ptr<PySph> make_sim(BackendRef b, const SphScene& scene, uint32_t block_steps) {

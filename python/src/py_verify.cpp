@@ -11,6 +11,7 @@
 #include "engine/verify/cross_check.h"
 #include "python/src/py_arrays.h"
 #include "registry/check_catalog.h"
+#include "registry/kernel_check_inputs.h"
 #include "registry/scene_catalog.h"
 #include "registry/scene_file.h"
 
@@ -24,37 +25,6 @@ KernelId kernel_of(const std::string& name) {
   const auto k = find_kernel(name);
   if (!k) bad_argument("masav.cross_check", "kernel", name, std::string(kernel_names_list()));
   return *k;
-}
-
-// The inputs a kernel's check runs on: those of the first scene type (catalog order) that runs
-// it at its defaults, as `masav verify` would size them; else generic points on a 16^3 grid.
-struct KernelInputs {
-  std::string scene;
-  scene::CheckInputs in;
-};
-KernelInputs inputs_for(KernelId k, std::optional<uint32_t> points, uint64_t seed) {
-  KernelInputs r;
-  for (const auto& type : scene::scene_types()) {
-    const scene::ParamSet p = scene::default_params(type);
-    const auto ks = type.kernels(p);
-    if (std::find(ks.begin(), ks.end(), k) != ks.end()) {
-      r.scene = type.name;
-      r.in = type.check_inputs(p);
-      break;
-    }
-  }
-  if (r.scene.empty()) {
-    r.scene = "kernel";
-    r.in.points = 5000;
-    r.in.grid = make_grid_params({0, 0, 0}, 1.0f / 16, {16, 16, 16}, r.in.points);
-  }
-  if (points) {
-    if (*points == 0) bad_argument("masav.cross_check", "points", "0", "at least 1");
-    r.in.points = *points;
-    if (r.in.grid) r.in.grid->n = *points;
-  }
-  r.in.seed = seed;
-  return r;
 }
 
 // Runs `work` with both backends' locks, without the GIL.
@@ -93,7 +63,8 @@ CrossCheckReport check_kernels(const py::object& kernels, PyBackend& a, PyBacken
     CrossCheckReport all;
     std::set<std::string> scenes;
     for (const std::string& name : names) {
-      const KernelInputs ki = inputs_for(kernel_of(name), points, seed);
+      const verify::KernelCheckInputs ki =
+          verify::kernel_check_inputs(kernel_of(name), points, seed, "masav.cross_check");
       CrossCheckReport r = verify::cross_check(*a.backend, *b.backend, {name}, ki.in, f);
       if (all.rows.empty()) all = r, all.rows.clear();
       scenes.insert(ki.scene);
@@ -204,7 +175,8 @@ void bind_verify(py::module_& m) {
   m.def(
       "check_inputs",
       [](const std::string& kernel, std::optional<uint32_t> points, uint64_t seed) {
-        const KernelInputs ki = inputs_for(kernel_of(kernel), points, seed);
+        const verify::KernelCheckInputs ki =
+            verify::kernel_check_inputs(kernel_of(kernel), points, seed, "masav.check_inputs");
         py::dict d;
         d["scene"] = ki.scene;
         d["points"] = ki.in.points;
@@ -225,7 +197,8 @@ void bind_verify(py::module_& m) {
         if (!check)
           throw Error("", kernel, "no cross-check is registered for this kernel",
                       "add one in registry/check_catalog.cpp");
-        const KernelInputs ki = inputs_for(k, points, seed);
+        const verify::KernelCheckInputs ki =
+            verify::kernel_check_inputs(k, points, seed, "masav.compare_outputs");
         const verify::Verdict v =
             check->compare(outputs_of(got, "got"), outputs_of(want, "want"), ki.in);
         py::dict d;

@@ -1,0 +1,71 @@
+#include <fmt/format.h>
+
+#include "engine/atom/atom_scene.h"
+#include "engine/core/error.h"
+#include "engine/io/png_writer.h"
+#include "engine/volume/transfer_function.h"
+#include "masav/image.h"
+#include "masav/volume.h"
+
+namespace masav {
+namespace {
+
+std::vector<Vec4d> checked_transfer(const std::vector<Vec4d>& tf) {
+  if (tf.empty()) return volume::resample_transfer(volume::default_transfer_points());
+  if (tf.size() < 2 || tf.size() > 4096)
+    throw_invalid("masav::raymarch", "transfer", fmt::format("{} entries", tf.size()),
+                  "from 2 to 4096 entries");
+  for (size_t i = 0; i < tf.size(); ++i)
+    for (double c : {tf[i].x, tf[i].y, tf[i].z, tf[i].w})
+      if (!(c >= 0 && c <= 1))
+        throw_invalid("masav::raymarch", fmt::format("transfer[{}]", i), fmt::format("{}", c),
+                      "RGBA values in [0, 1]");
+  return tf;
+}
+
+}  // namespace
+
+volume::ScalarVolume read_volume(const volume::VolumeFileOptions& options) {
+  return volume::load_volume_file(options);
+}
+
+volume::ScalarVolume read_volume(const std::string& path) {
+  volume::VolumeFileOptions o;
+  o.file = path;
+  return volume::load_volume_file(o);
+}
+
+Image raymarch(Backend& backend, const volume::ScalarVolume& vol, const RaymarchOptions& o) {
+  const char* where = "masav::raymarch";
+  if (o.width < 1 || o.width > 16384 || o.height < 1 || o.height > 16384)
+    throw_invalid(where, "width x height", fmt::format("{}x{}", o.width, o.height),
+                  "from 1 to 16384 pixels each");
+  if (!(o.step_voxels > 0) || o.step_voxels > 16)
+    throw_invalid(where, "step_voxels", fmt::format("{}", o.step_voxels), "in (0, 16]");
+  const size_t voxels = size_t(vol.dims.x) * vol.dims.y * vol.dims.z;
+  if (vol.dims.x < 2 || vol.dims.y < 2 || vol.dims.z < 2 || vol.values.size() != voxels)
+    throw_invalid(where, "volume",
+                  fmt::format("{}x{}x{} with {} values", vol.dims.x, vol.dims.y, vol.dims.z,
+                              vol.values.size()),
+                  "at least 2 samples per axis and one value per voxel");
+  const std::vector<Vec4d> tf = checked_transfer(o.transfer);
+  const VolumeDesc desc = volume::volume_desc(vol);
+  RaymarchParams rp = atom::default_raymarch(desc, atom::parse_view(o.view), o.width, o.height);
+  rp.step *= 2.0f * o.step_voxels;  // default_raymarch steps half a voxel
+  rp.mode = o.lerp ? Compositing::lerp : Compositing::front_to_back;
+  rp.preintegrate = o.preintegrate;
+  auto buffer = backend.create<Real>(vol.values.size(), "masav::raymarch volume");
+  backend.upload(buffer, std::span<const float>(vol.values));
+  return {o.width, o.height, atom::render_volume(backend, desc, buffer, tf, rp)};
+}
+
+void save_png(const std::string& path, const Image& image) {
+  if (image.pixels.size() != size_t(image.width) * image.height || image.pixels.empty())
+    throw_invalid("masav::save_png", "image",
+                  fmt::format("{}x{} with {} pixels", image.width, image.height,
+                              image.pixels.size()),
+                  "width * height pixels, at least one");
+  write_png(path, image.width, image.height, to_rgba8(image.pixels));
+}
+
+}  // namespace masav
