@@ -10,6 +10,7 @@
 #include <doctest/doctest.h>
 #include <fmt/format.h>
 
+#include <cmath>
 #include <cstring>
 #include <fstream>
 #include <iterator>
@@ -120,7 +121,7 @@ Bytes mutate(Bytes b, Rng& rng) {
       if (sec.bytes > 0) lo = sec.payload, hi = sec.payload + sec.bytes;
     }
     const size_t at = lo + pick(rng, hi - lo);
-    switch (pick(rng, 7)) {
+    switch (pick(rng, 8)) {
       case 0:  // a byte flipped, one bit or all of them
         b[at] ^= pick(rng, 2) ? uint8_t(1u << pick(rng, 8)) : uint8_t(pick(rng, 256));
         break;
@@ -149,6 +150,15 @@ Bytes mutate(Bytes b, Rng& rng) {
           store(b, at, kHostileReals[pick(rng, kHostileReals.size())]);
         else
           store(b, at, kHostileCounts[pick(rng, kHostileCounts.size())]);
+        break;
+      case 6:  // one of STAT's first eight fields: the count, time, the dts, the counters
+        if (s.size() > 1) {
+          const size_t field = s[1].payload + 8 * pick(rng, 8);
+          if (pick(rng, 2))
+            store(b, field, kHostileReals[pick(rng, kHostileReals.size())]);
+          else
+            store(b, field, kHostileCounts[pick(rng, kHostileCounts.size())]);
+        }
         break;
       default:  // a 4-byte field (an enum, a flag pair, a u32 count, a string length)
         store(b, at, uint32_t(kHostileCounts[pick(rng, kHostileCounts.size())]));
@@ -182,9 +192,15 @@ void fuzz(int mutants) {
       // A state that loads is one a simulation of its scene takes, and continues from.
       if (sph_scene_difference(k.scene, c.scene).empty()) {
         CHECK_NOTHROW(restore_sph_checkpoint(*c.sim, k, path));
+        const double t0 = c.sim->time();
+        const uint64_t steps0 = c.sim->steps();
         try {
           c.sim->step();
           ++t.stepped;
+          // It goes on: a step later, at a later finite time (a NaN time never reaches an end).
+          CHECK(c.sim->steps() == steps0 + 1);
+          CHECK(std::isfinite(c.sim->time()));
+          CHECK(c.sim->time() > t0);
         } catch (const Error&) {
           // A watchdog or the CFL guard may stop it: with a message, which is what counts.
         }
