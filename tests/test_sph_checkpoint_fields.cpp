@@ -38,7 +38,8 @@ bool has(const std::string& text, const std::string& part) {
 
 // Writes c's state corrupted by `k` and expects the read and the restore to refuse it.
 void expect_refused(const test::CheckpointCase& c, const Corruption& k, const std::string& path) {
-  CAPTURE(k.what);
+  const std::string what = k.what;
+  CAPTURE(what);
   SphResumeState r = c.state;
   k.apply(r);
   write_sph_checkpoint(path, c.scene, r);
