@@ -80,11 +80,11 @@ TEST_CASE("sph checkpoint fields: the issue's NaN and negative times are refused
                  path);
   expect_refused(c, {"negative time", [](SphResumeState& r) { r.time = -1; }, "invalid time = -1"},
                  path);
-  expect_refused(c, {"infinite time", [](SphResumeState& r) { r.time = kInf; }, "time = inf"}, path);
-  // More than the steps taken can cover at the scene's largest dt.
-  expect_refused(c, {"time beyond the steps", [](SphResumeState& r) { r.time = 1e3; },
-                     "time = 1000"},
+  expect_refused(c, {"infinite time", [](SphResumeState& r) { r.time = kInf; }, "time = inf"},
                  path);
+  // More than the steps taken can cover at the scene's largest dt.
+  expect_refused(
+      c, {"time beyond the steps", [](SphResumeState& r) { r.time = 1e3; }, "time = 1000"}, path);
 }
 
 TEST_CASE("sph checkpoint fields: each field of the state is checked, naming it") {
@@ -142,24 +142,29 @@ TEST_CASE("sph checkpoint fields: each field of the state is checked, naming it"
       {"good time NaN", [](SphResumeState& r) { r.good_time = kNaN; }, "good.time = nan"},
       {"good dt", [](SphResumeState& r) { r.good_last_dt = kNaN; }, "good.last_dt"},
       {"position NaN", [](SphResumeState& r) { r.positions[5].y = kNaN; }, "positions[5] = "},
-      {"position outside", [](SphResumeState& r) { r.positions[7].x = 3.5; },
-       "inside the box"},
+      {"position outside", [](SphResumeState& r) { r.positions[7].x = 3.5; }, "inside the box"},
       {"position mass", [](SphResumeState& r) { r.positions[9].w = 2; }, "positions[9].w = 2"},
       {"velocity inf", [](SphResumeState& r) { r.velocities[3].z = -kInf; }, "velocities[3] = "},
       {"ids duplicate", [](SphResumeState& r) { r.ids[1] = r.ids[0]; }, "a duplicate"},
       {"ids out of range", [](SphResumeState& r) { r.ids[2] = 300; }, "ids[2] = 300"},
-      {"accelerations", [](SphResumeState& r) {
+      {"accelerations",
+       [](SphResumeState& r) {
          r.accel_valid = true;
          r.accel[2].x = kNaN;
-       }, "accelerations[2] = "},
-      {"density", [](SphResumeState& r) {
+       },
+       "accelerations[2] = "},
+      {"density",
+       [](SphResumeState& r) {
          r.fields_current = true;
          r.density[0] = kNaN;
-       }, "density[0] = nan"},
-      {"pressure", [](SphResumeState& r) {
+       },
+       "density[0] = nan"},
+      {"pressure",
+       [](SphResumeState& r) {
          r.fields_current = true;
          r.pressure[4] = kInf;
-       }, "pressure[4] = inf"},
+       },
+       "pressure[4] = inf"},
       {"watchdog positions", [](SphResumeState& r) { r.good_positions[0].x = kNaN; },
        "watchdog positions[0] = "},
       {"watchdog velocities", [](SphResumeState& r) { r.good_velocities[1].x = kInf; },
@@ -196,7 +201,8 @@ TEST_CASE("sph checkpoint fields: dfsph's solve counts and warm starts are check
   for (const Corruption& k : cases) expect_refused(c, k, path);
 }
 
-TEST_CASE("sph checkpoint fields: the particle count, array lengths and preset agree with the scene") {
+TEST_CASE(
+    "sph checkpoint fields: the particle count, array lengths and preset agree with the scene") {
   test::TempDir dir("sph_ckpt_counts");
   const std::string path = dir.file("checkpoint.masav");
   const test::CheckpointCase c(water(), 5);

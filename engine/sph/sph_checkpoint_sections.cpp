@@ -212,7 +212,8 @@ void read_sections(const std::vector<uint8_t> (&payload)[3], const std::string& 
     names += ", " + p.name;
   }
   if (!known)
-    fail(path, "SCEN.preset", fmt::format("'{}' where one of {} was expected", c.scene.preset, names));
+    fail(path, "SCEN.preset",
+         fmt::format("'{}' where one of {} was expected", c.scene.preset, names));
   uint64_t scene_total = 0;  // the particles a simulation of the scene holds
   try {
     scene_total = sph_spacing(c.scene).total();  // validates the scene

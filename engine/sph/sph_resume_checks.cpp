@@ -113,8 +113,8 @@ void check_positions(std::string_view field, const std::vector<Vec4d>& p,
     const Vec4d& x = p[i];
     const std::string at = fmt::format("{}[{}]", field, i);
     if (!finite3(x)) bad(at, vec(x), "finite in every component (m)");
-    if (s.walls && (x.x < lo.x || x.y < lo.y || x.z < lo.z || x.x > hi.x || x.y > hi.y ||
-                    x.z > hi.z))
+    if (s.walls &&
+        (x.x < lo.x || x.y < lo.y || x.z < lo.z || x.x > hi.x || x.y > hi.y || x.z > hi.z))
       bad(at, vec(x),
           fmt::format("inside the box {} .. {} within {} h = {} m (walls on)", vec(s.box_min),
                       vec(s.box_max), kResumeBoxSlackH, slack));
@@ -166,8 +166,8 @@ void check_block(const SphResumeState& r) {
   length("block_stats", r.block_stats, kSphStatWords, "kSphStatWords, for an open block");
   if (std::isnan(r.block_limit) || !(r.block_limit > 0))
     bad("block_limit", num(r.block_limit), "a dt limit > 0 s (+inf where no CFL condition binds)");
-  for (const uint32_t word : {kSphStatMaxSpeed2, kSphStatMaxAccel2, kSphStatMaxDisp2,
-                              kSphStatMaxDensity}) {
+  for (const uint32_t word :
+       {kSphStatMaxSpeed2, kSphStatMaxAccel2, kSphStatMaxDisp2, kSphStatMaxDensity}) {
     const float f = std::bit_cast<float>(r.block_stats[word]);
     if (std::isnan(f) || std::signbit(f))
       bad(fmt::format("block_stats[{}]", word), num(f), "a float >= 0 (a maximum so far)");
@@ -266,8 +266,8 @@ void validate_resume_state(const SphScene& s, const SphResumeState& r) {
   // state of the same run.
   finite_in("watchdog.max_speed", r.watchdog.max_speed, 0, std::numeric_limits<double>::max(),
             "m/s");
-  finite_in("watchdog.max_density", r.watchdog.max_density, 0,
-            std::numeric_limits<double>::max(), "kg/m^3");
+  finite_in("watchdog.max_density", r.watchdog.max_density, 0, std::numeric_limits<double>::max(),
+            "kg/m^3");
   if (!std::isfinite(r.watchdog.energy0))
     bad("watchdog.energy0", num(r.watchdog.energy0), "finite (J)");
   count_at_most("good.steps", r.good_steps, r.steps, "steps: an earlier state");
@@ -277,7 +277,8 @@ void validate_resume_state(const SphScene& s, const SphResumeState& r) {
         fmt::format("at least good.steps = {}", r.good_steps));
   check_time("good.time", r.good_time, r.good_substeps, b);
   if (r.good_time > r.time)
-    bad("good.time", num(r.good_time), fmt::format("at most time = {} s: an earlier state", r.time));
+    bad("good.time", num(r.good_time),
+        fmt::format("at most time = {} s: an earlier state", r.time));
   check_dt("good.last_dt", r.good_last_dt, r.good_substeps, b);
   check_stats("good.stats", r.good_stats, s);
   // The next energy check is set one period past the last one that passed.
