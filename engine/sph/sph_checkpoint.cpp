@@ -229,7 +229,7 @@ void restore_sph_checkpoint(SphSimulation& sim, const SphCheckpoint& c, const st
   try {
     sim.restore_resume_state(c.state);
   } catch (const Error& e) {
-    fail(path, "PART", e.problem());
+    fail(path, "state", fmt::format("{}; {}", e.problem(), e.remedy()));
   }
 }
 

@@ -10,6 +10,9 @@
 
 #include "engine/core/error.h"
 #include "engine/sph/sph_checkpoint_codec.h"
+#include "engine/sph/sph_particles.h"
+#include "engine/sph/sph_presets.h"
+#include "engine/sph/sph_resume_checks.h"
 
 namespace masav {
 namespace checkpoint_io {
@@ -200,10 +203,22 @@ void read_sections(const std::vector<uint8_t> (&payload)[3], const std::string& 
   In scene(payload[0], path, "SCEN");
   visit_scene(c.scene, SceneReader{scene});
   scene.end();
+  // The preset names the run's output files (`masav sph` NAME_STEP.vtp): only the presets' own
+  // names and the API's "custom".
+  bool known = c.scene.preset == "custom";
+  std::string names = "custom";
+  for (const SphPresetInfo& p : sph_presets()) {
+    known = known || c.scene.preset == p.name;
+    names += ", " + p.name;
+  }
+  if (!known)
+    fail(path, "SCEN.preset",
+         fmt::format("'{}' where one of {} was expected", c.scene.preset, names));
+  uint64_t scene_total = 0;  // the particles a simulation of the scene holds
   try {
-    validate(c.scene);
+    scene_total = sph_spacing(c.scene).total();  // validates the scene
   } catch (const Error& e) {
-    fail(path, "SCEN", e.problem());
+    fail(path, "SCEN", fmt::format("{}; {}", e.problem(), e.remedy()));
   }
 
   In s(payload[1], path, "STAT");
@@ -218,11 +233,14 @@ void read_sections(const std::vector<uint8_t> (&payload)[3], const std::string& 
     fail(path, "STAT.particles",
          fmt::format("{} particles need more than the {} bytes of the PART section", n,
                      payload[2].size()));
-  // The scene's fluid alone is part of that count: a simulation built from the scene then
-  // holds no more particles than the file has values for.
   if (c.scene.particles > n)
     fail(path, "SCEN.particles",
          fmt::format("{} fluid particles where STAT holds {} in all", c.scene.particles, n));
+  // A simulation built from the scene holds exactly this many (its fluid and its obstacle).
+  if (n != scene_total)
+    fail(path, "STAT.particles",
+         fmt::format("{} where the scene has {} ({} fluid particles and its obstacle)", n,
+                     scene_total, c.scene.particles));
   r.time = s.real("time");
   r.last_dt = s.real("last_dt");
   r.adaptive_dt = s.real("adaptive_dt");
@@ -279,6 +297,12 @@ void read_sections(const std::vector<uint8_t> (&payload)[3], const std::string& 
   r.good_positions = p.array<Vec4d>("watchdog positions", n);
   r.good_velocities = p.array<Vec4d>("watchdog velocities", n);
   p.end();
+  // The checksums say the bytes are the ones written; this says they make a run of the scene.
+  try {
+    validate_resume_state(c.scene, r);
+  } catch (const Error& e) {
+    fail(path, "state", fmt::format("{}; {}", e.problem(), e.remedy()));
+  }
 }
 
 }  // namespace checkpoint_io

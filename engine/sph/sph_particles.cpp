@@ -66,9 +66,9 @@ void check_support(const SphScene& s, double dx, double h) {
 
 }  // namespace
 
-SphParticles build_particles(const SphScene& s) {
+SphSpacing sph_spacing(const SphScene& s) {
   validate(s);
-  SphParticles out;
+  SphSpacing out;
   const Vec3d lo = s.block.min, hi = s.block.max;
   const double ext[3] = {hi.x - lo.x, hi.y - lo.y, hi.z - lo.z};
   const double n = double(s.particles);
@@ -84,6 +84,29 @@ SphParticles build_particles(const SphScene& s) {
   out.dx = sp * std::cbrt(s.block.density_ratio);
   out.h = s.smoothing_radius ? *s.smoothing_radius : s.h_over_dx * out.dx;
   check_support(s, out.dx, out.h);
+  out.fluid = s.particles;
+  if (s.obstacle.enabled) {
+    const Vec3d a = s.obstacle.min, b = s.obstacle.max;
+    const auto count = [&](double len) { return std::max(1u, uint32_t(std::floor(len / out.dx))); };
+    const uint32_t ox = count(b.x - a.x), oy = count(b.y - a.y), oz = count(b.z - a.z);
+    if (uint64_t(ox) * oy * oz + s.particles > UINT32_MAX)
+      throw_invalid("sph scene", "obstacle", fmt::format("{} x {} x {} particles", ox, oy, oz),
+                    "fewer than 2^32 particles in all");
+    out.obstacle = {ox, oy, oz};
+  }
+  return out;
+}
+
+SphParticles build_particles(const SphScene& s) {
+  const SphSpacing spacing = sph_spacing(s);
+  SphParticles out;
+  const Vec3d lo = s.block.min;
+  const double sp = spacing.placed_dx;
+  const uint32_t nx = spacing.lattice.x, ny = spacing.lattice.y, nz = spacing.lattice.z;
+  out.lattice = spacing.lattice;
+  out.placed_dx = sp;
+  out.dx = spacing.dx;
+  out.h = spacing.h;
   out.mass = lattice_mass(s.rest_density, out.dx, out.h, s.model != SphPressureModel::thesis);
   out.gradient_correction =
       1.0 / spiky_gradient_moment(out.dx, out.h, s.model != SphPressureModel::thesis);
@@ -139,12 +162,8 @@ SphParticles build_particles(const SphScene& s) {
 
   if (s.obstacle.enabled) {
     const double inv_mass = s.obstacle.pinned ? 0.0 : 1.0 / s.obstacle.mass_ratio;
-    const Vec3d a = s.obstacle.min, b = s.obstacle.max;
-    const auto count = [&](double len) { return std::max(1u, uint32_t(std::floor(len / out.dx))); };
-    const uint32_t ox = count(b.x - a.x), oy = count(b.y - a.y), oz = count(b.z - a.z);
-    if (uint64_t(ox) * oy * oz + s.particles > UINT32_MAX)
-      throw_invalid("sph scene", "obstacle", fmt::format("{} x {} x {} particles", ox, oy, oz),
-                    "fewer than 2^32 particles in all");
+    const Vec3d a = s.obstacle.min;
+    const uint32_t ox = spacing.obstacle.x, oy = spacing.obstacle.y, oz = spacing.obstacle.z;
     for (uint32_t iy = 0; iy < oy; ++iy)
       for (uint32_t iz = 0; iz < oz; ++iz)
         for (uint32_t ix = 0; ix < ox; ++ix) {

@@ -22,6 +22,20 @@ struct SphParticles {
   uint32_t total() const { return fluid + obstacle; }
 };
 
+// The fluid's lattice, spacings and support radius and the obstacle's lattice of a scene, without
+// placing a particle: what build_particles places, and what a restored state's counts and
+// positions are checked against (sph_resume_checks.h) before anything of that size is built.
+// Validates the scene (and the support against max_candidates).
+struct SphSpacing {
+  UVec3 lattice;   // fluid lattice (x, y layers, z)
+  UVec3 obstacle;  // obstacle lattice; 0 x 0 x 0 without one
+  double placed_dx = 0, dx = 0, h = 0;
+  uint32_t fluid = 0;
+  uint32_t obstacle_count() const { return obstacle.x * obstacle.y * obstacle.z; }
+  uint32_t total() const { return fluid + obstacle_count(); }
+};
+SphSpacing sph_spacing(const SphScene& s);
+
 SphParticles build_particles(const SphScene& s);
 
 // The particle mass for which a particle inside a full cubic lattice of spacing dx has

@@ -121,8 +121,8 @@ class SphSimulation {
   void set_velocities(const std::vector<Vec4d>& by_id);
 
   // The state a checkpoint keeps (sph_simulation_resume.cpp); restore_resume_state takes one
-  // exported by a simulation of the same scene (throws masav::Error naming the field that does not
-  // fit).
+  // exported by a simulation of the same scene, every field checked first (sph_resume_checks.h:
+  // throws masav::Error naming the field, its value and the allowed range).
   SphResumeState export_resume_state();
   void restore_resume_state(const SphResumeState& r);
 

@@ -8,19 +8,10 @@
 #include "engine/core/error.h"
 #include "engine/sph/sph_dfsph_scheme.h"
 #include "engine/sph/sph_rank_gather.h"
+#include "engine/sph/sph_resume_checks.h"
 #include "engine/sph/sph_simulation.h"
 
 namespace masav {
-namespace {
-
-template <class T>
-void check_count(const std::vector<T>& v, size_t want, const char* field) {
-  if (v.size() != want)
-    throw_invalid("sph checkpoint", field, fmt::format("{} values", v.size()),
-                  fmt::format("{} (one per particle of the scene)", want));
-}
-
-}  // namespace
 
 SphResumeState SphSimulation::export_resume_state() {
   const SphDeviceState& d = device_;
@@ -84,31 +75,9 @@ SphResumeState SphSimulation::export_resume_state() {
 void SphSimulation::restore_resume_state(const SphResumeState& r) {
   const uint32_t n = layout_.total();
   SphDeviceState& d = device_;
-  check_count(r.positions, n, "positions");
-  check_count(r.velocities, n, "velocities");
-  check_count(r.accel, n, "accelerations");
-  check_count(r.ids, n, "ids");
-  check_count(r.density, n, "density");
-  check_count(r.pressure, n, "pressure");
-  check_count(r.kappa_density, context_.dfsph() ? n : 0, "dfsph density kappa sums");
-  check_count(r.kappa_divergence, context_.dfsph() ? n : 0, "dfsph divergence kappa sums");
-  check_count(r.good_positions, n, "watchdog positions");
-  check_count(r.good_velocities, n, "watchdog velocities");
-  if (!r.block_stats.empty() && r.block_stats.size() != kSphStatWords)
-    throw_invalid("sph checkpoint", "open block's stats",
-                  fmt::format("{} words", r.block_stats.size()),
-                  fmt::format("{} (kSphStatWords)", kSphStatWords));
-  // The ids index the state by particle (download()): a permutation of 0..n-1.
-  std::vector<bool> seen(n, false);
-  for (const uint32_t id : r.ids) {
-    if (id >= n || seen[id])
-      throw_invalid("sph checkpoint", "ids", std::to_string(id),
-                    fmt::format("each of 0 to {} exactly once", n - 1));
-    seen[id] = true;
-  }
-  if (r.block_steps < 1 || r.block_steps > kMaxBlockSteps)
-    throw_invalid("sph checkpoint", "block steps", std::to_string(r.block_steps),
-                  fmt::format("1 to {}", kMaxBlockSteps));
+  // Every field, against this simulation's scene, before any of it reaches the device: a state
+  // handed in by a program gets the checks a checkpoint's gets.
+  validate_resume_state(scene_, r);
   std::vector<uint32_t> block_stats = r.block_stats;
   if (ranks_) {
     // Each rank takes an equal contiguous piece of the one-process arrays, whatever the number

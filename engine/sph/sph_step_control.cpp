@@ -21,8 +21,6 @@
 namespace masav {
 namespace {
 
-constexpr int kMaxRetries = 12;
-
 bool finite_state(const Vec4d& p, const Vec4d& v) {
   return std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z) && std::isfinite(v.x) &&
          std::isfinite(v.y) && std::isfinite(v.z);

@@ -33,6 +33,9 @@ class SphStepControl {
       : c_(c), scheme_(scheme), watch_(watch), reads_(reads) {}
 
   static constexpr uint64_t kMaxSubsteps = 1u << 20;  // of one fixed-dt step (CFL guard)
+  // Halvings of one step's dt the guard tries before it stops (a restored state's retry count
+  // is bounded by it, sph_resume_checks.h).
+  static constexpr int kMaxRetries = 12;
 
   // The limit the CFL conditions give for stats `s`, and for the current state's (s).
   double limit_for(const SphStepStats& s) const;
