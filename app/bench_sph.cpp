@@ -161,12 +161,18 @@ int run_sph_bench(const SphBenchOptions& o, JsonWriter& j) {
     char* end = nullptr;
     const unsigned long v = std::strtoul(c.c_str(), &end, 10);
     if (!end || *end || v < 1 || v > (1ul << 28))
-      throw_invalid("bench sph", "--n", c, "comma-separated particle counts in [1, 2^28]");
+      throw_invalid("bench sph", "--particles", c, "comma-separated particle counts in [1, 2^28]");
     counts.push_back(uint32_t(v));
   }
+  // An empty list would time nothing and still exit 0.
+  if (counts.empty())
+    throw_invalid("bench sph", "--particles", "''", "at least one particle count in [1, 2^28]");
   std::vector<SphIntegrator> integrators;
   for (const auto& i : split(o.integrators))
     integrators.push_back(parse_integrator(i, "--integrators"));
+  if (integrators.empty())
+    throw_invalid("bench sph", "--integrators", "''",
+                  "at least one of euler, symplectic-euler, rk4, leapfrog");
 
   j.field("preset", o.preset);
   j.key("thesis_table_4_1").begin_object();  // 32,768 particles, steps per second

@@ -9,6 +9,7 @@
 
 #include "app/commands.h"
 #include "app/interrupt.h"
+#include "app/number_checks.h"
 #include "app/progress.h"
 #include "app/scene_options.h"
 #include "app/video.h"
@@ -30,6 +31,7 @@ struct RunOptions {
   bool stats = false;
   bool no_verify = false;
   bool no_video = false;
+  double video_timeout = 0;  // s; 0: video_time_limit(frames)
 };
 
 std::string frame_name(int i) {
@@ -134,7 +136,8 @@ int run(const RunOptions& o) {
   if (ffmpeg.empty())
     fmt::print("note: ffmpeg not found: PNG frames only (install ffmpeg for an MP4)\n");
   else if (written > 0)
-    write_video(ffmpeg, o.out, player.file().type, fps);
+    write_video(ffmpeg, o.out, player.file().type, fps,
+                o.video_timeout > 0 ? o.video_timeout : video_time_limit(uint64_t(written)));
   return 0;
 }
 
@@ -154,6 +157,10 @@ void add_run_command(CLI::App& app) {
   cmd->add_flag("--stats", o.stats, "print which stages ran and which were skipped");
   cmd->add_flag("--no-verify", o.no_verify, "render without the cross-check");
   cmd->add_flag("--no-video", o.no_video, "PNG frames only, even with ffmpeg present");
+  cmd->add_option("--video-timeout", o.video_timeout,
+                  "seconds ffmpeg may take before it is killed (the frames stay); 0: 60 s plus "
+                  "0.5 s per frame")
+      ->check(number_in(0.0, 86400.0));
 }
 
 }  // namespace masav::app

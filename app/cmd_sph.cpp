@@ -227,6 +227,11 @@ int report(const SphRunResult& r, SphSimulation& sim, const SphOptions& o) {
       fmt::print(stderr,
                  "masav: on several ranks the last good state is written only after the "
                  "simulation's own checks fail (this error may have stopped one rank alone)\n");
+    else
+      fmt::print(stderr,
+                 "masav: the last good state (step {}) was not written: give --out DIR to have "
+                 "it written there as a .vtp\n",
+                 sim.steps());
   } else if (!r.final_checkpoint.empty()) {
     fmt::print("checkpoint {}: step {}, t = {:.6g} s\n", r.final_checkpoint, sim.steps(),
                sim.time());

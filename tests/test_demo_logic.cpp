@@ -7,6 +7,7 @@
 #include "app/demo/idle_wait.h"
 #include "app/demo/progressive.h"
 #include "app/demo/sim_rate.h"
+#include "registry/scene_file.h"
 
 using namespace masav::app;
 
@@ -151,4 +152,22 @@ TEST_CASE("the demo waits for input only when nothing has changed for a few fram
     (what == 0 ? busy.scripted : what == 1 ? busy.recording : busy.actions_queued) = true;
     CHECK(idle_wait_seconds(busy) == 0);
   }
+}
+
+TEST_CASE("demo: an SPH scene's particle count is lowered on a CPU device only when not given") {
+  // The scene's default count is lowered to the device class's start count...
+  CHECK(demo_particle_count(32768, false, 1024) == 1024);
+  // ... a count the scene file or --set gave is kept, however large ...
+  CHECK(demo_particle_count(4096, true, 1024) == 4096);
+  // ... and a count that fits, or a GPU's (no limit), is never changed.
+  CHECK(demo_particle_count(800, false, 1024) == 800);
+  CHECK(demo_particle_count(32768, false, 0) == 32768);
+  // "Given" is what the demo reads from the scene: a version above 0 once a file or --set set it.
+  masav::scene::SceneFile f = masav::scene::default_scene("sph");
+  CHECK(f.params.version("sph.count") == 0);
+  f.params.set_from_string("sph.count", "4096");
+  CHECK(f.params.version("sph.count") != 0);
+  const masav::scene::SceneFile from_file =
+      masav::scene::parse_scene("[scene]\ntype = \"sph\"\n[sph]\ncount = 2000\n", "<text>");
+  CHECK(from_file.params.version("sph.count") != 0);
 }

@@ -174,16 +174,25 @@ void DemoApp::fit_to_viewport(scene::ParamSet& p) const {
   p.set("render.height", int64_t(state_.layout.scene_h));
 }
 
-// An SPH scene on a CPU device starts with fewer particles, so that it moves at once.
+// An SPH scene on a CPU device starts with fewer particles, so that it moves at once -- unless the
+// scene file or --set gave sph.count (a value other than the default has a version above 0).
 void DemoApp::device_defaults() {
   if (player_->file().type != "sph") return;
   const SimRateDefaults d = sim_rate_defaults(player_->backend().caps().device_type);
-  const int64_t count = player_->scene().params().get_int("sph.count");
+  const scene::ParamSet& p = player_->scene().params();
+  const int64_t count = p.get_int("sph.count");
   fmt::print("demo: {} s simulated per second by default on a {}\n", d.seconds_per_second,
              d.device_class);
-  if (d.max_particles == 0 || count <= int64_t(d.max_particles)) return;
-  set_param(*player_, state_, "sph.count", int64_t(d.max_particles));
-  fmt::print("demo: sph.count {} -> {} on a {} (set sph.count for more)\n", count, d.max_particles,
+  const bool given = p.version("sph.count") != 0;
+  const uint32_t start = demo_particle_count(uint32_t(count), given, d.max_particles);
+  if (start == count) {
+    if (given && d.max_particles && count > int64_t(d.max_particles))
+      fmt::print("demo: sph.count {} as given (fewer particles step faster on a {})\n", count,
+                 d.device_class);
+    return;
+  }
+  set_param(*player_, state_, "sph.count", int64_t(start));
+  fmt::print("demo: sph.count {} -> {} on a {} (set sph.count for more)\n", count, start,
              d.device_class);
 }
 

@@ -42,7 +42,7 @@ std::string DemoCapture::stop_recording(double fps) {
   const std::string ffmpeg = find_ffmpeg();
   if (ffmpeg.empty())
     return fmt::format("{} (ffmpeg not found: PNG frames only; install ffmpeg for an MP4)", pngs);
-  if (frames > 0 && write_video(ffmpeg, dir, "recording", fps))
+  if (frames > 0 && write_video(ffmpeg, dir, "recording", fps, video_time_limit(frames)))
     return fmt::format("{} and {}/recording.mp4", pngs, dir);
   return pngs;
 }

@@ -16,6 +16,11 @@ SimRateDefaults sim_rate_defaults(const std::string& device_type) {
   return {1.0, 0, "GPU"};
 }
 
+uint32_t demo_particle_count(uint32_t count, bool given, uint32_t max_particles) {
+  if (given || max_particles == 0 || count <= max_particles) return count;
+  return max_particles;
+}
+
 uint32_t steps_for_rate(double target_s_per_s, double frame_s, double dt_s, double step_ms,
                         double budget_ms, uint32_t max_steps) {
   max_steps = std::max(1u, max_steps);

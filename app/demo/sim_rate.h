@@ -17,6 +17,10 @@ struct SimRateDefaults {
 // device_type: Capabilities::device_type ("cpu", "discrete", "integrated", ...).
 SimRateDefaults sim_rate_defaults(const std::string& device_type);
 
+// The particle count the demo starts an SPH scene with: `count` when the scene file or --set gave
+// it (`given`), or when it fits `max_particles` (0: no limit); else max_particles.
+uint32_t demo_particle_count(uint32_t count, bool given, uint32_t max_particles);
+
 // Steps for the next frame: enough for `target_s_per_s` over a frame of `frame_s` wall seconds at
 // steps of `dt_s`, but no more than fit in `budget_ms` at `step_ms` each (the device's pace), and
 // between 1 and `max_steps`.

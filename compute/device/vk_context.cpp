@@ -103,10 +103,15 @@ std::unique_ptr<raii::Instance> make_instance(const raii::Context& ctx, bool val
   ::vk::InstanceCreateInfo info({}, &app, layers, extensions);
   try {
     return std::make_unique<raii::Instance>(ctx, info);
-  } catch (const ::vk::IncompatibleDriverError&) {
-    throw Error("vulkan", "", "no Vulkan driver is installed (the loader found no ICD)",
-                kNoDriverRemedy);
   } catch (const ::vk::SystemError& e) {
+    // A manifest the environment names wrongly is the likeliest cause, whatever the loader
+    // reports (a malformed one reads as ErrorOutOfHostMemory).
+    if (const std::string problem = driver_manifest_problem(); !problem.empty())
+      throw Error("vulkan", "", fmt::format("vkCreateInstance failed: {}", problem),
+                  "fix the variable or unset it (the loader then finds the installed drivers)");
+    if (dynamic_cast<const ::vk::IncompatibleDriverError*>(&e))
+      throw Error("vulkan", "", "no Vulkan driver is installed (the loader found no ICD)",
+                  kNoDriverRemedy);
     throw Error("vulkan", "", fmt::format("vkCreateInstance failed: {}", e.what()),
                 kNoDriverRemedy);
   }

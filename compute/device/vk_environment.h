@@ -20,4 +20,11 @@ ContextOptions options_from_env();
 // The Vulkan loader library's name: MASAV_VULKAN_LOADER, else libvulkan.so.1.
 std::string loader_library();
 
+// What is wrong with the driver manifests the loader's own variables name (VK_DRIVER_FILES,
+// VK_ICD_FILENAMES: files or directories separated by ':'), for the message when the loader
+// finds no usable driver: a missing or unreadable file, one that is not a manifest (no "ICD"
+// object with a "library_path"), or a manifest whose absolute library_path does not exist.
+// "" when nothing names a manifest or every named one looks right.
+std::string driver_manifest_problem();
+
 }  // namespace masav::vk

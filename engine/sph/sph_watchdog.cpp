@@ -45,7 +45,8 @@ SphWatchdog make_watchdog(const SphState& s, const SphSimulation& sim, double ma
 }
 
 std::string watchdog_remedy() {
-  return "the fluid blew up; the last good state is kept (export it to inspect): use a smaller "
+  // Whether that state is also written is the caller's to say (masav sph: with --out-dir).
+  return "the fluid blew up; the simulation stays at its last good step: use a smaller "
          "dt or the adaptive dt, turn the CFL guard on (--cfl-guard reduce), lower kp or raise "
          "sound_speed, raise viscosity";
 }
