@@ -65,6 +65,15 @@ int run(const RunOptions& o) {
     const verify::CrossCheckReport r = player.verify();
     fmt::print("{}", verify::format_report(r));
     write_file_atomic(o.out + "/verify.json", verify::report_json(r));
+    // A kernel not compared stops the run too: the render would run what nobody checked (and
+    // the refused buffer would refuse the render as well).
+    if (!r.pass() && r.failures() == 0) {
+      fmt::print(stderr,
+                 "masav: error: cross-check incomplete: {}; rendering stopped (report: "
+                 "{}/verify.json)\n",
+                 verify::failure_summary(r), o.out);
+      return kExitNotCompared;
+    }
     if (!r.pass())
       throw Error("", "cross-check",
                   fmt::format("{}; rendering stopped (report: {}/verify.json)",

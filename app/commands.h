@@ -10,6 +10,11 @@
 
 namespace masav::app {
 
+// Exit statuses (docs/commands.md#exit-status): 0 success; 1 an error, or a cross-check that
+// disagrees; kExitNotCompared a cross-check that disagreed nowhere but could not compare a kernel
+// (a backend refused it: a buffer over its limit); 130 interrupted.
+constexpr int kExitNotCompared = 3;
+
 void add_info_command(CLI::App& app);
 void add_check_command(CLI::App& app);
 void add_bench_command(CLI::App& app);

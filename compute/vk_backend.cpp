@@ -9,6 +9,7 @@
 #include "compute/sph_walk_choice.h"
 #include "compute/vk_bindings.h"
 #include "engine/core/error.h"
+#include "engine/core/limit_error.h"
 #include "engine/kernels/kernel_checks.h"
 
 namespace masav::vk {
@@ -102,10 +103,10 @@ std::shared_ptr<Allocation> VulkanBackend::scratch(const std::string& slot, size
   auto& a = scratch_[slot];
   if (!a || a->bytes < bytes) {
     if (ctx_.caps().max_buffer_bytes && bytes > ctx_.caps().max_buffer_bytes)
-      throw Error("vulkan", slot,
-                  fmt::format("scratch of {} MiB exceeds the {} MiB per buffer", bytes >> 20,
-                              ctx_.caps().max_buffer_bytes >> 20),
-                  "use fewer elements");
+      throw LimitError("vulkan", slot,
+                       fmt::format("scratch of {} MiB exceeds the {} MiB per buffer", bytes >> 20,
+                                   ctx_.caps().max_buffer_bytes >> 20),
+                       "use fewer elements", ctx_.caps().max_buffer_bytes);
     a = allocate(ctx_, bytes, MemoryUse::device, slot);  // the stream keeps the old one alive
   }
   return a;

@@ -82,7 +82,8 @@ TEST_CASE("NRRD volumes: attached and detached data, raw and ASCII; bad headers 
   CHECK(a.spacing.z == 2.0f);
   write_bytes(t.file("b.raw"), v.data(), v.size() * 2);
   const std::string detached =
-      "NRRD0004\ntype: uint16\ndimension: 3\nsizes: 4 3 2\nencoding: raw\ndata file: b.raw\n";
+      "NRRD0004\ntype: uint16\ndimension: 3\nsizes: 4 3 2\nencoding: raw\nendian: little\n"
+      "data file: b.raw\n";
   write_bytes(t.file("b.nhdr"), "", 0, detached);
   CHECK(load_nrrd(t.file("b.nhdr")).values == a.values);
   std::string ascii = "NRRD0004\ntype: float\ndimension: 3\nsizes: 2 2 2\nencoding: ascii\n\n";

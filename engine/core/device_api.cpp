@@ -5,6 +5,7 @@
 #include <cstring>
 
 #include "engine/core/error.h"
+#include "engine/core/limit_error.h"
 
 namespace masav {
 namespace {
@@ -43,13 +44,14 @@ void check_fits(const DeviceApi& dev, ElemKind kind, size_t count, std::string_v
   const size_t eb = elem_bytes(kind, dev.real_bytes());
   const uint64_t limit = dev.caps().max_buffer_bytes;
   if (limit != 0 && uint64_t(count) * eb > limit)
-    throw Error(
+    throw LimitError(
         dev.name(), std::string(kernel),
         fmt::format("{} needs {} elements of {} bytes ({} MiB), over this device's "
                     "{} MiB per buffer ({})",
                     what, count, eb, (uint64_t(count) * eb) >> 20, limit >> 20,
                     dev.caps().device_name),
-        fmt::format("use at most {} elements here, or a device with larger buffers", limit / eb));
+        fmt::format("use at most {} elements here, or a device with larger buffers", limit / eb),
+        limit);
 }
 
 void DeviceApi::check_upload(const BufferImpl& dst, size_t count) const {

@@ -213,6 +213,13 @@ void check_volume(const VolumeDesc& v, std::string_view kernel) {
   if (!std::isfinite(v.value_min) || !std::isfinite(v.value_max) || !(v.value_max > v.value_min))
     throw_invalid(kernel, "value range", fmt::format("[{}, {}]", v.value_min, v.value_max),
                   "finite with value_max > value_min");
+  // The kernels normalise in fp32 by (v - value_min) * (1 / width): an overflowing width
+  // (+-FLT_MAX) or a denormal one or reciprocal (which GPUs flush to 0) renders black.
+  const float width = v.value_max - v.value_min;
+  if (!std::isfinite(width) || !std::isnormal(width) || !std::isnormal(1.0f / width))
+    throw_invalid(kernel, "value range", fmt::format("[{}, {}]", v.value_min, v.value_max),
+                  "a width fp32 normalises by: value_max - value_min finite and with a normal "
+                  "reciprocal (normalise the values to [0, 1] first, as the volume loaders do)");
 }
 
 UVec3 brick_dims(const VolumeDesc& v, uint32_t brick) {

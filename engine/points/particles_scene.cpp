@@ -244,6 +244,19 @@ scene::SceneType particles_scene_type() {
   t.create = [](Backend& b, const ParamSet& p) -> std::unique_ptr<scene::SceneInstance> {
     return std::make_unique<ParticlesScene>(b, p);
   };
+  // The grid's per-cell tables (cell start, end, counts: one u32 per cell each) are the buffers
+  // that grow with the cube of grid_cells; the largest cube they fit in is the advice.
+  t.fit_advice = [](const ParamSet& p, uint64_t limit_bytes) -> std::string {
+    const uint64_t cells = uint64_t(p.get_int("particles.grid_cells"));
+    uint64_t fit = cells;
+    while (fit > 0 && fit * fit * fit * sizeof(uint32_t) > limit_bytes) --fit;
+    if (fit == cells) return "";  // the grid fits: another buffer is the cause
+    if (fit == 0) return "this device's buffers cannot hold even one grid cell's table";
+    return fmt::format(
+        "set particles.grid_cells <= {} (its {}^3-cell tables then fit the "
+        "{:.4g} MiB per buffer), or use a device with larger buffers",
+        fit, fit, double(limit_bytes) / double(1 << 20));
+  };
   return t;
 }
 

@@ -126,6 +126,9 @@ struct SceneType {
   std::function<std::vector<KernelId>(const ParamSet&)> kernels;
   std::function<CheckInputs(const ParamSet&)> check_inputs;
   std::function<std::unique_ptr<SceneInstance>(Backend&, const ParamSet&)> create;
+  // Optional: when a backend refuses a buffer over `limit_bytes` (LimitError), the setting of
+  // these parameters that fits ("set particles.grid_cells <= 64 ..."), or "" if none is the cause.
+  std::function<std::string(const ParamSet&, uint64_t limit_bytes)> fit_advice;
 };
 
 }  // namespace masav::scene

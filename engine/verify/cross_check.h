@@ -14,13 +14,19 @@
 
 namespace masav::verify {
 
+// A kernel that one backend cannot run (it threw an Error: a buffer over its limit, a feature
+// it lacks) was not compared: that is neither agreement nor disagreement, and is counted apart.
 struct CheckRow {
   std::string kernel;
   CheckKind kind = CheckKind::exact;
   bool pass = false;
   std::string metrics, tolerance;
   std::map<std::string, double> numbers;
-  std::string error;  // the kernel threw (on either backend), or no check exists
+  std::string error;          // the kernel threw (on either backend), or no check exists
+  bool not_compared = false;  // one backend refused the kernel: `refused_by`, `error`
+  std::string refused_by;     // that backend's name
+  uint64_t limit_bytes = 0;   // its per-buffer limit, when the refusal was a size (LimitError)
+  std::string advice;         // what fits: the scene's fit_advice, else the refusal's remedy
   double ms_backend = 0, ms_reference = 0;  // wall time of each run, inputs included
 };
 
@@ -30,8 +36,9 @@ struct CrossCheckReport {
   uint32_t points = 0;
   uint64_t seed = 0;
   std::vector<CheckRow> rows;
-  bool pass() const;
-  size_t failures() const;
+  bool pass() const;            // every kernel compared and agreeing
+  size_t failures() const;      // kernels that disagree, or have no check
+  size_t not_compared() const;  // kernels a backend refused
 };
 
 // Runs the checks of `kernels` (found in `checks`) on `backend` and `reference`. A kernel
@@ -57,7 +64,8 @@ std::unique_ptr<Backend> open_reference(const Backend& chosen, const std::string
 
 std::string format_report(const CrossCheckReport& r);
 std::string report_json(const CrossCheckReport& r);
-// The one-line reason a failed report stops rendering, with the remedy.
+// The one-line reason a failed report stops rendering, with the remedy: the kernels that
+// disagree, then those not compared with the backend that refused each and what fits.
 std::string failure_summary(const CrossCheckReport& r);
 
 }  // namespace masav::verify

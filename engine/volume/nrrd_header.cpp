@@ -173,6 +173,13 @@ NrrdHeader parse_nrrd_header(std::string_view head, const std::string& where) {
   if (const auto* e = field("endian")) {
     if (*e != "little" && *e != "big") throw_invalid(where, "endian", *e, "little or big");
     h.big_endian = *e == "big";
+  } else if (h.encoding == NrrdEncoding::raw && sample_bytes(h.type) > 1) {
+    // NRRD requires the field here; guessing the writer's byte order would read a big-endian
+    // file as noise without a word.
+    throw_invalid(where, "endian", "missing",
+                  fmt::format("little or big: NRRD requires an 'endian:' line for raw {}-byte "
+                              "samples (type: {})",
+                              sample_bytes(h.type), *field("type")));
   }
   if (const auto* s = field("spacings")) {
     const auto v = numbers(*s, where, "spacings");

@@ -2,7 +2,8 @@
 // A NRRD header read field by field: each field is honoured (type, dimension, sizes, encoding,
 // endian, spacings, space directions, space origin, data file, line skip, byte skip), accepted as
 // information that does not change the samples (content, kinds, labels, units, ...), or refused by
-// name. Sizes are whole 64-bit integers checked against the allowed range, never wrapped.
+// name. Sizes are whole 64-bit integers checked against the allowed range, never wrapped. As NRRD
+// requires, raw data of multi-byte samples must name its endian.
 #include <cstdint>
 #include <optional>
 #include <string>

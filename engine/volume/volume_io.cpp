@@ -40,65 +40,93 @@ void check_dims(UVec3 d, const std::string& where) {
 }
 
 template <class T>
-float load_one(const unsigned char* p, bool swap) {
+double load_one(const unsigned char* p, bool swap) {
   unsigned char b[sizeof(T)];
   std::memcpy(b, p, sizeof(T));
   if (swap) std::reverse(b, b + sizeof(T));
   T v;
   std::memcpy(&v, b, sizeof(T));
-  return float(v);
+  return double(v);
 }
 
-std::vector<float> convert(const unsigned char* data, size_t count, SampleType t, bool swap) {
-  std::vector<float> out(count);
-  const size_t sb = sample_bytes(t);
-  for (size_t i = 0; i < count; ++i) {
-    const unsigned char* p = data + i * sb;
-    switch (t) {
-      case SampleType::u8:
-        out[i] = load_one<uint8_t>(p, false);
-        break;
-      case SampleType::i8:
-        out[i] = load_one<int8_t>(p, false);
-        break;
-      case SampleType::u16:
-        out[i] = load_one<uint16_t>(p, swap);
-        break;
-      case SampleType::i16:
-        out[i] = load_one<int16_t>(p, swap);
-        break;
-      case SampleType::u32:
-        out[i] = load_one<uint32_t>(p, swap);
-        break;
-      case SampleType::i32:
-        out[i] = load_one<int32_t>(p, swap);
-        break;
-      case SampleType::f32:
-        out[i] = load_one<float>(p, swap);
-        break;
-      case SampleType::f64:
-        out[i] = load_one<double>(p, swap);
-        break;
-    }
+// Sample i of `data` in double: every type's values exactly (a float64 beyond fp32's range is
+// still finite here).
+double raw_sample(const unsigned char* data, size_t i, SampleType t, bool swap) {
+  const unsigned char* p = data + i * sample_bytes(t);
+  switch (t) {
+    case SampleType::u8:
+      return load_one<uint8_t>(p, false);
+    case SampleType::i8:
+      return load_one<int8_t>(p, false);
+    case SampleType::u16:
+      return load_one<uint16_t>(p, swap);
+    case SampleType::i16:
+      return load_one<int16_t>(p, swap);
+    case SampleType::u32:
+      return load_one<uint32_t>(p, swap);
+    case SampleType::i32:
+      return load_one<int32_t>(p, swap);
+    case SampleType::f32:
+      return load_one<float>(p, swap);
+    case SampleType::f64:
+      return load_one<double>(p, swap);
   }
-  return out;
+  return 0;
 }
 
-void finish(ScalarVolume& v, const std::string& where) {
+// Whether raw samples in [lo, hi] can be fp32 as they are: raymarch normalises in fp32 by
+// (v - lo) * (1 / (hi - lo)), which overflows beyond 2^64 (1 / (hi - lo) turns denormal, which
+// GPUs flush to 0: a black image), loses the range below 2^-64 (denormal differences), and has
+// fewer than 2^12 steps across a range narrower than 2^-12 of the values' magnitude.
+bool fits_fp32(double lo, double hi) {
+  const double mag = std::max(std::abs(lo), std::abs(hi)), width = hi - lo;
+  if (mag > 0x1p64) return false;
+  if (width == 0) return lo == 0 || mag >= 0x1p-64;
+  return width >= 0x1p-64 && width >= mag * 0x1p-12;
+}
+
+// Two passes over `raw(i)`: the range in double, then the fp32 samples (normalised in double
+// when fp32 cannot hold the range), so no copy of the volume in double is made.
+template <class Raw>
+void store(ScalarVolume& v, size_t count, Raw raw, const std::string& where) {
   size_t bad = 0;
-  v.min = INFINITY;
-  v.max = -INFINITY;
-  for (float x : v.values) {
+  double lo = INFINITY, hi = -INFINITY;
+  for (size_t i = 0; i < count; ++i) {
+    const double x = raw(i);
     if (!std::isfinite(x)) {
       ++bad;
       continue;
     }
-    v.min = std::min(v.min, x);
-    v.max = std::max(v.max, x);
+    lo = std::min(lo, x);
+    hi = std::max(hi, x);
   }
   if (bad)
     throw Error("", where, fmt::format("{} samples are NaN or infinite", bad),
                 "give a volume of finite values");
+  v.min = lo;
+  v.max = hi;
+  v.normalised = !fits_fp32(lo, hi);
+  v.values.resize(count);
+  if (!v.normalised) {
+    for (size_t i = 0; i < count; ++i) v.values[i] = float(raw(i));
+    return;
+  }
+  // Halves keep hi - lo finite near +-DBL_MAX; whole values keep denormal differences exact.
+  const bool halve = !std::isfinite(hi - lo);
+  const double a = halve ? lo / 2 : lo, width = halve ? hi / 2 - lo / 2 : hi - lo;
+  for (size_t i = 0; i < count; ++i) {
+    const double x = halve ? raw(i) / 2 : raw(i);
+    v.values[i] = width > 0 ? float((x - a) / width) : (x != 0 ? 1.0f : 0.0f);
+  }
+}
+
+void store_bytes(ScalarVolume& v, const unsigned char* data, size_t count, SampleType t, bool swap,
+                 const std::string& where) {
+  store(
+      v, count, [&](size_t i) { return raw_sample(data, i, t, swap); }, where);
+}
+
+void check_spacing(const ScalarVolume& v, const std::string& where) {
   for (float s : {v.spacing.x, v.spacing.y, v.spacing.z})
     if (!std::isfinite(s) || !(s > 0))
       throw_invalid(where, "spacing",
@@ -216,6 +244,11 @@ void check_raw_size(uint64_t have, uint64_t need, const std::string& where, UVec
 
 }  // namespace
 
+void set_samples(ScalarVolume& v, std::span<const double> raw, const std::string& where) {
+  store(
+      v, raw.size(), [&](size_t i) { return raw[i]; }, where);
+}
+
 SampleType parse_sample_type(const std::string& name) {
   static const std::map<std::string, SampleType> m = {
       {"uint8", SampleType::u8},    {"u8", SampleType::u8},      {"int8", SampleType::i8},
@@ -260,9 +293,9 @@ ScalarVolume load_raw(const std::string& path, UVec3 dims, SampleType type, bool
   ScalarVolume v;
   v.dims = dims;
   v.spacing = spacing;
-  v.values = convert(reinterpret_cast<const unsigned char*>(data.data()), voxel_count(dims), type,
-                     big_endian);
-  finish(v, where);
+  store_bytes(v, reinterpret_cast<const unsigned char*>(data.data()), voxel_count(dims), type,
+              big_endian, where);
+  check_spacing(v, where);
   return v;
 }
 
@@ -303,8 +336,8 @@ ScalarVolume load_nrrd(const std::string& path) {
     check_raw_size(data.size() - std::min(start, data.size()), bytes, dwhere, h.dims, h.type,
                    "sizes");
     const std::string payload = data.read(start, bytes, "sizes");
-    v.values = convert(reinterpret_cast<const unsigned char*>(payload.data()), count, h.type,
-                       h.big_endian);
+    store_bytes(v, reinterpret_cast<const unsigned char*>(payload.data()), count, h.type,
+                h.big_endian, where);
   } else {
     start = checked_add(start, uint64_t(h.byte_skip), dwhere, "byte skip");
     const uint64_t have = data.size() - std::min(start, data.size());
@@ -319,9 +352,9 @@ ScalarVolume load_nrrd(const std::string& path) {
       throw_invalid(dwhere, "sizes", h.sizes_text,
                     fmt::format("consistent with the data: {} values, the sizes need {}",
                                 vals.size(), count));
-    v.values.assign(vals.begin(), vals.end());
+    set_samples(v, vals, where);
   }
-  finish(v, where);
+  check_spacing(v, where);
   return v;
 }
 
@@ -437,8 +470,8 @@ ScalarVolume load_vti(const std::string& path, const std::string& array) {
       throw_invalid(where, "WholeExtent", ia["WholeExtent"],
                     fmt::format("consistent with the data: {} values, the extent needs {}",
                                 vals.size(), count));
-    v.values.assign(vals.begin(), vals.end());
-    finish(v, where);
+    set_samples(v, vals, where);
+    check_spacing(v, where);
     return v;
   } else if (format == "binary") {
     bytes = base64_decode(inline_data, where);
@@ -480,8 +513,8 @@ ScalarVolume load_vti(const std::string& path, const std::string& array) {
   if (declared != data_bytes(v.dims, type) || bytes.size() - header_bytes < declared)
     size_mismatch(where, v.dims, type, std::min<uint64_t>(declared, bytes.size() - header_bytes),
                   "WholeExtent");
-  v.values = convert(bytes.data() + header_bytes, count, type, big);
-  finish(v, where);
+  store_bytes(v, bytes.data() + header_bytes, count, type, big, where);
+  check_spacing(v, where);
   return v;
 }
 
@@ -491,8 +524,17 @@ VolumeDesc volume_desc(const ScalarVolume& v) {
   d.box_min = v.origin;
   d.box_max = {v.origin.x + v.spacing.x * v.dims.x, v.origin.y + v.spacing.y * v.dims.y,
                v.origin.z + v.spacing.z * v.dims.z};
-  d.value_min = v.min;
-  d.value_max = v.max > v.min ? v.max : v.min + 1.0f;
+  const double lo = v.normalised ? 0.0 : v.min, hi = v.normalised ? 1.0 : v.max;
+  if (hi > lo) {
+    d.value_min = float(lo);
+    d.value_max = float(hi);
+  } else {
+    // Constant c, held as it is (fits_fp32: |c| in [2^-64, 2^64], or 0): c at the top of
+    // [c - |c|, c]. A normalised constant holds 1 in [0, 1], the same place.
+    const double c = lo;
+    d.value_min = c == 0 ? 0.0f : float(c - std::abs(c));
+    d.value_max = c == 0 ? 1.0f : float(c);
+  }
   return d;
 }
 

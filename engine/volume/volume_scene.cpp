@@ -167,7 +167,7 @@ class VolumeFileScene final : public scene::SceneInstance {
   VolumeRender render_;
   Buffer<Real> volume_;
   VolumeDesc desc_;
-  float min_ = 0, max_ = 0;
+  double min_ = 0, max_ = 0;  // the raw range, for the title
   bool loaded_fresh_ = false;  // read by the constructor: the first `load` stage has nothing to do
   double time_s_ = 0;
 };

@@ -213,6 +213,7 @@ def make_volume_desc(dims: UVec3, box_min: Vec3, box_max: Vec3, value_min: float
 class CrossCheckReport:
     passed: bool
     failures: int
+    not_compared: int
     scene: str
     backend: str
     device: str

@@ -128,6 +128,9 @@ py::dict row_dict(const verify::CheckRow& r) {
   d["tolerance"] = r.tolerance;
   d["numbers"] = r.numbers;
   d["error"] = r.error;
+  d["not_compared"] = r.not_compared;
+  d["refused_by"] = r.refused_by;
+  d["advice"] = r.advice;
   return d;
 }
 
@@ -139,6 +142,9 @@ void bind_verify(py::module_& m) {
                                "devices, the errors and the tolerances.")
       .def_property_readonly("passed", &CrossCheckReport::pass)
       .def_property_readonly("failures", &CrossCheckReport::failures)
+      .def_property_readonly("not_compared", &CrossCheckReport::not_compared,
+                             "Kernels a backend refused (e.g. a buffer over its limit): not "
+                             "compared, counted apart from failures.")
       .def_readonly("scene", &CrossCheckReport::scene)
       .def_readonly("backend", &CrossCheckReport::backend)
       .def_readonly("device", &CrossCheckReport::device)
@@ -158,7 +164,8 @@ void bind_verify(py::module_& m) {
       .def("__str__", &verify::format_report)
       .def("__repr__", [](const CrossCheckReport& r) {
         return fmt::format("<CrossCheckReport {} vs {}: {} of {} kernels agree>", r.backend,
-                           r.reference, r.rows.size() - r.failures(), r.rows.size());
+                           r.reference, r.rows.size() - r.failures() - r.not_compared(),
+                           r.rows.size());
       });
 
   m.def("cross_check", &check_kernels, py::arg("kernels"), py::arg("backend"), py::arg("reference"),

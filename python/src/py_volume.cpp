@@ -29,21 +29,18 @@ volume::ScalarVolume volume_of(const py::array& a, Vec3f origin, Vec3f spacing) 
     if (a.shape(d) < 2 || a.shape(d) > 8192)
       bad_argument(what, fmt::format("shape[{}]", d), std::to_string(a.shape(d)),
                    "from 2 to 8192 samples");
-  auto f = py::array_t<float, py::array::c_style | py::array::forcecast>::ensure(a);
+  // Read as double, so a float64 array keeps its range (1e-300, beyond FLT_MAX) until the engine
+  // normalises it.
+  auto f = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(a);
   volume::ScalarVolume v;
   v.dims = {uint32_t(a.shape(2)), uint32_t(a.shape(1)), uint32_t(a.shape(0))};
   v.origin = origin;
   v.spacing = spacing;
-  v.values.assign(f.data(), f.data() + f.size());
-  v.min = v.max = v.values[0];
-  for (size_t i = 0; i < v.values.size(); ++i) {
-    const float x = v.values[i];
-    if (!std::isfinite(x))
-      bad_argument(what, "value", fmt::format("element {} is {}", i, x),
+  for (size_t i = 0; i < size_t(f.size()); ++i)
+    if (!std::isfinite(f.data()[i]))
+      bad_argument(what, "value", fmt::format("element {} is {}", i, f.data()[i]),
                    "finite (no NaN or infinity)");
-    v.min = std::min(v.min, x);
-    v.max = std::max(v.max, x);
-  }
+  volume::set_samples(v, std::span<const double>(f.data(), size_t(f.size())), what);
   return v;
 }
 
@@ -132,13 +129,15 @@ void bind_volume(py::module_& m) {
         info["spacing"] = py::cast(v.spacing);
         info["min"] = v.min;
         info["max"] = v.max;
+        info["normalised"] = v.normalised;
         return py::make_tuple(a, info);
       },
       py::arg("file"), py::arg("dims") = std::vector<uint32_t>{}, py::arg("type") = "",
       py::arg("spacing") = std::vector<float>{}, py::arg("big_endian") = false,
       py::arg("array") = "",
       "Reads a volume file as `masav volume` does (.nrrd/.nhdr, .vti, or raw with dims and "
-      "type): returns (values (Z, Y, X) float32, {origin, spacing, min, max}).");
+      "type): returns (values (Z, Y, X) float32, {origin, spacing, min, max, normalised}); "
+      "normalised: the values are (raw - min) / (max - min), a range float32 cannot hold.");
   m.def(
       "transfer_function",
       [](const std::string& file, uint32_t size) {
