@@ -44,6 +44,7 @@ struct SphOptions {
   uint64_t seed = 1;
   uint32_t block_steps = 8;
   bool quiet = false;
+  bool overwrite = false;
   uint64_t checkpoint_every = 0;  // 0: only on an interrupt and at the end (with a directory)
   std::string checkpoint_dir, restart;
 };
@@ -212,6 +213,9 @@ SphRunOptions run_options(const SphOptions& o) {
   r.checkpoint_dir = o.checkpoint_dir;
   r.checkpoint_every = o.checkpoint_every;
   r.progress_every = o.quiet ? 0 : 100;
+  r.overwrite = o.overwrite;
+  r.manifest = {{"command", "sph"}, {"preset", o.preset}};
+  if (!o.restart.empty()) r.manifest.emplace_back("restart", o.restart);
   return r;
 }
 
@@ -363,6 +367,9 @@ void add_sph_command(CLI::App& app) {
                     "unstable block is replayed step by step)",
                     1u, SphSimulation::kMaxBlockSteps);
   cmd->add_flag("--quiet,-q", o.quiet, "no progress lines");
+  cmd->add_flag("--overwrite", o.overwrite,
+                "remove an earlier run's snapshots and last good state from --out first (only "
+                "the names a run writes)");
   auto* dir = cmd->add_option("--checkpoint-dir", o.checkpoint_dir,
                               "write DIR/checkpoint.masav: every --checkpoint-every steps, on "
                               "Ctrl-C/SIGTERM and at the end (replaced atomically)");
