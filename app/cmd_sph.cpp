@@ -13,6 +13,7 @@
 #include <filesystem>
 #include <limits>
 #include <optional>
+#include <span>
 
 #include "app/commands.h"
 #include "app/interrupt.h"
@@ -219,9 +220,20 @@ SphRunOptions run_options(const SphOptions& o) {
   return r;
 }
 
+// Whether any rank was interrupted, decided once for every rank. The run's polls stop the ranks
+// together, but a signal that lands during the last block (or after it) is seen by no poll: on
+// rank 0 its own flag used to make the run "interrupted", on another rank it was lost and the
+// run exited 0. One more reduction here makes a signal on any rank count as one on rank 0; every
+// rank reaches it (none is left inside a collective when no error stopped the run).
+bool any_rank_interrupted(const SphRunResult& r, SphComm* comm) {
+  uint32_t flag = r.interrupted || interrupted() ? 1u : 0u;
+  if (comm) comm->max(std::span<uint32_t>(&flag, 1));
+  return flag != 0;
+}
+
 // The run's end: the failure and where its last good state went, the rates, dfsph's solves.
-// Returns the exit status.
-int report(const SphRunResult& r, SphSimulation& sim, const SphOptions& o) {
+// `stopped`: any_rank_interrupted. Returns the exit status.
+int report(const SphRunResult& r, SphSimulation& sim, const SphOptions& o, bool stopped) {
   if (r.error) {
     fmt::print(stderr, "masav: error: {}\n", *r.error);
     if (!r.last_good.empty())
@@ -250,7 +262,7 @@ int report(const SphRunResult& r, SphSimulation& sim, const SphOptions& o) {
         double(sim.dfsph_residual_reads()) / double(ss.steps), 100 * ss.last_density_error,
         100 * ss.last_divergence_error, ss.unconverged);
   if (r.error) return 1;
-  if (r.interrupted || interrupted()) {
+  if (stopped) {
     fmt::print(stderr, "masav: interrupted after step {}; every row and file written is complete\n",
                sim.steps());
     return 130;
@@ -305,7 +317,8 @@ int run_sph(const SphOptions& given) {
   events.interrupted = [] { return interrupted(); };
   const SphRunResult r = run.run(sim, events);
   if (sim.ranks() && !r.error) print_rank_table(sim, counters0, lead, r.wall_s, r.steps);
-  return lead ? report(r, sim, o) : (r.error ? 1 : 0);
+  const bool stopped = !r.error && any_rank_interrupted(r, comm);
+  return lead ? report(r, sim, o, stopped) : (r.error ? 1 : stopped ? 130 : 0);
 }
 
 }  // namespace
