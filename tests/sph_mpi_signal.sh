@@ -16,7 +16,7 @@ fail() { printf 'FAIL: %s\n' "$1"; [[ $# -gt 1 ]] && printf '%s\n' "$2"; fails=$
 # One block of 64 steps after the start's CSV row: the run's only poll of the interrupt flag is
 # before it, so a signal during it is the case the ranks used to disagree on (rank 0's counted,
 # another rank's was lost and mpirun exited 0).
-scene=(sph --backend cpu --preset dambreak --particles 2000 --steps 64 --block-steps 64
+scene=(sph --backend cpu --preset dambreak --particles 8000 --steps 64 --block-steps 64
   --diag-every 64 -q)
 declare -A status
 for rank in 0 1; do
@@ -28,7 +28,7 @@ for rank in 0 1; do
     [[ -f $partial && $(wc -l <"$partial") -ge 2 ]] && break  # the header and step 0's row
     sleep 0.05
   done
-  sleep 0.3  # past the poll right after that row, well inside the block of 64 steps
+  sleep 0.1  # past the poll right after that row (immediate), well inside the block (~1 s idle)
   # The rank's own process (mpirun's command line names the directory too, but not its rank).
   pid=""
   for p in $(pgrep -f -- "--checkpoint-dir $d"); do
