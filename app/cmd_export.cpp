@@ -1,10 +1,13 @@
 // `masav export scene.toml`: the scene's state at a frame, for other tools -- particles as VTK
 // PolyData (.vtp, ParaView) with their scalar, the resolved scene as TOML, the stage counters as
-// CSV. Runs the kernels only (no renderer, no Vulkan needed with --backend cpu).
+// CSV. Runs the kernels only (no renderer, no Vulkan needed with --backend cpu). The export owns
+// its directory as a run does (engine/io/run_outputs.h): an earlier export's files there are
+// refused, or with --overwrite replaced by the new set (the old ones go once it is complete).
 #include <fmt/format.h>
 
 #include <cmath>
 #include <optional>
+#include <set>
 
 #include "app/commands.h"
 #include "app/progress.h"
@@ -12,6 +15,7 @@
 #include "engine/core/error.h"
 #include "engine/io/csv_writer.h"
 #include "engine/io/output_lock.h"
+#include "engine/io/run_outputs.h"
 #include "engine/io/staged_files.h"
 #include "engine/io/vtk_writer.h"
 #include "engine/scene/scene.h"
@@ -27,7 +31,13 @@ struct ExportOptions {
   BackendChoice choice;
   int frame = 0;
   std::string out = "out/export";
+  bool overwrite = false;
 };
+
+// Every name an export writes: another frame's .vtp beside this scene.toml would mix two states.
+OutputNames export_output_names(const std::string& type) {
+  return {{"scene.toml", "stages.csv", type + "_frame#.vtp", RunManifest::kFileName}};
+}
 
 // `count` reals (f32 or f64 as the backend stores them), as floats.
 std::vector<float> download_reals(Backend& b, const BufferImpl& buf, size_t count) {
@@ -71,6 +81,8 @@ int run_export(const ExportOptions& o) {
   scene::SceneFile f = load_scene(o.scene);
   ensure_writable_dir(o.out, "--out");
   const OutputLock lock(o.out, "--out");
+  const OutputNames names = export_output_names(f.type);
+  if (!o.overwrite) refuse_outputs(o.out, names, "--out");
   auto backend = open_backend(o.choice);
   const scene::SceneType& type = scene::find_scene_type(f.type);
   auto s = type.create(*backend, f.params);
@@ -94,6 +106,7 @@ int run_export(const ExportOptions& o) {
   // The files appear together or not at all: never a new scene.toml beside an old .vtp.
   StagedFiles files(o.out);
   std::vector<std::string> wrote;
+  std::set<std::string> written = {"scene.toml", "stages.csv"};
   write_file_atomic(files.stage("scene.toml"), scene::scene_to_toml(s->params(), false));
   wrote.push_back(o.out + "/scene.toml");
   if (v.points && v.points->positions) {
@@ -109,6 +122,7 @@ int run_export(const ExportOptions& o) {
           {pl.scalar_key.empty() ? "scalar" : pl.scalar_key, 1, scalar_values(*backend, pl, pos)});
     const std::string name = fmt::format("{}_frame{:05d}.vtp", f.type, o.frame);
     write_vtp(files.stage(name), xyz, arrays);
+    written.insert(name);
     wrote.push_back(fmt::format("{}/{} ({} points{})", o.out, name, pl.count,
                                 arrays.empty() ? "" : ", point array '" + arrays[0].name + "'"));
   }
@@ -119,6 +133,15 @@ int run_export(const ExportOptions& o) {
   csv.write(files.stage("stages.csv"));
   wrote.push_back(o.out + "/stages.csv");
   files.commit();
+  std::set<std::string> keep = written;
+  keep.insert(RunManifest::kFileName);  // replaced below, atomically
+  remove_outputs(o.out, names, keep);  // none without --overwrite (refused above)
+  RunManifest manifest(o.out, {{"command", "export"},
+                               {"scene", f.source},
+                               {"type", f.type},
+                               {"frame", std::to_string(o.frame)}});
+  for (const std::string& name : written) manifest.add(name);
+  manifest.write("completed");
   for (const auto& w : wrote) fmt::print("wrote {}\n", w);
   return 0;
 }
@@ -133,6 +156,8 @@ void add_export_command(CLI::App& app) {
                                 o, run_export);
   add_ranged_option(*cmd, "--frame", o.frame, "frame to export (0: the first)", 0, 10000000);
   cmd->add_option("--out,-o", o.out, "output directory")->capture_default_str();
+  cmd->add_flag("--overwrite", o.overwrite,
+                "replace an earlier export's files in --out (only the names an export writes)");
 }
 
 }  // namespace masav::app

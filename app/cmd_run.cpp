@@ -1,6 +1,8 @@
 // `masav run scene.toml`: the scene rendered headless (offscreen Vulkan, lavapipe included) to
 // PNG frames, after the cross-check; an MP4 when ffmpeg is present. Every file is written to a
-// temporary name and renamed, and Ctrl-C stops after the frame in progress.
+// temporary name and renamed, and Ctrl-C stops after the frame in progress. The run owns its
+// directory: an earlier run's files of its names are refused (removed with --overwrite), and
+// OUT/manifest.json lists what this run wrote (engine/io/run_outputs.h).
 #include <fmt/format.h>
 
 #include <chrono>
@@ -16,6 +18,7 @@
 #include "app/vocabulary.h"
 #include "engine/core/error.h"
 #include "engine/io/output_lock.h"
+#include "engine/io/run_outputs.h"
 #include "engine/util/json_writer.h"
 #include "render/png_queue.h"
 #include "render/scene_player.h"
@@ -32,10 +35,16 @@ struct RunOptions {
   bool no_verify = false;
   bool no_video = false;
   double video_timeout = 0;  // s; 0: video_time_limit(frames)
+  bool overwrite = false;
 };
 
 std::string frame_name(int i) {
   return fmt::format("frame_{:05d}.png", i);
+}
+
+// Every name a run writes into its directory (the video is named after the scene's type).
+OutputNames run_output_names(const std::string& type) {
+  return {{"frame_#.png", "scene.toml", "verify.json", type + ".mp4", RunManifest::kFileName}};
 }
 
 int run(const RunOptions& o) {
@@ -45,6 +54,9 @@ int run(const RunOptions& o) {
   const int frames = o.frames > 0 ? o.frames : int(p0.get_int("run.frames"));
   ensure_writable_dir(o.out, "--out");
   const OutputLock lock(o.out, "--out");  // two runs into one directory would mix their frames
+  // and so would two in turn: an earlier run's frames are refused, or removed with --overwrite
+  claim_outputs(o.out, run_output_names(file.type), o.overwrite, "--out");
+  RunManifest manifest(o.out, {{"command", "run"}, {"scene", file.source}, {"type", file.type}});
   install_interrupt_handler();
 
   render::PlayerOptions po;
@@ -60,11 +72,13 @@ int run(const RunOptions& o) {
              player.render_device().ctx().caps().device_name,
              player.render_device().shared() ? " (same device: no copies)" : " (copies)");
   write_file_atomic(o.out + "/scene.toml", scene::scene_to_toml(p, false));
+  manifest.add("scene.toml");
 
   if (!o.no_verify && p.get_flag("verify.enabled")) {
     const verify::CrossCheckReport r = player.verify();
     fmt::print("{}", verify::format_report(r));
     write_file_atomic(o.out + "/verify.json", verify::report_json(r));
+    manifest.add("verify.json");
     // A kernel not compared stops the run too: the render would run what nobody checked (and
     // the refused buffer would refuse the render as well).
     if (!r.pass() && r.failures() == 0) {
@@ -72,6 +86,7 @@ int run(const RunOptions& o) {
                  "masav: error: cross-check incomplete: {}; rendering stopped (report: "
                  "{}/verify.json)\n",
                  verify::failure_summary(r), o.out);
+      manifest.write("failed");
       return kExitNotCompared;
     }
     if (!r.pass())
@@ -111,6 +126,7 @@ int run(const RunOptions& o) {
     req.readback = true;
     player.draw(req);
     draw_s += lap(t);
+    manifest.add(frame_name(i));
     pngs.push(o.out + "/" + frame_name(i), player.renderer().width(), player.renderer().height(),
               player.renderer().pixels());
     png_s += lap(t);  // waiting for the encoder (it works while the next frame is drawn)
@@ -138,15 +154,20 @@ int run(const RunOptions& o) {
                "masav: interrupted after {} of {} frames; every file written is "
                "complete\n",
                written, frames);
+    manifest.write("interrupted");
     return 130;
   }
-  if (o.no_video) return 0;
-  const std::string ffmpeg = find_ffmpeg();
-  if (ffmpeg.empty())
-    fmt::print("note: ffmpeg not found: PNG frames only (install ffmpeg for an MP4)\n");
-  else if (written > 0)
-    write_video(ffmpeg, o.out, player.file().type, fps,
-                o.video_timeout > 0 ? o.video_timeout : video_time_limit(uint64_t(written)));
+  if (!o.no_video) {
+    const std::string ffmpeg = find_ffmpeg();
+    if (ffmpeg.empty())
+      fmt::print("note: ffmpeg not found: PNG frames only (install ffmpeg for an MP4)\n");
+    else if (written > 0 &&
+             write_video(ffmpeg, o.out, player.file().type, fps,
+                         o.video_timeout > 0 ? o.video_timeout
+                                             : video_time_limit(uint64_t(written))))
+      manifest.add(player.file().type + ".mp4");
+  }
+  manifest.write("completed");
   return 0;
 }
 
@@ -170,6 +191,9 @@ void add_run_command(CLI::App& app) {
                   "seconds ffmpeg may take before it is killed (the frames stay); 0: 60 s plus "
                   "0.5 s per frame")
       ->check(number_in(0.0, 86400.0));
+  cmd->add_flag("--overwrite", o.overwrite,
+                "remove an earlier run's frames, video and reports from --out first (only the "
+                "names a run writes)");
 }
 
 }  // namespace masav::app

@@ -13,6 +13,7 @@
 #include <filesystem>
 #include <limits>
 #include <optional>
+#include <span>
 
 #include "app/commands.h"
 #include "app/interrupt.h"
@@ -44,6 +45,7 @@ struct SphOptions {
   uint64_t seed = 1;
   uint32_t block_steps = 8;
   bool quiet = false;
+  bool overwrite = false;
   uint64_t checkpoint_every = 0;  // 0: only on an interrupt and at the end (with a directory)
   std::string checkpoint_dir, restart;
 };
@@ -212,12 +214,26 @@ SphRunOptions run_options(const SphOptions& o) {
   r.checkpoint_dir = o.checkpoint_dir;
   r.checkpoint_every = o.checkpoint_every;
   r.progress_every = o.quiet ? 0 : 100;
+  r.overwrite = o.overwrite;
+  r.manifest = {{"command", "sph"}, {"preset", o.preset}};
+  if (!o.restart.empty()) r.manifest.emplace_back("restart", o.restart);
   return r;
 }
 
+// Whether any rank was interrupted, decided once for every rank. The run's polls stop the ranks
+// together, but a signal that lands during the last block (or after it) is seen by no poll: on
+// rank 0 its own flag used to make the run "interrupted", on another rank it was lost and the
+// run exited 0. One more reduction here makes a signal on any rank count as one on rank 0; every
+// rank reaches it (none is left inside a collective when no error stopped the run).
+bool any_rank_interrupted(const SphRunResult& r, SphComm* comm) {
+  uint32_t flag = r.interrupted || interrupted() ? 1u : 0u;
+  if (comm) comm->max(std::span<uint32_t>(&flag, 1));
+  return flag != 0;
+}
+
 // The run's end: the failure and where its last good state went, the rates, dfsph's solves.
-// Returns the exit status.
-int report(const SphRunResult& r, SphSimulation& sim, const SphOptions& o) {
+// `stopped`: any_rank_interrupted. Returns the exit status.
+int report(const SphRunResult& r, SphSimulation& sim, const SphOptions& o, bool stopped) {
   if (r.error) {
     fmt::print(stderr, "masav: error: {}\n", *r.error);
     if (!r.last_good.empty())
@@ -251,7 +267,7 @@ int report(const SphRunResult& r, SphSimulation& sim, const SphOptions& o) {
         double(sim.dfsph_residual_reads()) / double(ss.steps), 100 * ss.last_density_error,
         100 * ss.last_divergence_error, ss.unconverged);
   if (r.error) return 1;
-  if (r.interrupted || interrupted()) {
+  if (stopped) {
     fmt::print(stderr, "masav: interrupted after step {}; every row and file written is complete\n",
                sim.steps());
     return 130;
@@ -306,7 +322,8 @@ int run_sph(const SphOptions& given) {
   events.interrupted = [] { return interrupted(); };
   const SphRunResult r = run.run(sim, events);
   if (sim.ranks() && !r.error) print_rank_table(sim, counters0, lead, r.wall_s, r.steps);
-  return lead ? report(r, sim, o) : (r.error ? 1 : 0);
+  const bool stopped = !r.error && any_rank_interrupted(r, comm);
+  return lead ? report(r, sim, o, stopped) : (r.error ? 1 : stopped ? 130 : 0);
 }
 
 }  // namespace
@@ -368,6 +385,9 @@ void add_sph_command(CLI::App& app) {
                     "unstable block is replayed step by step)",
                     1u, SphSimulation::kMaxBlockSteps);
   cmd->add_flag("--quiet,-q", o.quiet, "no progress lines");
+  cmd->add_flag("--overwrite", o.overwrite,
+                "remove an earlier run's snapshots and last good state from --out first (only "
+                "the names a run writes)");
   auto* dir = cmd->add_option("--checkpoint-dir", o.checkpoint_dir,
                               "write DIR/checkpoint.masav: every --checkpoint-every steps, on "
                               "Ctrl-C/SIGTERM and at the end (replaced atomically)");

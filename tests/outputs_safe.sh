@@ -109,7 +109,7 @@ out=$("$m" export "${small[@]}" --out "$work/locked" 2>&1) || fail "stale lock n
 "$m" export "${small[@]}" --set particles.seed=1 --out "$work/set" >/dev/null 2>&1 ||
   fail "export: first set"
 before=$(cd "$work/set" && md5sum -- * | sort)
-out=$(trap '' XFSZ; ulimit -f 8; "$m" export --backend cpu --set particles.count=20000 \
+out=$(trap '' XFSZ; ulimit -f 8; "$m" export --overwrite --backend cpu --set particles.count=20000 \
   --set particles.seed=2 --out "$work/set" 2>&1)
 rc=$?
 [[ $rc -ne 0 && $rc -lt 128 ]] || fail "export past the size limit: exit $rc" "$out"
@@ -118,7 +118,7 @@ after=$(cd "$work/set" && md5sum -- * | sort)
 [[ "$before" == "$after" ]] || fail "export: the old set changed" "$before
 --- now ---
 $after"
-[[ -z "$(ls -A "$work/set" | grep -v -E '^(scene.toml|stages.csv|particles_frame00000.vtp)$')" ]] ||
+[[ -z "$(ls -A "$work/set" | grep -v -E '^(scene.toml|stages.csv|particles_frame00000.vtp|manifest.json)$')" ]] ||
   fail "export: temporary files left" "$(ls -A "$work/set")"
 
 # --- atom: --out naming a file is refused before any computing; a failed write leaves nothing.

@@ -10,6 +10,7 @@
 #include "engine/core/error.h"
 #include "engine/io/csv_stream.h"
 #include "engine/io/output_lock.h"
+#include "engine/io/run_outputs.h"
 #include "engine/io/writable_paths.h"
 #include "engine/sph/sph_checkpoint.h"
 #include "engine/sph/sph_diagnostics.h"
@@ -21,7 +22,19 @@ namespace masav {
 struct SphRun::Outputs {
   std::optional<OutputLock> out_lock, checkpoint_lock;
   std::optional<CsvStream> csv;
+  std::optional<RunManifest> manifest;  // of out_dir
 };
+
+namespace {
+
+// Every name a run writes into out_dir: snapshots and their pieces and index, the last good
+// state, the manifest (never the checkpoint, which a restart may be reading from there).
+OutputNames sph_output_names(const std::string& name) {
+  return {{name + "_#.vtp", name + "_#_r#.vtp", name + "_#.pvtp", name + "_last_good.vtp",
+           name + "_last_good_r#.vtp", name + "_last_good.pvtp", RunManifest::kFileName}};
+}
+
+}  // namespace
 
 std::string SphRun::checkpoint_path(const std::string& dir) {
   return (std::filesystem::path(dir) / "checkpoint.masav").string();
@@ -37,6 +50,9 @@ SphRun::SphRun(const SphRunOptions& o, SphComm* comm)
   if (!o_.out_dir.empty()) {
     ensure_writable_dir(o_.out_dir, "--out");
     outputs_->out_lock.emplace(o_.out_dir, "--out");
+    // Before any rank writes a piece: the simulation's set-up, collective, comes after this.
+    claim_outputs(o_.out_dir, sph_output_names(o_.name), o_.overwrite, "--out");
+    outputs_->manifest.emplace(o_.out_dir, o_.manifest);
   }
   // Two runs checkpointing into one directory would overwrite each other's state: held too,
   // unless it is the output directory, already held.
@@ -70,7 +86,9 @@ SphRunResult SphRun::run(SphSimulation& sim, const SphRunEvents& events) {
   // One .vtp of every particle; on several ranks each rank's piece and rank 0's .pvtp index.
   auto snapshot = [&](const std::optional<SphState>& all, const std::string& tag) {
     if (!comm_) {
-      const std::string path = (fs::path(o_.out_dir) / fmt::format("{}_{}.vtp", o_.name, tag)).string();
+      const std::string file = fmt::format("{}_{}.vtp", o_.name, tag);
+      const std::string path = (fs::path(o_.out_dir) / file).string();
+      if (outputs_->manifest) outputs_->manifest->add(file);
       write_sph_vtp(path, all ? *all : sim.download());
       return path;
     }
@@ -80,7 +98,12 @@ SphRunResult SphRun::run(SphSimulation& sim, const SphRunEvents& events) {
     write_sph_vtp((fs::path(o_.out_dir) / piece(comm_->rank())).string(), mine, ids);
     std::vector<std::string> pieces;
     for (int r = 0; r < comm_->size(); ++r) pieces.push_back(piece(r));
-    const std::string path = (fs::path(o_.out_dir) / fmt::format("{}_{}.pvtp", o_.name, tag)).string();
+    const std::string index = fmt::format("{}_{}.pvtp", o_.name, tag);
+    const std::string path = (fs::path(o_.out_dir) / index).string();
+    if (outputs_->manifest) {  // rank 0's: every rank's piece, and the index
+      for (const std::string& p : pieces) outputs_->manifest->add(p);
+      outputs_->manifest->add(index);
+    }
     if (lead_) write_sph_pvtp(path, pieces);
     return path;
   };
@@ -159,6 +182,10 @@ SphRunResult SphRun::run(SphSimulation& sim, const SphRunEvents& events) {
   result.steps = sim.steps() - steps0;
   result.substeps = sim.substeps() - substeps0;
   result.csv_rows = outputs_->csv ? outputs_->csv->rows() : 0;
+  if (outputs_->manifest)
+    outputs_->manifest->write(result.error         ? "failed"
+                              : result.interrupted ? "interrupted"
+                                                   : "completed");
   return result;
 }
 

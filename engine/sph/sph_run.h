@@ -10,7 +10,9 @@
 //     a snapshot, a checkpoint, a progress report), so the events fall on the same steps however
 //     the run is split by restarts, and an interrupt is seen within a block;
 //   - writes a checkpoint every k steps, at the end and when interrupted (atomically replaced);
-//   - on an error of the simulation, writes the last good state beside the snapshots.
+//   - on an error of the simulation, writes the last good state beside the snapshots;
+//   - owns out_dir: an earlier run's files of its names are refused (removed with overwrite),
+//     and out_dir/manifest.json lists the files this run wrote and how it ended.
 // On several ranks every rank takes part in each gather; rank 0 writes the CSV, the checkpoints
 // and the .pvtp index, each rank its snapshot piece. Nothing here prints: events go to the
 // caller's callbacks.
@@ -20,6 +22,8 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "engine/sph/sph_comm.h"
 #include "engine/sph/sph_simulation.h"
@@ -38,6 +42,11 @@ struct SphRunOptions {
   std::string checkpoint_dir;  // DIR/checkpoint.masav; "" for none
   uint64_t checkpoint_every = 0;  // 0: only at the end and on an interrupt
   uint64_t progress_every = 100;  // steps between progress events; 0 for none
+  // An earlier run's snapshots and last good state in out_dir are refused unless this is set,
+  // and then removed (only those names: engine/io/run_outputs.h).
+  bool overwrite = false;
+  // What out_dir/manifest.json says the run was (command, preset, ...), beside its files.
+  std::vector<std::pair<std::string, std::string>> manifest;
 };
 
 struct SphRunEvents {
