@@ -33,7 +33,7 @@ grep -q "ffmpeg could not encode the video (killed after 1 s" <<<"$out" || fail 
 [[ $took -lt 60 ]] || fail "the run took $took s"
 pgrep -f "sleep 600" >/dev/null && { pkill -f "sleep 600"; fail "the hung ffmpeg was left running"; }
 fake 'exit 0'
-out=$(run "$work/hang" --no-video 2>&1) || fail "a second run into the same directory was refused: $out"
+out=$(run "$work/hang" --no-video --overwrite 2>&1) || fail "a second run into the same directory (lock held?) failed: $out"
 echo "after the hang, a second run into $work/hang: ok"
 
 # 2. A failing encoder.

@@ -72,6 +72,7 @@ struct RunArgs {
   std::optional<double> t_end;
   std::string csv, out_dir, checkpoint_dir;
   uint64_t diag_every = 1, vtp_every = 0, checkpoint_every = 0;
+  bool overwrite = false;
 };
 
 py::dict run(PySph& s, const RunArgs& a) {
@@ -95,6 +96,7 @@ py::dict run(PySph& s, const RunArgs& a) {
   o.vtp_every = a.vtp_every;
   o.checkpoint_dir = a.checkpoint_dir;
   o.checkpoint_every = a.checkpoint_every;
+  o.overwrite = a.overwrite;
   if (o.checkpoint_every && o.checkpoint_dir.empty())
     bad_argument("Sph.run", "checkpoint_every", std::to_string(o.checkpoint_every),
                  "0 without a checkpoint_dir");
@@ -221,16 +223,19 @@ void bind_sph(py::module_& m) {
           "run",
           [](PySph& s, std::optional<uint64_t> steps, std::optional<double> t_end, std::string csv,
              uint64_t diag_every, std::string out_dir, uint64_t vtp_every,
-             std::string checkpoint_dir, uint64_t checkpoint_every) {
+             std::string checkpoint_dir, uint64_t checkpoint_every, bool overwrite) {
             return run(s, {steps, t_end, std::move(csv), std::move(out_dir),
-                           std::move(checkpoint_dir), diag_every, vtp_every, checkpoint_every});
+                           std::move(checkpoint_dir), diag_every, vtp_every, checkpoint_every,
+                           overwrite});
           },
           py::arg("steps") = py::none(), py::arg("t_end") = py::none(), py::arg("csv") = "",
           py::arg("diag_every") = 1, py::arg("out_dir") = "", py::arg("vtp_every") = 0,
           py::arg("checkpoint_dir") = "", py::arg("checkpoint_every") = 0,
+          py::arg("overwrite") = false,
           "Further `steps`, or until the simulated time t_end (s), with the outputs of `masav "
-          "sph` (csv, out_dir + vtp_every, checkpoint_dir + checkpoint_every). Ctrl-C stops it "
-          "at a whole step and raises KeyboardInterrupt.")
+          "sph` (csv, out_dir + vtp_every, checkpoint_dir + checkpoint_every). An out_dir holding "
+          "an earlier run's snapshots is refused unless overwrite=True, which removes only those. "
+          "Ctrl-C stops it at a whole step and raises KeyboardInterrupt.")
       .def(
           "checkpoint",
           [](PySph& s, const std::string& dir) {

@@ -139,6 +139,17 @@ def test_run_to_a_time(cpu):
     assert sim.time >= 0.004 and sim.steps > 0
 
 
+def test_an_earlier_runs_snapshots_are_refused_unless_overwrite(cpu, tmp_path):
+    out = str(tmp_path / "snaps")
+    masav.Sph(cpu, **RUN).run(steps=4, out_dir=out, vtp_every=1)
+    (tmp_path / "snaps" / "notes.txt").write_text("mine")
+    with pytest.raises(masav.Error, match="earlier run"):
+        masav.Sph(cpu, **RUN).run(steps=2, out_dir=out, vtp_every=1)
+    masav.Sph(cpu, **RUN).run(steps=2, out_dir=out, vtp_every=1, overwrite=True)
+    assert len(glob.glob(os.path.join(out, "*.vtp"))) == 3  # steps 0, 1, 2 of the new run
+    assert (tmp_path / "snaps" / "notes.txt").read_text() == "mine"
+
+
 @pytest.mark.parametrize(
     "kwargs, message",
     [
