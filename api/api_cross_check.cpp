@@ -35,7 +35,8 @@ verify::CrossCheckReport cross_check(const std::vector<std::string>& kernels, Ba
   for (const std::string& name : names) {
     const verify::KernelCheckInputs ki = verify::kernel_check_inputs(
         kernel_named(name), options.points, options.seed, "masav::cross_check");
-    verify::CrossCheckReport r = verify::cross_check(backend, reference, {name}, ki.in);
+    verify::CrossCheckReport r = verify::cross_check(backend, reference, {name}, ki.in,
+                                                     options.inject_fault);
     if (all.rows.empty()) all = r, all.rows.clear();
     scenes.insert(ki.scene);
     for (auto& row : r.rows) all.rows.push_back(std::move(row));

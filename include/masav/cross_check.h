@@ -21,6 +21,9 @@ struct CrossCheckOptions {
   std::optional<uint32_t> points;
   /// Seed of the inputs.
   uint64_t seed = 1;
+  /// A kernel whose output `backend` perturbs during its own check (a test's way to see that
+  /// the check catches a mismatch); none by default.
+  std::optional<KernelId> inject_fault;
 };
 
 /// Checks `kernel` on `backend` against `reference`. Throws masav::Error for a kernel that does

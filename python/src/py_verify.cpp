@@ -6,11 +6,11 @@
 #include <pybind11/stl.h>
 
 #include <cstring>
-#include <set>
 
 #include "engine/verify/cross_check.h"
 #include "python/src/py_arrays.h"
 #include "registry/check_catalog.h"
+#include "masav/cross_check.h"
 #include "registry/kernel_check_inputs.h"
 #include "registry/scene_catalog.h"
 #include "registry/scene_file.h"
@@ -58,21 +58,15 @@ CrossCheckReport check_kernels(const py::object& kernels, PyBackend& a, PyBacken
     names = kernels.cast<std::vector<std::string>>();
   }
   if (names.empty()) bad_argument("masav.cross_check", "kernels", "[]", "at least one kernel");
-  const std::optional<KernelId> f = fault_of(fault);
-  return with_both(a, b, [&] {
-    CrossCheckReport all;
-    std::set<std::string> scenes;
-    for (const std::string& name : names) {
-      const verify::KernelCheckInputs ki =
-          verify::kernel_check_inputs(kernel_of(name), points, seed, "masav.cross_check");
-      CrossCheckReport r = verify::cross_check(*a.backend, *b.backend, {name}, ki.in, f);
-      if (all.rows.empty()) all = r, all.rows.clear();
-      scenes.insert(ki.scene);
-      for (auto& row : r.rows) all.rows.push_back(std::move(row));
-    }
-    for (const auto& s : scenes) all.scene += (all.scene.empty() ? "" : "+") + s;
-    return all;
-  });
+  // Refused here, so that the messages name Python's function.
+  for (const std::string& name : names) kernel_of(name);
+  if (points && *points == 0) bad_argument("masav.cross_check", "points", "0", "at least 1");
+  CrossCheckOptions options;
+  options.points = points;
+  options.seed = seed;
+  options.inject_fault = fault_of(fault);
+  return with_both(a, b,
+                   [&] { return masav::cross_check(names, *a.backend, *b.backend, options); });
 }
 
 CrossCheckReport check_scene(const py::object& scene, PyBackend& a,
