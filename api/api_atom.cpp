@@ -20,6 +20,7 @@ std::unique_ptr<atom::AtomScene> make_atom(Backend& backend, const AtomOptions& 
   o.seed = options.seed;
   o.volume_dims = options.volume_dims;
   o.use_cache = options.use_cache;
+  o.cache_dir = options.cache_dir;
   // The viewer where the camera is, as `masav atom` places it for the view.
   const float half = float(atom::box_half_width(o.state, o.box_probability));
   o.viewer = atom::view_eye(atom::parse_view(options.view), 1.9f * half * std::sqrt(3.0f));

@@ -10,10 +10,19 @@ const char* version() {
   return MASAV_LIBRARY_VERSION;
 }
 
+namespace {
+
+VulkanSettings vulkan_settings(const BackendOptions& o) {
+  return VulkanSettings{.validation = o.vulkan_validation, .loader = o.vulkan_loader};
+}
+
+}  // namespace
+
 std::unique_ptr<Backend> open_backend(const BackendOptions& o) {
   BackendRequest request;
   request.tuning = o.tuning;
-  return create_backend(o.name, o.device, request);
+  request.cache_dir = o.cache_dir;
+  return create_backend(o.name, o.device, request, vulkan_settings(o));
 }
 
 std::unique_ptr<Backend> open_backend(std::string_view name) {
@@ -22,6 +31,10 @@ std::unique_ptr<Backend> open_backend(std::string_view name) {
 
 std::vector<BackendStatus> backend_report() {
   return list_backends();
+}
+
+std::vector<BackendStatus> backend_report(const BackendOptions& options) {
+  return list_backends(vulkan_settings(options));
 }
 
 std::vector<std::string> usable_backends() {

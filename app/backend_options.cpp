@@ -1,6 +1,7 @@
 #include <fmt/format.h>
 
 #include "app/commands.h"
+#include "app/host_environment.h"
 #include "engine/core/error.h"
 #include "registry/backends.h"
 
@@ -35,7 +36,8 @@ std::unique_ptr<Backend> open_backend(const BackendChoice& choice) {
 
 std::unique_ptr<Backend> open_backend(const BackendChoice& choice, const std::string& name,
                                       const std::string& device) {
-  return create_backend(name, device, BackendRequest{.tuning = choice.tuning()});
+  const HostRequest request(host_environment(), choice.tuning());
+  return create_backend(name, device, request.get());
 }
 
 void add_fault_option(CLI::App& cmd, BackendChoice& choice) {

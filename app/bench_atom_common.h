@@ -9,6 +9,7 @@
 #include <string>
 
 #include "app/bench_common.h"
+#include "app/host_environment.h"
 #include "app/progress.h"
 #include "engine/atom/atom_scene.h"
 #include "engine/atom/orbital.h"
@@ -73,6 +74,7 @@ inline int for_each_thesis_row(
 inline atom::AtomSceneOptions bench_scene_options(const char* state, uint32_t particles,
                                                   uint32_t photons) {
   atom::AtomSceneOptions so;
+  so.cache_dir = host_environment().cache_dir().string();  // the table as `masav atom` keeps it
   so.state = atom::preset_state(state);
   so.particles = particles;
   so.scatter.photons_per_row = photons;

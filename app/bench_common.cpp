@@ -8,6 +8,7 @@
 #include <thread>
 
 #include "app/build_info.h"
+#include "app/host_environment.h"
 #include "engine/core/error.h"
 #include "registry/backends.h"
 
@@ -73,7 +74,7 @@ std::vector<std::unique_ptr<Backend>> open_backends(const BackendChoice& choice,
     note_cpu_devices(out, cpu_hint);
     return out;
   }
-  for (const BackendStatus& s : list_backends()) {
+  for (const BackendStatus& s : list_backends(HostRequest(host_environment()).get())) {
     if (!s.available) {
       fmt::print("  ({} skipped: {})\n", s.name, s.reason);
       continue;

@@ -12,6 +12,7 @@
 
 #include "app/bench_common.h"
 #include "app/commands.h"
+#include "app/host_environment.h"
 #include "app/progress.h"
 #include "app/scene_options.h"
 #include "app/vocabulary.h"
@@ -142,6 +143,7 @@ RaymarchParams::Clip parse_clip(const std::string& text, const std::string& comm
 
 int run_atom(const AtomCliOptions& o) {
   atom::AtomSceneOptions so;
+  so.cache_dir = host_environment().cache_dir().string();
   if (!o.preset.empty()) {
     so.state = atom::preset_state(o.preset);
     so.state.real = o.real;

@@ -10,6 +10,7 @@
 #include <set>
 
 #include "app/commands.h"
+#include "app/host_environment.h"
 #include "app/progress.h"
 #include "app/scene_options.h"
 #include "engine/core/error.h"
@@ -85,7 +86,8 @@ int run_export(const ExportOptions& o) {
   if (!o.overwrite) refuse_outputs(o.out, names, "--out");
   auto backend = open_backend(o.choice);
   const scene::SceneType& type = scene::find_scene_type(f.type);
-  auto s = type.create(*backend, f.params);
+  auto s = type.create(*backend, f.params,
+                       scene::SceneHost{.cache_dir = host_environment().cache_dir().string()});
   // Every frame up to the one asked for, on the clock `masav run` uses: a stepped scene (SPH)
   // advances once per frame, so frame N is the state after N frames of steps.
   const double start = f.params.get_real("run.start_time_s"), fps = f.params.get_real("run.fps");

@@ -3,6 +3,7 @@
 
 #include "app/build_info.h"
 #include "app/commands.h"
+#include "app/host_environment.h"
 #include "engine/core/error.h"
 #include "registry/backends.h"
 
@@ -22,8 +23,10 @@ void print_caps(const Capabilities& c) {
 int run_info(bool details) {
   fmt::print("masav {} ({}), {} {}\n", build_info::version, build_info::git(), build_info::compiler,
              build_info::build_type);
-  const std::string chosen = auto_backend_name();
-  for (const BackendStatus& s : list_backends()) {
+  // Listed through the loader MASAV_VULKAN_LOADER names, as every command opens it.
+  const HostRequest request(host_environment());
+  const std::string chosen = auto_backend_name(request.get());
+  for (const BackendStatus& s : list_backends(request.get())) {
     fmt::print("{:<7} {}{}\n", s.name,
                s.available ? "available" : (s.built ? "unavailable" : "not built"),
                s.name == chosen ? "  <- auto" : "");
@@ -34,7 +37,7 @@ int run_info(bool details) {
     }
     if (details && s.available) {
       try {
-        auto b = create_backend(s.name);
+        auto b = create_backend(s.name, "", request.get());
         fmt::print("    in use: {}\n", b->caps().device_name);
         print_caps(b->caps());
       } catch (const Error& e) {

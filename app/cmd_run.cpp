@@ -10,6 +10,7 @@
 #include <filesystem>
 
 #include "app/commands.h"
+#include "app/host_environment.h"
 #include "app/interrupt.h"
 #include "app/number_checks.h"
 #include "app/progress.h"
@@ -64,7 +65,9 @@ int run(const RunOptions& o) {
   po.device = o.choice.device;
   po.tuning = o.choice.tuning();
   po.fault = fault_kernel(o.choice);
-  po.graphics = render::graphics_options(o.choice.backend == "vulkan" ? o.choice.device : "");
+  po.graphics = render::graphics_options(vulkan_options(host_environment()),
+                                         o.choice.backend == "vulkan" ? o.choice.device : "");
+  po.cache_dir = host_environment().cache_dir().string();
   render::ScenePlayer player(std::move(file), po);
   const scene::ParamSet& p = player.scene().params();
   fmt::print("scene '{}' ({}) on {} ({}), drawn on {}{}\n", player.file().source,

@@ -16,6 +16,7 @@
 #include <span>
 
 #include "app/commands.h"
+#include "app/host_environment.h"
 #include "app/interrupt.h"
 #include "app/mpi_comm.h"
 #include "app/number_checks.h"
@@ -180,9 +181,10 @@ void print_rank_table(SphSimulation& sim, const SphRankCounters& before, bool le
 std::string rank_device(const BackendChoice& c, const SphComm* comm) {
   if (!comm || !c.device.empty()) return c.device;
   const int local = local_rank();
-  const std::string name = c.backend == "auto" ? auto_backend_name() : c.backend;
+  const HostRequest request(host_environment());
+  const std::string name = c.backend == "auto" ? auto_backend_name(request.get()) : c.backend;
   if (local < 0 || name == "cpu") return c.device;
-  for (const BackendStatus& s : list_backends())
+  for (const BackendStatus& s : list_backends(request.get()))
     if (s.name == name && s.devices.size() > 1)
       return std::to_string(size_t(local) % s.devices.size());
   return c.device;

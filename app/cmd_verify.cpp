@@ -4,6 +4,7 @@
 #include <fmt/format.h>
 
 #include "app/commands.h"
+#include "app/host_environment.h"
 #include "app/scene_options.h"
 #include "engine/core/error.h"
 #include "engine/util/json_writer.h"
@@ -27,7 +28,9 @@ int run_verify(const VerifyOptions& o) {
   if (!o.reference.empty()) f.params.set("verify.reference", o.reference);
   const std::optional<KernelId> fault = fault_kernel(o.choice);
   auto backend = open_backend(o.choice);
-  auto reference = verify::open_reference(*backend, f.params.get_text("verify.reference"));
+  const HostRequest request(host_environment());
+  auto reference =
+      verify::open_reference(*backend, f.params.get_text("verify.reference"), request.get());
   const verify::CrossCheckReport r =
       verify::cross_check_scene(*backend, *reference, f.params, fault);
   fmt::print("{}", verify::format_report(r));

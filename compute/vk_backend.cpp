@@ -56,7 +56,8 @@ bool sph_images_after(const VulkanTuning& t, std::string_view device_type) {
 VulkanBackend::VulkanBackend(const BackendOptions& options)
     : options_(options),
       ctx_(options.context),
-      pipelines_(ctx_, options.workgroup_size, options.count_loop_ticks, counters_),
+      pipelines_(ctx_, options.workgroup_size, options.count_loop_ticks, options.cache_dir,
+                 counters_),
       stream_(ctx_, 4096, counters_) {
   if (tile_size() >= 65536)
     throw_invalid("vulkan", "workgroup_size * items_per_thread", std::to_string(tile_size()),

@@ -1,6 +1,7 @@
 #pragma once
 // The Vulkan compute backend: the kernel set as GLSL compute shaders, on any Vulkan 1.1 device.
 #include <array>
+#include <filesystem>
 #include <map>
 #include <memory>
 #include <span>
@@ -24,6 +25,7 @@ struct BackendOptions {
   ContextOptions context;
   Tuning tuning;                  // its `vulkan` part is this backend's (engine/core/tuning.h)
   bool count_loop_ticks = false;  // instrument every loop (tests of lavapipe's loop limit)
+  std::filesystem::path cache_dir;  // the pipeline cache's directory; empty = no cache
   uint32_t workgroup_size = 256;
   uint32_t items_per_thread = 8;  // sort and scan tile = workgroup_size * items_per_thread
 };

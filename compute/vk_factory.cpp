@@ -1,17 +1,17 @@
 #include "compute/vk_factory.h"
 
-#include "compute/device/vk_environment.h"
 #include "compute/vk_backend.h"
 #include "engine/core/error.h"
 
 namespace masav::vk {
 
-BackendStatus backend_status() {
+BackendStatus backend_status(const BackendRequest& request) {
   BackendStatus s;
   s.name = "vulkan";
   s.built = true;
   try {
-    for (const auto& d : Context::list_devices()) {
+    for (const auto& d :
+         Context::list_devices(request.vulkan ? *request.vulkan : ContextOptions{})) {
       DeviceStatus ds;
       ds.index = d.index;
       ds.name = d.name;
@@ -36,12 +36,13 @@ BackendStatus backend_status() {
 
 std::unique_ptr<Backend> create_backend(std::string_view device, const BackendRequest& request) {
   BackendOptions o;
-  o.context = request.vulkan ? *request.vulkan : options_from_env();
+  o.context = request.vulkan ? *request.vulkan : ContextOptions{};
   if (!device.empty()) o.context.device_selector = std::string(device);
   o.context.max_buffer_bytes = request.tuning.vulkan.max_buffer_mib << 20;
   o.context.max_texels = request.tuning.vulkan.max_texels;
   o.tuning = request.tuning;
   o.count_loop_ticks = request.count_loop_ticks;
+  o.cache_dir = request.cache_dir;
   try {
     return std::make_unique<VulkanBackend>(o);
   } catch (const Error&) {

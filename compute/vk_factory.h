@@ -8,9 +8,11 @@
 
 namespace masav::vk {
 
-BackendStatus backend_status();
-// The request's context options, else the environment's (compute/device/vk_environment.h);
-// `device` overrides the device; the request's tuning and loop counting are the backend's.
+// The devices as request.vulkan (null: the default ContextOptions) opens the loader.
+BackendStatus backend_status(const BackendRequest& request);
+// The request's context options, else the defaults (never the environment: the library takes
+// its options from the caller); `device` overrides the device; the request's tuning, loop
+// counting and pipeline cache directory are the backend's.
 std::unique_ptr<Backend> create_backend(std::string_view device, const BackendRequest& request);
 
 }  // namespace masav::vk

@@ -7,7 +7,6 @@
 #include <optional>
 
 #include "engine/core/error.h"
-#include "engine/util/cache_dir.h"
 #include "engine/util/cache_file.h"
 #include "shaders/embedded.h"
 #include "shaders/spec_ids.h"
@@ -28,18 +27,18 @@ CacheFileId pipeline_cache_id(const std::string& path) {
 }  // namespace
 
 std::string Pipelines::cache_path() const {
-  const std::optional<std::filesystem::path> dir = default_cache_dir();
-  if (!dir) return "";
+  if (cache_dir_.empty()) return "";
   std::string uuid;
   for (uint8_t b : ctx_.pipeline_cache_uuid()) uuid += fmt::format("{:02x}", b);
-  return fmt::format("{}/vk_pipelines_{}.bin", dir->string(), uuid);
+  return fmt::format("{}/vk_pipelines_{}.bin", cache_dir_.string(), uuid);
 }
 
 Pipelines::Pipelines(const Context& ctx, uint32_t workgroup_size, bool count_loop_ticks,
-                     DeviceCounters& counters)
+                     std::filesystem::path cache_dir, DeviceCounters& counters)
     : ctx_(ctx),
       workgroup_size_(workgroup_size),
       count_loop_ticks_(count_loop_ticks),
+      cache_dir_(std::move(cache_dir)),
       counters_(counters) {
   // The driver validates the blob's header against its own UUID and ignores a stale one.
   const std::string path = cache_path();

@@ -2,6 +2,7 @@
 // Compute pipelines built from the embedded SPIR-V, specialised per device (workgroup size,
 // subgroup size, loop counting, kernel constants) and cached: in memory by key, and on disk in a
 // VkPipelineCache keyed by the driver's pipelineCacheUUID.
+#include <filesystem>
 #include <map>
 #include <memory>
 #include <string>
@@ -41,9 +42,10 @@ inline ::vk::DescriptorType descriptor_type(const Kernel& k, uint32_t binding) {
 
 class Pipelines {
  public:
-  // Counts each pipeline it creates in counters.pipelines_built.
+  // Counts each pipeline it creates in counters.pipelines_built. The disk cache lives in
+  // cache_dir (empty: none, every run compiles again).
   Pipelines(const Context& ctx, uint32_t workgroup_size, bool count_loop_ticks,
-            DeviceCounters& counters);
+            std::filesystem::path cache_dir, DeviceCounters& counters);
   ~Pipelines();  // writes the pipeline cache back to disk
 
   const Kernel& get(const KernelSpec& spec);
@@ -55,6 +57,7 @@ class Pipelines {
   const Context& ctx_;
   uint32_t workgroup_size_;
   bool count_loop_ticks_;
+  std::filesystem::path cache_dir_;
   DeviceCounters& counters_;
   ::vk::raii::PipelineCache cache_ = nullptr;
   std::map<std::string, std::unique_ptr<Kernel>> kernels_;

@@ -5,6 +5,7 @@
 #include "engine/core/error.h"
 #include "engine/cpu/cpu_backend.h"
 #if MASAV_HAVE_VULKAN
+#include "compute/device/vk_context.h"
 #include "compute/vk_factory.h"
 #endif
 #if MASAV_HAVE_CUDA
@@ -35,11 +36,11 @@ BackendStatus cpu_status() {
   return s;
 }
 
-BackendStatus status_of(const std::string& name) {
+BackendStatus status_of(const std::string& name, [[maybe_unused]] const BackendRequest& request) {
   if (name == "cpu") return cpu_status();
   if (name == "vulkan") {
 #if MASAV_HAVE_VULKAN
-    return vk::backend_status();
+    return vk::backend_status(request);
 #else
     return not_built("vulkan", "configure with -DMASAV_WITH_VULKAN=ON and libvulkan-dev");
 #endif
@@ -58,21 +59,21 @@ const std::vector<std::string>& backend_names() {
   return names;
 }
 
-std::vector<BackendStatus> list_backends() {
+std::vector<BackendStatus> list_backends(const BackendRequest& request) {
   std::vector<BackendStatus> out;
-  for (const auto& n : backend_names()) out.push_back(status_of(n));
+  for (const auto& n : backend_names()) out.push_back(status_of(n, request));
   return out;
 }
 
-std::string auto_backend_name() {
-  if (status_of("cuda").available) return "cuda";
-  if (status_of("vulkan").available) return "vulkan";
+std::string auto_backend_name(const BackendRequest& request) {
+  if (status_of("cuda", request).available) return "cuda";
+  if (status_of("vulkan", request).available) return "vulkan";
   return "cpu";
 }
 
 std::unique_ptr<Backend> create_backend(std::string_view name_in, std::string_view device,
                                         const BackendRequest& request) {
-  const std::string name = name_in == "auto" ? auto_backend_name() : std::string(name_in);
+  const std::string name = name_in == "auto" ? auto_backend_name(request) : std::string(name_in);
   if (name == "cpu") {
     if (!device.empty() && device != "0")
       throw_invalid(
@@ -87,14 +88,15 @@ std::unique_ptr<Backend> create_backend(std::string_view name_in, std::string_vi
 #if MASAV_HAVE_VULKAN
     return vk::create_backend(device, request);
 #else
-    throw Error("vulkan", "", status_of("vulkan").reason, "use --backend cpu, or rebuild");
+    throw Error("vulkan", "", status_of("vulkan", request).reason, "use --backend cpu, or rebuild");
 #endif
   }
   if (name == "cuda") {
 #if MASAV_HAVE_CUDA
     return cuda::create_backend(device, request.tuning);
 #else
-    throw Error("cuda", "", status_of("cuda").reason, "use --backend vulkan or cpu, or rebuild");
+    throw Error("cuda", "", status_of("cuda", request).reason,
+                "use --backend vulkan or cpu, or rebuild");
 #endif
   }
   throw_invalid("backend selection", "backend", std::string(name_in),
@@ -103,9 +105,44 @@ std::unique_ptr<Backend> create_backend(std::string_view name_in, std::string_vi
 
 namespace {
 
+#if MASAV_HAVE_VULKAN
+using VulkanStorage = vk::ContextOptions;
+#else
+struct VulkanStorage {};  // no Vulkan backend: nothing to set
+#endif
+
+// `request` with the Vulkan options of `vulkan`, held by `storage` (which outlives its use).
+BackendRequest with_vulkan(BackendRequest request, [[maybe_unused]] const VulkanSettings& vulkan,
+                           [[maybe_unused]] VulkanStorage& storage) {
+#if MASAV_HAVE_VULKAN
+  storage.validation = vulkan.validation;
+  storage.loader = vulkan.loader;
+  request.vulkan = &storage;
+#endif
+  return request;
+}
+
+}  // namespace
+
+std::unique_ptr<Backend> create_backend(std::string_view name, std::string_view device,
+                                        const BackendRequest& request,
+                                        const VulkanSettings& vulkan) {
+  VulkanStorage storage;
+  return create_backend(name, device, with_vulkan(request, vulkan, storage));
+}
+
+std::vector<BackendStatus> list_backends(const VulkanSettings& vulkan) {
+  VulkanStorage storage;
+  return list_backends(with_vulkan(BackendRequest{}, vulkan, storage));
+}
+
+namespace {
+
 class Registry final : public BackendFactory {
  public:
-  std::vector<BackendStatus> list() const override { return list_backends(); }
+  std::vector<BackendStatus> list(const BackendRequest& request) const override {
+    return list_backends(request);
+  }
   std::unique_ptr<Backend> create(std::string_view name, std::string_view device,
                                   const BackendRequest& request) const override {
     return create_backend(name, device, request);

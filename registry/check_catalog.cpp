@@ -39,8 +39,9 @@ CrossCheckReport cross_check_scene(Backend& backend, Backend& reference,
                            kernel_checks(), fault);
 }
 
-std::unique_ptr<Backend> open_reference(const Backend& chosen, const std::string& choice) {
-  return open_reference(chosen, choice, backend_factory());
+std::unique_ptr<Backend> open_reference(const Backend& chosen, const std::string& choice,
+                                        const BackendRequest& request) {
+  return open_reference(chosen, choice, backend_factory(), request);
 }
 
 }  // namespace masav::verify

@@ -24,6 +24,7 @@ CrossCheckReport cross_check_scene(Backend& backend, Backend& reference,
                                    const scene::ParamSet& params,
                                    std::optional<KernelId> fault = std::nullopt);
 // The reference backend `choice` names, from the backend registry (see verify::open_reference).
-std::unique_ptr<Backend> open_reference(const Backend& chosen, const std::string& choice);
+std::unique_ptr<Backend> open_reference(const Backend& chosen, const std::string& choice,
+                                        const BackendRequest& request = {});
 
 }  // namespace masav::verify

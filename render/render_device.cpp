@@ -2,23 +2,23 @@
 
 #include <fmt/format.h>
 
-#include "compute/device/vk_environment.h"
 #include "engine/core/error.h"
 #include "registry/backends.h"
 
 namespace masav::render {
 
-vk::ContextOptions graphics_options(const std::string& device) {
-  vk::ContextOptions o = vk::options_from_env();
-  if (!device.empty()) o.device_selector = device;
-  o.graphics = true;
-  return o;
+vk::ContextOptions graphics_options(vk::ContextOptions base, const std::string& device) {
+  if (!device.empty()) base.device_selector = device;
+  base.graphics = true;
+  return base;
 }
 
 std::unique_ptr<Backend> open_compute_backend(const std::string& name, const std::string& device,
                                               const vk::ContextOptions& options,
-                                              const Tuning& tuning) {
-  return create_backend(name, device, BackendRequest{.vulkan = &options, .tuning = tuning});
+                                              const Tuning& tuning,
+                                              const std::filesystem::path& cache_dir) {
+  return create_backend(
+      name, device, BackendRequest{.vulkan = &options, .cache_dir = cache_dir, .tuning = tuning});
 }
 
 RenderDevice::RenderDevice(Backend& compute, const vk::ContextOptions& options)

@@ -3,6 +3,7 @@
 // graphics, see open_compute_backend) the renderer borrows that backend's device, so kernel
 // outputs are drawn where they lie; otherwise (CUDA, the CPU reference) it opens a device of its
 // own and the kernel outputs are copied over (layer_bridge.h).
+#include <filesystem>
 #include <functional>
 #include <memory>
 #include <string>
@@ -13,16 +14,18 @@
 
 namespace masav::render {
 
-// Options for a rendering context from the environment (MASAV_VK_DEVICE, MASAV_VK_VALIDATION),
-// with a graphics queue required.
-vk::ContextOptions graphics_options(const std::string& device = "");
+// Options for a rendering context: the caller's `base` (device, validation, loader: the masav
+// command line's from its environment), `device` instead of its device when given, and a
+// graphics queue required.
+vk::ContextOptions graphics_options(vk::ContextOptions base = {}, const std::string& device = "");
 
 // The compute backend for a scene that is drawn, from the registry: a Vulkan one (also "auto"
 // when it resolves to Vulkan) on a device that can also draw, with `options`; `tuning` as the
-// caller was given it (--tune).
+// caller was given it (--tune); the pipeline cache in cache_dir (empty: none).
 std::unique_ptr<Backend> open_compute_backend(const std::string& name, const std::string& device,
                                               const vk::ContextOptions& options,
-                                              const Tuning& tuning = {});
+                                              const Tuning& tuning = {},
+                                              const std::filesystem::path& cache_dir = {});
 
 class RenderDevice {
  public:

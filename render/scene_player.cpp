@@ -19,8 +19,8 @@ uint32_t frame_height(const scene::ParamSet& p) {
 }
 
 ScenePlayer::ScenePlayer(scene::SceneFile file, const PlayerOptions& options) : options_(options) {
-  backend_ = open_compute_backend(options.backend, options.device, options.graphics,
-                                  options.tuning);
+  backend_ = open_compute_backend(options.backend, options.device, options.graphics, options.tuning,
+                                  options.cache_dir);
   make_scene(std::move(file));
   render_device_ = std::make_unique<RenderDevice>(*backend_, options.graphics);
   // ImGui's 13 px font stays legible on large frames.
@@ -49,7 +49,8 @@ void check_render_params(const scene::ParamSet& p) {
 void ScenePlayer::make_scene(scene::SceneFile file) {
   check_render_params(file.params);
   const scene::SceneType& type = scene::find_scene_type(file.type);
-  auto next = type.create(*backend_, file.params);
+  auto next =
+      type.create(*backend_, file.params, scene::SceneHost{.cache_dir = options_.cache_dir});
   scene_ = std::move(next);
   file_ = std::move(file);
   clock_ = scene::FrameClock{};
@@ -70,7 +71,15 @@ void ScenePlayer::reset() {
 }
 
 verify::CrossCheckReport ScenePlayer::verify() {
-  auto reference = verify::open_reference(*backend_, scene_->params().get_text("verify.reference"));
+  // The reference computes only: the program's loader and validation, no window, its best device.
+  vk::ContextOptions compute;
+  compute.validation = options_.graphics.validation;
+  compute.loader = options_.graphics.loader;
+  compute.driver_files = options_.graphics.driver_files;
+  compute.icd_filenames = options_.graphics.icd_filenames;
+  auto reference =
+      verify::open_reference(*backend_, scene_->params().get_text("verify.reference"),
+                             BackendRequest{.vulkan = &compute, .cache_dir = options_.cache_dir});
   verify::CrossCheckReport r = verify::cross_check_scene(*backend_, *reference, scene_->params(), options_.fault);
   verify_status_ =
       r.pass() ? fmt::format("cross-check: {} kernels agree with {}", r.rows.size(), r.reference)

@@ -21,6 +21,9 @@ struct PlayerOptions {
   std::string device;
   vk::ContextOptions graphics;  // render context options (the demo adds window extensions)
   Tuning tuning;                // the compute backend's (--tune)
+  // The disk caches' directory (engine/util/cache_dir.h: the Vulkan pipeline cache, the atom
+  // scenes' scattering table); "" = none, each run recomputes.
+  std::string cache_dir;
   std::optional<KernelId> fault;  // perturbed in verify() (the tests' --inject-fault)
 };
 

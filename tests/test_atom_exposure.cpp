@@ -33,7 +33,7 @@ double full_colour(scene::SceneInstance& s) {
 TEST_CASE("atom exposure 0: the state's own scale, as the scene files set it, in every view") {
   namespace fs = std::filesystem;
   const fs::path cache = fs::temp_directory_path() / "masav_atom_exposure_cache";
-  setenv("MASAV_CACHE_DIR", cache.c_str(), 1);
+  const scene::SceneHost host{.cache_dir = cache.string()};
   // States 1, 5 and 10 span the scene files' scales from 50 to 0.037 cd/a0^2.
   for (const char* state : {"state1", "state5", "state10"}) {
     CAPTURE(state);
@@ -44,8 +44,8 @@ TEST_CASE("atom exposure 0: the state's own scale, as the scene files set it, in
     f.params.set("atom.count", int64_t(200000));
     f.params.set("verify.enabled", false);
     const auto& type = scene::find_scene_type("atom");
-    auto s = type.create(test::backend(), f.params);
-    auto r = type.create(test::reference(), f.params);
+    auto s = type.create(test::backend(), f.params, host);
+    auto r = type.create(test::reference(), f.params, host);
     const double own = full_colour(*s), on_reference = full_colour(*r);
     s->set("camera.view", std::string("top"));
     const double from_top = full_colour(*s);
@@ -61,7 +61,6 @@ TEST_CASE("atom exposure 0: the state's own scale, as the scene files set it, in
     CHECK(std::abs(own - on_reference) <= 1e-3 * on_reference);
     CHECK(s->graph().counters("illuminate").runs == 1);
   }
-  unsetenv("MASAV_CACHE_DIR");
   fs::remove_all(cache);
 }
 
@@ -71,20 +70,20 @@ TEST_CASE("atom exposure 0: the state's own scale, as the scene files set it, in
 TEST_CASE("atom exposure: a scene file's exposure stays with its state") {
   namespace fs = std::filesystem;
   const fs::path cache = fs::temp_directory_path() / "masav_atom_exposure_switch_cache";
-  setenv("MASAV_CACHE_DIR", cache.c_str(), 1);
+  const scene::SceneHost host{.cache_dir = cache.string()};
   scene::SceneFile f =
       scene::load_scene_file(std::string(MASAV_SOURCE_DIR) + "/scenes/atom_state8.toml");
   f.params.set("atom.count", int64_t(20000));
   f.params.set("verify.enabled", false);
   const auto& type = scene::find_scene_type("atom");
-  auto s = type.create(test::backend(), f.params);
+  auto s = type.create(test::backend(), f.params, host);
   const double file_scale = 1.0 / f.params.get_real("nebula.exposure");
   CHECK(full_colour(*s) == doctest::Approx(file_scale).epsilon(1e-6));
   s->set("atom.state", std::string("state1"));
   scene::ParamSet own = f.params;
   own.set("atom.state", std::string("state1"));
   own.set("nebula.exposure", 0.0);
-  auto state1 = type.create(test::backend(), own);
+  auto state1 = type.create(test::backend(), own, host);
   const double state1_scale = full_colour(*state1);
   MESSAGE(fmt::format("state 8's file scale {:.4g} cd/a0^2; state 1's own {:.4g}", file_scale,
                       state1_scale));
@@ -97,6 +96,5 @@ TEST_CASE("atom exposure: a scene file's exposure stays with its state") {
   CHECK(s->saved_params().get_real("nebula.exposure") == 0.5);
   s->set("atom.state", std::string("state8"));  // and not to state 8 again
   CHECK(full_colour(*s) != doctest::Approx(2.0).epsilon(1e-3));
-  unsetenv("MASAV_CACHE_DIR");
   fs::remove_all(cache);
 }

@@ -18,6 +18,7 @@
 #include "registry/scene_file.h"
 #include "render/png.h"
 #include "render/scene_player.h"
+#include "tests/host_options.h"
 
 using namespace masav;
 
@@ -105,20 +106,15 @@ Image draw(render::ScenePlayer& player) {
 render::PlayerOptions vulkan() {
   render::PlayerOptions po;
   po.backend = "vulkan";
-  po.graphics = render::graphics_options();
+  po.graphics = test::graphics_options();
+  // The scattering tables these scenes share, computed once for every run of the tests.
+  po.cache_dir = (std::filesystem::temp_directory_path() / "masav_atom_render_cache").string();
   return po;
 }
-
-struct CacheDir {
-  std::filesystem::path dir = std::filesystem::temp_directory_path() / "masav_atom_render_cache";
-  CacheDir() { setenv("MASAV_CACHE_DIR", dir.c_str(), 1); }
-  ~CacheDir() { unsetenv("MASAV_CACHE_DIR"); }
-};
 
 }  // namespace
 
 TEST_CASE("atom state 1 renders non-blank, symmetric from the top, brighter with more power") {
-  CacheDir cache;
   scene::SceneFile f = atom_file("atom_state1.toml", 120000);
   f.params.set("camera.view", std::string("top"));
   render::ScenePlayer player(f, vulkan());
@@ -193,7 +189,6 @@ double sector_mean(const Image& img, int cx, int cy, double angle_deg, double ha
 // fixed scale of the state: the same colour range on the CPU and Vulkan backends and in every
 // view.
 TEST_CASE("atom exposure: state 8 is not saturated by default, one colour range everywhere") {
-  CacheDir cache;
   scene::SceneFile f = atom_file("atom_state8.toml", 40000);
   f.params.set("render.width", int64_t(240));
   f.params.set("render.height", int64_t(240));
@@ -267,7 +262,6 @@ std::vector<std::string> main_job_sets() {
 // and the cloud was small): the turning cloud fills a good part of the frame at every angle and
 // is never cut by the frame's edge.
 TEST_CASE("the main job frames the turning state-8 cloud") {
-  CacheDir cache;
   scene::SceneFile f = atom_file("atom_state8.toml", 40000);
   f.params.set("render.width", int64_t(256));
   f.params.set("render.height", int64_t(144));
@@ -299,7 +293,6 @@ TEST_CASE("the main job frames the turning state-8 cloud") {
 }
 
 TEST_CASE("the atom-volume scene raymarches the lit cloud behind the box") {
-  CacheDir cache;
   scene::SceneFile f = atom_file("atom_volume.toml", 40000);
   f.params.set("volume.dims", int64_t(40));
   f.params.set("camera.orbit_speed_deg", 0.0);
@@ -327,7 +320,6 @@ TEST_CASE("the atom-volume scene raymarches the lit cloud behind the box") {
 }
 
 TEST_CASE("the atom-volume scene's clipping plane removes one side; shading relights the rest") {
-  CacheDir cache;
   scene::SceneFile f = atom_file("atom_volume.toml", 40000);
   f.params.set("volume.dims", int64_t(40));
   f.params.set("camera.orbit_speed_deg", 0.0);

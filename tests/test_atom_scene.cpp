@@ -45,17 +45,14 @@ ParamSet small_atom(const char* type) {
   return p;
 }
 
-// Points the disk caches at a fresh directory for the test's lifetime.
+// A fresh cache directory for the test's lifetime, passed to the scenes it creates.
 struct TempCache {
   fs::path dir;
   explicit TempCache(const char* name) : dir(fs::temp_directory_path() / name) {
     fs::remove_all(dir);
-    setenv("MASAV_CACHE_DIR", dir.c_str(), 1);
   }
-  ~TempCache() {
-    unsetenv("MASAV_CACHE_DIR");
-    fs::remove_all(dir);
-  }
+  ~TempCache() { fs::remove_all(dir); }
+  scene::SceneHost host() const { return {.cache_dir = dir.string()}; }
 };
 
 }  // namespace
@@ -64,7 +61,7 @@ TEST_CASE("atom scene: power rescales, the view reruns only the attenuation, the
   TempCache cache("masav_atom_scene_test");
   cpu::CpuBackend cpu(2);
   const ParamSet p = small_atom("atom");
-  auto s = find_scene_type("atom").create(cpu, p);
+  auto s = find_scene_type("atom").create(cpu, p, cache.host());
   FrameClock clock;
   UpdateReport r = s->update(clock);
   CHECK(sorted(r.ran) ==
@@ -106,7 +103,7 @@ TEST_CASE("atom scene: power rescales, the view reruns only the attenuation, the
   CHECK_FALSE(s->view().background.has_value());
 
   // The next run of masav: the same table parameters load from the disk cache.
-  auto again = find_scene_type("atom").create(cpu, p);
+  auto again = find_scene_type("atom").create(cpu, p, cache.host());
   r = again->update(clock);
   CHECK(r.cached == Names{"scatter_table"});
   CHECK(again->graph().counters("scatter_table").cache_hits == 1);
@@ -115,7 +112,7 @@ TEST_CASE("atom scene: power rescales, the view reruns only the attenuation, the
 TEST_CASE("atom-volume scene: the raymarch follows the view, power and frame size") {
   TempCache cache("masav_atom_volume_scene_test");
   cpu::CpuBackend cpu(2);
-  auto s = find_scene_type("atom-volume").create(cpu, small_atom("atom-volume"));
+  auto s = find_scene_type("atom-volume").create(cpu, small_atom("atom-volume"), cache.host());
   FrameClock clock;
   UpdateReport r = s->update(clock);
   CHECK(sorted(r.ran) == sorted({"cloud", "density", "scatter_table", "illuminate", "viewer",
@@ -160,7 +157,7 @@ TEST_CASE(
   ParamSet p = small_atom("atom-volume");
   p.set("camera.view", std::string("orbit"));
   p.set("camera.orbit_speed_deg", 20.0);
-  auto s = find_scene_type("atom-volume").create(cpu, p);
+  auto s = find_scene_type("atom-volume").create(cpu, p, cache.host());
   FrameClock clock;
   s->update(clock);
   CHECK(s->max_preview_level() == kMaxPreviewLevel);
@@ -182,7 +179,7 @@ TEST_CASE(
     small.set("render.width", int64_t(24));
     small.set("render.height", int64_t(18));
     small.set("volume.step_voxels", 1.0);
-    auto coarse = find_scene_type("atom-volume").create(cpu, small);
+    auto coarse = find_scene_type("atom-volume").create(cpu, small, cache.host());
     coarse->update(clock);
     CHECK(image(*s) == image(*coarse));
   }
@@ -203,7 +200,7 @@ TEST_CASE(
   CHECK_FALSE(s->changes_pending(clock));
   CHECK(s->update(clock).ran.empty());  // ...and then nothing runs while nothing changes
   // The same image as a scene rendered once at this time.
-  auto once = find_scene_type("atom-volume").create(cpu, p);
+  auto once = find_scene_type("atom-volume").create(cpu, p, cache.host());
   once->update(clock);
   CHECK(image(*s) == image(*once));
   s->set_preview_level(9);

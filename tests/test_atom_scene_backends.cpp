@@ -18,7 +18,7 @@ using namespace masav;
 TEST_CASE("the atom-volume scene runs the same stages on every backend and cross-checks") {
   namespace fs = std::filesystem;
   const fs::path cache = fs::temp_directory_path() / "masav_atom_backends_cache";
-  setenv("MASAV_CACHE_DIR", cache.c_str(), 1);
+  const scene::SceneHost host{.cache_dir = cache.string()};
   const auto& type = scene::find_scene_type("atom-volume");
   scene::ParamSet p = scene::default_params(type);
   p.set("atom.count", int64_t(4096));
@@ -31,8 +31,8 @@ TEST_CASE("the atom-volume scene runs the same stages on every backend and cross
   p.set("render.height", int64_t(24));
   p.set("verify.max_points", int64_t(2048));
   p.set("camera.distance", 0.9);
-  auto s = type.create(test::backend(), p);
-  auto r = type.create(test::reference(), p);
+  auto s = type.create(test::backend(), p, host);
+  auto r = type.create(test::reference(), p, host);
   scene::FrameClock clock;
   for (const char* view : {"front", "front", "top"}) {
     s->set("camera.view", std::string(view));
@@ -74,7 +74,6 @@ TEST_CASE("the atom-volume scene runs the same stages on every backend and cross
   MESSAGE("pixels with alpha > 0.02: " << lit << " of " << want.size() / 4);
   CHECK(lit > 0.05 * double(want.size() / 4));  // the cloud covers part of the frame
   fs::remove_all(cache);
-  unsetenv("MASAV_CACHE_DIR");
 
   const verify::CrossCheckReport report =
       verify::cross_check_scene(test::backend(), test::reference(), p);

@@ -1,7 +1,8 @@
 // The one cache-directory resolver (engine/util/cache_dir.h) and the three caches that use it:
 // its order, empty values counted as unset, a relative XDG_CACHE_HOME ignored, and an empty
 // MASAV_CACHE_DIR never turning into "/" (issue 45, class 6: it wrote the scattering table to
-// /scatter/).
+// /scatter/). The resolver takes the variables' values as arguments: only the programs read the
+// environment (app/host_environment.h, whose reading is tested last).
 #include <doctest/doctest.h>
 
 #include <filesystem>
@@ -9,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "app/host_environment.h"
 #include "engine/atom/scatter_cache.h"
 #include "engine/core/error.h"
 #include "engine/scene/stage_cache.h"
@@ -21,18 +23,16 @@ namespace fs = std::filesystem;
 
 namespace {
 
-// The three variables the resolver reads, each set (or unset: nullptr) for one case.
-struct CacheEnv {
-  test::ScopedEnv masav, xdg, home;
-  CacheEnv(const char* masav_dir, const char* xdg_dir, const char* home_dir)
-      : masav("MASAV_CACHE_DIR", masav_dir),
-        xdg("XDG_CACHE_HOME", xdg_dir),
-        home("HOME", home_dir) {}
-};
-
-std::optional<std::string> resolved() {
-  const std::optional<fs::path> d = default_cache_dir();
+// MASAV_CACHE_DIR, XDG_CACHE_HOME and HOME as the program found them ("" = unset).
+std::optional<std::string> resolved(const std::string& masav_dir, const std::string& xdg,
+                                    const std::string& home) {
+  const std::optional<fs::path> d = resolve_cache_dir({masav_dir, xdg, home});
   return d ? std::optional<std::string>(d->string()) : std::nullopt;
+}
+
+// The directory a program passes on: the resolved one, or "" (no cache).
+std::string dir_of(const std::string& masav_dir, const std::string& xdg, const std::string& home) {
+  return resolved(masav_dir, xdg, home).value_or("");
 }
 
 bool starts_with(const std::string& s, const std::string& prefix) {
@@ -42,95 +42,98 @@ bool starts_with(const std::string& s, const std::string& prefix) {
 }  // namespace
 
 TEST_CASE("the cache directory: MASAV_CACHE_DIR, then XDG_CACHE_HOME/masav, then ~/.cache/masav") {
-  {
-    const CacheEnv env("/m", "/x", "/h");
-    CHECK(resolved() == "/m");
-  }
-  {
-    const CacheEnv env(nullptr, "/x", "/h");
-    CHECK(resolved() == "/x/masav");
-  }
-  {
-    const CacheEnv env(nullptr, nullptr, "/h");
-    CHECK(resolved() == "/h/.cache/masav");
-  }
-  {
-    const CacheEnv env(nullptr, nullptr, nullptr);
-    CHECK(resolved() == std::nullopt);
-  }
-  {  // MASAV_CACHE_DIR is taken as given, relative or not
-    const CacheEnv env("rel/cache", "/x", "/h");
-    CHECK(resolved() == "rel/cache");
-  }
+  CHECK(resolved("/m", "/x", "/h") == "/m");
+  CHECK(resolved("", "/x", "/h") == "/x/masav");
+  CHECK(resolved("", "", "/h") == "/h/.cache/masav");
+  CHECK(resolved("", "", "") == std::nullopt);
+  // MASAV_CACHE_DIR is taken as given, relative or not.
+  CHECK(resolved("rel/cache", "/x", "/h") == "rel/cache");
 }
 
-TEST_CASE("the cache directory: an empty variable is unset, a relative XDG_CACHE_HOME ignored") {
-  {
-    const CacheEnv env("", "/x", "/h");
-    CHECK(resolved() == "/x/masav");
-  }
-  {
-    const CacheEnv env("", "", "/h");
-    CHECK(resolved() == "/h/.cache/masav");
-  }
-  {
-    const CacheEnv env("", "", "");
-    CHECK(resolved() == std::nullopt);
-  }
-  {  // the XDG Base Directory specification: a relative path is invalid, and ignored
-    const CacheEnv env(nullptr, "relative/cache", "/h");
-    CHECK(resolved() == "/h/.cache/masav");
-  }
-  {
-    const CacheEnv env(nullptr, "relative/cache", nullptr);
-    CHECK(resolved() == std::nullopt);
-  }
+TEST_CASE("the cache directory: a relative XDG_CACHE_HOME is ignored") {
+  // The XDG Base Directory specification: a relative path is invalid, and ignored.
+  CHECK(resolved("", "relative/cache", "/h") == "/h/.cache/masav");
+  CHECK(resolved("", "relative/cache", "") == std::nullopt);
 }
 
 TEST_CASE("an empty MASAV_CACHE_DIR never makes a cache path outside the directories named") {
   const test::TempDir home("masav_cache_dir_home");
   const std::string named = (home.path / ".cache" / "masav").string();
-  for (const char* xdg : {static_cast<const char*>(nullptr), "", "relative"}) {
-    CAPTURE(xdg ? xdg : "(unset)");
+  for (const char* xdg : {"", "relative"}) {
+    CAPTURE(xdg);
     {  // HOME set: every cache lies below ~/.cache/masav
-      const CacheEnv env("", xdg, home.path.c_str());
-      CHECK(resolved() == named);
+      const std::string dir = dir_of("", xdg, home.path.string());
+      CHECK(dir == named);
       const ScatterTableParams p;
-      CHECK(starts_with(atom::scatter_cache_path(p), named + "/scatter/"));
-      CHECK(scene::StageCache().dir() == named + "/stages");
+      CHECK(starts_with(atom::scatter_cache_path(p, dir), named + "/scatter/"));
     }
     {  // nothing named: no cache at all, never "/" or the working directory
-      const CacheEnv env("", xdg, "");
+      const std::string dir = dir_of("", xdg, "");
+      CHECK(dir.empty());
       const ScatterTableParams p;
-      CHECK(atom::scatter_cache_path(p).empty());
-      CHECK_FALSE(atom::load_scatter_cache(p).has_value());
-      CHECK_THROWS_WITH_AS(atom::save_scatter_cache(atom::ScatterTable{p, {}, {}, "cpu", 0}),
+      CHECK(atom::scatter_cache_path(p, dir).empty());
+      CHECK_FALSE(atom::load_scatter_cache(p, dir).has_value());
+      CHECK_THROWS_WITH_AS(atom::save_scatter_cache(atom::ScatterTable{p, {}, {}, "cpu", 0}, dir),
                            doctest::Contains("no cache directory"), Error);
-      CHECK(scene::StageCache().dir().empty());
-      std::string why;
-      CHECK_FALSE(scene::StageCache().store("key", std::vector<uint8_t>{1}, &why));
-      CHECK(why.find("no cache directory") != std::string::npos);
     }
   }
 }
 
-TEST_CASE("with MASAV_CACHE_DIR empty the scattering table is cached under HOME, or not at all") {
+TEST_CASE("no cache directory given: the caches keep nothing") {
+  // The libraries' default is no cache: nothing in them reads MASAV_CACHE_DIR or HOME.
+  const test::ScopedEnv masav("MASAV_CACHE_DIR", "/tmp/masav_never_used");
+  const ScatterTableParams p;
+  CHECK(atom::scatter_cache_path(p).empty());
+  CHECK(scene::StageCache().dir().empty());
+  std::string why;
+  CHECK_FALSE(scene::StageCache().store("key", std::vector<uint8_t>{1}, &why));
+  CHECK(why.find("no cache directory") != std::string::npos);
+}
+
+TEST_CASE("the scattering table is cached in the directory given, and read from it only") {
   const test::TempDir home("masav_cache_dir_table");
   ScatterTableParams p;
   p.rows = 2;
   const size_t n = size_t(p.rows) * (p.bins + kScatterExtras);
   const atom::ScatterTable table{p, std::vector<double>(n, 0.0), std::vector<uint32_t>(n, 0u),
                                  "test", 0};
-  {
-    const CacheEnv env("", "", home.path.c_str());
-    atom::save_scatter_cache(table);
-    const fs::path written = atom::scatter_cache_path(p);
-    CHECK(written.parent_path() == home.path / ".cache" / "masav" / "scatter");
-    CHECK(fs::is_regular_file(written));
-    CHECK(atom::load_scatter_cache(p).has_value());
+  const std::string dir = dir_of("", "", home.path.string());
+  atom::save_scatter_cache(table, dir);
+  const fs::path written = atom::scatter_cache_path(p, dir);
+  CHECK(written.parent_path() == home.path / ".cache" / "masav" / "scatter");
+  CHECK(fs::is_regular_file(written));
+  CHECK(atom::load_scatter_cache(p, dir).has_value());
+  // No directory: nothing is read, even with a table saved under HOME.
+  CHECK_FALSE(atom::load_scatter_cache(p, "").has_value());
+}
+
+TEST_CASE("the command line's environment: every variable read, empty ones unset") {
+  const test::ScopedEnv masav("MASAV_CACHE_DIR", ""), xdg("XDG_CACHE_HOME", "/x"),
+      home("HOME", "/h"), device("MASAV_VK_DEVICE", "llvmpipe"),
+      validation("MASAV_VK_VALIDATION", "on"), loader("MASAV_VULKAN_LOADER", "/l/libvulkan.so"),
+      driver_files("VK_DRIVER_FILES", "/d.json"), icd("VK_ICD_FILENAMES", nullptr);
+  const app::HostEnvironment env = app::read_host_environment();
+  CHECK(env.cache_dir() == fs::path("/x/masav"));
+  CHECK(env.vk_device == "llvmpipe");
+  CHECK(env.validation());
+  CHECK(env.vulkan_loader == "/l/libvulkan.so");
+  CHECK(env.vk_driver_files == "/d.json");
+  CHECK(env.vk_icd_filenames.empty());
+}
+
+TEST_CASE("the command line's MASAV_VK_VALIDATION: a switch, anything else named in the error") {
+  app::HostEnvironment env;
+  for (const char* on : {"1", "on", "true"}) {
+    env.vk_validation = on;
+    CHECK(env.validation());
   }
-  {  // no directory named: nothing is read, even with a table saved under the old HOME
-    const CacheEnv env("", "", "");
-    CHECK_FALSE(atom::load_scatter_cache(p).has_value());
+  for (const char* off : {"", "0", "off", "false"}) {
+    env.vk_validation = off;
+    CHECK_FALSE(env.validation());
   }
+  env.vk_validation = "yes";
+  CHECK_THROWS_WITH_AS(env.validation(), doctest::Contains("invalid MASAV_VK_VALIDATION = yes"),
+                       Error);
+  env = {};
+  CHECK(env.cache_dir().empty());  // nothing set: no cache
 }

@@ -2,7 +2,9 @@
 // `--tune=KEY=VALUE` sets one of its tuning options (engine/core/tuning.h). A backend
 // that is not built or has no device exits 77 (ctest: skipped, never passed) after printing why;
 // MASAV_REQUIRE_BACKENDS=a,b turns such a skip into a failure (CI requires vulkan and cpu).
-// Under Vulkan, every validation-layer message fails the test that caused it.
+// Under Vulkan, every validation-layer message fails the test that caused it. The variables masav
+// honours (MASAV_VK_VALIDATION, MASAV_CACHE_DIR, ...: app/host_environment.h) are read here, as
+// the CLI reads them, and passed to the backends: the libraries never read the environment.
 #define DOCTEST_CONFIG_IMPLEMENT
 #include <doctest/doctest.h>
 #include <fmt/format.h>
@@ -13,6 +15,7 @@
 #include <string>
 #include <vector>
 
+#include "app/host_environment.h"
 #include "engine/core/error.h"
 #include "engine/cpu/cpu_backend.h"
 #include "registry/backends.h"
@@ -29,6 +32,16 @@ std::unique_ptr<Backend> g_reference;
 std::unique_ptr<Backend> g_loop_counter;
 std::string g_name;
 std::vector<std::string> g_stray_validation;  // messages outside any test case
+// The environment's settings, read once in main (a null until then).
+std::unique_ptr<app::HostRequest> g_host;
+
+// The host's request with other tuning and loop counting.
+BackendRequest host_request(const Tuning& t, bool count_loop_ticks = false) {
+  BackendRequest r = g_host->get();
+  r.tuning = t;
+  r.count_loop_ticks = count_loop_ticks;
+  return r;
+}
 }  // namespace
 
 Backend& backend() {
@@ -50,7 +63,7 @@ const Tuning& tuning() {
   return g_backend->tuning();
 }
 std::unique_ptr<Backend> backend_with(const Tuning& t) {
-  return create_backend(g_name, "", BackendRequest{.tuning = t});
+  return create_backend(g_name, "", host_request(t));
 }
 bool sph_sums_follow_lanes() {
 #if MASAV_HAVE_VULKAN
@@ -108,8 +121,14 @@ int main(int argc, char** argv) {
   });
 #endif
 
+  try {
+    test::g_host = std::make_unique<app::HostRequest>(app::read_host_environment());
+  } catch (const Error& e) {
+    fmt::print(stderr, "{}\n", e.what());
+    return 2;
+  }
   BackendStatus status;
-  for (const auto& s : list_backends())
+  for (const auto& s : list_backends(test::g_host->get()))
     if (s.name == name) status = s;
   if (status.name.empty()) {
     fmt::print(stderr, "unknown backend '{}' (vulkan, cuda, cpu)\n", name);
@@ -124,7 +143,7 @@ int main(int argc, char** argv) {
     return 77;
   }
   try {
-    test::g_backend = create_backend(name, "", BackendRequest{.tuning = tuning});
+    test::g_backend = create_backend(name, "", test::host_request(tuning));
   } catch (const Error& e) {
     // The backend reports a device, so failing to create it is a bug, not a skip.
     fmt::print(stderr, "FAILED: backend '{}' lists a usable device but could not be created: {}\n",
@@ -139,8 +158,7 @@ int main(int argc, char** argv) {
 
   // The loop-limit suite needs a backend that counts loop iterations.
   try {
-    auto counter =
-        create_backend(name, "", BackendRequest{.count_loop_ticks = true, .tuning = tuning});
+    auto counter = create_backend(name, "", test::host_request(tuning, true));
     if (counter->take_max_loop_ticks()) test::g_loop_counter = std::move(counter);
   } catch (const Error& e) {
     fmt::print(stderr, "FAILED: backend '{}' could not be created to count loops: {}\n", name,

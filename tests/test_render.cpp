@@ -24,6 +24,7 @@
 #include "render/png.h"
 #include "render/renderer.h"
 #include "render/scene_player.h"
+#include "tests/host_options.h"
 
 using namespace masav;
 
@@ -94,7 +95,7 @@ struct Rig {
   std::unique_ptr<render::UiContext> ui;
   std::unique_ptr<render::Renderer> renderer;
   Rig(const std::string& name, uint32_t w, uint32_t h) {
-    const masav::vk::ContextOptions o = render::graphics_options();
+    const masav::vk::ContextOptions o = test::graphics_options();
     backend = name == "cpu" ? std::unique_ptr<Backend>(new cpu::CpuBackend(1))
                             : render::open_compute_backend(name, "", o);
     device = std::make_unique<render::RenderDevice>(*backend, o);
@@ -406,7 +407,8 @@ TEST_CASE("the particle scene renders non-blank, changing frames with the overla
   file.params.set("render.height", int64_t(150));
   render::PlayerOptions po;
   po.backend = "vulkan";
-  po.graphics = render::graphics_options();
+  po.graphics = test::graphics_options();
+  po.cache_dir = test::cache_dir();
   render::ScenePlayer player(file, po);
   auto frame = [&](double t) {
     player.clock().time_s = t;

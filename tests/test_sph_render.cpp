@@ -16,6 +16,7 @@
 #include "registry/scene_file.h"
 #include "render/png.h"
 #include "render/scene_player.h"
+#include "tests/host_options.h"
 
 using namespace masav;
 
@@ -65,7 +66,8 @@ TEST_CASE("the SPH cube drop renders and the fluid ends at the bottom of the box
   p.set("camera.view", std::string("front"));
   render::PlayerOptions po;
   po.backend = "vulkan";
-  po.graphics = render::graphics_options();
+  po.graphics = test::graphics_options();
+  po.cache_dir = test::cache_dir();
   render::ScenePlayer player(file, po);
   auto frame = [&](uint64_t i) {
     player.clock().frame = i;
@@ -180,7 +182,8 @@ TEST_CASE("the SPH overlay shows the simulated time, the frame clock labelled ap
   file.params.set("render.height", int64_t(120));
   render::PlayerOptions po;
   po.backend = "cpu";
-  po.graphics = render::graphics_options();
+  po.graphics = test::graphics_options();
+  po.cache_dir = test::cache_dir();
   render::ScenePlayer player(file, po);
   for (uint64_t i = 0; i <= 11; ++i) {
     player.clock().frame = i;
@@ -222,7 +225,8 @@ TEST_CASE("the colour bar shows the colour map, its tick labels and the quantity
   file.params.set("camera.view", std::string("front"));
   render::PlayerOptions po;
   po.backend = "vulkan";
-  po.graphics = render::graphics_options();
+  po.graphics = test::graphics_options();
+  po.cache_dir = test::cache_dir();
   render::ScenePlayer player(file, po);
   player.update();
   render::FrameRequest req;

@@ -19,6 +19,7 @@
 #include <set>
 
 #include "app/demo/idle_wait.h"
+#include "app/host_environment.h"
 #include "app/interrupt.h"
 #include "engine/core/error.h"
 #include "engine/sph/sph_scene_type.h"
@@ -54,7 +55,7 @@ std::vector<std::string> find_scene_files(const std::string& current) {
 DemoApp::DemoApp(const DemoOptions& o, scene::SceneFile file, uint32_t window_w, uint32_t window_h)
     : options_(o), window_(window_w, window_h, "masav demo"), capture_(o.out) {
   state_.scene_files = find_scene_files(file.source);
-  for (const auto& s : list_backends())
+  for (const auto& s : list_backends(HostRequest(host_environment()).get()))
     if (s.available) state_.backends.push_back(s.name);
   if (!o.script.empty()) script_ = load_script(o.script);
   uint32_t w = 0, h = 0;
@@ -129,6 +130,7 @@ void DemoApp::start(scene::SceneFile file, const std::string& backend) {
   po.tuning = options_.choice.tuning();
   po.fault = fault_kernel(options_.choice);
   po.graphics = window_.graphics_options(backend == "vulkan" ? options_.choice.device : "");
+  po.cache_dir = host_environment().cache_dir().string();
   player_ = std::make_unique<render::ScenePlayer>(std::move(file), po);
   forget_tf_scene(state_.tf);
   uint32_t w = 0, h = 0;

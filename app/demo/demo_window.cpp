@@ -8,6 +8,7 @@
 #include <cstdlib>
 
 #include "app/demo/demo_layout.h"
+#include "app/host_environment.h"
 #include "engine/core/error.h"
 #include "render/render_device.h"
 
@@ -78,7 +79,7 @@ DemoWindow::~DemoWindow() {
 }
 
 vk::ContextOptions DemoWindow::graphics_options(const std::string& device) const {
-  vk::ContextOptions o = render::graphics_options(device);
+  vk::ContextOptions o = render::graphics_options(vulkan_options(host_environment()), device);
   uint32_t count = 0;
   const char** names = glfwGetRequiredInstanceExtensions(&count);
   if (!names)

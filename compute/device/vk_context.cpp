@@ -9,8 +9,10 @@
 #include <cerrno>
 #include <cstdlib>
 #include <cstring>
+#include <map>
+#include <mutex>
 
-#include "compute/device/vk_environment.h"
+#include "compute/device/vk_manifests.h"
 #include "engine/core/error.h"
 
 namespace masav::vk {
@@ -43,21 +45,39 @@ const char* kNoDriverRemedy =
     "install mesa-vulkan-drivers (lavapipe, any CPU) or your GPU vendor's Vulkan driver; on an "
     "NVIDIA machine without a display, point VK_DRIVER_FILES at nvidia_icd.json";
 
-// Opened with dlopen (never linked), once per process, by the name vk_environment.h resolves.
-std::unique_ptr<raii::Context> open_loader() {
-  static void* handle = nullptr;
-  static std::string error;
-  if (!handle && error.empty()) {
-    handle = dlopen(loader_library().c_str(), RTLD_NOW | RTLD_LOCAL);
-    if (!handle) error = dlerror();
+// A loader library as dlopen left it: the handle, or why there is none.
+struct OpenedLoader {
+  void* handle = nullptr;
+  std::string error;
+};
+
+// Opened with dlopen (never linked), once per process and name (ContextOptions::loader): the
+// handles stay open for the process's life, as the instances made from them may.
+std::unique_ptr<raii::Context> open_loader(const std::string& name) {
+  static std::mutex mutex;
+  static std::map<std::string, OpenedLoader> opened;
+  OpenedLoader loader;
+  {
+    const std::lock_guard<std::mutex> lock(mutex);
+    auto it = opened.find(name);
+    if (it == opened.end()) {
+      OpenedLoader fresh;
+      fresh.handle = dlopen(name.c_str(), RTLD_NOW | RTLD_LOCAL);
+      if (!fresh.handle) {
+        const char* why = dlerror();
+        fresh.error = why ? why : "dlopen failed";
+      }
+      it = opened.emplace(name, std::move(fresh)).first;
+    }
+    loader = it->second;
   }
-  auto gipa =
-      handle ? reinterpret_cast<PFN_vkGetInstanceProcAddr>(dlsym(handle, "vkGetInstanceProcAddr"))
-             : nullptr;
+  auto gipa = loader.handle ? reinterpret_cast<PFN_vkGetInstanceProcAddr>(
+                                  dlsym(loader.handle, "vkGetInstanceProcAddr"))
+                            : nullptr;
   if (!gipa)
     throw Error("vulkan", "",
                 fmt::format("the Vulkan loader could not be opened ({})",
-                            error.empty() ? "no vkGetInstanceProcAddr" : error),
+                            loader.error.empty() ? "no vkGetInstanceProcAddr" : loader.error),
                 "install the Debian package libvulkan1, plus mesa-vulkan-drivers for the CPU "
                 "driver lavapipe or your GPU vendor's driver");
   return std::make_unique<raii::Context>(gipa);
@@ -75,8 +95,13 @@ bool has_instance_extension(const raii::Context& ctx, const std::string& name) {
   return false;
 }
 
-std::unique_ptr<raii::Instance> make_instance(const raii::Context& ctx, bool validation,
-                                              const std::vector<std::string>& wanted = {}) {
+// With the validation layer and the instance extensions `options` asks for, or none of them
+// (`plain`: the device listing).
+std::unique_ptr<raii::Instance> make_instance(const raii::Context& ctx,
+                                              const ContextOptions& options, bool plain = false) {
+  const bool validation = options.validation && !plain;
+  static const std::vector<std::string> none;
+  const std::vector<std::string>& wanted = plain ? none : options.instance_extensions;
   const uint32_t loader_version = ctx.enumerateInstanceVersion();
   if (loader_version < VK_API_VERSION_1_1)
     throw Error("vulkan", "", "the Vulkan loader only offers Vulkan 1.0",
@@ -87,7 +112,7 @@ std::unique_ptr<raii::Instance> make_instance(const raii::Context& ctx, bool val
     if (!has_layer(ctx, kValidationLayer))
       throw Error(
           "vulkan", "",
-          "validation was asked for (MASAV_VK_VALIDATION=1) but "
+          "validation was asked for (MASAV_VK_VALIDATION=1, or ContextOptions::validation) but "
           "VK_LAYER_KHRONOS_validation is not installed",
           "install the Debian package vulkan-validationlayers, or unset MASAV_VK_VALIDATION");
     layers.push_back(kValidationLayer);
@@ -106,7 +131,9 @@ std::unique_ptr<raii::Instance> make_instance(const raii::Context& ctx, bool val
   } catch (const ::vk::SystemError& e) {
     // A manifest the environment names wrongly is the likeliest cause, whatever the loader
     // reports (a malformed one reads as ErrorOutOfHostMemory).
-    if (const std::string problem = driver_manifest_problem(); !problem.empty())
+    if (const std::string problem =
+            driver_manifest_problem(options.driver_files, options.icd_filenames);
+        !problem.empty())
       throw Error("vulkan", "", fmt::format("vkCreateInstance failed: {}", problem),
                   "fix the variable or unset it (the loader then finds the installed drivers)");
     if (dynamic_cast<const ::vk::IncompatibleDriverError*>(&e))
@@ -245,9 +272,9 @@ uint64_t validation_message_count() {
   return g_validation_messages.load();
 }
 
-std::vector<DeviceListing> Context::list_devices() {
-  auto ctx = open_loader();
-  auto instance = make_instance(*ctx, false);
+std::vector<DeviceListing> Context::list_devices(const ContextOptions& options) {
+  auto ctx = open_loader(options.loader);
+  auto instance = make_instance(*ctx, options, true);
   raii::PhysicalDevices devices(*instance);
   std::vector<DeviceListing> out;
   for (uint32_t i = 0; i < devices.size(); ++i) {
@@ -266,8 +293,8 @@ std::vector<DeviceListing> Context::list_devices() {
 }
 
 Context::Context(const ContextOptions& options) {
-  context_ = open_loader();
-  instance_ = make_instance(*context_, options.validation, options.instance_extensions);
+  context_ = open_loader(options.loader);
+  instance_ = make_instance(*context_, options);
   graphics_ = options.graphics;
   const VkInstance raw_instance = static_cast<VkInstance>(**instance_);
   auto why_not = [&](const raii::PhysicalDevice& pd) {

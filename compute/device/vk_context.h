@@ -27,9 +27,20 @@ struct DeviceListing {
 // PresentationSupport); used to pick the device and queue when rendering to a window.
 using PresentSupport = std::function<bool(VkInstance, VkPhysicalDevice, uint32_t family)>;
 
+// Everything from the caller: the library never reads the process environment (the masav
+// command line fills these from MASAV_VK_DEVICE, MASAV_VK_VALIDATION, MASAV_VULKAN_LOADER,
+// VK_DRIVER_FILES and VK_ICD_FILENAMES; docs/backends.md).
 struct ContextOptions {
   std::string device_selector;  // "" = best ranked
   bool validation = false;      // VK_LAYER_KHRONOS_validation with a debug messenger
+  // The Vulkan loader library dlopen opens (a path, or a name the dynamic linker searches);
+  // the tests name a missing one to play a machine without Vulkan.
+  std::string loader = "libvulkan.so.1";
+  // The values of the loader's own variables VK_DRIVER_FILES and VK_ICD_FILENAMES ("" = unset),
+  // which the loader reads itself: masav only reads them here to say which manifest is wrong
+  // when vkCreateInstance fails (compute/device/vk_manifests.h).
+  std::string driver_files;
+  std::string icd_filenames;
   // Device limits lowered, never raised (0: the device's own): VulkanTuning::max_buffer_mib and
   // max_texels, so that the refusal of a size too large is tested the same on every device.
   uint64_t max_buffer_bytes = 0;  // the largest buffer a kernel may bind
@@ -53,9 +64,10 @@ class Context {
   explicit Context(const ContextOptions& options);
   ~Context();
 
-  // Lists every physical device with whether masav can use it (throws masav::Error when there
-  // is no loader or no driver at all).
-  static std::vector<DeviceListing> list_devices();
+  // Lists every physical device with whether masav can use it, through the loader `options`
+  // name (throws masav::Error when there is no loader or no driver at all). Only the loader and
+  // the manifest variables are read: the listing names every device.
+  static std::vector<DeviceListing> list_devices(const ContextOptions& options = {});
 
   const ::vk::raii::Instance& instance() const { return *instance_; }
   const ::vk::raii::Device& device() const { return *device_; }

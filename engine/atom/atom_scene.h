@@ -37,7 +37,7 @@ struct AtomSceneOptions {
   uint32_t density_dims = 60;      // density grid cells per axis (the thesis's cube of size l)
   double box_probability = 0.999;  // the grid's cube holds at least this much of |psi|^2
   ScatterTableParams scatter;      // defaults: thesis §2.2.3 (1000 x 72, g = a = 0.6)
-  std::string cache_dir;           // "" = the default cache directory
+  std::string cache_dir;           // the table's cache (engine/util/cache_dir.h); "" = none
   bool use_cache = true;
   float source_power_lm = 250000.0f;
   Vec3f viewer{0, 0, 0};  // (0, 0, 0) = in front, at 2.5 box half-widths

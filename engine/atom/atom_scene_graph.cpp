@@ -32,10 +32,11 @@ class TableStage final : public scene::Stage {
 
 class AtomCloudScene final : public scene::SceneInstance {
  public:
-  AtomCloudScene(Backend& b, const ParamSet& p, bool volume)
+  AtomCloudScene(Backend& b, const ParamSet& p, bool volume, std::string cache_dir)
       : SceneInstance(b, p),
         volume_(volume),
-        core_(b, (validate(p), scene_options_of(p))),
+        cache_dir_(std::move(cache_dir)),
+        core_(b, (validate(p), options_of(p))),
         render_(b) {
     synced_ = domain_version();
     file_subject_ = subject();
@@ -189,7 +190,7 @@ class AtomCloudScene final : public scene::SceneInstance {
   void sync() {
     const uint64_t v = domain_version();
     if (synced_ == v) return;
-    core_.reconfigure(scene_options_of(params_));
+    core_.reconfigure(options_of(params_));
     synced_ = v;
   }
 
@@ -249,7 +250,15 @@ class AtomCloudScene final : public scene::SceneInstance {
     light_to_unit_ = float(exposure * params_.get_real("nebula.power_lm") / kReferencePowerLm);
   }
 
+  // The pipeline's options: the parameters', and the program's cache directory.
+  AtomSceneOptions options_of(const ParamSet& p) const {
+    AtomSceneOptions o = scene_options_of(p);
+    o.cache_dir = cache_dir_;
+    return o;
+  }
+
   bool volume_;
+  std::string cache_dir_;  // declared before core_, which its constructor reads it for
   AtomScene core_;
   uint64_t synced_ = 0;
   std::string file_subject_;      // subject() as the scene was created
@@ -264,8 +273,8 @@ class AtomCloudScene final : public scene::SceneInstance {
 }  // namespace
 
 std::unique_ptr<scene::SceneInstance> make_atom_scene(Backend& b, const scene::ParamSet& p,
-                                                      bool volume) {
-  return std::make_unique<AtomCloudScene>(b, p, volume);
+                                                      bool volume, const std::string& cache_dir) {
+  return std::make_unique<AtomCloudScene>(b, p, volume, cache_dir);
 }
 
 }  // namespace masav::atom

@@ -21,12 +21,14 @@
 // scattering table comes from the disk cache once computed. The `atom` scene never reaches the
 // volume stages: they are never created.
 #include <memory>
+#include <string>
 
 #include "engine/scene/scene.h"
 
 namespace masav::atom {
 
+// cache_dir: the scattering table's cache (AtomSceneOptions::cache_dir; "" = none).
 std::unique_ptr<scene::SceneInstance> make_atom_scene(Backend& b, const scene::ParamSet& p,
-                                                      bool volume);
+                                                      bool volume, const std::string& cache_dir);
 
 }  // namespace masav::atom

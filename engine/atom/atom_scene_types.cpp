@@ -41,7 +41,9 @@ scene::SceneType atom_scene_type() {
   t.tables = {&atom_table(), &nebula_table(), &scatter_table_schema()};
   t.kernels = [](const ParamSet&) { return cloud_kernels(); };
   t.check_inputs = check_inputs_of;
-  t.create = [](Backend& b, const ParamSet& p) { return make_atom_scene(b, p, false); };
+  t.make = [](Backend& b, const ParamSet& p, const scene::SceneHost& host) {
+    return make_atom_scene(b, p, false, host.cache_dir);
+  };
   return t;
 }
 
@@ -57,7 +59,9 @@ scene::SceneType atom_volume_scene_type() {
     return k;
   };
   t.check_inputs = check_inputs_of;
-  t.create = [](Backend& b, const ParamSet& p) { return make_atom_scene(b, p, true); };
+  t.make = [](Backend& b, const ParamSet& p, const scene::SceneHost& host) {
+    return make_atom_scene(b, p, true, host.cache_dir);
+  };
   return t;
 }
 

@@ -9,7 +9,6 @@
 
 #include "engine/core/error.h"
 #include "engine/io/csv_writer.h"
-#include "engine/util/cache_dir.h"
 #include "engine/util/cache_file.h"
 #include "engine/util/checked_size.h"
 #include "engine/util/checksum.h"
@@ -22,12 +21,6 @@ namespace {
 constexpr uint32_t kPayloadVersion = 2;
 constexpr uint64_t kMaxBackendName = 64;
 constexpr uint64_t kEntryBytes = sizeof(double) + sizeof(uint32_t);
-
-// `dir`, or the default cache directory; none when there is neither.
-std::optional<std::filesystem::path> cache_dir(const std::string& dir) {
-  if (!dir.empty()) return std::filesystem::path(dir);
-  return default_cache_dir();
-}
 
 uint64_t entries(const ScatterTableParams& p) {
   return checked_mul(p.rows, uint64_t(p.bins) + kScatterExtras, "scatter table", "rows x bins");
@@ -62,9 +55,8 @@ std::string scatter_cache_key(const ScatterTableParams& p) {
 }
 
 std::string scatter_cache_path(const ScatterTableParams& p, const std::string& dir) {
-  const std::optional<std::filesystem::path> root = cache_dir(dir);
-  if (!root) return "";
-  return fmt::format("{}/scatter/{:016x}.bin", root->string(), fnv1a64(scatter_cache_key(p)));
+  if (dir.empty()) return "";
+  return fmt::format("{}/scatter/{:016x}.bin", dir, fnv1a64(scatter_cache_key(p)));
 }
 
 ScatterTable compute_scatter_table(Backend& b, const ScatterTableParams& p) {
@@ -105,7 +97,8 @@ void save_scatter_cache(const ScatterTable& t, const std::string& dir) {
   const std::string path = scatter_cache_path(t.params, dir);
   if (path.empty())
     throw Error("", "cache", "no cache directory for the scattering table",
-                "set MASAV_CACHE_DIR or HOME");
+                "pass a cache directory (AtomSceneOptions::cache_dir; the masav command line "
+                "takes MASAV_CACHE_DIR or HOME)");
   std::string payload = t.backend.substr(0, kMaxBackendName) + "\n";
   const size_t head = payload.size();
   payload.resize(head + t.weight.size() * sizeof(double) + t.hits.size() * sizeof(uint32_t));

@@ -20,8 +20,8 @@ struct ScatterTable {
 
 // Every parameter, in a canonical text form (floats as exact hex), and its 64-bit FNV-1a hash.
 std::string scatter_cache_key(const ScatterTableParams& p);
-// <dir>/scatter/<hash>.bin; dir "" = default_cache_dir() (engine/util/cache_dir.h), and "" when
-// there is no cache directory at all: then nothing is loaded, and saving throws.
+// <dir>/scatter/<hash>.bin, dir the cache directory (engine/util/cache_dir.h); "" when dir is ""
+// (no cache): then nothing is loaded, and saving throws.
 std::string scatter_cache_path(const ScatterTableParams& p, const std::string& dir = "");
 
 ScatterTable compute_scatter_table(Backend& b, const ScatterTableParams& p);

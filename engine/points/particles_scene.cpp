@@ -241,7 +241,8 @@ scene::SceneType particles_scene_type() {
     c.neighbor_radius = radius_of(p);
     return c;
   };
-  t.create = [](Backend& b, const ParamSet& p) -> std::unique_ptr<scene::SceneInstance> {
+  t.make = [](Backend& b, const ParamSet& p,
+              const scene::SceneHost&) -> std::unique_ptr<scene::SceneInstance> {
     return std::make_unique<ParticlesScene>(b, p);
   };
   // The grid's per-cell tables (cell start, end, counts: one u32 per cell each) are the buffers

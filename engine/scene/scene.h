@@ -118,6 +118,14 @@ struct CheckInputs {
   ParamSet params;
 };
 
+// What a scene takes from the program that runs it, beside its parameters (the library never
+// reads the process environment: the masav command line resolves these from it).
+struct SceneHost {
+  // The disk caches' directory (engine/util/cache_dir.h: the atom scenes keep their scattering
+  // table under scatter/); "" = no cache: each run recomputes.
+  std::string cache_dir;
+};
+
 struct SceneType {
   std::string name;
   std::string help;
@@ -125,7 +133,12 @@ struct SceneType {
   // Kernels the scene runs with these parameters (each must have a cross-check).
   std::function<std::vector<KernelId>(const ParamSet&)> kernels;
   std::function<CheckInputs(const ParamSet&)> check_inputs;
-  std::function<std::unique_ptr<SceneInstance>(Backend&, const ParamSet&)> create;
+  std::function<std::unique_ptr<SceneInstance>(Backend&, const ParamSet&, const SceneHost&)> make;
+  // make(), with no cache unless `host` names one.
+  std::unique_ptr<SceneInstance> create(Backend& b, const ParamSet& p,
+                                        const SceneHost& host = {}) const {
+    return make(b, p, host);
+  }
   // Optional: when a backend refuses a buffer over `limit_bytes` (LimitError), the setting of
   // these parameters that fits ("set particles.grid_cells <= 64 ..."), or "" if none is the cause.
   std::function<std::string(const ParamSet&, uint64_t limit_bytes)> fit_advice;

@@ -5,7 +5,6 @@
 #include <filesystem>
 
 #include "engine/core/error.h"
-#include "engine/util/cache_dir.h"
 #include "engine/util/cache_file.h"
 #include "engine/util/checksum.h"
 
@@ -19,15 +18,9 @@ CacheFileId cache_id(const std::string& key) {
   return {"stage-output", 1, key};
 }
 
-// <the cache directory>/stages, or "" (no cache) when there is none.
-std::string default_dir() {
-  const std::optional<std::filesystem::path> root = default_cache_dir();
-  return root ? fmt::format("{}/stages", root->string()) : "";
-}
-
 }  // namespace
 
-StageCache::StageCache(std::string dir) : dir_(dir.empty() ? default_dir() : std::move(dir)) {}
+StageCache::StageCache(std::string dir) : dir_(std::move(dir)) {}
 
 std::string StageCache::key(std::string_view stage, uint32_t format_version, const ParamSet& p,
                             std::span<const std::string> paths) {
@@ -50,7 +43,7 @@ std::optional<std::vector<uint8_t>> StageCache::load(const std::string& key) con
 bool StageCache::store(const std::string& key, std::span<const uint8_t> bytes,
                        std::string* why) const {
   if (dir_.empty()) {
-    if (why) *why = "no cache directory (set MASAV_CACHE_DIR or HOME)";
+    if (why) *why = "no cache directory (the masav command line takes MASAV_CACHE_DIR or HOME)";
     return false;
   }
   try {

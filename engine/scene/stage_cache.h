@@ -20,7 +20,8 @@ namespace masav::scene {
 
 class StageCache {
  public:
-  // dir "" = default_cache_dir()/stages (engine/util/cache_dir.h); none there: no cache.
+  // The files go straight into `dir` (a caller with a cache root passes <root>/stages,
+  // engine/util/cache_dir.h); "" = no cache: nothing is loaded and store() refuses.
   explicit StageCache(std::string dir = "");
 
   // The key of a stage's output: its name, a format version, and the listed parameters' values.

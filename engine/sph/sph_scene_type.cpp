@@ -184,7 +184,8 @@ scene::SceneType sph_scene_type() {
     c.grid = check_grid(p, c.points);
     return c;
   };
-  t.create = [](Backend& b, const ParamSet& p) -> std::unique_ptr<scene::SceneInstance> {
+  t.make = [](Backend& b, const ParamSet& p,
+              const scene::SceneHost&) -> std::unique_ptr<scene::SceneInstance> {
     return std::make_unique<SphSceneInstance>(b, p);
   };
   return t;

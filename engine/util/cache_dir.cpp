@@ -1,24 +1,13 @@
 #include "engine/util/cache_dir.h"
 
-#include <cstdlib>
-#include <string_view>
-
 namespace masav {
-namespace {
 
-// The variable's value, or none when it is unset or empty.
-std::optional<std::filesystem::path> variable(const char* name) {
-  const char* v = std::getenv(name);
-  if (!v || std::string_view(v).empty()) return std::nullopt;
-  return std::filesystem::path(v);
-}
-
-}  // namespace
-
-std::optional<std::filesystem::path> default_cache_dir() {
-  if (auto dir = variable("MASAV_CACHE_DIR")) return dir;
-  if (auto xdg = variable("XDG_CACHE_HOME"); xdg && xdg->is_absolute()) return *xdg / "masav";
-  if (auto home = variable("HOME")) return *home / ".cache" / "masav";
+std::optional<std::filesystem::path> resolve_cache_dir(const CacheDirInputs& in) {
+  namespace fs = std::filesystem;
+  if (!in.masav_cache_dir.empty()) return fs::path(in.masav_cache_dir);
+  if (const fs::path xdg(in.xdg_cache_home); !xdg.empty() && xdg.is_absolute())
+    return xdg / "masav";
+  if (!in.home.empty()) return fs::path(in.home) / ".cache" / "masav";
   return std::nullopt;
 }
 

@@ -1,7 +1,9 @@
 #pragma once
 // The one place masav decides where its caches live (the scattering table's scatter/, the stage
 // outputs' stages/, the Vulkan pipeline cache): each cache adds its own name below this
-// directory. In order, the first that applies:
+// directory. The library never reads the process environment: a program (the masav CLI, a test
+// main) reads the three variables and passes their values here. In order, the first that
+// applies:
 //   MASAV_CACHE_DIR          as given
 //   $XDG_CACHE_HOME/masav    when XDG_CACHE_HOME is an absolute path (the XDG Base Directory
 //                            specification has a relative one ignored)
@@ -12,9 +14,17 @@
 // directories named here.
 #include <filesystem>
 #include <optional>
+#include <string>
 
 namespace masav {
 
-std::optional<std::filesystem::path> default_cache_dir();
+// The variables' values as the program found them; "" = unset (or set to "").
+struct CacheDirInputs {
+  std::string masav_cache_dir;  // MASAV_CACHE_DIR
+  std::string xdg_cache_home;   // XDG_CACHE_HOME
+  std::string home;             // HOME
+};
+
+std::optional<std::filesystem::path> resolve_cache_dir(const CacheDirInputs& in);
 
 }  // namespace masav

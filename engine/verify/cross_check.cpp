@@ -138,8 +138,10 @@ CrossCheckReport cross_check_scene(Backend& backend, Backend& reference,
 }
 
 std::unique_ptr<Backend> open_reference(const Backend& chosen, const std::string& choice,
-                                        const BackendFactory& factory) {
-  const BackendRequest same{.tuning = chosen.tuning()};
+                                        const BackendFactory& factory,
+                                        const BackendRequest& request) {
+  BackendRequest same = request;
+  same.tuning = chosen.tuning();
   if (choice != "auto") return factory.create(choice, "", same);
   // The other GPU backend when the chosen one is a GPU backend; a GPU backend when the chosen
   // one is the CPU reference; else (none available, or it fails to open) the CPU reference.
@@ -149,7 +151,7 @@ std::unique_ptr<Backend> open_reference(const Backend& chosen, const std::string
                      : (me == "cuda" ? std::vector<std::string>{"vulkan"}
                                      : std::vector<std::string>{"vulkan", "cuda"});
   for (const std::string& other : others)
-    for (const auto& s : factory.list())
+    for (const auto& s : factory.list(same))
       if (s.name == other && s.available) {
         try {
           return factory.create(other, "", same);

@@ -58,9 +58,11 @@ CrossCheckReport cross_check_scene(Backend& backend, Backend& reference,
 // The second backend: `choice` (verify.reference: auto, cpu, vulkan, cuda) from `factory`, with
 // the chosen backend's tuning. auto = the other GPU backend if it is available, else the CPU
 // reference (a second instance when the chosen backend is the CPU itself and no GPU backend is
-// present).
+// present). `request` is the caller's (its Vulkan loader and validation, its cache directory);
+// its tuning is replaced by the chosen backend's.
 std::unique_ptr<Backend> open_reference(const Backend& chosen, const std::string& choice,
-                                        const BackendFactory& factory);
+                                        const BackendFactory& factory,
+                                        const BackendRequest& request = {});
 
 std::string format_report(const CrossCheckReport& r);
 std::string report_json(const CrossCheckReport& r);

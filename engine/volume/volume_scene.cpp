@@ -210,7 +210,7 @@ scene::SceneType volume_scene_type() {
     c.params = p;
     return c;
   };
-  t.create = [](Backend& b, const ParamSet& p) {
+  t.make = [](Backend& b, const ParamSet& p, const scene::SceneHost&) {
     return std::unique_ptr<scene::SceneInstance>(std::make_unique<VolumeFileScene>(b, p));
   };
   return t;

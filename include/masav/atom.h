@@ -23,6 +23,10 @@ struct AtomOptions {
   uint32_t volume_dims = 60;     ///< voxels per axis of the raymarched volume
   std::string view = "front";    ///< camera preset: front, top or left
   bool use_cache = true;         ///< reuse the scattering table from the cache directory
+  /// The scattering table's cache directory (the table goes in its `scatter/`); empty: no
+  /// cache, the table is computed every time. The `masav` command line passes the directory
+  /// MASAV_CACHE_DIR, XDG_CACHE_HOME or HOME names (docs/atom.md).
+  std::string cache_dir;
 };
 
 /// The atom scene for `options` on `backend`, its stages not yet run.

@@ -24,6 +24,16 @@ struct BackendOptions {
   std::string device;
   /// The code-path choices and limits (docs/backends.md); every option defaults to automatic.
   Tuning tuning;
+  /// The directory of the Vulkan pipeline cache; empty: no cache, every run compiles its
+  /// pipelines again. The library never reads the environment: the `masav` command line's
+  /// MASAV_CACHE_DIR (docs/backends.md) is this option.
+  std::string cache_dir;
+  /// Vulkan: the Khronos validation layer, every message printed to stderr (the command line's
+  /// MASAV_VK_VALIDATION=1). Needs the validation layers installed.
+  bool vulkan_validation = false;
+  /// Vulkan: the loader library to open, a path or a name the dynamic linker searches (the
+  /// command line's MASAV_VULKAN_LOADER).
+  std::string vulkan_loader = "libvulkan.so.1";
 };
 
 /// Opens a backend. Throws masav::Error naming the backend and what to install when it cannot
@@ -34,8 +44,12 @@ std::unique_ptr<Backend> open_backend(const BackendOptions& options = {});
 std::unique_ptr<Backend> open_backend(std::string_view name);
 
 /// Every backend masav knows: whether it was built, whether it is available, why not, and its
-/// devices (what `masav info` prints).
+/// devices (what `masav info` prints). Vulkan's devices as the default loader lists them.
 std::vector<BackendStatus> backend_report();
+
+/// The same, with Vulkan's devices listed through `options.vulkan_loader` (the other fields
+/// are not read).
+std::vector<BackendStatus> backend_report(const BackendOptions& options);
 
 /// The names of the backends that can be opened on this machine now, best first.
 std::vector<std::string> usable_backends();

@@ -7,6 +7,7 @@
 
 #include <cmath>
 #include <cstring>
+#include <optional>
 
 #include "engine/atom/atom_scene.h"
 #include "engine/atom/atom_schema.h"
@@ -49,7 +50,8 @@ OrbitalPlacement placement_of(const std::string& p) {
 std::unique_ptr<PyAtom> create(BackendRef b, const py::object& state, bool real, uint32_t particles,
                                uint64_t seed, const std::string& placement, uint32_t density_dims,
                                uint32_t volume_dims, uint32_t photons, float power, float tau_peak,
-                               float s, float t, const std::string& view, bool use_cache) {
+                               float s, float t, const std::string& view, bool use_cache,
+                               const std::optional<std::string>& cache_dir) {
   atom::AtomSceneOptions o;
   o.state = state_of(state, real);
   o.placement = placement_of(placement);
@@ -64,6 +66,7 @@ std::unique_ptr<PyAtom> create(BackendRef b, const py::object& state, bool real,
   o.s = s;
   o.t = t;
   o.use_cache = use_cache;
+  o.cache_dir = cache_dir.value_or("");
   auto a = std::make_unique<PyAtom>();
   a->view = atom::parse_view(view);
   // The viewer of the lighting sits where the raymarch camera does (as `masav atom` puts it).
@@ -142,7 +145,10 @@ void bind_atom(py::module_& m) {
            py::arg("volume_dims") = 60, py::arg("photons") = 4096, py::arg("power") = 250000.0f,
            py::arg("tau_peak") = 0.5f, py::arg("s") = 0.6f, py::arg("t") = 0.4f,
            py::arg("view") = "front", py::arg("use_cache") = true,
-           "state: \"state1\"..\"state10\" or (n, l, m); the options of `masav atom`.")
+           py::arg("cache_dir") = py::none(),
+           "state: \"state1\"..\"state10\" or (n, l, m); the options of `masav atom`. "
+           "cache_dir: the scattering table's cache directory (None: no cache, the table is "
+           "computed every time; the module never reads MASAV_CACHE_DIR).")
       .def("build_cloud", [](PyAtom& a) { run_stage(a, [](auto& s) { s.build_cloud(); }); })
       .def("build_density", [](PyAtom& a) { run_stage(a, [](auto& s) { s.build_density(); }); })
       .def("build_table", [](PyAtom& a) { run_stage(a, [](auto& s) { s.build_table(); }); })

@@ -4,6 +4,8 @@
 #include <fmt/format.h>
 #include <pybind11/stl.h>
 
+#include <optional>
+
 #include "engine/core/tuning.h"
 #include "python/src/py_arrays.h"
 #include "registry/backends.h"
@@ -40,15 +42,20 @@ Tuning tuning_of(const py::object& tune) {
 }
 
 BackendRef open(const std::string& name, const std::string& device, const py::object& tune,
-                bool count_loop_ticks) {
+                bool count_loop_ticks, const std::optional<std::string>& cache_dir, bool validation,
+                const std::optional<std::string>& loader) {
   BackendRequest request;
   request.tuning = tuning_of(tune);
   request.count_loop_ticks = count_loop_ticks;
+  request.cache_dir = cache_dir.value_or("");
+  VulkanSettings vulkan;
+  vulkan.validation = validation;
+  if (loader) vulkan.loader = *loader;
   auto ref = std::make_shared<PyBackend>();
   ref->requested = name;
   {
     py::gil_scoped_release nogil;  // a device's start takes a while (lavapipe compiles)
-    ref->backend = create_backend(name, device, request);
+    ref->backend = create_backend(name, device, request, vulkan);
   }
   return ref;
 }
@@ -126,9 +133,14 @@ BackendClass bind_backends(py::module_& m) {
                    "kernels of masav's kernel list on numpy arrays or masav.Buffer objects.");
   cls.def(py::init(&open), py::arg("name") = "auto", py::arg("device") = "",
           py::arg("tune") = py::none(), py::arg("count_loop_ticks") = false,
+          py::arg("cache_dir") = py::none(), py::arg("validation") = false,
+          py::arg("loader") = py::none(),
           "name: cpu, vulkan, cuda or auto (CUDA if it has a device, else Vulkan, else the CPU "
           "reference). device: an index or part of a name (\"\": the best). tune: the tuning "
-          "options as {\"key\": value} or [\"key=value\"] (masav.tuning_keys()).")
+          "options as {\"key\": value} or [\"key=value\"] (masav.tuning_keys()). cache_dir: "
+          "the Vulkan pipeline cache's directory (None: no cache). validation: Vulkan's "
+          "validation layer. loader: the Vulkan loader library (None: libvulkan.so.1). The "
+          "module never reads the environment (MASAV_CACHE_DIR and the like are the CLI's).")
       .def_property_readonly("name", [](PyBackend& b) { return b.backend->name(); })
       .def_property_readonly("requested", [](PyBackend& b) { return b.requested; })
       .def_property_readonly("device", [](PyBackend& b) { return b.backend->caps().device_name; })

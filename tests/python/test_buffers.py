@@ -22,6 +22,20 @@ def test_unknown_backend_is_a_masav_error_naming_it():
         masav.Backend("metal")
 
 
+def test_vulkan_options_are_arguments_never_the_environment(vulkan, tmp_path, monkeypatch):
+    # The module reads no variable: a loader named in the environment is not opened, the one
+    # given as an argument is; the pipeline cache goes where cache_dir says, nowhere without it.
+    monkeypatch.setenv("MASAV_VULKAN_LOADER", "/nonexistent/libvulkan.so.1")
+    monkeypatch.setenv("MASAV_CACHE_DIR", str(tmp_path / "from_env"))
+    with pytest.raises(masav.Error, match="loader could not be opened"):
+        masav.Backend("vulkan", loader="/nonexistent/libvulkan.so.1")
+    cached = masav.Backend("vulkan", cache_dir=str(tmp_path / "cache"))
+    cached.philox_u32(masav.PhiloxParams(seed=5, stream=7), np.zeros(4 * 4096, np.uint32))
+    del cached  # the pipeline cache is written when the backend closes
+    assert list((tmp_path / "cache").glob("vk_pipelines_*.bin"))
+    assert not (tmp_path / "from_env").exists()
+
+
 def test_bad_tuning_key_names_the_allowed_ones():
     with pytest.raises(masav.Error, match="cpu.threads"):
         masav.Backend("cpu", tune={"cpu.thread": 2})

@@ -1,22 +1,14 @@
-#include "compute/device/vk_environment.h"
+#include "compute/device/vk_manifests.h"
 
 #include <fmt/format.h>
 
-#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
-
-#include "engine/core/error.h"
+#include <utility>
 
 namespace masav::vk {
 namespace {
-
-// The variable's value, or "" where unset or empty.
-std::string env(const char* name) {
-  const char* v = std::getenv(name);
-  return v ? std::string(v) : std::string();
-}
 
 // The problem with one manifest file, or "".
 std::string manifest_problem(const std::string& var, const std::string& path) {
@@ -55,34 +47,18 @@ std::string manifest_problem(const std::string& var, const std::string& path) {
 
 }  // namespace
 
-std::string driver_manifest_problem() {
-  for (const char* var : {"VK_DRIVER_FILES", "VK_ICD_FILENAMES"}) {
-    std::stringstream list(env(var));
+std::string driver_manifest_problem(const std::string& driver_files,
+                                    const std::string& icd_filenames) {
+  const std::pair<const char*, const std::string*> vars[] = {{"VK_DRIVER_FILES", &driver_files},
+                                                             {"VK_ICD_FILENAMES", &icd_filenames}};
+  for (const auto& [var, value] : vars) {
+    std::stringstream list(*value);
     std::string path;
     while (std::getline(list, path, ':'))
       if (!path.empty())
         if (std::string p = manifest_problem(var, path); !p.empty()) return p;
   }
   return "";
-}
-
-ContextOptions options_from_env() {
-  ContextOptions o;
-  o.device_selector = env("MASAV_VK_DEVICE");
-  const std::string v = env("MASAV_VK_VALIDATION");
-  if (v == "1" || v == "on" || v == "true")
-    o.validation = true;
-  else if (v == "0" || v == "off" || v == "false" || v.empty())
-    o.validation = false;
-  else
-    throw Error("", "environment", fmt::format("invalid MASAV_VK_VALIDATION = {}", v),
-                "MASAV_VK_VALIDATION must be 1/on/true or 0/off/false");
-  return o;
-}
-
-std::string loader_library() {
-  const std::string name = env("MASAV_VULKAN_LOADER");
-  return name.empty() ? "libvulkan.so.1" : name;
 }
 
 }  // namespace masav::vk
