@@ -21,7 +21,7 @@ using namespace masav;
 namespace {
 
 bool fp32(const Backend& b) {
-  return !b.caps().real_is_double;
+  return !b.caps().real_is_double || b.caps().sph_pairs_fp32;
 }
 
 // A block of nx x ny x nz particles at spacing dx with its lower corner at `corner`.

@@ -26,6 +26,9 @@ struct Capabilities {
   uint64_t device_memory_bytes = 0;
   double timestamp_period_ns = 1.0;
   bool real_is_double = false;  // Real/Real4 buffers hold fp64 (CPU reference) or fp32
+  // The SPH density and force pair terms are summed in fp32 even though Real is fp64 (the CPU
+  // backend with CpuTuning::sph_precision = fp32).
+  bool sph_pairs_fp32 = false;
   uint32_t threads = 1;         // CPU worker threads (1 for GPUs)
   // The most loop iterations one shader invocation may run: lavapipe's own limit. A device
   // without one reports the portable budget, so that every backend accepts the same parameters

@@ -60,6 +60,14 @@ E parse_named(std::string_view key, std::string_view v, const std::array<std::st
 
 constexpr std::array<std::string_view, 3> kSortNames = {"auto", "tiled", "subgroup"};
 constexpr std::array<std::string_view, 3> kWalkNames = {"auto", "cooperative", "lanes"};
+constexpr std::array<std::string_view, 3> kPrecisionNames = {"auto", "fp64", "fp32"};
+constexpr std::array<std::string_view, 4> kSimdNames = {"auto", "generic", "avx2", "avx512"};
+
+// A named option's text: "" where automatic.
+template <size_t N>
+std::string named_text(size_t index, const std::array<std::string_view, N>& names) {
+  return index == 0 ? std::string() : std::string(names[index]);
+}
 
 #define MASAV_SWITCH(key, field, automatic, description)                                     \
   Option {                                                                                   \
@@ -74,6 +82,20 @@ const std::vector<Option>& options() {
         "worker threads of the CPU backend"},
        [](Tuning& t, std::string_view v) { t.cpu.threads = uint32_t(parse_count("cpu.threads", v, 1024)); },
        [](const Tuning& t) { return count_text(t.cpu.threads); }},
+      {{"cpu.sph_precision", "auto, fp64 or fp32", "fp64",
+        "the precision of the CPU backend's wcsph and thesis density and force kernels"},
+       [](Tuning& t, std::string_view v) {
+         t.cpu.sph_precision = parse_named<CpuSphPrecision>("cpu.sph_precision", v,
+                                                            kPrecisionNames, "auto, fp64 or fp32");
+       },
+       [](const Tuning& t) { return named_text(size_t(t.cpu.sph_precision), kPrecisionNames); }},
+      {{"cpu.sph_simd", "auto, generic, avx2 or avx512", "the widest this CPU runs",
+        "the instruction set of the fp32 SPH pair loops (the same bits with each)"},
+       [](Tuning& t, std::string_view v) {
+         t.cpu.sph_simd = parse_named<CpuSphSimd>("cpu.sph_simd", v, kSimdNames,
+                                                  "auto, generic, avx2 or avx512");
+       },
+       [](const Tuning& t) { return named_text(size_t(t.cpu.sph_simd), kSimdNames); }},
       {{"vulkan.sort_scatter", "auto, tiled or subgroup", "subgroup on a CPU device, else tiled",
         "the radix sort's scatter pass"},
        [](Tuning& t, std::string_view v) {

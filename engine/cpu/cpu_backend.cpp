@@ -54,6 +54,16 @@ CpuBackend::CpuBackend(unsigned threads, CpuRenderPrecision render, const Tuning
   caps_.device_memory_bytes = uint64_t(sysconf(_SC_PHYS_PAGES)) * uint64_t(sysconf(_SC_PAGE_SIZE));
   caps_.real_is_double = true;
   caps_.threads = pool_.size();
+  if (tuning.cpu.sph_precision == CpuSphPrecision::fp32) {
+    const CpuSphSimd want = tuning.cpu.sph_simd;
+    const SphSimd simd = want == CpuSphSimd::automatic ? best_sph_simd()
+                         : want == CpuSphSimd::avx512  ? SphSimd::avx512
+                         : want == CpuSphSimd::avx2    ? SphSimd::avx2
+                                                       : SphSimd::generic;
+    sph_simd_ = &sph_simd_kernels(simd);
+    caps_.sph_pairs_fp32 = true;
+    caps_.driver += fmt::format("; SPH pair kernels in fp32 ({})", sph_simd_name(simd));
+  }
 }
 
 CpuBuffer& CpuBackend::own(BufferImpl& b, std::string_view kernel) {

@@ -8,6 +8,7 @@
 
 #include "engine/cpu/cpu_dfsph_terms.h"
 #include "engine/cpu/cpu_sph_lists.h"
+#include "engine/cpu/cpu_sph_simd.h"
 #include "engine/cpu/thread_pool.h"
 #include "engine/kernels/backend.h"
 
@@ -71,9 +72,14 @@ class CpuBackend final : public Backend {
                                 const Buffer<uint32_t>& cell_start,
                                 const Buffer<uint32_t>& cell_end, double h2,
                                 const char* kernel) const;
-  template <class Found>
+  // In T: double, or float for the fp32 path (CpuTuning::sph_precision).
+  template <class T, class Found>
   void build_sph_lists(const SphListInputs& in, size_t chunks, Found&& found,
                        const SphListReach& reach = {});
+  // Whether sph_density and sph_forces of `p` run the fp32 pair loops (sph_simd_): wcsph and
+  // the thesis model; dfsph's kernels share their lists with its solves, which stay fp64.
+  bool sph_in_fp32(const SphStepParams& p) const;
+  void sph_forces_fp32(const KernelArgs<KernelId::sph_forces>& a);  // cpu_sph_fp32.cpp
   // The lists for `in` in sph_chunks(in.n) chunks: sph_density's where they match, else new.
   void ensure_sph_lists(const SphListInputs& in);
   size_t sph_chunks(uint32_t n) const;
@@ -94,6 +100,8 @@ class CpuBackend final : public Backend {
   DfsphTerms dfsph_terms_;
   bool dfsph_terms_on_ = true;
   std::vector<double> sph_p_rho2_;  // sph_forces' p / rho^2 per particle, kept between calls
+  const SphSimdKernels* sph_simd_ = nullptr;  // the fp32 pair loops; null: fp64
+  std::vector<float> sph_fields_;  // sph_forces_fp32's neighbour fields, 8 arrays of n + 16
   std::vector<std::chrono::steady_clock::time_point> stamps_;
   std::chrono::steady_clock::time_point epoch_ = std::chrono::steady_clock::now();
 };

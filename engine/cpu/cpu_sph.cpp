@@ -11,6 +11,8 @@
 
 #include "engine/cpu/cpu_backend.h"
 #include "engine/cpu/cpu_sph_rows.h"
+#include "engine/cpu/cpu_sph_stats.h"
+#include "engine/cpu/cpu_sph_simd.h"
 #include "engine/kernels/sph_integrate_body.h"
 
 namespace masav::cpu {
@@ -18,33 +20,8 @@ namespace {
 
 using V = sph::V3<double>;
 
-// A chunk's statistics, a cache line each: the threads update their chunks' stats particle by
-// particle, and neighbouring chunks in one line would pass it between the cores.
-struct alignas(64) ChunkStats {
-  uint32_t max_candidates = 0, max_neighbors = 0, outside = 0;
-  uint32_t overflow = UINT32_MAX, non_finite = UINT32_MAX;  // smallest sorted index
-  double max_speed2 = 0, max_accel2 = 0, max_disp2 = 0, max_density = 0;
-};
-
 uint32_t float_bits(double v) {
   return std::bit_cast<uint32_t>(float(v));
-}
-
-void merge(uint32_t* words, const std::vector<ChunkStats>& chunks) {
-  for (const ChunkStats& c : chunks) {
-    words[kSphStatMaxCandidates] = std::max(words[kSphStatMaxCandidates], c.max_candidates);
-    words[kSphStatMaxNeighbors] = std::max(words[kSphStatMaxNeighbors], c.max_neighbors);
-    words[kSphStatOutside] += c.outside;
-    if (c.overflow != UINT32_MAX)
-      words[kSphStatOverflow] = std::max(words[kSphStatOverflow], ~c.overflow);
-    if (c.non_finite != UINT32_MAX)
-      words[kSphStatNonFinite] = std::max(words[kSphStatNonFinite], ~c.non_finite);
-    // Non-negative floats order like their bit patterns.
-    words[kSphStatMaxSpeed2] = std::max(words[kSphStatMaxSpeed2], float_bits(c.max_speed2));
-    words[kSphStatMaxAccel2] = std::max(words[kSphStatMaxAccel2], float_bits(c.max_accel2));
-    words[kSphStatMaxDisp2] = std::max(words[kSphStatMaxDisp2], float_bits(c.max_disp2));
-    words[kSphStatMaxDensity] = std::max(words[kSphStatMaxDensity], float_bits(c.max_density));
-  }
 }
 
 size_t chunk_count(const ThreadPool& pool, size_t n, size_t grain) {
@@ -87,24 +64,58 @@ double spiky_density_sum(const double* r2, uint32_t count, const SphStepLayout<d
   return sum;
 }
 
-// Positions as three contiguous arrays (the row loops vectorise over them).
+// Positions as three contiguous arrays (the row loops vectorise over them), in T, with a
+// vector's slack at the end that the fp32 loops read (and ignore).
+template <class T>
 struct Soa {
-  std::vector<double> x, y, z;
+  std::vector<T> x, y, z;
 };
-const Soa& soa_positions(ThreadPool& pool, const double* pos, size_t n) {
-  static thread_local Soa mine;
-  Soa& s = mine;  // the caller's copy: worker threads must not name their own thread_local
-  s.x.resize(n);
-  s.y.resize(n);
-  s.z.resize(n);
+template <class T>
+const Soa<T>& soa_positions(ThreadPool& pool, const double* pos, size_t n) {
+  static thread_local Soa<T> mine;
+  Soa<T>& s = mine;  // the caller's copy: worker threads must not name their own thread_local
+  s.x.assign(n + 16, T(0));
+  s.y.assign(n + 16, T(0));
+  s.z.assign(n + 16, T(0));
   pool.parallel_for(n, 8192, [&](size_t b, size_t e) {
     for (size_t i = b; i < e; ++i) {
-      s.x[i] = pos[4 * i];
-      s.y[i] = pos[4 * i + 1];
-      s.z[i] = pos[4 * i + 2];
+      s.x[i] = T(pos[4 * i]);
+      s.y[i] = T(pos[4 * i + 1]);
+      s.z[i] = T(pos[4 * i + 2]);
     }
   });
   return s;
+}
+
+// wall_images_density in fp32: the neighbours' images in the SIMD loop, then the particle's own.
+template <class Soa>
+float fp32_wall_images_density(const SphSimdKernels& k, const SphStepLayout<float>& c,
+                               const SimdPairConstants& simd, const Soa& xyz, uint32_t i,
+                               const uint32_t* list, uint32_t count) {
+  if (!c.walls) return 0.0f;
+  const sph::V3<float> xi{xyz.x[i], xyz.y[i], xyz.z[i]};
+  const auto mirrors = sph::wall_mirrors(xi, c);
+  if (!mirrors.axes) return 0.0f;
+  const float sum = k.image_density_sum(xyz.x.data(), xyz.y.data(), xyz.z.data(), list, count,
+                                        xi.x, xi.y, xi.z, mirrors.axes, mirrors.plane, simd);
+  return c.density * sum + sph::own_image_density(xi, mirrors, c);
+}
+
+// neighbors_masked in fp32 (the reach masks' walk, RK4's later stages): the SIMD row test's r2.
+uint32_t neighbors_masked(const float* xs, const float* ys, const float* zs, uint32_t first,
+                          uint64_t bits, float px, float py, float pz, float h2, uint32_t self,
+                          uint32_t* out, float* out_r2) {
+  uint32_t n = 0;
+  for (; bits != 0; bits &= bits - 1) {
+    const uint32_t k = uint32_t(std::countr_zero(bits));
+    const float dx = px - xs[k], dy = py - ys[k], dz = pz - zs[k];
+    const float r2 = (dx * dx + dy * dy) + dz * dz;
+    const uint32_t j = first + k;
+    out[n] = j;
+    out_r2[n] = r2;
+    n += (r2 < h2) & (j != self) ? 1u : 0u;
+  }
+  return n;
 }
 
 // Particle i's row masks (sph::RowMasks) from its list of the candidates within a radius (h for
@@ -127,7 +138,8 @@ void write_row_masks(const SphListInputs& in, uint32_t i, const uint32_t* list, 
 }
 
 // Keeps the entries of (index, r2) with r2 < h2, in order; returns how many.
-uint32_t keep_within(uint32_t* index, double* r2, uint32_t count, double h2) {
+template <class T>
+uint32_t keep_within(uint32_t* index, T* r2, uint32_t count, T h2) {
   uint32_t kept = 0;
   for (uint32_t k = 0; k < count; ++k) {
     index[kept] = index[k];
@@ -138,6 +150,23 @@ uint32_t keep_within(uint32_t* index, double* r2, uint32_t count, double h2) {
 }
 
 }  // namespace
+
+void merge_sph_stats(uint32_t* words, const std::vector<ChunkStats>& chunks) {
+  for (const ChunkStats& c : chunks) {
+    words[kSphStatMaxCandidates] = std::max(words[kSphStatMaxCandidates], c.max_candidates);
+    words[kSphStatMaxNeighbors] = std::max(words[kSphStatMaxNeighbors], c.max_neighbors);
+    words[kSphStatOutside] += c.outside;
+    if (c.overflow != UINT32_MAX)
+      words[kSphStatOverflow] = std::max(words[kSphStatOverflow], ~c.overflow);
+    if (c.non_finite != UINT32_MAX)
+      words[kSphStatNonFinite] = std::max(words[kSphStatNonFinite], ~c.non_finite);
+    // Non-negative floats order like their bit patterns.
+    words[kSphStatMaxSpeed2] = std::max(words[kSphStatMaxSpeed2], float_bits(c.max_speed2));
+    words[kSphStatMaxAccel2] = std::max(words[kSphStatMaxAccel2], float_bits(c.max_accel2));
+    words[kSphStatMaxDisp2] = std::max(words[kSphStatMaxDisp2], float_bits(c.max_disp2));
+    words[kSphStatMaxDensity] = std::max(words[kSphStatMaxDensity], float_bits(c.max_density));
+  }
+}
 
 SphListInputs CpuBackend::sph_list_inputs(const SphStepParams& p, const Buffer<uint32_t>& cells,
                                           const Buffer<uint32_t>& cell_start,
@@ -164,25 +193,27 @@ SphListInputs CpuBackend::sph_list_inputs(const SphStepParams& p, const Buffer<u
 // order. With `reach`, the test first lists the candidates within its radius, records them and
 // keeps those within h; or tests only the recorded ones of each row that fits a mask. Either way
 // the lists are those of the plain test (the same r2 bits, the same order).
-template <class Found>
+template <class T, class Found>
 void CpuBackend::build_sph_lists(const SphListInputs& in, size_t chunks, Found&& found,
                                  const SphListReach& reach) {
+  constexpr bool fp32 = std::is_same_v<T, float>;
   sph_lists_.reset(in.n, chunks);
-  const Soa& xyz = soa_positions(pool_, in.positions, in.n);
+  const Soa<T>& xyz = soa_positions<T>(pool_, in.positions, in.n);
   const bool record = reach.mode == SphReach::record && reach.rows;
   const bool walk = reach.mode == SphReach::walk && reach.rows;
-  const double test_h2 = record ? reach.reach2 : in.h2;
+  const T h2 = T(in.h2), test_h2 = T(record ? reach.reach2 : in.h2);
   pool_.run_chunks(in.end - in.first, chunks, [&](size_t chunk, size_t b, size_t e) {
     b += in.first;
     e += in.first;
-    // Per-thread scratch, kept between calls (60,004 entries at the default candidate cap).
+    // Per-thread scratch, kept between calls (60,016 entries at the default candidate cap).
     static thread_local std::vector<uint32_t> index;
-    static thread_local std::vector<double> r2;
-    index.resize(std::max(index.size(), size_t(in.max_candidates) + 4));  // neighbors_row's slack
-    r2.resize(std::max(r2.size(), size_t(in.max_candidates) + 4));
+    static thread_local std::vector<T> r2;
+    // The row tests' slack: whole vectors are stored.
+    index.resize(std::max(index.size(), size_t(in.max_candidates) + 16));
+    r2.resize(std::max(r2.size(), size_t(in.max_candidates) + 16));
     for (size_t i = b; i < e; ++i) {
       const uint32_t self = uint32_t(i);
-      const double px = xyz.x[i], py = xyz.y[i], pz = xyz.z[i];
+      const T px = xyz.x[i], py = xyz.y[i], pz = xyz.z[i];
       const sph::RowMasks<const uint32_t> recorded{walk ? reach.rows + i : nullptr, in.n};
       uint32_t count = 0;
       bool overflow = false;
@@ -192,8 +223,12 @@ void CpuBackend::build_sph_lists(const SphListInputs& in, size_t chunks, Found&&
             if (l == f) return;
             if (walk && sph::row_fits_mask(f, l)) {
               count += neighbors_masked(&xyz.x[f], &xyz.y[f], &xyz.z[f], f,
-                                        sph::load_row_mask(recorded, row), px, py, pz, in.h2, self,
+                                        sph::load_row_mask(recorded, row), px, py, pz, h2, self,
                                         index.data() + count, r2.data() + count);
+            } else if constexpr (fp32) {
+              count += sph_simd_->neighbors_row(&xyz.x[f], &xyz.y[f], &xyz.z[f], f, l - f, px,
+                                                py, pz, test_h2, self, index.data() + count,
+                                                r2.data() + count);
             } else {
               count += neighbors_row(&xyz.x[f], &xyz.y[f], &xyz.z[f], f, l - f, px, py, pz, test_h2,
                                      self, index.data() + count, r2.data() + count);
@@ -201,10 +236,10 @@ void CpuBackend::build_sph_lists(const SphListInputs& in, size_t chunks, Found&&
           });
       if (record) {
         write_row_masks(in, self, index.data(), count, reach.rows);
-        count = keep_within(index.data(), r2.data(), count, in.h2);
+        count = keep_within(index.data(), r2.data(), count, h2);
       }
       sph_lists_.append(chunk, self, index.data(), count, candidates, overflow);
-      found(chunk, self, count, r2.data());
+      found(chunk, self, count, r2.data(), xyz);
     }
   });
   sph_lists_.remember(in);
@@ -216,17 +251,26 @@ size_t CpuBackend::sph_chunks(uint32_t n) const {
 
 void CpuBackend::ensure_sph_lists(const SphListInputs& in) {
   const size_t chunks = sph_chunks(in.end - in.first);
-  if (!sph_lists_.matches(in))
-    build_sph_lists(in, chunks, [](size_t, uint32_t, uint32_t, const double*) {});
+  if (sph_lists_.matches(in)) return;
+  if (in.fp32)
+    build_sph_lists<float>(in, chunks, [](size_t, uint32_t, uint32_t, const float*, const auto&) {});
+  else
+    build_sph_lists<double>(in, chunks,
+                            [](size_t, uint32_t, uint32_t, const double*, const auto&) {});
+}
+
+bool CpuBackend::sph_in_fp32(const SphStepParams& p) const {
+  return sph_simd_ && p.model != SphPressureModel::dfsph;
 }
 
 void CpuBackend::run_own(const KernelArgs<KernelId::sph_density>& a) {
   auto& [p, items_, positions, cells, cell_start, cell_end, density, pressure, stats, velocities,
          neighbor_state, reach_rows, neighbor_rows] = a;
   const char* k = "sph_density";
-  const auto c = device_params<double>(p);
-  SphListInputs in = sph_list_inputs(p, cells, cell_start, cell_end, c.h2, k);
+  const auto cd = device_params<double>(p);  // the lists' key and the reach radius
+  SphListInputs in = sph_list_inputs(p, cells, cell_start, cell_end, cd.h2, k);
   in.positions = own(positions.impl(), k).as<double>();
+  in.fp32 = sph_in_fp32(p);
   double* rho = own(density.impl(), k).as<double>();
   double* pr = own(pressure.impl(), k).as<double>();
   uint32_t* words = own(stats.impl(), k).as<uint32_t>();
@@ -234,41 +278,60 @@ void CpuBackend::run_own(const KernelArgs<KernelId::sph_density>& a) {
   hd::V4<double>* state =
       neighbor_state ? own(neighbor_state->impl(), k).as<hd::V4<double>>() : nullptr;
   const double* vel = state ? own(velocities->impl(), k).as<double>() : nullptr;
-  SphListReach reach{p.reach, c.reach2, nullptr};
+  SphListReach reach{p.reach, cd.reach2, nullptr};
   if (reach_rows && p.reach != SphReach::none)
     reach.rows = own(reach_rows->impl(), k).as<uint32_t>();
   const size_t chunks = sph_chunks(sph_range_count(p));
   std::vector<ChunkStats> st(chunks);
   // sph::density_at's sum over the neighbour list: the particle itself (r = 0, term 1) first,
-  // then its neighbours; candidates beyond h add exactly nothing there.
-  build_sph_lists(
-      in, chunks,
-      [&](size_t chunk, uint32_t i, uint32_t count, const double* r2) {
-        ChunkStats& s = st[chunk];
-        const double sum = c.model != SphPressureModel::thesis ? spiky_density_sum(r2, count, c)
-                                                               : density_sum(r2, count, c.inv_h2);
-        rho[i] = c.density * (1.0 + sum) +
-                 wall_images_density(c, in.positions, i, sph_lists_.list(i), count);
-        pr[i] = sph::pressure_of(rho[i], c);
-        s.max_candidates = std::max(s.max_candidates, sph_lists_.candidates(i));
-        s.max_neighbors = std::max(s.max_neighbors, count + 1);
-        if (rho[i] > s.max_density) s.max_density = rho[i];  // NaN is reported as non-finite
-        if (sph_lists_.overflow(i)) s.overflow = std::min(s.overflow, i);
-        if (!std::isfinite(rho[i]) || !std::isfinite(pr[i]))
-          s.non_finite = std::min(s.non_finite, i);
-        if (rows) write_row_masks(in, i, sph_lists_.list(i), count, rows);
-        if (state)
-          sph::store_state(
-              state, i, sph::make_neighbor(load3(in.positions, i), load3(vel, i), rho[i], pr[i]));
-      },
-      reach);
-  merge(words, st);
+  // then its neighbours; candidates beyond h add exactly nothing there. In T: fp64, or fp32
+  // (the SIMD density sum, whose lanes add in their own fixed order).
+  auto run = [&]<class T>(const SphStepLayout<T>& c) {
+    const SimdPairConstants simd{float(c.h2), float(c.inv_h), float(c.inv_h2), 0.0f, 0.0f,
+                                 c.model == SphPressureModel::thesis ? 1u : 0u, 0u};
+    build_sph_lists<T>(
+        in, chunks,
+        [&](size_t chunk, uint32_t i, uint32_t count, const T* r2, const Soa<T>& xyz) {
+          ChunkStats& s = st[chunk];
+          T sum, images;
+          if constexpr (std::is_same_v<T, float>) {
+            sum = sph_simd_->density_sum(r2, count, simd);
+            images = fp32_wall_images_density(*sph_simd_, c, simd, xyz, i, sph_lists_.list(i),
+                                              count);
+          } else {
+            sum = c.model != SphPressureModel::thesis ? spiky_density_sum(r2, count, c)
+                                                      : density_sum(r2, count, c.inv_h2);
+            images = wall_images_density(c, in.positions, i, sph_lists_.list(i), count);
+          }
+          const T rho_i = c.density * (T(1) + sum) + images;
+          rho[i] = double(rho_i);
+          pr[i] = double(sph::pressure_of(rho_i, c));
+          s.max_candidates = std::max(s.max_candidates, sph_lists_.candidates(i));
+          s.max_neighbors = std::max(s.max_neighbors, count + 1);
+          if (rho[i] > s.max_density) s.max_density = rho[i];  // NaN is reported as non-finite
+          if (sph_lists_.overflow(i)) s.overflow = std::min(s.overflow, i);
+          if (!std::isfinite(rho[i]) || !std::isfinite(pr[i]))
+            s.non_finite = std::min(s.non_finite, i);
+          if (rows) write_row_masks(in, i, sph_lists_.list(i), count, rows);
+          if (state)
+            sph::store_state(state, i,
+                             sph::make_neighbor(load3(in.positions, i), load3(vel, i), rho[i],
+                                                pr[i]));
+        },
+        reach);
+  };
+  if (in.fp32)
+    run(device_params<float>(p));
+  else
+    run(cd);
+  merge_sph_stats(words, st);
 }
 
 void CpuBackend::run_own(const KernelArgs<KernelId::sph_forces>& a) {
   // neighbor_rows is not read: the masks are sph_density's neighbour lists plus each particle
   // itself, and the lists below are those lists (or a fresh walk that finds the same ones), so
   // the result is the same with or without them.
+  if (sph_in_fp32(a.p)) return sph_forces_fp32(a);
   auto& [p, items_, positions, velocities, density, pressure, cells, cell_start, cell_end, accel,
          stats, neighbor_state, neighbor_rows] = a;
   const char* k = "sph_forces";
@@ -336,7 +399,7 @@ void CpuBackend::run_own(const KernelArgs<KernelId::sph_forces>& a) {
         s.max_accel2 = std::max(s.max_accel2, sph::dot(a, a));
     }
   });
-  merge(words, st);
+  merge_sph_stats(words, st);
 }
 
 void CpuBackend::run_own(const KernelArgs<KernelId::sph_integrate>& a) {
@@ -368,7 +431,7 @@ void CpuBackend::run_own(const KernelArgs<KernelId::sph_integrate>& a) {
       s.outside += r.outside ? 1u : 0u;
     }
   });
-  merge(static_cast<CpuBuffer&>(stats.impl()).as<uint32_t>(), st);
+  merge_sph_stats(static_cast<CpuBuffer&>(stats.impl()).as<uint32_t>(), st);
 }
 
 }  // namespace masav::cpu

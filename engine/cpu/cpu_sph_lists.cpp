@@ -33,6 +33,7 @@ void SphNeighborLists::remember(const SphListInputs& in) {
   max_candidates_ = in.max_candidates;
   std::copy(in.dims, in.dims + 3, dims_);
   h2_ = in.h2;
+  fp32_ = in.fp32;
   positions_.assign(in.positions, in.positions + 4 * size_t(in.n));
   cells_.assign(in.cells, in.cells + in.n);
   cell_start_.assign(in.cell_start, in.cell_start + in.cell_count);
@@ -43,7 +44,7 @@ void SphNeighborLists::remember(const SphListInputs& in) {
 bool SphNeighborLists::matches(const SphListInputs& in) const {
   return valid_ && in.n == n_ && in.first >= first_ && in.end <= end_ &&
          in.max_candidates == max_candidates_ && std::equal(in.dims, in.dims + 3, dims_) &&
-         in.h2 == h2_ && same(positions_, in.positions, 4 * size_t(in.n)) &&
+         in.h2 == h2_ && in.fp32 == fp32_ && same(positions_, in.positions, 4 * size_t(in.n)) &&
          same(cells_, in.cells, in.n) && same(cell_start_, in.cell_start, in.cell_count) &&
          same(cell_end_, in.cell_end, in.cell_count);
 }

@@ -35,6 +35,7 @@ struct SphListInputs {
   uint32_t dims[3];
   double h2;
   uint32_t max_candidates;
+  bool fp32 = false;  // distances tested in fp32 (CpuTuning::sph_precision): lists of their own
 };
 
 class SphNeighborLists {
@@ -63,6 +64,7 @@ class SphNeighborLists {
   uint64_t generation_ = 0;
   uint32_t n_ = 0, first_ = 0, end_ = 0, max_candidates_ = 0, dims_[3] = {0, 0, 0};
   double h2_ = 0;
+  bool fp32_ = false;
   std::vector<double> positions_;  // x, y, z, w per particle, compared bit for bit
   std::vector<uint32_t> cells_, cell_start_, cell_end_;
 

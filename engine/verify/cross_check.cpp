@@ -142,6 +142,9 @@ std::unique_ptr<Backend> open_reference(const Backend& chosen, const std::string
                                         const BackendRequest& request) {
   BackendRequest same = request;
   same.tuning = chosen.tuning();
+  // The CPU backend as a reference is the fp64 oracle, whatever precision the chosen one's
+  // options picked for itself.
+  same.tuning.cpu.sph_precision = CpuSphPrecision::fp64;
   if (choice != "auto") return factory.create(choice, "", same);
   // The other GPU backend when the chosen one is a GPU backend; a GPU backend when the chosen
   // one is the CPU reference; else (none available, or it fails to open) the CPU reference.
