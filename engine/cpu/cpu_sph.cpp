@@ -74,9 +74,10 @@ template <class T>
 const Soa<T>& soa_positions(ThreadPool& pool, const double* pos, size_t n) {
   static thread_local Soa<T> mine;
   Soa<T>& s = mine;  // the caller's copy: worker threads must not name their own thread_local
-  s.x.assign(n + 16, T(0));
-  s.y.assign(n + 16, T(0));
-  s.z.assign(n + 16, T(0));
+  for (std::vector<T>* a : {&s.x, &s.y, &s.z}) {
+    a->resize(n + 16);
+    std::fill(a->begin() + std::ptrdiff_t(n), a->end(), T(0));
+  }
   pool.parallel_for(n, 8192, [&](size_t b, size_t e) {
     for (size_t i = b; i < e; ++i) {
       s.x[i] = T(pos[4 * i]);
@@ -99,23 +100,6 @@ float fp32_wall_images_density(const SphSimdKernels& k, const SphStepLayout<floa
   const float sum = k.image_density_sum(xyz.x.data(), xyz.y.data(), xyz.z.data(), list, count,
                                         xi.x, xi.y, xi.z, mirrors.axes, mirrors.plane, simd);
   return c.density * sum + sph::own_image_density(xi, mirrors, c);
-}
-
-// neighbors_masked in fp32 (the reach masks' walk, RK4's later stages): the SIMD row test's r2.
-uint32_t neighbors_masked(const float* xs, const float* ys, const float* zs, uint32_t first,
-                          uint64_t bits, float px, float py, float pz, float h2, uint32_t self,
-                          uint32_t* out, float* out_r2) {
-  uint32_t n = 0;
-  for (; bits != 0; bits &= bits - 1) {
-    const uint32_t k = uint32_t(std::countr_zero(bits));
-    const float dx = px - xs[k], dy = py - ys[k], dz = pz - zs[k];
-    const float r2 = (dx * dx + dy * dy) + dz * dz;
-    const uint32_t j = first + k;
-    out[n] = j;
-    out_r2[n] = r2;
-    n += (r2 < h2) & (j != self) ? 1u : 0u;
-  }
-  return n;
 }
 
 // Particle i's row masks (sph::RowMasks) from its list of the candidates within a radius (h for

@@ -34,8 +34,10 @@ void CpuBackend::sph_forces_fp32(const KernelArgs<KernelId::sph_forces>& a) {
 
   // The neighbour fields as eight arrays of floats (the gathers read one field of 16 at once).
   const size_t stride = size_t(p.n) + 16;
-  sph_fields_.assign(8 * stride, 0.0f);
+  sph_fields_.resize(8 * stride);
   float* fb = sph_fields_.data();
+  for (size_t d = 0; d < 8; ++d)  // the slack the last vectors read
+    std::fill(fb + d * stride + p.n, fb + (d + 1) * stride, 0.0f);
   const SimdPairFields f{fb,              fb + stride,     fb + 2 * stride, fb + 3 * stride,
                          fb + 4 * stride, fb + 5 * stride, fb + 6 * stride, fb + 7 * stride};
   const hd::V4<double>* state =

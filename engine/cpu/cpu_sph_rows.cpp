@@ -29,20 +29,36 @@ uint32_t neighbors_row_portable(const double* xs, const double* ys, const double
   return n;
 }
 
-uint32_t neighbors_masked(const double* xs, const double* ys, const double* zs, uint32_t first,
-                          uint64_t bits, double px, double py, double pz, double h2, uint32_t self,
-                          uint32_t* out, double* out_r2) {
+namespace {
+
+// neighbors_masked in T: neighbors_row's r2 order, so the same bits as its test.
+template <class T>
+uint32_t masked_row(const T* xs, const T* ys, const T* zs, uint32_t first, uint64_t bits, T px,
+                    T py, T pz, T h2, uint32_t self, uint32_t* out, T* out_r2) {
   uint32_t n = 0;
   for (; bits != 0; bits &= bits - 1) {
     const uint32_t k = uint32_t(__builtin_ctzll(bits));
-    const double dx = px - xs[k], dy = py - ys[k], dz = pz - zs[k];
-    const double r2 = (dx * dx + dy * dy) + dz * dz;  // neighbors_row's order: the same bits
+    const T dx = px - xs[k], dy = py - ys[k], dz = pz - zs[k];
+    const T r2 = (dx * dx + dy * dy) + dz * dz;
     const uint32_t j = first + k;
     out[n] = j;
     out_r2[n] = r2;
     n += (r2 < h2) & (j != self) ? 1u : 0u;
   }
   return n;
+}
+
+}  // namespace
+
+uint32_t neighbors_masked(const double* xs, const double* ys, const double* zs, uint32_t first,
+                          uint64_t bits, double px, double py, double pz, double h2, uint32_t self,
+                          uint32_t* out, double* out_r2) {
+  return masked_row(xs, ys, zs, first, bits, px, py, pz, h2, self, out, out_r2);
+}
+uint32_t neighbors_masked(const float* xs, const float* ys, const float* zs, uint32_t first,
+                          uint64_t bits, float px, float py, float pz, float h2, uint32_t self,
+                          uint32_t* out, float* out_r2) {
+  return masked_row(xs, ys, zs, first, bits, px, py, pz, h2, self, out, out_r2);
 }
 
 namespace {

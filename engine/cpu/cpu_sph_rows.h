@@ -28,6 +28,10 @@ bool neighbors_row_uses_avx2();
 uint32_t neighbors_masked(const double* xs, const double* ys, const double* zs, uint32_t first,
                           uint64_t bits, double px, double py, double pz, double h2, uint32_t self,
                           uint32_t* out, double* out_r2);
+// The same in fp32 (the fp32 SPH path's later RK4 stages), r2 as its SIMD row test rounds it.
+uint32_t neighbors_masked(const float* xs, const float* ys, const float* zs, uint32_t first,
+                          uint64_t bits, float px, float py, float pz, float h2, uint32_t self,
+                          uint32_t* out, float* out_r2);
 
 // Sum over k < count of (1 - r2[k] inv_h2)^3, the poly6 terms of sph::density_term for
 // neighbours within h.
