@@ -101,7 +101,7 @@ class CpuBackend final : public Backend {
   bool dfsph_terms_on_ = true;
   std::vector<double> sph_p_rho2_;  // sph_forces' p / rho^2 per particle, kept between calls
   const SphSimdKernels* sph_simd_ = nullptr;  // the fp32 pair loops; null: fp64
-  std::vector<float> sph_fields_;  // sph_forces_fp32's neighbour fields, 8 arrays of n + 16
+  std::vector<float> sph_fields_;  // sph_forces_fp32's neighbour fields, 8 per particle
   std::vector<std::chrono::steady_clock::time_point> stamps_;
   std::chrono::steady_clock::time_point epoch_ = std::chrono::steady_clock::now();
 };

@@ -32,14 +32,10 @@ void CpuBackend::sph_forces_fp32(const KernelArgs<KernelId::sph_forces>& a) {
   uint32_t* words = own(stats.impl(), k).as<uint32_t>();
   ensure_sph_lists(in);
 
-  // The neighbour fields as eight arrays of floats (the gathers read one field of 16 at once).
-  const size_t stride = size_t(p.n) + 16;
-  sph_fields_.resize(8 * stride);
+  // The neighbour fields, a row of 8 floats per particle (SimdPairFields).
+  sph_fields_.resize(kFieldCount * std::max<size_t>(p.n, 1));
   float* fb = sph_fields_.data();
-  for (size_t d = 0; d < 8; ++d)  // the slack the last vectors read
-    std::fill(fb + d * stride + p.n, fb + (d + 1) * stride, 0.0f);
-  const SimdPairFields f{fb,              fb + stride,     fb + 2 * stride, fb + 3 * stride,
-                         fb + 4 * stride, fb + 5 * stride, fb + 6 * stride, fb + 7 * stride};
+  const SimdPairFields f{fb};
   const hd::V4<double>* state =
       neighbor_state ? own(neighbor_state->impl(), k).as<hd::V4<double>>() : nullptr;
   pool_.parallel_for(p.n, 8192, [&](size_t b, size_t e) {
@@ -50,8 +46,9 @@ void CpuBackend::sph_forces_fp32(const KernelArgs<KernelId::sph_forces>& a) {
                                         {vel[4 * i], vel[4 * i + 1], vel[4 * i + 2]},
                                         rho[i],
                                         sph::pressure_over_rho2(pr[i], rho[i])};
-      const double fields[8] = {o.x.x, o.x.y, o.x.z, o.v.x, o.v.y, o.v.z, o.rho, o.p_rho2};
-      for (size_t d = 0; d < 8; ++d) fb[d * stride + i] = float(fields[d]);
+      const double fields[kFieldCount] = {o.x.x, o.x.y, o.x.z, o.v.x, o.v.y, o.v.z, o.rho,
+                                          o.p_rho2};
+      for (size_t d = 0; d < kFieldCount; ++d) fb[kFieldCount * i + d] = float(fields[d]);
     }
   });
   const SimdPairConstants sc{c.h2, c.inv_h, c.inv_h2, c.pressure, c.viscosity,
@@ -65,8 +62,9 @@ void CpuBackend::sph_forces_fp32(const KernelArgs<KernelId::sph_forces>& a) {
     ChunkStats& s = st[chunk];
     for (size_t i = b; i < e; ++i) {
       const uint32_t self = uint32_t(i);
-      const SimdParticle me{f.x[i],  f.y[i],  f.z[i],   f.vx[i],
-                            f.vy[i], f.vz[i], f.rho[i], f.p_rho2[i]};
+      const float* row = fb + kFieldCount * i;
+      const SimdParticle me{row[kFieldX],  row[kFieldY],  row[kFieldZ],   row[kFieldVx],
+                            row[kFieldVy], row[kFieldVz], row[kFieldRho], row[kFieldPRho2]};
       const uint32_t* list = sph_lists_.list(self);
       const uint32_t count = sph_lists_.count(self);
       const sph::V3<float> xi{me.x, me.y, me.z};

@@ -14,9 +14,13 @@ namespace masav::cpu {
 
 enum class SphSimd : uint8_t { generic, avx2, avx512 };
 
-// The neighbour fields sph_forces reads, as arrays of n floats.
+// The neighbour fields sph_forces reads, 8 floats per particle in this order (one 32-byte row
+// each): 16 neighbours' rows are loaded whole and transposed into the 8
+// field vectors, which costs less than 8 gathers of 16 lanes.
+enum SimdField : uint32_t { kFieldX, kFieldY, kFieldZ, kFieldVx, kFieldVy, kFieldVz, kFieldRho,
+                            kFieldPRho2, kFieldCount };
 struct SimdPairFields {
-  const float *x, *y, *z, *vx, *vy, *vz, *rho, *p_rho2;
+  const float* rows;  // particle i's fields at rows[kFieldCount * i + field]
 };
 // Particle i's own fields.
 struct SimdParticle {
