@@ -13,7 +13,7 @@ include(CMakePackageConfigHelpers)
 set(masav_install_targets masav_api masav_registry masav_core masav_kernels masav_cpu masav_grid
     masav_util masav_io masav_scene masav_verify masav_volume masav_points masav_sph masav_atom)
 if(MASAV_WITH_VULKAN)
-  list(APPEND masav_install_targets masav_vulkan masav_vkdevice masav_shaders)
+  list(APPEND masav_install_targets masav_render masav_vulkan masav_vkdevice masav_shaders)
 endif()
 if(MASAV_WITH_CUDA)
   list(APPEND masav_install_targets masav_cuda)
@@ -45,7 +45,7 @@ install(FILES ${PROJECT_BINARY_DIR}/masavConfig.cmake ${PROJECT_BINARY_DIR}/masa
 # pkg-config: the libraries in link order (dependants first), then what they need.
 set(masav_pc_libs "")
 foreach(t IN ITEMS masav_api masav_registry masav_atom masav_sph masav_points masav_volume
-        masav_verify masav_scene masav_io masav_cpu masav_vulkan masav_cuda masav_vkdevice
+        masav_verify masav_scene masav_io masav_cpu masav_render masav_vulkan masav_cuda masav_vkdevice
         masav_shaders masav_grid masav_util masav_kernels masav_core)
   if(t IN_LIST masav_install_targets)
     get_target_property(out ${t} OUTPUT_NAME)
@@ -56,6 +56,9 @@ foreach(t IN ITEMS masav_api masav_registry masav_atom masav_sph masav_points ma
   endif()
 endforeach()
 set(masav_pc_private "-ltomlplusplus -lfmt -ldl -lpthread")
+if(MASAV_WITH_VULKAN)
+  string(APPEND masav_pc_private " -limgui -lstb")  # the renderer's (masav::SceneRenderer)
+endif()
 if(MASAV_WITH_CUDA)
   get_target_property(cudart CUDA::cudart_static IMPORTED_LOCATION)
   get_filename_component(cudart_dir "${cudart}" DIRECTORY)

@@ -5,6 +5,8 @@
 #include <string>
 #include <vector>
 
+#include "engine/io/png_writer.h"
+
 namespace masav::render {
 
 struct Rgba8Image {
@@ -12,8 +14,8 @@ struct Rgba8Image {
   std::vector<uint8_t> pixels;  // RGBA rows, top first
 };
 
-void write_png(const std::string& path, uint32_t width, uint32_t height,
-               const std::vector<uint8_t>& rgba);
+// Written by the engine's one PNG writer (to a temporary name, renamed).
+using masav::write_png;
 Rgba8Image read_png(const std::string& path);
 
 }  // namespace masav::render

@@ -14,7 +14,8 @@
 ///  - sph.h: SPH simulations, their runs, checkpoints and snapshots;
 ///  - volume.h and image.h: volume files, the raymarch to an image, PNG output;
 ///  - atom.h: the hydrogen atom's electron cloud, lit and raymarched;
-///  - scene.h: scene files, their overrides and cross-checks.
+///  - scene.h: scene files, their overrides and cross-checks;
+///  - scene_render.h: scene files rendered headless, frame by frame, to RGBA frames and PNGs.
 ///
 /// Build against the installed package with `find_package(masav 0.2 CONFIG REQUIRED)` and
 /// `target_link_libraries(app PRIVATE masav::masav)` (docs/library.md).
@@ -25,6 +26,7 @@
 #include "masav/image.h"
 #include "masav/kernels.h"
 #include "masav/scene.h"
+#include "masav/scene_render.h"
 #include "masav/sph.h"
 #include "masav/version.h"
 #include "masav/volume.h"

@@ -13,6 +13,7 @@ PYBIND11_MODULE(_masav, m) {
   bind_params(m);
   bind_kernels(m, backend);
   bind_scenes(m);
+  bind_scene_render(m);
   bind_verify(m);
   bind_sph(m);
   bind_volume(m);

@@ -25,22 +25,6 @@ std::string status_repr(const BackendStatus& s) {
   return fmt::format("<{}: available: {}>", s.name, devices);
 }
 
-// The tuning of `tune`: a dict {"cpu.threads": 2} or assignments ["cpu.threads=2"].
-Tuning tuning_of(const py::object& tune) {
-  Tuning t;
-  if (tune.is_none()) return t;
-  if (py::isinstance<py::dict>(tune)) {
-    for (auto [k, v] : tune.cast<py::dict>())
-      set_tuning(t, py::str(k).cast<std::string>() + "=" + py::str(v).cast<std::string>());
-    return t;
-  }
-  if (py::isinstance<py::str>(tune))
-    bad_argument("masav.Backend", "tune", tune.cast<std::string>(),
-                 "a dict {\"key\": value} or a list of \"key=value\" strings");
-  for (auto a : tune) set_tuning(t, py::str(a).cast<std::string>());
-  return t;
-}
-
 BackendRef open(const std::string& name, const std::string& device, const py::object& tune,
                 bool count_loop_ticks, const std::optional<std::string>& cache_dir, bool validation,
                 const std::optional<std::string>& loader) {
@@ -91,6 +75,21 @@ py::dict counters(const DeviceCounters& c) {
 }
 
 }  // namespace
+
+Tuning tuning_of(const py::object& tune, std::string_view where) {
+  Tuning t;
+  if (tune.is_none()) return t;
+  if (py::isinstance<py::dict>(tune)) {
+    for (auto [k, v] : tune.cast<py::dict>())
+      set_tuning(t, py::str(k).cast<std::string>() + "=" + py::str(v).cast<std::string>());
+    return t;
+  }
+  if (py::isinstance<py::str>(tune))
+    bad_argument(where, "tune", tune.cast<std::string>(),
+                 "a dict {\"key\": value} or a list of \"key=value\" strings");
+  for (auto a : tune) set_tuning(t, py::str(a).cast<std::string>());
+  return t;
+}
 
 BackendClass bind_backends(py::module_& m) {
   py::class_<DeviceStatus>(m, "DeviceStatus", "One device of a backend, as `masav info` lists it.")

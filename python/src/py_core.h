@@ -12,6 +12,7 @@
 #include <variant>
 
 #include "engine/core/error.h"
+#include "engine/core/tuning.h"
 #include "engine/kernels/backend.h"
 
 namespace masav::python {
@@ -88,6 +89,10 @@ ElemKind parse_kind(std::string_view name);
 
 // The parts of the module, one per file. The kernels are methods of masav.Backend.
 using BackendClass = py::class_<PyBackend, BackendRef>;
+// The tuning options of a `tune` argument: a dict {"cpu.threads": 2}, a list of
+// "key=value" strings, or None (all automatic). Refuses a bare string by name.
+Tuning tuning_of(const py::object& tune, std::string_view where = "masav.Backend");
+
 void bind_errors(py::module_& m);
 BackendClass bind_backends(py::module_& m);
 void bind_buffers(py::module_& m, BackendClass& backend);
@@ -98,5 +103,6 @@ void bind_sph(py::module_& m);
 void bind_volume(py::module_& m);
 void bind_atom(py::module_& m);
 void bind_scenes(py::module_& m);
+void bind_scene_render(py::module_& m);
 
 }  // namespace masav::python
