@@ -40,4 +40,10 @@ struct RaymarchOptions {
 Image raymarch(Backend& backend, const volume::ScalarVolume& volume,
                const RaymarchOptions& options = {});
 
+/// The same with every knob of the raymarch kernel given (`params`: the camera, the image size,
+/// the step, compositing, clipping; its `volume` is set from `volume`), for callers that place
+/// their own camera; `transfer` as RaymarchOptions::transfer.
+Image raymarch(Backend& backend, const volume::ScalarVolume& volume, RaymarchParams params,
+               const std::vector<Vec4d>& transfer = {});
+
 }  // namespace masav

@@ -7,9 +7,9 @@
 #include <cmath>
 #include <cstring>
 
-#include "engine/atom/atom_scene.h"
 #include "engine/volume/transfer_function.h"
 #include "engine/volume/volume_file.h"
+#include "masav/volume.h"
 #include "python/src/py_arrays.h"
 #include "python/src/py_casters.h"
 
@@ -71,31 +71,21 @@ py::array raymarch(const BackendRef& b, const py::array& values, uint32_t width,
                    float step_voxels, const std::string& mode, bool preintegrate, Vec3f origin,
                    Vec3f spacing, const std::optional<RaymarchParams>& params) {
   const volume::ScalarVolume vol = volume_of(values, origin, spacing);
-  const std::vector<Vec4d> tf = transfer_of(tf_in);
-  if (width < 1 || width > 16384 || height < 1 || height > 16384)
-    bad_argument("masav.raymarch", "width x height", fmt::format("{}x{}", width, height),
-                 "from 1 to 16384 pixels each");
-  if (!(step_voxels > 0) || step_voxels > 16)
-    bad_argument("masav.raymarch", "step_voxels", fmt::format("{}", step_voxels), "in (0, 16]");
   if (mode != "front_to_back" && mode != "lerp")
     bad_argument("masav.raymarch", "mode", mode, "front_to_back or lerp");
-  const VolumeDesc desc = volume::volume_desc(vol);
-  RaymarchParams rp;
-  if (params) {
-    rp = *params;
-  } else {
-    rp = atom::default_raymarch(desc, atom::parse_view(view), width, height);
-    rp.step *= 2.0f * step_voxels;
-    rp.mode = mode == "lerp" ? Compositing::lerp : Compositing::front_to_back;
-    rp.preintegrate = preintegrate;
-  }
-  const std::vector<Vec4d> img = without_gil(*b, [&](Backend& be) {
-    auto buf = be.create<Real>(vol.values.size(), "python volume");
-    be.upload(buf, std::span<const float>(vol.values));
-    return atom::render_volume(be, desc, buf, tf, rp);
+  RaymarchOptions o;
+  o.width = width;
+  o.height = height;
+  o.view = view;
+  o.step_voxels = step_voxels;
+  o.lerp = mode == "lerp";
+  o.preintegrate = preintegrate;
+  if (tf_in) o.transfer = transfer_of(tf_in);  // else masav volume's default
+  const Image img = without_gil(*b, [&](Backend& be) {
+    return params ? masav::raymarch(be, vol, *params, o.transfer) : masav::raymarch(be, vol, o);
   });
-  py::array_t<double> out({py::ssize_t(rp.height), py::ssize_t(rp.width), py::ssize_t(4)});
-  std::memcpy(out.mutable_data(), img.data(), img.size() * sizeof(Vec4d));
+  py::array_t<double> out({py::ssize_t(img.height), py::ssize_t(img.width), py::ssize_t(4)});
+  std::memcpy(out.mutable_data(), img.pixels.data(), img.pixels.size() * sizeof(Vec4d));
   return out;
 }
 
