@@ -22,6 +22,9 @@ struct SphDiagnostics {
   // compressible the run is (weakly compressible SPH aims at ~1%). Below rest density does not
   // count: particles near a free surface read low densities from their missing neighbours.
   double mean_compression = 0, max_compression = 0;
+  // Its 99.9th percentile: the largest but the top 0.1% of the fluid particles (an impact peak of
+  // one particle for a few steps is max_compression, not this).
+  double p999_compression = 0;
   double max_speed = 0;    // m/s
   double surge_front = 0;  // m: the fluid's largest x, plus half a spacing (the particle's extent)
   uint32_t outside = 0;    // particles outside the box (by more than 1e-6 of a coordinate)
