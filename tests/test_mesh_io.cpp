@@ -157,6 +157,9 @@ TEST_CASE("mesh files: bad contents are refused, naming the line or triangle and
   CHECK(stl("solid x\n facet normal 0 0 1\n  outer loop\n   vertex 0 0 0\n  endloop\n endfacet\n")
             .find("line 6: a facet with 1 vertices") != std::string::npos);
   CHECK(stl("solid x\n facet normal 0 0 1\n").find("ends inside a facet") != std::string::npos);
+  CHECK(stl("solid x\n facet normal 0 0 1\n  outer loop\n   vertex 0 0 0\n   vertex 1 0 0\n"
+            "   vertex 0 1 0\n   vertex 1 1 0\n")
+            .find("line 7: a facet with more than 3 vertices") != std::string::npos);
   CHECK(stl("hello\n").find("shorter than a binary STL's 84-byte header") != std::string::npos);
   CHECK(stl("solid x\n bogus\n").find("line 2: unexpected 'bogus'") != std::string::npos);
 }

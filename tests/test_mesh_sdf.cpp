@@ -127,6 +127,20 @@ TEST_CASE("mesh sdf: an icosphere's field is within its approximation error of |
     CHECK(inside > 1000);
     CHECK(outside > 1000);
     CHECK(f.sample(centre) < -r_in + 0.05);
+    // The gradient points away from the centre (within the facets' tilt) and has length 1
+    // (within the interpolation's error), off the centre's kink.
+    double min_cos = 1, worst_length = 0;
+    for (int n = 0; n < 200; ++n) {
+      const double rho = 0.2 + 0.4 * (n % 10) / 9.0, phi = 0.7 * n, z = std::cos(1.3 * n);
+      const Vec3d u{std::sqrt(1 - z * z) * std::cos(phi), std::sqrt(1 - z * z) * std::sin(phi), z};
+      const Vec3d g = f.gradient(centre + rho * u);
+      min_cos = std::min(min_cos, dot(g, u) / length(g));
+      worst_length = std::max(worst_length, std::fabs(length(g) - 1));
+    }
+    MESSAGE("levels " << levels << ": gradients within " << std::acos(min_cos)
+                      << " rad of radial, lengths within " << worst_length << " of 1");
+    CHECK(min_cos > (levels == 1 ? 0.85 : 0.97));
+    CHECK(worst_length < 0.2);
   }
 }
 
