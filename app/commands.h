@@ -26,6 +26,8 @@ void add_schema_command(CLI::App& app);
 void add_run_command(CLI::App& app);
 void add_demo_command(CLI::App& app);
 void add_sph_command(CLI::App& app);
+// Triangle meshes for boundaries: read, checked, their signed distance field.
+void add_mesh_command(CLI::App& app);
 // `masav bench` subcommands (bench_<name>.cpp), which add_bench_command adds.
 void add_sort_bench(CLI::App& bench);
 void add_grid_bench(CLI::App& bench);

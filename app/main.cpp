@@ -62,6 +62,7 @@ int main(int argc, char** argv) {
   masav::app::add_demo_command(app);
 #endif
   masav::app::add_sph_command(app);
+  masav::app::add_mesh_command(app);
   masav::app::require_finite_numbers(app);
   // The tests' hidden first word: parse and check the command line, run nothing.
   if (argc > 1 && std::string_view(argv[1]) == "--parse-only") {

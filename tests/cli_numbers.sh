@@ -27,6 +27,7 @@ done
 extra_for() {  # extra arguments a command or an option needs
   case "$1" in
     volume) printf '%s\n' "$data/tiny_4x4x4.nrrd" ;;
+    mesh) printf '%s\n' "$data/cube.obj" ;;
   esac
   case "$2" in
     --checkpoint-every) printf '%s\n' --checkpoint-dir "${TMPDIR:-/tmp}/cli_numbers_cp" ;;
