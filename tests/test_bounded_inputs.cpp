@@ -21,23 +21,16 @@
 #include "engine/volume/volume_io.h"
 #include "registry/scene_file.h"
 #include "tests/temp_dir.h"
+#include "tests/error_of.h"
 
 using namespace masav;
+using masav::test::error_of;
 using namespace masav::volume;
 
 namespace {
 
 void write_text(const std::string& path, const std::string& text) {
   std::ofstream(path, std::ios::binary | std::ios::trunc) << text;
-}
-
-std::string error_of(const auto& f) {
-  try {
-    f();
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "(no error)";
 }
 
 // A header for a 4x3x2 uint16 volume, data detached in `data`, with extra lines.

@@ -13,21 +13,14 @@
 #include "engine/mesh/mesh_io.h"
 #include "tests/mesh_fixture.h"
 #include "tests/temp_dir.h"
+#include "tests/error_of.h"
 
 using namespace masav;
+using masav::test::error_of;
 using namespace masav::mesh;
 using masav::test::TempDir;
 
 namespace {
-
-std::string error_of(const auto& f) {
-  try {
-    f();
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "(no error)";
-}
 
 std::string read_error(const std::string& path) {
   return error_of([&] { read_mesh(path); });

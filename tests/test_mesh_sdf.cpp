@@ -14,21 +14,14 @@
 #include "engine/util/cache_file.h"
 #include "tests/mesh_fixture.h"
 #include "tests/temp_dir.h"
+#include "tests/error_of.h"
 
 using namespace masav;
+using masav::test::error_of;
 using namespace masav::mesh;
 using masav::test::TempDir;
 
 namespace {
-
-std::string error_of(const auto& f) {
-  try {
-    f();
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "(no error)";
-}
 
 // The largest |field - box distance| over the nodes.
 double box_error(const SignedDistanceField& f, Vec3d lo, Vec3d hi) {

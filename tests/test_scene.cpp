@@ -8,7 +8,6 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
-#include <functional>
 #include <map>
 
 #include "engine/core/error.h"
@@ -21,20 +20,13 @@
 #include "registry/common_tables.h"
 #include "registry/scene_catalog.h"
 #include "registry/scene_file.h"
+#include "tests/error_of.h"
 
 using namespace masav;
+using masav::test::error_of;
 using namespace masav::scene;
 
 namespace {
-
-std::string error_of(const std::function<void()>& fn) {
-  try {
-    fn();
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "(no error)";
-}
 
 SceneFile parse(const std::string& text) {
   return parse_scene(text, "test.toml");

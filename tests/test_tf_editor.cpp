@@ -18,8 +18,10 @@
 #include "engine/volume/volume_scene.h"
 #include "registry/scene_catalog.h"
 #include "temp_dir.h"
+#include "tests/error_of.h"
 
 using namespace masav;
+using masav::test::error_of;
 using namespace masav::app;
 
 namespace {
@@ -41,15 +43,6 @@ bool same_points(const std::vector<TransferPoint>& a, const std::vector<Transfer
         a[i].a != b[i].a)
       return false;
   return true;
-}
-
-std::string error_of(auto&& fn) {
-  try {
-    fn();
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "";
 }
 
 void write_ramp(const std::string& path) {
