@@ -25,7 +25,7 @@ struct MeshOptions {
   uint32_t threads = 0;
 };
 
-std::string point(Vec3d p) {
+std::string point(mesh::Point p) {
   return fmt::format("({:.9g}, {:.9g}, {:.9g})", p.x, p.y, p.z);
 }
 
@@ -41,7 +41,7 @@ int run_mesh(const MeshOptions& o) {
   if (!c.closed()) throw Error("", where, c.problem, c.remedy);
   fmt::print("  watertight OK (closed, manifold, consistently oriented, facing outward)\n");
   if (!o.sdf && !(o.spacing > 0) && !o.padding_given) return 0;
-  const Vec3d ext = c.bounds.hi - c.bounds.lo;
+  const mesh::Point ext = c.bounds.hi - c.bounds.lo;
   mesh::SdfParams p;
   p.spacing = o.spacing > 0 ? o.spacing : std::max({ext.x, ext.y, ext.z}) / 64;
   p.padding = o.padding_given ? o.padding : 2 * p.spacing;

@@ -15,11 +15,12 @@
 
 namespace masav::test {
 
+using mesh::Point;
 using mesh::TriangleMesh;
 
 // Appends triangle (a, b, c) turned so that its normal points along `out`.
-inline void add_oriented(TriangleMesh& m, uint32_t a, uint32_t b, uint32_t c, Vec3d out) {
-  const Vec3d n = mesh::cross(m.vertices[b] - m.vertices[a], m.vertices[c] - m.vertices[a]);
+inline void add_oriented(TriangleMesh& m, uint32_t a, uint32_t b, uint32_t c, Point out) {
+  const Point n = mesh::cross(m.vertices[b] - m.vertices[a], m.vertices[c] - m.vertices[a]);
   if (mesh::dot(n, out) >= 0)
     m.triangles.push_back({a, b, c});
   else
@@ -28,7 +29,7 @@ inline void add_oriented(TriangleMesh& m, uint32_t a, uint32_t b, uint32_t c, Ve
 
 // The box [lo, hi], every face cut into n x n squares of two triangles, normals outward; vertices
 // shared along the box's edges.
-inline TriangleMesh box_mesh(Vec3d lo, Vec3d hi, uint32_t n = 1) {
+inline TriangleMesh box_mesh(Point lo, Point hi, uint32_t n = 1) {
   TriangleMesh m;
   std::map<std::array<uint32_t, 3>, uint32_t> index;  // lattice point (0..n per axis) -> vertex
   auto vertex = [&](std::array<uint32_t, 3> q) {
@@ -42,7 +43,7 @@ inline TriangleMesh box_mesh(Vec3d lo, Vec3d hi, uint32_t n = 1) {
   for (int axis = 0; axis < 3; ++axis)
     for (uint32_t side = 0; side < 2; ++side) {
       const int u = (axis + 1) % 3, v = (axis + 2) % 3;
-      Vec3d out{};
+      Point out{};
       (axis == 0 ? out.x : axis == 1 ? out.y : out.z) = side ? 1 : -1;
       for (uint32_t i = 0; i < n; ++i)
         for (uint32_t j = 0; j < n; ++j) {
@@ -67,16 +68,16 @@ inline TriangleMesh unit_cube() {
 
 // An icosahedron subdivided `levels` times (20 x 4^levels triangles), every vertex at distance r
 // from the centre, normals outward.
-inline TriangleMesh icosphere(double r, uint32_t levels, Vec3d centre = {}) {
+inline TriangleMesh icosphere(double r, uint32_t levels, Point centre = {}) {
   const double t = (1 + std::sqrt(5.0)) / 2;
-  std::vector<Vec3d> v = {{-1, t, 0}, {1, t, 0}, {-1, -t, 0}, {1, -t, 0},
+  std::vector<Point> v = {{-1, t, 0}, {1, t, 0}, {-1, -t, 0}, {1, -t, 0},
                           {0, -1, t}, {0, 1, t}, {0, -1, -t}, {0, 1, -t},
                           {t, 0, -1}, {t, 0, 1}, {-t, 0, -1}, {-t, 0, 1}};
   std::vector<std::array<uint32_t, 3>> f = {
       {0, 11, 5},  {0, 5, 1},  {0, 1, 7},  {0, 7, 10}, {0, 10, 11}, {1, 5, 9}, {5, 11, 4},
       {11, 10, 2}, {10, 7, 6}, {7, 1, 8},  {3, 9, 4},  {3, 4, 2},   {3, 2, 6}, {3, 6, 8},
       {3, 8, 9},   {4, 9, 5},  {2, 4, 11}, {6, 2, 10}, {8, 6, 7},   {9, 8, 1}};
-  auto unit = [](Vec3d p) { return (1 / mesh::length(p)) * p; };
+  auto unit = [](Point p) { return (1 / mesh::length(p)) * p; };
   for (auto& p : v) p = unit(p);
   for (uint32_t l = 0; l < levels; ++l) {
     std::map<std::pair<uint32_t, uint32_t>, uint32_t> mid;
@@ -109,7 +110,7 @@ inline void write_bytes(const std::string& path, const std::string& bytes) {
 // Exact decimal text of a double (17 significant digits read back to the same bits).
 inline std::string obj_text(const TriangleMesh& m) {
   std::string s = "# written by the masav mesh tests\no box\n";
-  for (const Vec3d& p : m.vertices) s += fmt::format("v {:.17g} {:.17g} {:.17g}\n", p.x, p.y, p.z);
+  for (const Point& p : m.vertices) s += fmt::format("v {:.17g} {:.17g} {:.17g}\n", p.x, p.y, p.z);
   for (const auto& t : m.triangles) s += fmt::format("f {} {} {}\n", t[0] + 1, t[1] + 1, t[2] + 1);
   return s;
 }
@@ -123,7 +124,7 @@ inline std::string stl_binary(const TriangleMesh& m, int64_t header_count = -1) 
   for (const auto& t : m.triangles) {
     float rec[12] = {};
     for (int k = 0; k < 3; ++k) {
-      const Vec3d p = m.vertices[t[k]];
+      const Point p = m.vertices[t[k]];
       rec[3 + 3 * k] = float(p.x);
       rec[4 + 3 * k] = float(p.y);
       rec[5 + 3 * k] = float(p.z);
@@ -139,7 +140,7 @@ inline std::string stl_ascii(const TriangleMesh& m) {
   for (const auto& t : m.triangles) {
     s += "  facet normal 0 0 0\n    outer loop\n";
     for (uint32_t k : t) {
-      const Vec3d p = m.vertices[k];
+      const Point p = m.vertices[k];
       s += fmt::format("      vertex {:.17g} {:.17g} {:.17g}\n", p.x, p.y, p.z);
     }
     s += "    endloop\n  endfacet\n";
@@ -148,7 +149,7 @@ inline std::string stl_ascii(const TriangleMesh& m) {
 }
 
 // The signed distance to the box [lo, hi], negative inside.
-inline double box_distance(Vec3d p, Vec3d lo, Vec3d hi) {
+inline double box_distance(Point p, Point lo, Point hi) {
   const double q[3] = {std::max(lo.x - p.x, p.x - hi.x), std::max(lo.y - p.y, p.y - hi.y),
                        std::max(lo.z - p.z, p.z - hi.z)};
   const double inside = std::max({q[0], q[1], q[2]});

@@ -27,7 +27,7 @@ std::string read_error(const std::string& path) {
 }
 
 // The double nearest x that a float holds, as a binary STL stores it. Through a volatile: GCC 12
-// at -O2 dropped the rounding of double(float(x)) for two of the three coordinates of a Vec3d
+// at -O2 dropped the rounding of double(float(x)) for two of the three coordinates of a Point
 // built in this loop (a standalone copy of the loop reproduces it; -O0 and -O1 do not).
 double as_float_value(double x) {
   volatile float f = float(x);
@@ -39,11 +39,11 @@ void check_same_surface(const TriangleMesh& got, const TriangleMesh& want, bool 
   REQUIRE(got.triangles.size() == want.triangles.size());
   for (size_t t = 0; t < got.triangles.size(); ++t)
     for (int k = 0; k < 3; ++k) {
-      const Vec3d o = want.vertices[want.triangles[t][k]];
-      const Vec3d w =
-          as_float ? Vec3d{as_float_value(o.x), as_float_value(o.y), as_float_value(o.z)} : o;
-      const Vec3d g = got.vertices[got.triangles[t][k]];
-      REQUIRE_MESSAGE(std::memcmp(&g, &w, sizeof(Vec3d)) == 0,
+      const Point o = want.vertices[want.triangles[t][k]];
+      const Point w =
+          as_float ? Point{as_float_value(o.x), as_float_value(o.y), as_float_value(o.z)} : o;
+      const Point g = got.vertices[got.triangles[t][k]];
+      REQUIRE_MESSAGE(std::memcmp(&g, &w, sizeof(Point)) == 0,
                       fmt::format("triangle {} corner {}: {} {} {} read, {} {} {} written", t, k,
                                   g.x, g.y, g.z, w.x, w.y, w.z));
     }
@@ -255,7 +255,7 @@ TEST_CASE("mesh check: area, volume, and the first open, non-manifold or misorie
   for (const auto& t : other.triangles) {
     std::array<uint32_t, 3> u{};
     for (int k = 0; k < 3; ++k) {
-      const Vec3d p = other.vertices[t[k]];
+      const Point p = other.vertices[t[k]];
       uint32_t found = uint32_t(pair.vertices.size());
       for (uint32_t v = 0; v < pair.vertices.size(); ++v)
         if (std::memcmp(&pair.vertices[v], &p, sizeof(p)) == 0) found = v;

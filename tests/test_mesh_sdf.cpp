@@ -24,7 +24,7 @@ using masav::test::TempDir;
 namespace {
 
 // The largest |field - box distance| over the nodes.
-double box_error(const SignedDistanceField& f, Vec3d lo, Vec3d hi) {
+double box_error(const SignedDistanceField& f, Point lo, Point hi) {
   double worst = 0;
   for (uint32_t k = 0; k < f.dims.z; ++k)
     for (uint32_t j = 0; j < f.dims.y; ++j)
@@ -37,8 +37,8 @@ double box_error(const SignedDistanceField& f, Vec3d lo, Vec3d hi) {
 }  // namespace
 
 TEST_CASE("closest point on a triangle: each Voronoi region, and its feature") {
-  const Vec3d a{0, 0, 0}, b{1, 0, 0}, c{0, 1, 0};
-  auto q = [&](Vec3d p) { return closest_point_on_triangle(p, a, b, c); };
+  const Point a{0, 0, 0}, b{1, 0, 0}, c{0, 1, 0};
+  auto q = [&](Point p) { return closest_point_on_triangle(p, a, b, c); };
   CHECK(q({-1, -1, 3}).feature == Feature::corner0);
   CHECK(q({2, -1, 0}).feature == Feature::corner1);
   CHECK(q({-0.5, 3, 1}).feature == Feature::corner2);
@@ -57,7 +57,7 @@ TEST_CASE("closest point on a triangle: each Voronoi region, and its feature") {
 }
 
 TEST_CASE("mesh sdf: a box's field is the analytic box distance at every node") {
-  const Vec3d lo{-0.3, 0, 0.1}, hi{0.7, 2, 0.6};
+  const Point lo{-0.3, 0, 0.1}, hi{0.7, 2, 0.6};
   for (uint32_t n : {1u, 3u}) {
     CAPTURE(n);
     const TriangleMesh box = test::box_mesh(lo, hi, n);
@@ -69,14 +69,14 @@ TEST_CASE("mesh sdf: a box's field is the analytic box distance at every node") 
     CHECK(box_error(f, lo, hi) < 1e-12);
     CHECK(f.min_value() == doctest::Approx(-0.25).epsilon(1e-12));
     // Outward from a face the distance is affine: trilinear samples and gradients are exact.
-    const Vec3d p{0.113, 2.07, 0.333};
+    const Point p{0.113, 2.07, 0.333};
     CHECK(f.sample(p) == doctest::Approx(0.07).epsilon(1e-12));
-    const Vec3d g = f.gradient(p);
+    const Point g = f.gradient(p);
     CHECK(std::fabs(g.x) < 1e-10);
     CHECK(g.y == doctest::Approx(1).epsilon(1e-10));
     CHECK(std::fabs(g.z) < 1e-10);
     // At a node the sample is the node.
-    const Vec3d at = f.node_position(3, 7, 11);
+    const Point at = f.node_position(3, 7, 11);
     CHECK(f.sample(at) == doctest::Approx(f.node(3, 7, 11)).epsilon(1e-13));
     // Off the grid: the value at the nearest point of the grid's box.
     CHECK(f.sample({100, 1, 0.35}) ==
@@ -86,7 +86,7 @@ TEST_CASE("mesh sdf: a box's field is the analytic box distance at every node") 
 
 TEST_CASE("mesh sdf: an icosphere's field is within its approximation error of |p| - r") {
   const double r = 0.5;
-  const Vec3d centre{0.1, -0.2, 0.3};
+  const Point centre{0.1, -0.2, 0.3};
   for (uint32_t levels : {1u, 3u}) {
     CAPTURE(levels);
     const TriangleMesh ball = test::icosphere(r, levels, centre);
@@ -94,9 +94,9 @@ TEST_CASE("mesh sdf: an icosphere's field is within its approximation error of |
     // signed distance lies between theirs: |sdf - (|p| - r)| <= r - r_in.
     double r_in = r;
     for (const auto& t : ball.triangles) {
-      const Vec3d a = ball.vertices[t[0]] - centre, b = ball.vertices[t[1]] - centre,
+      const Point a = ball.vertices[t[0]] - centre, b = ball.vertices[t[1]] - centre,
                   c = ball.vertices[t[2]] - centre;
-      const Vec3d n = cross(b - a, c - a);
+      const Point n = cross(b - a, c - a);
       r_in = std::min(r_in, dot(a, n) / length(n));
     }
     const SignedDistanceField f = build_sdf(ball, {0.04, 0.1});
@@ -125,8 +125,8 @@ TEST_CASE("mesh sdf: an icosphere's field is within its approximation error of |
     double min_cos = 1, worst_length = 0;
     for (int n = 0; n < 200; ++n) {
       const double rho = 0.2 + 0.4 * (n % 10) / 9.0, phi = 0.7 * n, z = std::cos(1.3 * n);
-      const Vec3d u{std::sqrt(1 - z * z) * std::cos(phi), std::sqrt(1 - z * z) * std::sin(phi), z};
-      const Vec3d g = f.gradient(centre + rho * u);
+      const Point u{std::sqrt(1 - z * z) * std::cos(phi), std::sqrt(1 - z * z) * std::sin(phi), z};
+      const Point g = f.gradient(centre + rho * u);
       min_cos = std::min(min_cos, dot(g, u) / length(g));
       worst_length = std::max(worst_length, std::fabs(length(g) - 1));
     }
@@ -145,7 +145,7 @@ TEST_CASE("mesh sdf: the same bits for any thread count") {
   CHECK(std::memcmp(one.values.data(), three.values.data(), one.values.size() * 8) == 0);
   // The search's hint changes nothing: a point queried cold and from a far triangle agrees.
   const MeshDistance dist(ball, "ball");
-  const Vec3d p{0.3, -0.7, 0.2};
+  const Point p{0.3, -0.7, 0.2};
   uint32_t hint = 0;
   const double cold = dist.signed_distance(p), warm = dist.signed_distance(p, &hint);
   CHECK(cold == warm);
@@ -257,7 +257,7 @@ TEST_CASE("mesh sdf speed: 10^5 triangles, 64^3 nodes") {
       std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   CHECK(f.dims.x == 64);
   CHECK(f.values.size() == 64 * 64 * 64);
-  const Vec3d lo{-1, -1, -1}, hi{1, 1, 1};
+  const Point lo{-1, -1, -1}, hi{1, 1, 1};
   const TriangleMesh box = test::box_mesh(lo, hi, 92);
   CHECK(box.triangles.size() == 101568);
   t0 = std::chrono::steady_clock::now();

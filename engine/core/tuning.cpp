@@ -102,22 +102,14 @@ const std::vector<Option>& options() {
          t.vulkan.sort_scatter =
              parse_named<SortScatter>("vulkan.sort_scatter", v, kSortNames, "auto, tiled or subgroup");
        },
-       [](const Tuning& t) {
-         return t.vulkan.sort_scatter == SortScatter::automatic
-                    ? std::string()
-                    : std::string(kSortNames[size_t(t.vulkan.sort_scatter)]);
-       }},
+       [](const Tuning& t) { return named_text(size_t(t.vulkan.sort_scatter), kSortNames); }},
       {{"vulkan.sph_walk", "auto, cooperative or lanes", "cooperative on a CPU device, else lanes",
         "how the SPH kernels walk a particle's neighbour rows"},
        [](Tuning& t, std::string_view v) {
          t.vulkan.sph_walk =
              parse_named<SphWalk>("vulkan.sph_walk", v, kWalkNames, "auto, cooperative or lanes");
        },
-       [](const Tuning& t) {
-         return t.vulkan.sph_walk == SphWalk::automatic
-                    ? std::string()
-                    : std::string(kWalkNames[size_t(t.vulkan.sph_walk)]);
-       }},
+       [](const Tuning& t) { return named_text(size_t(t.vulkan.sph_walk), kWalkNames); }},
       MASAV_SWITCH("vulkan.sph_wall_split", vulkan.sph_wall_split,
                    "sph_density always; the others on a CPU device",
                    "a second copy of the SPH walks without wall images, for subgroups far from "

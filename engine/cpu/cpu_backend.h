@@ -11,6 +11,7 @@
 #include "engine/cpu/cpu_sph_simd.h"
 #include "engine/cpu/thread_pool.h"
 #include "engine/kernels/backend.h"
+#include "engine/kernels/hd_vec.h"
 
 namespace masav::cpu {
 
@@ -79,6 +80,15 @@ class CpuBackend final : public Backend {
   // Whether sph_density and sph_forces of `p` run the fp32 pair loops (sph_simd_): wcsph and
   // the thesis model; dfsph's kernels share their lists with its solves, which stay fp64.
   bool sph_in_fp32(const SphStepParams& p) const;
+  // What sph_forces reads and writes on either path; the neighbour lists made sure of first
+  // (sph_density's where they match these positions and this grid, else new ones).
+  struct SphForceBuffers {
+    const double *pos, *vel, *rho, *pr;
+    double* accel;
+    uint32_t* stats;
+    const hd::V4<double>* state;  // sph_density's neighbour state, or null
+  };
+  SphForceBuffers sph_force_buffers(const KernelArgs<KernelId::sph_forces>& a, bool fp32);
   void sph_forces_fp32(const KernelArgs<KernelId::sph_forces>& a);  // cpu_sph_fp32.cpp
   // The lists for `in` in sph_chunks(in.n) chunks: sph_density's where they match, else new.
   void ensure_sph_lists(const SphListInputs& in);

@@ -89,9 +89,8 @@ const Soa<T>& soa_positions(ThreadPool& pool, const double* pos, size_t n) {
 }
 
 // wall_images_density in fp32: the neighbours' images in the SIMD loop, then the particle's own.
-template <class Soa>
 float fp32_wall_images_density(const SphSimdKernels& k, const SphStepLayout<float>& c,
-                               const SimdPairConstants& simd, const Soa& xyz, uint32_t i,
+                               const SimdPairConstants& simd, const Soa<float>& xyz, uint32_t i,
                                const uint32_t* list, uint32_t count) {
   if (!c.walls) return 0.0f;
   const sph::V3<float> xi{xyz.x[i], xyz.y[i], xyz.z[i]};
@@ -311,31 +310,37 @@ void CpuBackend::run_own(const KernelArgs<KernelId::sph_density>& a) {
   merge_sph_stats(words, st);
 }
 
+CpuBackend::SphForceBuffers CpuBackend::sph_force_buffers(
+    const KernelArgs<KernelId::sph_forces>& a, bool fp32) {
+  auto& [p, items_, positions, velocities, density, pressure, cells, cell_start, cell_end, accel,
+         stats, neighbor_state, neighbor_rows] = a;
+  const char* k = "sph_forces";
+  SphListInputs in = sph_list_inputs(p, cells, cell_start, cell_end, device_params<double>(p).h2, k);
+  const double* pos = own(positions.impl(), k).as<double>();
+  in.positions = pos;
+  in.fp32 = fp32;
+  ensure_sph_lists(in);
+  return {pos,
+          own(velocities.impl(), k).as<double>(),
+          own(density.impl(), k).as<double>(),
+          own(pressure.impl(), k).as<double>(),
+          own(accel.impl(), k).as<double>(),
+          own(stats.impl(), k).as<uint32_t>(),
+          neighbor_state ? own(neighbor_state->impl(), k).as<hd::V4<double>>() : nullptr};
+}
+
 void CpuBackend::run_own(const KernelArgs<KernelId::sph_forces>& a) {
   // neighbor_rows is not read: the masks are sph_density's neighbour lists plus each particle
   // itself, and the lists below are those lists (or a fresh walk that finds the same ones), so
   // the result is the same with or without them.
   if (sph_in_fp32(a.p)) return sph_forces_fp32(a);
-  auto& [p, items_, positions, velocities, density, pressure, cells, cell_start, cell_end, accel,
-         stats, neighbor_state, neighbor_rows] = a;
-  const char* k = "sph_forces";
+  const SphStepParams& p = a.p;
   const auto c = device_params<double>(p);
-  SphListInputs in = sph_list_inputs(p, cells, cell_start, cell_end, c.h2, k);
-  const double* pos = own(positions.impl(), k).as<double>();
-  in.positions = pos;
-  const double* vel = own(velocities.impl(), k).as<double>();
-  const double* rho = own(density.impl(), k).as<double>();
-  const double* pr = own(pressure.impl(), k).as<double>();
-  double* acc_out = own(accel.impl(), k).as<double>();
-  uint32_t* words = own(stats.impl(), k).as<uint32_t>();
+  const auto [pos, vel, rho, pr, acc_out, words, state] = sph_force_buffers(a, false);
   const size_t chunks = sph_chunks(sph_range_count(p));
   std::vector<ChunkStats> st(chunks);
-  // The lists sph_density left, if they belong to these positions and this grid; else new ones.
-  ensure_sph_lists(in);
   // p / rho^2 once per particle rather than once per pair (the same bits: the shared function),
   // here or in sph_density's neighbour state.
-  const hd::V4<double>* state =
-      neighbor_state ? own(neighbor_state->impl(), k).as<hd::V4<double>>() : nullptr;
   std::vector<double>& p_rho2 = sph_p_rho2_;
   if (!state) {
     p_rho2.resize(p.n);
@@ -375,12 +380,7 @@ void CpuBackend::run_own(const KernelArgs<KernelId::sph_forces>& a) {
       const double inv_mass = pos[4 * i + 3];
       const V a = sph::total_accel(acc, inv_mass, c);
       store3(acc_out, i, a, double(count));
-      s.max_candidates = std::max(s.max_candidates, sph_lists_.candidates(self));
-      if (sph_lists_.overflow(self)) s.overflow = std::min(s.overflow, self);
-      if (!finite3(a))
-        s.non_finite = std::min(s.non_finite, self);
-      else if (inv_mass > 0)
-        s.max_accel2 = std::max(s.max_accel2, sph::dot(a, a));
+      add_force_stats(s, sph_lists_, self, finite3(a), inv_mass > 0, sph::dot(a, a));
     }
   });
   merge_sph_stats(words, st);

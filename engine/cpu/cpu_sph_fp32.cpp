@@ -17,27 +17,14 @@ namespace masav::cpu {
 void CpuBackend::sph_forces_fp32(const KernelArgs<KernelId::sph_forces>& a) {
   // neighbor_rows is not read, as in the fp64 path: the lists are sph_density's. The fields
   // come from sph_density's neighbour state where given (the same values as the arrays').
-  auto& [p, items_, positions, velocities, density, pressure, cells, cell_start, cell_end, accel,
-         stats, neighbor_state, neighbor_rows] = a;
-  const char* k = "sph_forces";
+  const SphStepParams& p = a.p;
   const auto c = device_params<float>(p);
-  SphListInputs in = sph_list_inputs(p, cells, cell_start, cell_end, device_params<double>(p).h2, k);
-  const double* pos = own(positions.impl(), k).as<double>();
-  in.positions = pos;
-  in.fp32 = true;
-  const double* vel = own(velocities.impl(), k).as<double>();
-  const double* rho = own(density.impl(), k).as<double>();
-  const double* pr = own(pressure.impl(), k).as<double>();
-  double* acc_out = own(accel.impl(), k).as<double>();
-  uint32_t* words = own(stats.impl(), k).as<uint32_t>();
-  ensure_sph_lists(in);
+  const auto [pos, vel, rho, pr, acc_out, words, state] = sph_force_buffers(a, true);
 
   // The neighbour fields, a row of 8 floats per particle (SimdPairFields).
   sph_fields_.resize(kFieldCount * std::max<size_t>(p.n, 1));
   float* fb = sph_fields_.data();
   const SimdPairFields f{fb};
-  const hd::V4<double>* state =
-      neighbor_state ? own(neighbor_state->impl(), k).as<hd::V4<double>>() : nullptr;
   pool_.parallel_for(p.n, 8192, [&](size_t b, size_t e) {
     for (size_t i = b; i < e; ++i) {
       const sph::Neighbor<double> o =
@@ -82,14 +69,10 @@ void CpuBackend::sph_forces_fp32(const KernelArgs<KernelId::sph_forces>& a) {
       acc_out[4 * i + 1] = double(acc_i.y);
       acc_out[4 * i + 2] = double(acc_i.z);
       acc_out[4 * i + 3] = double(count);
-      s.max_candidates = std::max(s.max_candidates, sph_lists_.candidates(self));
-      if (sph_lists_.overflow(self)) s.overflow = std::min(s.overflow, self);
       const bool finite =
           std::isfinite(acc_i.x) && std::isfinite(acc_i.y) && std::isfinite(acc_i.z);
-      if (!finite)
-        s.non_finite = std::min(s.non_finite, self);
-      else if (inv_mass > 0)
-        s.max_accel2 = std::max(s.max_accel2, double(sph::dot(acc_i, acc_i)));
+      add_force_stats(s, sph_lists_, self, finite, inv_mass > 0,
+                      double(sph::dot(acc_i, acc_i)));
     }
   });
   merge_sph_stats(words, st);

@@ -21,12 +21,12 @@ struct EdgeUse {
 
 // A triangle's area is zero when its cross product vanishes against its longest edge (relative,
 // so that the test does not depend on the mesh's units).
-bool is_degenerate(double twice_area, Vec3d a, Vec3d b, Vec3d c) {
+bool is_degenerate(double twice_area, Point a, Point b, Point c) {
   const double e2 = std::max({dot(b - a, b - a), dot(c - b, c - b), dot(a - c, a - c)});
   return !(twice_area > 1e-14 * e2);
 }
 
-std::string point(Vec3d p) {
+std::string point(Point p) {
   return fmt::format("({:.9g}, {:.9g}, {:.9g})", p.x, p.y, p.z);
 }
 
@@ -71,11 +71,11 @@ Analysis analyse(const TriangleMesh& m, bool want_neighbours) {
       }
 
   // Areas and the volume; positions relative to the box centre keep the volume's terms small.
-  const Vec3d centre = 0.5 * (c.bounds.lo + c.bounds.hi);
+  const Point centre = 0.5 * (c.bounds.lo + c.bounds.hi);
   uint64_t first_degenerate = kNone;
   for (size_t t = 0; t < m.triangles.size(); ++t) {
     const auto& tri = m.triangles[t];
-    const Vec3d a = m.vertices[tri[0]], b = m.vertices[tri[1]], d = m.vertices[tri[2]];
+    const Point a = m.vertices[tri[0]], b = m.vertices[tri[1]], d = m.vertices[tri[2]];
     const double twice_area = length(cross(b - a, d - a));
     c.area += 0.5 * twice_area;
     c.volume += dot(a - centre, cross(b - centre, d - centre)) / 6.0;

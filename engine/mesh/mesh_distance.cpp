@@ -11,19 +11,15 @@ namespace {
 
 constexpr uint32_t kLeafTriangles = 4;
 
-double box_distance2(Vec3d p, const Bounds& b) {
+double box_distance2(Point p, const Bounds& b) {
   const double dx = std::max({b.lo.x - p.x, 0.0, p.x - b.hi.x});
   const double dy = std::max({b.lo.y - p.y, 0.0, p.y - b.hi.y});
   const double dz = std::max({b.lo.z - p.z, 0.0, p.z - b.hi.z});
   return dx * dx + dy * dy + dz * dz;
 }
 
-double axis(Vec3d v, int a) {
-  return a == 0 ? v.x : a == 1 ? v.y : v.z;
-}
-
 // The angle between u and v, from atan2 (accurate for angles near 0 and pi, unlike acos).
-double angle_between(Vec3d u, Vec3d v) {
+double angle_between(Point u, Point v) {
   return std::atan2(length(cross(u, v)), dot(u, v));
 }
 
@@ -32,16 +28,16 @@ double angle_between(Vec3d u, Vec3d v) {
 // Ericson, Real-Time Collision Detection (2005), section 5.1.5, ClosestPtPointTriangle: the
 // Voronoi regions of the corners, then of the edges, then the face, tested with the dot products
 // d1..d6 and the barycentric numerators va, vb, vc.
-ClosestPoint closest_point_on_triangle(Vec3d p, Vec3d a, Vec3d b, Vec3d c) {
-  const Vec3d ab = b - a, ac = c - a, ap = p - a;
+ClosestPoint closest_point_on_triangle(Point p, Point a, Point b, Point c) {
+  const Point ab = b - a, ac = c - a, ap = p - a;
   const double d1 = dot(ab, ap), d2 = dot(ac, ap);
   if (d1 <= 0 && d2 <= 0) return {a, Feature::corner0};
-  const Vec3d bp = p - b;
+  const Point bp = p - b;
   const double d3 = dot(ab, bp), d4 = dot(ac, bp);
   if (d3 >= 0 && d4 <= d3) return {b, Feature::corner1};
   const double vc = d1 * d4 - d3 * d2;
   if (vc <= 0 && d1 >= 0 && d3 <= 0) return {a + (d1 / (d1 - d3)) * ab, Feature::edge0};
-  const Vec3d cp = p - c;
+  const Point cp = p - c;
   const double d5 = dot(ab, cp), d6 = dot(ac, cp);
   if (d6 >= 0 && d5 <= d6) return {c, Feature::corner2};
   const double vb = d5 * d2 - d1 * d6;
@@ -58,12 +54,12 @@ MeshDistance::MeshDistance(const TriangleMesh& m, std::string_view where) : mesh
   const size_t n = m.triangles.size();
   face_normal_.resize(n);
   edge_normal_.resize(3 * n);
-  vertex_normal_.assign(m.vertices.size(), Vec3d{});
-  std::vector<Vec3d> centroid(n);
+  vertex_normal_.assign(m.vertices.size(), Point{});
+  std::vector<Point> centroid(n);
   for (size_t t = 0; t < n; ++t) {
     const auto& tri = m.triangles[t];
-    const Vec3d a = m.vertices[tri[0]], b = m.vertices[tri[1]], c = m.vertices[tri[2]];
-    const Vec3d nrm = cross(b - a, c - a);
+    const Point a = m.vertices[tri[0]], b = m.vertices[tri[1]], c = m.vertices[tri[2]];
+    const Point nrm = cross(b - a, c - a);
     face_normal_[t] = (1 / length(nrm)) * nrm;  // not zero: the check refuses zero-area triangles
     centroid[t] = (1.0 / 3) * (a + b + c);
   }
@@ -71,7 +67,7 @@ MeshDistance::MeshDistance(const TriangleMesh& m, std::string_view where) : mesh
     const auto& tri = m.triangles[t];
     for (int k = 0; k < 3; ++k) {
       edge_normal_[3 * t + k] = face_normal_[t] + face_normal_[opposite[3 * t + k] / 3];
-      const Vec3d v = m.vertices[tri[k]];
+      const Point v = m.vertices[tri[k]];
       const double w =
           angle_between(m.vertices[tri[(k + 1) % 3]] - v, m.vertices[tri[(k + 2) % 3]] - v);
       vertex_normal_[tri[k]] = vertex_normal_[tri[k]] + w * face_normal_[t];
@@ -85,17 +81,17 @@ MeshDistance::MeshDistance(const TriangleMesh& m, std::string_view where) : mesh
 }
 
 void MeshDistance::build_node(uint32_t node, uint32_t begin, uint32_t end,
-                              const std::vector<Vec3d>& centroid) {
+                              const std::vector<Point>& centroid) {
   Bounds box{mesh_.vertices[mesh_.triangles[order_[begin]][0]],
              mesh_.vertices[mesh_.triangles[order_[begin]][0]]};
   Bounds cbox{centroid[order_[begin]], centroid[order_[begin]]};
   for (uint32_t i = begin; i < end; ++i) {
     for (uint32_t v : mesh_.triangles[order_[i]]) {
-      const Vec3d p = mesh_.vertices[v];
+      const Point p = mesh_.vertices[v];
       box.lo = {std::min(box.lo.x, p.x), std::min(box.lo.y, p.y), std::min(box.lo.z, p.z)};
       box.hi = {std::max(box.hi.x, p.x), std::max(box.hi.y, p.y), std::max(box.hi.z, p.z)};
     }
-    const Vec3d c = centroid[order_[i]];
+    const Point c = centroid[order_[i]];
     cbox.lo = {std::min(cbox.lo.x, c.x), std::min(cbox.lo.y, c.y), std::min(cbox.lo.z, c.z)};
     cbox.hi = {std::max(cbox.hi.x, c.x), std::max(cbox.hi.y, c.y), std::max(cbox.hi.z, c.z)};
   }
@@ -107,12 +103,12 @@ void MeshDistance::build_node(uint32_t node, uint32_t begin, uint32_t end,
   }
   // Split at the median centroid along the widest axis of the centroids; ties broken by the
   // triangle number, so that the tree is one definite tree.
-  const Vec3d ext = cbox.hi - cbox.lo;
+  const Point ext = cbox.hi - cbox.lo;
   const int ax = ext.x >= ext.y && ext.x >= ext.z ? 0 : ext.y >= ext.z ? 1 : 2;
   const uint32_t mid = begin + (end - begin) / 2;
   std::nth_element(order_.begin() + begin, order_.begin() + mid, order_.begin() + end,
                    [&](uint32_t l, uint32_t r) {
-                     const double cl = axis(centroid[l], ax), cr = axis(centroid[r], ax);
+                     const double cl = hd::comp(centroid[l], ax), cr = hd::comp(centroid[r], ax);
                      return cl != cr ? cl < cr : l < r;
                    });
   const uint32_t left = uint32_t(nodes_.size());
@@ -124,16 +120,16 @@ void MeshDistance::build_node(uint32_t node, uint32_t begin, uint32_t end,
   build_node(left + 1, mid, end, centroid);
 }
 
-void MeshDistance::test(Vec3d p, uint32_t t, Nearest& best) const {
+void MeshDistance::test(Point p, uint32_t t, Nearest& best) const {
   const auto& tri = mesh_.triangles[t];
   const ClosestPoint q = closest_point_on_triangle(p, mesh_.vertices[tri[0]],
                                                    mesh_.vertices[tri[1]], mesh_.vertices[tri[2]]);
-  const Vec3d d = p - q.point;
+  const Point d = p - q.point;
   const double d2 = dot(d, d);
   if (d2 < best.distance2 || (d2 == best.distance2 && t < best.triangle)) best = {t, d2, q};
 }
 
-MeshDistance::Nearest MeshDistance::nearest(Vec3d p, uint32_t hint) const {
+MeshDistance::Nearest MeshDistance::nearest(Point p, uint32_t hint) const {
   Nearest best{kNoHint, std::numeric_limits<double>::infinity(), {}};
   if (hint < mesh_.triangles.size()) test(p, hint, best);
   // Depth-first, the nearer child first; a box farther than the best is skipped, one at the same
@@ -158,12 +154,12 @@ MeshDistance::Nearest MeshDistance::nearest(Vec3d p, uint32_t hint) const {
   return best;
 }
 
-double MeshDistance::signed_distance(Vec3d p, uint32_t* hint) const {
+double MeshDistance::signed_distance(Point p, uint32_t* hint) const {
   const Nearest n = nearest(p, hint ? *hint : kNoHint);
   if (hint) *hint = n.triangle;
   const auto& tri = mesh_.triangles[n.triangle];
   const int f = int(n.closest.feature);
-  const Vec3d pseudo = f < 3   ? vertex_normal_[tri[f]]
+  const Point pseudo = f < 3   ? vertex_normal_[tri[f]]
                        : f < 6 ? edge_normal_[3 * n.triangle + (f - 3)]
                                : face_normal_[n.triangle];
   const double d = std::sqrt(n.distance2);

@@ -19,11 +19,11 @@ namespace masav::mesh {
 enum class Feature : uint8_t { corner0, corner1, corner2, edge0, edge1, edge2, face };
 
 struct ClosestPoint {
-  Vec3d point;
+  Point point{};
   Feature feature = Feature::face;
 };
 
-ClosestPoint closest_point_on_triangle(Vec3d p, Vec3d a, Vec3d b, Vec3d c);
+ClosestPoint closest_point_on_triangle(Point p, Point a, Point b, Point c);
 
 class MeshDistance {
  public:
@@ -38,8 +38,8 @@ class MeshDistance {
   };
   // `hint`, a triangle likely near p (the previous query's), only speeds the search: the result
   // is the same for any hint.
-  Nearest nearest(Vec3d p, uint32_t hint = kNoHint) const;
-  double signed_distance(Vec3d p, uint32_t* hint = nullptr) const;
+  Nearest nearest(Point p, uint32_t hint = kNoHint) const;
+  double signed_distance(Point p, uint32_t* hint = nullptr) const;
 
   static constexpr uint32_t kNoHint = 0xffffffffu;
 
@@ -49,15 +49,15 @@ class MeshDistance {
     uint32_t first = 0;  // a leaf's first entry in order_, or an inner node's left child
     uint32_t count = 0;  // triangles in a leaf; 0 for an inner node (its right child is first + 1)
   };
-  void build_node(uint32_t node, uint32_t begin, uint32_t end, const std::vector<Vec3d>& centroid);
-  void test(Vec3d p, uint32_t t, Nearest& best) const;
+  void build_node(uint32_t node, uint32_t begin, uint32_t end, const std::vector<Point>& centroid);
+  void test(Point p, uint32_t t, Nearest& best) const;
 
   const TriangleMesh& mesh_;
   std::vector<Node> nodes_;
   std::vector<uint32_t> order_;       // triangle numbers, leaf by leaf
-  std::vector<Vec3d> face_normal_;    // unit, per triangle
-  std::vector<Vec3d> edge_normal_;    // per triangle edge 3 t + e: the sum of its two faces'
-  std::vector<Vec3d> vertex_normal_;  // per vertex: the angle-weighted sum of its faces'
+  std::vector<Point> face_normal_;    // unit, per triangle
+  std::vector<Point> edge_normal_;    // per triangle edge 3 t + e: the sum of its two faces'
+  std::vector<Point> vertex_normal_;  // per vertex: the angle-weighted sum of its faces'
 };
 
 }  // namespace masav::mesh

@@ -99,8 +99,8 @@ void check_triangle_count(uint64_t count, const std::string& where) {
 // Vertices welded by exact position: the first vertex at a position names it.
 class Welder {
  public:
-  uint32_t index(TriangleMesh& m, Vec3d p) {
-    const Vec3d v{p.x + 0.0, p.y + 0.0, p.z + 0.0};  // -0 and +0 are one position
+  uint32_t index(TriangleMesh& m, Point p) {
+    const Point v{p.x + 0.0, p.y + 0.0, p.z + 0.0};  // -0 and +0 are one position
     const Key k{std::bit_cast<uint64_t>(v.x), std::bit_cast<uint64_t>(v.y),
                 std::bit_cast<uint64_t>(v.z)};
     const auto [it, fresh] = map_.try_emplace(k, uint32_t(m.vertices.size()));
@@ -152,7 +152,7 @@ TriangleMesh parse_stl_binary(std::string_view bytes, std::string_view where) {
     float xyz[9];
     std::memcpy(xyz, rec + 12, sizeof(xyz));  // after the facet normal, which is recomputed
     for (int k = 0; k < 3; ++k) {
-      const Vec3d v{xyz[3 * k], xyz[3 * k + 1], xyz[3 * k + 2]};
+      const Point v{xyz[3 * k], xyz[3 * k + 1], xyz[3 * k + 2]};
       for (int a = 0; a < 3; ++a) {
         const double c = a == 0 ? v.x : a == 1 ? v.y : v.z;
         if (!std::isfinite(c))
@@ -205,7 +205,7 @@ TriangleMesh parse_stl_ascii(std::string_view text, std::string_view where, std:
       if (corners == 3)
         throw Error("", here(), "a facet with more than 3 vertices",
                     "an STL facet is one triangle: triangulate the mesh before exporting it");
-      Vec3d v;
+      Point v{};
       v.x = parse_coordinate(next_word(rest), here, [] { return "vertex x"; });
       v.y = parse_coordinate(next_word(rest), here, [] { return "vertex y"; });
       v.z = parse_coordinate(next_word(rest), here, [] { return "vertex z"; });
@@ -274,7 +274,7 @@ TriangleMesh parse_obj(std::string_view text, std::string_view where) {
       auto field = [&](char axis) {
         return [i, axis] { return fmt::format("vertex {} {}", i + 1, axis); };
       };
-      Vec3d v;
+      Point v{};
       v.x = parse_coordinate(next_word(rest), here, field('x'));
       v.y = parse_coordinate(next_word(rest), here, field('y'));
       v.z = parse_coordinate(next_word(rest), here, field('z'));

@@ -26,7 +26,7 @@ struct Cell {
   double c[2][2][2];  // c[dz][dy][dx]
 };
 
-Cell cell_at(const SignedDistanceField& f, Vec3d p) {
+Cell cell_at(const SignedDistanceField& f, Point p) {
   Cell c{};
   locate(p.x, f.origin.x, f.spacing, f.dims.x, c.i, c.tx);
   locate(p.y, f.origin.y, f.spacing, f.dims.y, c.j, c.ty);
@@ -50,7 +50,7 @@ SdfGrid sdf_grid(const Bounds& b, const SdfParams& p) {
     throw_invalid("mesh sdf", "padding", fmt::format("{}", p.padding), "a finite number >= 0");
   SdfGrid g;
   g.origin = {b.lo.x - p.padding, b.lo.y - p.padding, b.lo.z - p.padding};
-  const Vec3d extent = (b.hi - b.lo) + Vec3d{2 * p.padding, 2 * p.padding, 2 * p.padding};
+  const Point extent = (b.hi - b.lo) + Point{2 * p.padding, 2 * p.padding, 2 * p.padding};
   // Nodes per axis in double first: an extent of 1e300 at a spacing of 1e-300 does not wrap.
   // The factor below 1 keeps 1.4 / 0.1 at 14 cells, not 15, where the quotient rounds up.
   double n[3];
@@ -68,7 +68,7 @@ SdfGrid sdf_grid(const Bounds& b, const SdfParams& p) {
   return g;
 }
 
-double SignedDistanceField::sample(Vec3d p) const {
+double SignedDistanceField::sample(Point p) const {
   const Cell c = cell_at(*this, p);
   double z[2];
   for (int dz = 0; dz < 2; ++dz)
@@ -77,10 +77,10 @@ double SignedDistanceField::sample(Vec3d p) const {
   return lerp(z[0], z[1], c.tz);
 }
 
-Vec3d SignedDistanceField::gradient(Vec3d p) const {
+Point SignedDistanceField::gradient(Point p) const {
   const Cell c = cell_at(*this, p);
   const double wx[2] = {1 - c.tx, c.tx}, wy[2] = {1 - c.ty, c.ty}, wz[2] = {1 - c.tz, c.tz};
-  Vec3d g{};
+  Point g{};
   for (int a = 0; a < 2; ++a)
     for (int b = 0; b < 2; ++b) {
       g.x += (c.c[a][b][1] - c.c[a][b][0]) * wy[b] * wz[a];

@@ -27,14 +27,14 @@ struct SdfParams {
 // nodes that reach hi + padding. Throws Error naming the parameter when the spacing or padding is
 // not a finite number in range, or the grid would pass kMaxSdfNodes (with the spacing that fits).
 struct SdfGrid {
-  Vec3d origin;
+  Point origin{};
   UVec3 dims;  // nodes per axis, each >= 2
   uint64_t nodes() const { return uint64_t(dims.x) * dims.y * dims.z; }
 };
 SdfGrid sdf_grid(const Bounds& b, const SdfParams& p);
 
 struct SignedDistanceField {
-  Vec3d origin;
+  Point origin{};
   double spacing = 0;
   UVec3 dims;
   std::vector<double> values;  // x fastest, then y, then z
@@ -43,15 +43,15 @@ struct SignedDistanceField {
     return (uint64_t(k) * dims.y + j) * dims.x + i;
   }
   double node(uint32_t i, uint32_t j, uint32_t k) const { return values[index(i, j, k)]; }
-  Vec3d node_position(uint32_t i, uint32_t j, uint32_t k) const {
+  Point node_position(uint32_t i, uint32_t j, uint32_t k) const {
     return {origin.x + i * spacing, origin.y + j * spacing, origin.z + k * spacing};
   }
   // Trilinear between the nodes. A point outside the grid takes the value (and the gradient) at
   // the nearest point of the grid's box.
-  double sample(Vec3d p) const;
+  double sample(Point p) const;
   // The gradient of the trilinear interpolant (per cell; at a face between cells, the cell on the
   // upper side's).
-  Vec3d gradient(Vec3d p) const;
+  Point gradient(Point p) const;
   double min_value() const;
   double max_value() const;
 };

@@ -42,7 +42,7 @@ uint64_t sdf_content_hash(const TriangleMesh& m, const SdfParams& p) {
   uint64_t h = fnv1a64("masav mesh sdf 1");
   const uint64_t counts[2] = {m.vertices.size(), m.triangles.size()};
   h = fnv1a64(counts, sizeof(counts), h);
-  h = fnv1a64(m.vertices.data(), m.vertices.size() * sizeof(Vec3d), h);
+  h = fnv1a64(m.vertices.data(), m.vertices.size() * sizeof(Point), h);
   h = fnv1a64(m.triangles.data(), m.triangles.size() * sizeof(m.triangles[0]), h);
   const double params[2] = {p.spacing, p.padding};
   return fnv1a64(params, sizeof(params), h);

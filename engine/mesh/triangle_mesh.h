@@ -8,55 +8,37 @@
 #include <cstdint>
 #include <vector>
 
-#include "engine/core/types.h"
-
-namespace masav {
-
-// Vec3d's arithmetic, beside the type so that argument-dependent lookup finds it everywhere.
-inline Vec3d operator+(Vec3d a, Vec3d b) {
-  return {a.x + b.x, a.y + b.y, a.z + b.z};
-}
-inline Vec3d operator-(Vec3d a, Vec3d b) {
-  return {a.x - b.x, a.y - b.y, a.z - b.z};
-}
-inline Vec3d operator*(double s, Vec3d a) {
-  return {s * a.x, s * a.y, s * a.z};
-}
-
-}  // namespace masav
+#include "engine/kernels/hd_vec.h"
 
 namespace masav::mesh {
+
+// A point or vector of the mesh: the engine's shared vector type and its arithmetic
+// (engine/kernels/hd_vec.h), which the kernels that read the field use too.
+using Point = hd::V3<double>;
+using hd::cross;
+using hd::dot;
+using hd::length;
 
 // The most triangles a mesh may hold (and a file may declare): 10^7, about 0.7 GB in memory with
 // the edge tables and the distance field's search tree.
 inline constexpr uint64_t kMaxTriangles = 10'000'000;
 
 struct Bounds {
-  Vec3d lo, hi;
+  Point lo{}, hi{};
 };
 
 struct TriangleMesh {
-  std::vector<Vec3d> vertices;
+  std::vector<Point> vertices;
   std::vector<std::array<uint32_t, 3>> triangles;
 
   // The smallest box holding every vertex ({0,0,0}, {0,0,0} for no vertices).
   Bounds bounds() const;
 };
 
-inline double dot(Vec3d a, Vec3d b) {
-  return a.x * b.x + a.y * b.y + a.z * b.z;
-}
-inline Vec3d cross(Vec3d a, Vec3d b) {
-  return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
-}
-inline double length(Vec3d a) {
-  return std::sqrt(dot(a, a));
-}
-
 inline Bounds TriangleMesh::bounds() const {
   if (vertices.empty()) return {};
   Bounds b{vertices[0], vertices[0]};
-  for (const Vec3d& v : vertices) {
+  for (const Point& v : vertices) {
     b.lo = {std::fmin(b.lo.x, v.x), std::fmin(b.lo.y, v.y), std::fmin(b.lo.z, v.z)};
     b.hi = {std::fmax(b.hi.x, v.x), std::fmax(b.hi.y, v.y), std::fmax(b.hi.z, v.z)};
   }
