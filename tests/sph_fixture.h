@@ -11,12 +11,18 @@
 #include <vector>
 
 #include "engine/grid/hash_grid.h"
+#include "engine/kernels/backend.h"
 #include "engine/kernels/sph_kernel_params.h"
 #include "engine/kernels/sph_kernels.h"
 #include "engine/sph/sph_case_buffers.h"
 #include "engine/sph/sph_particles.h"
 
 namespace masav::test {
+
+// Whether backend b computes the SPH kernels in fp32: a GPU, or the CPU backend's fp32 path.
+inline bool sph_in_fp32(const Backend& b) {
+  return !b.caps().real_is_double || b.caps().sph_pairs_fp32;
+}
 
 struct SphCase {
   std::vector<Vec4f> positions;  // w: inverse mass (some pinned / heavy particles)

@@ -133,7 +133,7 @@ TEST_CASE("dfsph_factor equals a brute-force sum over neighbours and wall images
       worst = std::max(worst, std::abs(f[i] - want) / want);
     }
     INFO("worst relative difference " << worst);
-    CHECK(worst < (b.caps().real_is_double ? 1e-12 : 1e-4));
+    CHECK(worst < (test::sph_in_fp32(b) ? 1e-4 : 1e-12));
   }
 }
 
@@ -196,7 +196,7 @@ TEST_CASE("dfsph_correct conserves momentum; iterating the solve shrinks the res
   }
   INFO("sum dv (" << sum[0] << ", " << sum[1] << ", " << sum[2] << ") of sum |dv| " << scale);
   CHECK(scale > 0);
-  for (double s : sum) CHECK(std::abs(s) < (b.caps().real_is_double ? 1e-12 : 1e-5) * scale);
+  for (double s : sum) CHECK(std::abs(s) < (test::sph_in_fp32(b) ? 1e-5 : 1e-12) * scale);
 
   // The density solve from rest on a lattice compressed by 2%, walls on: ten iterations of
   // dfsph_rate and dfsph_correct bring the mean residual down at least 5x.

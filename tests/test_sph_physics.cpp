@@ -15,14 +15,11 @@
 #include "engine/sph/sph_simulation.h"
 #include "engine/util/error_metrics.h"
 #include "tests/backend_fixture.h"
+#include "tests/sph_fixture.h"
 
 using namespace masav;
 
 namespace {
-
-bool fp32(const Backend& b) {
-  return !b.caps().real_is_double || b.caps().sph_pairs_fp32;
-}
 
 // A block of nx x ny x nz particles at spacing dx with its lower corner at `corner`.
 SphScene block_scene(uint32_t nx, uint32_t ny, uint32_t nz, double dx, Vec3d corner) {
@@ -171,7 +168,7 @@ TEST_CASE("[sph-physics] wcsph conserves the momentum of an isolated blob to flo
     const double rel = dp / d1.momentum_scale;
     INFO("momentum change " << dp << " of scale " << d1.momentum_scale << " (" << rel << ")");
     CHECK(d1.max_speed > 1.0);  // it did burst
-    CHECK(rel < (fp32(b) ? 2e-6 : 1e-12));
+    CHECK(rel < (test::sph_in_fp32(b) ? 2e-6 : 1e-12));
   }
 }
 

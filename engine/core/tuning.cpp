@@ -83,7 +83,7 @@ const std::vector<Option>& options() {
        [](Tuning& t, std::string_view v) { t.cpu.threads = uint32_t(parse_count("cpu.threads", v, 1024)); },
        [](const Tuning& t) { return count_text(t.cpu.threads); }},
       {{"cpu.sph_precision", "auto, fp64 or fp32", "fp64",
-        "the precision of the CPU backend's wcsph and thesis density and force kernels"},
+        "the precision of the CPU backend's SPH kernels (density, forces, the DFSPH solves)"},
        [](Tuning& t, std::string_view v) {
          t.cpu.sph_precision = parse_named<CpuSphPrecision>("cpu.sph_precision", v,
                                                             kPrecisionNames, "auto, fp64 or fp32");

@@ -27,9 +27,9 @@ enum class SortScatter : uint8_t { automatic, tiled, subgroup };
 // or each lane its own. auto: cooperative on a CPU device, per lane on a GPU.
 enum class SphWalk : uint8_t { automatic, cooperative, lanes };
 
-// The precision of the CPU backend's SPH pair kernels (sph_density and sph_forces of wcsph and
-// the thesis model): fp64, the reference every backend is checked against, or fp32 in SIMD pair
-// loops (engine/cpu/cpu_sph_simd.h), cross-checked against it like a GPU. Buffers and the
+// The precision of the CPU backend's SPH kernels (sph_density, sph_forces and the DFSPH solves'
+// sums, every pressure model): fp64, the reference every backend is checked against, or fp32 in
+// SIMD loops (engine/cpu/cpu_sph_simd.h), cross-checked against it like a GPU. Buffers and the
 // integrator stay fp64 either way. auto: fp64.
 enum class CpuSphPrecision : uint8_t { automatic, fp64, fp32 };
 // The instruction set of those fp32 loops: the same bits with each. auto: the widest present.

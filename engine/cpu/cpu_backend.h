@@ -77,9 +77,11 @@ class CpuBackend final : public Backend {
   template <class T, class Found>
   void build_sph_lists(const SphListInputs& in, size_t chunks, Found&& found,
                        const SphListReach& reach = {});
-  // Whether sph_density and sph_forces of `p` run the fp32 pair loops (sph_simd_): wcsph and
-  // the thesis model; dfsph's kernels share their lists with its solves, which stay fp64.
-  bool sph_in_fp32(const SphStepParams& p) const;
+  // Whether the SPH kernels run in fp32 (CpuTuning::sph_precision): sph_density and
+  // sph_forces in the SIMD pair loops (sph_simd_), their neighbour lists found in fp32, which
+  // the DFSPH solves share; the solves then sum fp32 terms (DfsphTerms32) over fp32 velocities
+  // and kappas.
+  bool sph_in_fp32() const { return sph_simd_ != nullptr; }
   // What sph_forces reads and writes on either path; the neighbour lists made sure of first
   // (sph_density's where they match these positions and this grid, else new ones).
   struct SphForceBuffers {
@@ -88,16 +90,19 @@ class CpuBackend final : public Backend {
     uint32_t* stats;
     const hd::V4<double>* state;  // sph_density's neighbour state, or null
   };
-  SphForceBuffers sph_force_buffers(const KernelArgs<KernelId::sph_forces>& a, bool fp32);
+  SphForceBuffers sph_force_buffers(const KernelArgs<KernelId::sph_forces>& a);
   void sph_forces_fp32(const KernelArgs<KernelId::sph_forces>& a);  // cpu_sph_fp32.cpp
   // The lists for `in` in sph_chunks(in.n) chunks: sph_density's where they match, else new.
   void ensure_sph_lists(const SphListInputs& in);
   size_t sph_chunks(uint32_t n) const;
-  // The DFSPH pair terms of the current lists at `pos` (cpu_dfsph.cpp): kept where they match.
-  // True if built anew, then with each particle's factor in `factor` where given.
-  bool ensure_dfsph_terms(const double* pos, const DfsphLayout<double>& c,
+  // The DFSPH pair terms of the current lists at `pos` in `terms` (cpu_dfsph.cpp): kept where
+  // they match. True if built anew, then with each particle's factor in `factor` where given.
+  bool ensure_dfsph_terms(DfsphTerms& terms, const double* pos, const DfsphLayout<double>& c,
                           double* factor = nullptr);
-  double factor_of_terms(size_t chunk, uint32_t self) const;
+  // The same in fp32 into dfsph_terms32_ (the fp32 path).
+  bool ensure_dfsph_terms32(const double* pos, const DfsphParams& p, double* factor = nullptr);
+  // fp32 copies of n rows of 4 (velocities) or of n values (kappas) for the fp32 solves.
+  const float* fp32_rows(std::vector<float>& out, const double* in, uint32_t n, size_t width);
   // raymarch in fp32 from fp32 copies of its inputs, a row of 8x8 tiles per task (cpu_volume.cpp).
   void raymarch_fp32(const RaymarchParams& p, const Buffer<Real>& volume, const Buffer<Real4>& tf,
                      const Buffer<Real4>& bricks, Buffer<Real4>& image,
@@ -108,6 +113,8 @@ class CpuBackend final : public Backend {
   CpuRenderPrecision render_;
   SphNeighborLists sph_lists_;
   DfsphTerms dfsph_terms_;
+  DfsphTerms32 dfsph_terms32_;
+  std::vector<float> dfsph_xyz32_, dfsph_vel32_, dfsph_kappa32_;
   bool dfsph_terms_on_ = true;
   std::vector<double> sph_p_rho2_;  // sph_forces' p / rho^2 per particle, kept between calls
   const SphSimdKernels* sph_simd_ = nullptr;  // the fp32 pair loops; null: fp64

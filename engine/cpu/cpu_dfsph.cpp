@@ -5,13 +5,21 @@
 // are gathered per chunk and merged once. By default the solves' pair gradients are found once per
 // list (cpu_dfsph_terms.h) and each call sums them in the shared bodies' order, ending in the
 // bodies' own tails (dfsph_*_from): the same bits as the bodies, without a square root and a
-// division per pair and iteration.
+// division per pair and iteration. With CpuTuning::sph_precision = fp32 the kept gradients are
+// rounded to fp32 (DfsphTerms32, half the bytes) and the solves sum them over fp32 copies of the
+// velocities and kappas, 16 terms at a time (SphSimdKernels, the same bits with every
+// instruction set), ending in the same double tails; the factor and everything outside the sums
+// stays in double.
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <bit>
 #include <cmath>
+#include <type_traits>
 #include <vector>
 
 #include "engine/cpu/cpu_backend.h"
+#include "engine/core/error.h"
 #include "engine/cpu/cpu_sph_rows.h"
 #include "engine/kernels/dfsph_kernels.h"
 
@@ -61,16 +69,35 @@ void merge(uint32_t* words, const std::vector<ChunkStats>& chunks) {
   }
 }
 
+// A particle's factor from its kept terms (dfsph_factor_of's sums).
+double factor_of_terms(const DfsphTerms& terms, size_t chunk, uint32_t self) {
+  V sum;
+  double sum2;
+  dfsph_gradient_sums(terms.terms(chunk, self), terms.count(self), self, sum, sum2);
+  return sph::dfsph_factor_from(sum, sum2);
+}
+
+
 }  // namespace
+
+const float* CpuBackend::fp32_rows(std::vector<float>& out, const double* in, uint32_t n,
+                                   size_t width) {
+  out.resize(width * std::max<size_t>(n, 1));
+  float* o = out.data();
+  pool_.parallel_for(width * n, 8192, [&](size_t b, size_t e) {
+    for (size_t k = b; k < e; ++k) o[k] = float(in[k]);
+  });
+  return o;
+}
 
 // The terms of each particle: the candidates of ListWalk within h, each pair then its wall
 // images -- the walk of sph::dfsph_rate_of, whose gradient factors it keeps.
-bool CpuBackend::ensure_dfsph_terms(const double* pos, const DfsphLayout<double>& c,
-                                    double* factor) {
+bool CpuBackend::ensure_dfsph_terms(DfsphTerms& terms, const double* pos,
+                                    const DfsphLayout<double>& c, double* factor) {
   const uint64_t generation = sph_lists_.generation();
-  if (dfsph_terms_.matches(generation, c)) return false;
+  if (terms.matches(generation, c)) return false;
   const size_t chunks = sph_chunks(c.end - c.begin);
-  dfsph_terms_.reset(c.n, chunks);
+  terms.reset(c.n, chunks);
   pool_.run_chunks(c.end - c.begin, chunks, [&](size_t chunk, size_t b, size_t e) {
     // ListWalk's candidates of one particle (itself, then its list): offsets, squared distances
     // and the pair gradients' scales, these computed for the whole list at once.
@@ -93,32 +120,82 @@ bool CpuBackend::ensure_dfsph_terms(const double* pos, const DfsphLayout<double>
       gradient_scales(r2.data(), count, c.inv_h, c.grad, scale.data());
       uint32_t neighbors = 0;
       // At most the pair and 7 wall images per candidate within h, itself included.
-      dfsph_terms_.begin(chunk, self, 8 * size_t(count));
+      terms.begin(chunk, self, 8 * size_t(count));
       for (uint32_t k = 0; k < count; ++k) {
         if (!(r2[k] < c.h2)) continue;
         const uint32_t j = candidate(k);
         ++neighbors;
         // term_gradient(d, r2, c), its scale computed above
-        if (j != self) dfsph_terms_.add(chunk, {scale[k] * d[k], j, 0u});
+        if (j != self) terms.add(chunk, scale[k] * d[k], j, 0u);
         if (m.axes)
           sph::for_each_wall_image_set(
               xi, load3(pos, j), m, c.h2, [&](V di, double ri2, uint32_t set) {
-                dfsph_terms_.add(chunk, {term_gradient(di, ri2, c), j, set});
+                terms.add(chunk, term_gradient(di, ri2, c), j, set);
               });
       }
-      dfsph_terms_.end(chunk, self, neighbors);
-      if (factor) factor[i] = factor_of_terms(chunk, self);
+      terms.end(chunk, self, neighbors);
+      if (factor) factor[i] = factor_of_terms(terms, chunk, self);
     }
   });
-  dfsph_terms_.remember(generation, c);
+  terms.remember(generation, c);
   return true;
 }
 
-double CpuBackend::factor_of_terms(size_t chunk, uint32_t self) const {
-  V sum;
-  double sum2;
-  dfsph_gradient_sums(dfsph_terms_.terms(chunk, self), dfsph_terms_.count(self), self, sum, sum2);
-  return sph::dfsph_factor_from(sum, sum2);
+// The fp32 path's terms: each listed neighbour's pair term (the lists hold exactly the fp32
+// candidates within h), 16 at a time in fp32 from fp32 positions, then near a wall the images
+// of the particle and of each neighbour, set by set; the factor from the same sums.
+bool CpuBackend::ensure_dfsph_terms32(const double* pos, const DfsphParams& p, double* factor) {
+  const auto c = device_params<double>(p);
+  const auto c32 = device_params<float>(p);
+  if (c.n >= DfsphTerms32::kMaxParticles)
+    throw Error("cpu", "dfsph_factor",
+                fmt::format("{} particles with cpu.sph_precision = fp32, whose DFSPH terms hold "
+                            "at most {}",
+                            c.n, DfsphTerms32::kMaxParticles - 1),
+                "use cpu.sph_precision = fp64, or more ranks");
+  DfsphTerms32& terms = dfsph_terms32_;
+  const uint64_t generation = sph_lists_.generation();
+  if (terms.matches(generation, c)) return false;
+  // Positions in fp32 rows of 4 (the fourth unread), for every particle a list can name.
+  const float* xyz = fp32_rows(dfsph_xyz32_, pos, c.n, 4);
+  const SimdDfsphConstants sc{c32.inv_h, c32.grad};
+  const size_t chunks = sph_chunks(c.end - c.begin);
+  terms.reset(c.n, chunks);
+  pool_.run_chunks(c.end - c.begin, chunks, [&](size_t chunk, size_t b, size_t e) {
+    using F = sph::V3<float>;
+    for (size_t i = c.begin + b; i < c.begin + e; ++i) {
+      const uint32_t self = uint32_t(i);
+      const F xi{xyz[4 * i], xyz[4 * i + 1], xyz[4 * i + 2]};
+      const sph::WallMirrors<float> m = sph::dfsph_mirrors(xi, c32);
+      const uint32_t* list = sph_lists_.list(self);
+      const uint32_t count = sph_lists_.count(self);
+      // The pairs, 7 images of each candidate at most (itself included), the SIMD writes' room.
+      terms.begin(chunk, self, count + 7 * (size_t(count) + 1) + DfsphTerms32::kSlack);
+      float sum[3], sum2;
+      sph_simd_->dfsph_pair_terms(xyz, list, count, xi.x, xi.y, xi.z, sc, terms.next(chunk), sum,
+                                  &sum2);
+      terms.advance(chunk, count);
+      if (m.axes) {
+        // Its own images (sph::dfsph_factor_of counts them twice in the sum, not in the
+        // squares), then its neighbours'.
+        sph::for_each_wall_image_set(xi, xi, m, c32.h2, [&](F d, float r2, uint32_t set) {
+          const F g = sph::dfsph_gradient(d, r2, c32);
+          terms.add(chunk, V{g.x, g.y, g.z}, self, set);
+          sum[0] += 2.0f * g.x;
+          sum[1] += 2.0f * g.y;
+          sum[2] += 2.0f * g.z;
+        });
+        terms.advance(chunk, sph_simd_->dfsph_image_terms(xyz, list, count, xi.x, xi.y, xi.z,
+                                                          m.axes, m.plane, c32.h2, sc,
+                                                          terms.next(chunk), sum, &sum2));
+      }
+      terms.end(chunk, self, count + 1);
+      terms.set_factor(self, sph::dfsph_factor_from(V{sum[0], sum[1], sum[2]}, double(sum2)));
+      if (factor) factor[i] = terms.factor(self);
+    }
+  });
+  terms.remember(generation, c);
+  return true;
 }
 
 void CpuBackend::run_own(const KernelArgs<KernelId::dfsph_factor>& a) {
@@ -134,15 +211,19 @@ void CpuBackend::run_own(const KernelArgs<KernelId::dfsph_factor>& a) {
   std::vector<ChunkStats> st(chunks);
   auto pos_at = [pos](uint32_t j) { return load3(pos, j); };
   // A new build of the terms finds the factors on the way (dfsph_factor_of's sums).
-  const bool found = dfsph_terms_on_ && ensure_dfsph_terms(pos, c, f);
+  const bool fp32 = sph_in_fp32();
+  const bool found = fp32              ? ensure_dfsph_terms32(pos, p, f)
+                     : dfsph_terms_on_ ? ensure_dfsph_terms(dfsph_terms_, pos, c, f)
+                                       : false;
   pool_.run_chunks(c.end - c.begin, chunks, [&](size_t chunk, size_t b, size_t e) {
     ChunkStats& s = st[chunk];
     for (size_t i = c.begin + b; i < c.begin + e; ++i) {
       const uint32_t self = uint32_t(i);
-      if (!dfsph_terms_on_) {
-        f[i] = sph::dfsph_factor_of(self, load3(pos, i), c, ListWalk{sph_lists_, self}, pos_at);
-      } else if (!found) {
-        f[i] = factor_of_terms(chunk, self);
+      if (!found) {
+        f[i] = fp32              ? dfsph_terms32_.factor(self)
+               : dfsph_terms_on_ ? factor_of_terms(dfsph_terms_, chunk, self)
+                                 : sph::dfsph_factor_of(self, load3(pos, i), c,
+                                                        ListWalk{sph_lists_, self}, pos_at);
       }
       if (!std::isfinite(f[i])) s.non_finite = std::min(s.non_finite, self);
       if (sph_lists_.overflow(self)) s.overflow = std::min(s.overflow, self);
@@ -170,8 +251,20 @@ void CpuBackend::run_own(const KernelArgs<KernelId::dfsph_rate>& a) {
   std::vector<ChunkStats> st(chunks);
   auto pos_at = [pos](uint32_t j) { return load3(pos, j); };
   auto vel_at = [vel](uint32_t j) { return load3(vel, j); };
-  if (dfsph_terms_on_) ensure_dfsph_terms(pos, c);
+  const bool fp32 = sph_in_fp32();
+  if (fp32)
+    ensure_dfsph_terms32(pos, p);
+  else if (dfsph_terms_on_)
+    ensure_dfsph_terms(dfsph_terms_, pos, c);
+  const float* vel32 = fp32 ? fp32_rows(dfsph_vel32_, vel, c.n, 4) : nullptr;
   auto rate_of_terms = [&](size_t chunk, uint32_t self) {
+    if (fp32) {
+      const float* vi = vel32 + 4 * size_t(self);
+      const float div = sph_simd_->dfsph_divergence(dfsph_terms32_.terms(chunk, self), vi[0],
+                                                    vi[1], vi[2], vel32);
+      return sph::dfsph_rate_from(double(div), dfsph_terms32_.neighbors(self), rho[self], f[self],
+                                  c);
+    }
     const double div = dfsph_divergence(dfsph_terms_.terms(chunk, self), dfsph_terms_.count(self),
                                         self, load3(vel, self), vel);
     return sph::dfsph_rate_from(div, dfsph_terms_.neighbors(self), rho[self], f[self], c);
@@ -180,7 +273,7 @@ void CpuBackend::run_own(const KernelArgs<KernelId::dfsph_rate>& a) {
     ChunkStats& s = st[chunk];
     for (size_t i = c.begin + b; i < c.begin + e; ++i) {
       const uint32_t self = uint32_t(i);
-      const auto r = dfsph_terms_on_
+      const auto r = fp32 || dfsph_terms_on_
                          ? rate_of_terms(chunk, self)
                          : sph::dfsph_rate_of(self, load3(pos, i), load3(vel, i), rho[i], f[i], c,
                                               ListWalk{sph_lists_, self}, pos_at, vel_at);
@@ -213,8 +306,18 @@ void CpuBackend::run_own(const KernelArgs<KernelId::dfsph_correct>& a) {
   std::vector<ChunkStats> st(chunks);
   auto pos_at = [pos](uint32_t j) { return load3(pos, j); };
   auto kappa_at = [kap](uint32_t j) { return kap[j]; };
-  if (dfsph_terms_on_) ensure_dfsph_terms(pos, c);
+  const bool fp32 = sph_in_fp32();
+  if (fp32)
+    ensure_dfsph_terms32(pos, p);
+  else if (dfsph_terms_on_)
+    ensure_dfsph_terms(dfsph_terms_, pos, c);
+  const float* kap32 = fp32 ? fp32_rows(dfsph_kappa32_, kap, c.n, 1) : nullptr;
   auto correction_of_terms = [&](size_t chunk, uint32_t self) {
+    if (fp32) {
+      float acc[3];
+      sph_simd_->dfsph_kappa_gradient(dfsph_terms32_.terms(chunk, self), kap32[self], kap32, acc);
+      return sph::dfsph_correction_from(V{acc[0], acc[1], acc[2]}, c);
+    }
     return sph::dfsph_correction_from(
         dfsph_kappa_gradient_sum(dfsph_terms_.terms(chunk, self), dfsph_terms_.count(self), self,
                                  kap[self], kap),
@@ -226,7 +329,7 @@ void CpuBackend::run_own(const KernelArgs<KernelId::dfsph_correct>& a) {
       const uint32_t self = uint32_t(i);
       const double w = pos[4 * i + 3];
       if (!(w > 0)) continue;  // pinned: never moves
-      const V dv = dfsph_terms_on_
+      const V dv = fp32 || dfsph_terms_on_
                        ? correction_of_terms(chunk, self)
                        : sph::dfsph_correction_of(self, load3(pos, i), kap[i], c,
                                                   ListWalk{sph_lists_, self}, pos_at, kappa_at);

@@ -13,28 +13,32 @@ V load3(const double* a, uint32_t i) {
   return V{a[4 * i], a[4 * i + 1], a[4 * i + 2]};
 }
 
+// At least `need`, and at least twice the old capacity (amortised growth).
+size_t grown(size_t capacity, size_t need) {
+  return std::max(need, 2 * capacity);
+}
+
+// A copy of the first `size` of `old` in a new array of `capacity` (default-initialised beyond:
+// no zeroing of what the build overwrites), then `slack` zeros.
+template <class T>
+std::unique_ptr<T[]> moved(const std::unique_ptr<T[]>& old, size_t size, size_t capacity,
+                           size_t slack = 0) {
+  std::unique_ptr<T[]> data(new T[capacity + slack]);
+  if (size) std::copy(old.get(), old.get() + size, data.get());
+  std::fill(data.get() + capacity, data.get() + capacity + slack, T{});
+  return data;
+}
+
 }  // namespace
 
-void DfsphTerms::reset(uint32_t n, size_t chunks) {
+void DfsphTermsIndex::reset_index(uint32_t n) {
   valid_ = false;
-  chunks_.resize(chunks);
-  for (Chunk& c : chunks_) c.size = c.end = 0;  // keeps the arrays: the next build needs as much
   begin_.resize(n);
   count_.resize(n);
   neighbors_.resize(n);
 }
 
-// At least `need` terms, and at least twice the old capacity (amortised growth); the terms so
-// far move along.
-void DfsphTerms::grow(Chunk& c, size_t need) {
-  const size_t capacity = std::max(need, 2 * c.capacity);
-  std::unique_ptr<DfsphTerm[]> data(new DfsphTerm[capacity]);  // default-initialised: no zeroing
-  std::copy(c.data.get(), c.data.get() + c.size, data.get());
-  c.data = std::move(data);
-  c.capacity = capacity;
-}
-
-void DfsphTerms::remember(uint64_t lists_generation, const DfsphLayout<double>& c) {
+void DfsphTermsIndex::remember(uint64_t lists_generation, const DfsphLayout<double>& c) {
   generation_ = lists_generation;
   begin_range_ = c.begin;
   end_range_ = c.end;
@@ -47,10 +51,37 @@ void DfsphTerms::remember(uint64_t lists_generation, const DfsphLayout<double>& 
   valid_ = true;
 }
 
-bool DfsphTerms::matches(uint64_t lists_generation, const DfsphLayout<double>& c) const {
+bool DfsphTermsIndex::matches(uint64_t lists_generation, const DfsphLayout<double>& c) const {
   return valid_ && lists_generation == generation_ && c.begin == begin_range_ &&
          c.end == end_range_ && c.h2 == h2_ && c.inv_h == inv_h_ && c.grad == grad_ &&
          c.walls == walls_ && std::equal(c.lo, c.lo + 3, lo_) && std::equal(c.hi, c.hi + 3, hi_);
+}
+
+// Both keep their arrays: the next build needs as much.
+void DfsphTerms::reset(uint32_t n, size_t chunks) {
+  reset_index(n);
+  chunks_.resize(chunks);
+  for (Chunk& c : chunks_) c.size = c.end = 0;
+}
+void DfsphTerms32::reset(uint32_t n, size_t chunks) {
+  reset_index(n);
+  factor_.resize(n);
+  chunks_.resize(chunks);
+  for (Chunk& c : chunks_) c.size = c.end = 0;
+}
+
+void DfsphTerms::grow(Chunk& c, size_t need) {
+  const size_t capacity = grown(c.capacity, need);
+  c.data = moved(c.data, c.size, capacity);
+  c.capacity = capacity;
+}
+void DfsphTerms32::grow(Chunk& c, size_t need) {
+  const size_t capacity = grown(c.capacity, need);
+  c.gx = moved(c.gx, c.size, capacity, kSlack);
+  c.gy = moved(c.gy, c.size, capacity, kSlack);
+  c.gz = moved(c.gz, c.size, capacity, kSlack);
+  c.js = moved(c.js, c.size, capacity, kSlack);
+  c.capacity = capacity;
 }
 
 void dfsph_gradient_sums(const DfsphTerm* t, uint32_t count, uint32_t self, V& sum, double& sum2) {

@@ -15,6 +15,7 @@
 #include <memory>
 #include <vector>
 
+#include "engine/cpu/cpu_sph_simd.h"
 #include "engine/kernels/dfsph_params.h"
 #include "engine/kernels/sph_kernels.h"
 
@@ -27,10 +28,9 @@ struct DfsphTerm {
   uint32_t set;  // 0: the pair; else the image's mirror set (sph::for_each_wall_image_set)
 };
 
-class DfsphTerms {
+// What a set of kept terms was built for, and where each particle's terms are in its chunk.
+class DfsphTermsIndex {
  public:
-  // Forgets the old terms and sizes for `chunks` chunks of `n` particles.
-  void reset(uint32_t n, size_t chunks);
   // Records what the terms now being built belong to: the neighbour lists' build (their
   // generation), the particles computed (their chunks index the terms) and the layout's
   // gradient and walls.
@@ -38,32 +38,17 @@ class DfsphTerms {
   // True if the terms were built for lists `lists_generation` with the same range, gradient and
   // walls.
   bool matches(uint64_t lists_generation, const DfsphLayout<double>& c) const;
-
-  // Chunk `chunk` starts particle i's terms (called for i in increasing order) with room for at
-  // most `most` of them, then adds them. The adds write without a capacity test (the build's
-  // inner loop; a std::vector's push_back there took 7% of a DFSPH step).
-  void begin(size_t chunk, uint32_t i, size_t most) {
-    Chunk& c = chunks_[chunk];
-    if (c.size + most > c.capacity) grow(c, c.size + most);
-    c.end = c.size + most;
-    begin_[i] = c.size;
-  }
-  void add(size_t chunk, const DfsphTerm& t) {
-    Chunk& c = chunks_[chunk];
-    assert(c.size < c.end);
-    c.data[c.size++] = t;
-  }
-  // Ends particle i's terms; `neighbors` counts the candidates within h, itself included.
-  void end(size_t chunk, uint32_t i, uint32_t neighbors) {
-    count_[i] = uint32_t(chunks_[chunk].size - begin_[i]);
-    neighbors_[i] = neighbors;
-  }
-
-  const DfsphTerm* terms(size_t chunk, uint32_t i) const {
-    return chunks_[chunk].data.get() + begin_[i];
-  }
   uint32_t count(uint32_t i) const { return count_[i]; }
   uint32_t neighbors(uint32_t i) const { return neighbors_[i]; }
+
+ protected:
+  void reset_index(uint32_t n);
+  void start(uint32_t i, size_t at) { begin_[i] = at; }
+  void finish(uint32_t i, size_t at, uint32_t neighbors) {
+    count_[i] = uint32_t(at - begin_[i]);
+    neighbors_[i] = neighbors;
+  }
+  std::vector<size_t> begin_;
 
  private:
   bool valid_ = false;
@@ -71,16 +56,102 @@ class DfsphTerms {
   uint32_t begin_range_ = 0, end_range_ = 0;
   double h2_ = 0, inv_h_ = 0, grad_ = 0, lo_[3] = {0, 0, 0}, hi_[3] = {0, 0, 0};
   uint32_t walls_ = 0;
-  // Per chunk: its particles' terms, concatenated (size of capacity used; `end`: the room the
-  // current particle was given).
+  std::vector<uint32_t> count_, neighbors_;
+};
+
+// Every particle's terms, per chunk of particles (a task's), concatenated. A chunk starts
+// particle i's terms (called for i in increasing order) with room for at most `most` of them,
+// then adds them without a capacity test (the build's inner loop; a std::vector's push_back
+// there took 7% of a DFSPH step), then ends them with `neighbors`, the candidates within h
+// (itself included).
+class DfsphTerms : public DfsphTermsIndex {
+ public:
+  // Forgets the old terms and sizes for `chunks` chunks of `n` particles.
+  void reset(uint32_t n, size_t chunks);
+  void begin(size_t chunk, uint32_t i, size_t most) {
+    Chunk& c = chunks_[chunk];
+    if (c.size + most > c.capacity) grow(c, c.size + most);
+    c.end = c.size + most;
+    start(i, c.size);
+  }
+  void add(size_t chunk, sph::V3<double> g, uint32_t j, uint32_t set) {
+    Chunk& c = chunks_[chunk];
+    assert(c.size < c.end);
+    c.data[c.size++] = DfsphTerm{g, j, set};
+  }
+  void end(size_t chunk, uint32_t i, uint32_t neighbors) {
+    finish(i, chunks_[chunk].size, neighbors);
+  }
+  const DfsphTerm* terms(size_t chunk, uint32_t i) const {
+    return chunks_[chunk].data.get() + begin_[i];
+  }
+
+ private:
   struct Chunk {
     std::unique_ptr<DfsphTerm[]> data;
     size_t size = 0, capacity = 0, end = 0;
   };
   static void grow(Chunk& c, size_t need);
   std::vector<Chunk> chunks_;
-  std::vector<size_t> begin_;
-  std::vector<uint32_t> count_, neighbors_;
+};
+
+// The fp32 path's terms (CpuTuning::sph_precision = fp32): the same gradients rounded to fp32,
+// as arrays for the SIMD solves (SimdDfsphTerms), the mirror set in the top 3 bits of j:
+// 16 bytes a term, read 16 at a time, with 16 readable entries past each chunk's end.
+class DfsphTerms32 : public DfsphTermsIndex {
+ public:
+  static constexpr uint32_t kSetShift = 29;
+  static constexpr uint32_t kMaxParticles = 1u << kSetShift;  // j below it
+  static constexpr size_t kSlack = 16;
+
+  void reset(uint32_t n, size_t chunks);
+  void begin(size_t chunk, uint32_t i, size_t most) {
+    Chunk& c = chunks_[chunk];
+    if (c.size + most > c.capacity) grow(c, c.size + most);
+    c.end = c.size + most;
+    start(i, c.size);
+  }
+  void add(size_t chunk, sph::V3<double> g, uint32_t j, uint32_t set) {
+    Chunk& c = chunks_[chunk];
+    assert(c.size < c.end);
+    c.gx[c.size] = float(g.x);
+    c.gy[c.size] = float(g.y);
+    c.gz[c.size] = float(g.z);
+    c.js[c.size++] = j | set << kSetShift;
+  }
+  // Where the next terms go, for SphSimdKernels::dfsph_pair_terms (begin's `most` must leave
+  // room for its writes past them), then how many it wrote.
+  SimdDfsphOut next(size_t chunk) {
+    Chunk& c = chunks_[chunk];
+    return {c.gx.get() + c.size, c.gy.get() + c.size, c.gz.get() + c.size, c.js.get() + c.size};
+  }
+  void advance(size_t chunk, size_t written) {
+    Chunk& c = chunks_[chunk];
+    c.size += written;
+    assert(c.size <= c.end);
+  }
+  void end(size_t chunk, uint32_t i, uint32_t neighbors) {
+    finish(i, chunks_[chunk].size, neighbors);
+  }
+  SimdDfsphTerms terms(size_t chunk, uint32_t i) const {
+    const Chunk& c = chunks_[chunk];
+    const size_t b = begin_[i];
+    return {c.gx.get() + b, c.gy.get() + b, c.gz.get() + b, c.js.get() + b, count(i)};
+  }
+  // Particle i's factor, found from the terms' fp32 sums as they were built (the build's order,
+  // which a later sum over the kept terms would not repeat).
+  void set_factor(uint32_t i, double f) { factor_[i] = f; }
+  double factor(uint32_t i) const { return factor_[i]; }
+
+ private:
+  struct Chunk {
+    std::unique_ptr<float[]> gx, gy, gz;
+    std::unique_ptr<uint32_t[]> js;
+    size_t size = 0, capacity = 0, end = 0;
+  };
+  static void grow(Chunk& c, size_t need);
+  std::vector<Chunk> chunks_;
+  std::vector<double> factor_;
 };
 
 // The sums of the shared bodies over particle `self`'s `count` terms `t`, from sorted

@@ -168,6 +168,7 @@ SphListInputs CpuBackend::sph_list_inputs(const SphStepParams& p, const Buffer<u
   in.dims[2] = p.grid.dims.z;
   in.h2 = h2;
   in.max_candidates = p.max_candidates;
+  in.fp32 = sph_in_fp32();
   return in;
 }
 
@@ -234,16 +235,12 @@ size_t CpuBackend::sph_chunks(uint32_t n) const {
 
 void CpuBackend::ensure_sph_lists(const SphListInputs& in) {
   const size_t chunks = sph_chunks(in.end - in.first);
-  if (sph_lists_.matches(in)) return;
+  if (sph_lists_.matches(in, pool_)) return;
   if (in.fp32)
     build_sph_lists<float>(in, chunks, [](size_t, uint32_t, uint32_t, const float*, const auto&) {});
   else
     build_sph_lists<double>(in, chunks,
                             [](size_t, uint32_t, uint32_t, const double*, const auto&) {});
-}
-
-bool CpuBackend::sph_in_fp32(const SphStepParams& p) const {
-  return sph_simd_ && p.model != SphPressureModel::dfsph;
 }
 
 void CpuBackend::run_own(const KernelArgs<KernelId::sph_density>& a) {
@@ -253,7 +250,6 @@ void CpuBackend::run_own(const KernelArgs<KernelId::sph_density>& a) {
   const auto cd = device_params<double>(p);  // the lists' key and the reach radius
   SphListInputs in = sph_list_inputs(p, cells, cell_start, cell_end, cd.h2, k);
   in.positions = own(positions.impl(), k).as<double>();
-  in.fp32 = sph_in_fp32(p);
   double* rho = own(density.impl(), k).as<double>();
   double* pr = own(pressure.impl(), k).as<double>();
   uint32_t* words = own(stats.impl(), k).as<uint32_t>();
@@ -311,14 +307,13 @@ void CpuBackend::run_own(const KernelArgs<KernelId::sph_density>& a) {
 }
 
 CpuBackend::SphForceBuffers CpuBackend::sph_force_buffers(
-    const KernelArgs<KernelId::sph_forces>& a, bool fp32) {
+    const KernelArgs<KernelId::sph_forces>& a) {
   auto& [p, items_, positions, velocities, density, pressure, cells, cell_start, cell_end, accel,
          stats, neighbor_state, neighbor_rows] = a;
   const char* k = "sph_forces";
   SphListInputs in = sph_list_inputs(p, cells, cell_start, cell_end, device_params<double>(p).h2, k);
   const double* pos = own(positions.impl(), k).as<double>();
   in.positions = pos;
-  in.fp32 = fp32;
   ensure_sph_lists(in);
   return {pos,
           own(velocities.impl(), k).as<double>(),
@@ -333,10 +328,10 @@ void CpuBackend::run_own(const KernelArgs<KernelId::sph_forces>& a) {
   // neighbor_rows is not read: the masks are sph_density's neighbour lists plus each particle
   // itself, and the lists below are those lists (or a fresh walk that finds the same ones), so
   // the result is the same with or without them.
-  if (sph_in_fp32(a.p)) return sph_forces_fp32(a);
+  if (sph_in_fp32()) return sph_forces_fp32(a);
   const SphStepParams& p = a.p;
   const auto c = device_params<double>(p);
-  const auto [pos, vel, rho, pr, acc_out, words, state] = sph_force_buffers(a, false);
+  const auto [pos, vel, rho, pr, acc_out, words, state] = sph_force_buffers(a);
   const size_t chunks = sph_chunks(sph_range_count(p));
   std::vector<ChunkStats> st(chunks);
   // p / rho^2 once per particle rather than once per pair (the same bits: the shared function),

@@ -19,7 +19,7 @@ void CpuBackend::sph_forces_fp32(const KernelArgs<KernelId::sph_forces>& a) {
   // come from sph_density's neighbour state where given (the same values as the arrays').
   const SphStepParams& p = a.p;
   const auto c = device_params<float>(p);
-  const auto [pos, vel, rho, pr, acc_out, words, state] = sph_force_buffers(a, true);
+  const auto [pos, vel, rho, pr, acc_out, words, state] = sph_force_buffers(a);
 
   // The neighbour fields, a row of 8 floats per particle (SimdPairFields).
   sph_fields_.resize(kFieldCount * std::max<size_t>(p.n, 1));
@@ -38,8 +38,14 @@ void CpuBackend::sph_forces_fp32(const KernelArgs<KernelId::sph_forces>& a) {
       for (size_t d = 0; d < kFieldCount; ++d) fb[kFieldCount * i + d] = float(fields[d]);
     }
   });
-  const SimdPairConstants sc{c.h2, c.inv_h, c.inv_h2, c.pressure, c.viscosity,
-                             c.model == SphPressureModel::thesis ? 1u : 0u, 0u};
+  // dfsph: viscosity only (sph::pair_accel), its pressure the solves' (reported, never a force).
+  const SimdPairConstants sc{c.h2,
+                             c.inv_h,
+                             c.inv_h2,
+                             c.pressure,
+                             c.viscosity,
+                             c.model == SphPressureModel::thesis ? 1u : 0u,
+                             c.model == SphPressureModel::dfsph ? 1u : 0u};
 
   const size_t chunks = sph_chunks(sph_range_count(p));
   std::vector<ChunkStats> st(chunks);

@@ -1,15 +1,26 @@
 #include "engine/cpu/cpu_sph_lists.h"
 
 #include <algorithm>
+#include <atomic>
 #include <cstring>
 
 namespace masav::cpu {
 namespace {
 
+// The kept copy against the array now, compared in pieces on the pool: every kernel that reads
+// the lists compares its positions and cells (a DFSPH step a dozen times), which on one thread
+// took a few percent of a small simulation's step.
 template <class T>
-bool same(const std::vector<T>& kept, const T* now, size_t count) {
-  return kept.size() == count &&
-         (count == 0 || std::memcmp(kept.data(), now, count * sizeof(T)) == 0);
+bool same(ThreadPool& pool, const std::vector<T>& kept, const T* now, size_t count) {
+  if (kept.size() != count) return false;
+  std::atomic<bool> equal{true};
+  pool.parallel_for(count * sizeof(T), 65536, [&](size_t b, size_t e) {
+    if (equal.load(std::memory_order_relaxed) &&
+        std::memcmp(reinterpret_cast<const char*>(kept.data()) + b,
+                    reinterpret_cast<const char*>(now) + b, e - b) != 0)
+      equal.store(false, std::memory_order_relaxed);
+  });
+  return equal.load();
 }
 
 }  // namespace
@@ -41,12 +52,14 @@ void SphNeighborLists::remember(const SphListInputs& in) {
   valid_ = true;
 }
 
-bool SphNeighborLists::matches(const SphListInputs& in) const {
+bool SphNeighborLists::matches(const SphListInputs& in, ThreadPool& pool) const {
   return valid_ && in.n == n_ && in.first >= first_ && in.end <= end_ &&
          in.max_candidates == max_candidates_ && std::equal(in.dims, in.dims + 3, dims_) &&
-         in.h2 == h2_ && in.fp32 == fp32_ && same(positions_, in.positions, 4 * size_t(in.n)) &&
-         same(cells_, in.cells, in.n) && same(cell_start_, in.cell_start, in.cell_count) &&
-         same(cell_end_, in.cell_end, in.cell_count);
+         in.h2 == h2_ && in.fp32 == fp32_ &&
+         same(pool, positions_, in.positions, 4 * size_t(in.n)) &&
+         same(pool, cells_, in.cells, in.n) &&
+         same(pool, cell_start_, in.cell_start, in.cell_count) &&
+         same(pool, cell_end_, in.cell_end, in.cell_count);
 }
 
 void SphNeighborLists::append(size_t chunk, uint32_t i, const uint32_t* neighbors, uint32_t count,

@@ -9,6 +9,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "engine/cpu/thread_pool.h"
 #include "engine/kernels/sph_kernel_params.h"
 
 namespace masav::cpu {
@@ -46,7 +47,7 @@ class SphNeighborLists {
   void remember(const SphListInputs& in);
   // True if the lists were built from inputs equal to `in` (for the particles of its range, or a
   // range around it: a rank's forces run over parts of the range its density pass listed).
-  bool matches(const SphListInputs& in) const;
+  bool matches(const SphListInputs& in, ThreadPool& pool) const;
   // Counts the builds (reset): what is derived from the lists names the build it came from.
   uint64_t generation() const { return generation_; }
 
