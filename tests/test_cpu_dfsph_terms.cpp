@@ -6,17 +6,16 @@
 
 #include <cmath>
 #include <cstring>
-#include <utility>
 #include <vector>
 
 #include "engine/core/tuning.h"
 #include "engine/cpu/cpu_backend.h"
-#include "engine/cpu/cpu_sph_simd.h"
 #include "engine/kernels/dfsph_params.h"
 #include "engine/sph/dfsph_case_buffers.h"
 #include "engine/sph/sph_kernel_calls.h"
 #include "engine/sph/sph_particles.h"
 #include "tests/backend_fixture.h"
+#include "tests/cpu_fp32_sets.h"
 #include "tests/sph_fixture.h"
 
 using namespace masav;
@@ -134,29 +133,18 @@ TEST_CASE("cpu dfsph fp32: the same bits for any instruction set and thread coun
   // them (whole-record relative L2 below 1e-5; the kernel tests, kernels.cpu.fp32, check each
   // kernel against brute-force sums). An instruction set this CPU lacks is skipped, saying so.
   if (test::backend().caps().backend != "cpu") return;  // a CPU backend's own structure
-  auto tuning = [](CpuSphSimd simd) {
-    Tuning t;
-    t.cpu.sph_precision = CpuSphPrecision::fp32;
-    t.cpu.sph_simd = simd;
-    return t;
-  };
-  const std::pair<CpuSphSimd, cpu::SphSimd> sets[] = {{CpuSphSimd::generic, cpu::SphSimd::generic},
-                                                      {CpuSphSimd::avx2, cpu::SphSimd::avx2},
-                                                      {CpuSphSimd::avx512, cpu::SphSimd::avx512}};
-  for (const auto& [name, simd] : sets)
-    if (!cpu::sph_simd_supported(simd))
-      MESSAGE("skipped: this CPU lacks " << cpu::sph_simd_name(simd));
+  test::announce_missing_sets();
   for (const bool walls : {false, true}) {
     CAPTURE(walls);
     const test::SphCase c = solve_case(walls);
-    cpu::CpuBackend one(1, cpu::CpuRenderPrecision::fp64, tuning(CpuSphSimd::generic));
+    cpu::CpuBackend one(1, cpu::CpuRenderPrecision::fp64, test::fp32_tuning(CpuSphSimd::generic));
     const Record want = run_solves(one, c, Change::move);
-    for (const auto& [name, simd] : sets) {
+    for (const auto& [name, simd] : test::kFp32Sets) {
       if (!cpu::sph_simd_supported(simd)) continue;
       for (unsigned threads : {1u, 3u}) {
         CAPTURE(cpu::sph_simd_name(simd));
         CAPTURE(threads);
-        cpu::CpuBackend b(threads, cpu::CpuRenderPrecision::fp64, tuning(name));
+        cpu::CpuBackend b(threads, cpu::CpuRenderPrecision::fp64, test::fp32_tuning(name));
         CHECK(run_solves(b, c, Change::move) == want);
       }
     }

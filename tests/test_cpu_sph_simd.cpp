@@ -13,6 +13,7 @@
 #include "engine/cpu/cpu_sph_simd.h"
 #include "engine/sph/sph_kernel_calls.h"
 #include "tests/backend_fixture.h"
+#include "tests/cpu_fp32_sets.h"
 #include "tests/sph_fixture.h"
 
 using namespace masav;
@@ -35,34 +36,22 @@ bool same_bits(const std::vector<double>& a, const std::vector<double>& b) {
   return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(double)) == 0;
 }
 
-Tuning fp32_tuning(CpuSphSimd simd) {
-  Tuning t;
-  t.cpu.sph_precision = CpuSphPrecision::fp32;
-  t.cpu.sph_simd = simd;
-  return t;
-}
-
 }  // namespace
 
 TEST_CASE("cpu fp32 sph: every instruction set and thread count gives the same bits") {
   if (test::backend().caps().backend != "cpu") return;  // the CPU backend's own code paths
-  const std::pair<CpuSphSimd, cpu::SphSimd> sets[] = {{CpuSphSimd::generic, cpu::SphSimd::generic},
-                                                      {CpuSphSimd::avx2, cpu::SphSimd::avx2},
-                                                      {CpuSphSimd::avx512, cpu::SphSimd::avx512}};
-  for (const auto& [name, simd] : sets)
-    if (!cpu::sph_simd_supported(simd))
-      MESSAGE("skipped: this CPU lacks " << cpu::sph_simd_name(simd));
+  test::announce_missing_sets();
   test::for_each_model_and_walls(12, 5, [&](test::SphCase& c) {
-    cpu::CpuBackend generic(1, cpu::CpuRenderPrecision::fp64, fp32_tuning(CpuSphSimd::generic));
+    cpu::CpuBackend generic(1, cpu::CpuRenderPrecision::fp64, test::fp32_tuning(CpuSphSimd::generic));
     const std::vector<double> want = density_and_forces(generic, c);
     cpu::CpuBackend reference(2);
     CHECK_FALSE(same_bits(want, density_and_forces(reference, c)));
-    for (const auto& [name, simd] : sets) {
+    for (const auto& [name, simd] : test::kFp32Sets) {
       if (!cpu::sph_simd_supported(simd)) continue;
       for (unsigned threads : {1u, 3u}) {
         CAPTURE(cpu::sph_simd_name(simd));
         CAPTURE(threads);
-        cpu::CpuBackend b(threads, cpu::CpuRenderPrecision::fp64, fp32_tuning(name));
+        cpu::CpuBackend b(threads, cpu::CpuRenderPrecision::fp64, test::fp32_tuning(name));
         CHECK(b.caps().sph_pairs_fp32);
         CHECK(same_bits(density_and_forces(b, c), want));
       }
@@ -76,7 +65,7 @@ TEST_CASE("cpu fp32 sph: an instruction set this CPU lacks is refused, naming th
        {std::pair{CpuSphSimd::avx2, cpu::SphSimd::avx2},
         std::pair{CpuSphSimd::avx512, cpu::SphSimd::avx512}}) {
     if (cpu::sph_simd_supported(simd)) continue;
-    CHECK_THROWS_WITH_AS(cpu::CpuBackend(1, cpu::CpuRenderPrecision::fp64, fp32_tuning(name)),
+    CHECK_THROWS_WITH_AS(cpu::CpuBackend(1, cpu::CpuRenderPrecision::fp64, test::fp32_tuning(name)),
                          doctest::Contains("cpu.sph_simd"), Error);
   }
   CHECK(cpu::sph_simd_supported(cpu::best_sph_simd()));

@@ -101,6 +101,9 @@ class CpuBackend final : public Backend {
                           double* factor = nullptr);
   // The same in fp32 into dfsph_terms32_ (the fp32 path).
   bool ensure_dfsph_terms32(const double* pos, const DfsphParams& p, double* factor = nullptr);
+  // The terms the solves read (dfsph_rate, dfsph_correct), in the path's precision; none where
+  // the fp64 path recomputes them (set_dfsph_terms(false)).
+  void ensure_solve_terms(const double* pos, const DfsphParams& p);
   // fp32 copies of n rows of 4 (velocities) or of n values (kappas) for the fp32 solves.
   const float* fp32_rows(std::vector<float>& out, const double* in, uint32_t n, size_t width);
   // raymarch in fp32 from fp32 copies of its inputs, a row of 8x8 tiles per task (cpu_volume.cpp).

@@ -198,6 +198,13 @@ bool CpuBackend::ensure_dfsph_terms32(const double* pos, const DfsphParams& p, d
   return true;
 }
 
+void CpuBackend::ensure_solve_terms(const double* pos, const DfsphParams& p) {
+  if (sph_in_fp32())
+    ensure_dfsph_terms32(pos, p);
+  else if (dfsph_terms_on_)
+    ensure_dfsph_terms(dfsph_terms_, pos, device_params<double>(p));
+}
+
 void CpuBackend::run_own(const KernelArgs<KernelId::dfsph_factor>& a) {
   auto& [p, items_, positions, cells, cell_start, cell_end, factor, stats, neighbor_rows] = a;
   const char* k = "dfsph_factor";
@@ -252,10 +259,7 @@ void CpuBackend::run_own(const KernelArgs<KernelId::dfsph_rate>& a) {
   auto pos_at = [pos](uint32_t j) { return load3(pos, j); };
   auto vel_at = [vel](uint32_t j) { return load3(vel, j); };
   const bool fp32 = sph_in_fp32();
-  if (fp32)
-    ensure_dfsph_terms32(pos, p);
-  else if (dfsph_terms_on_)
-    ensure_dfsph_terms(dfsph_terms_, pos, c);
+  ensure_solve_terms(pos, p);
   const float* vel32 = fp32 ? fp32_rows(dfsph_vel32_, vel, c.n, 4) : nullptr;
   auto rate_of_terms = [&](size_t chunk, uint32_t self) {
     if (fp32) {
@@ -307,10 +311,7 @@ void CpuBackend::run_own(const KernelArgs<KernelId::dfsph_correct>& a) {
   auto pos_at = [pos](uint32_t j) { return load3(pos, j); };
   auto kappa_at = [kap](uint32_t j) { return kap[j]; };
   const bool fp32 = sph_in_fp32();
-  if (fp32)
-    ensure_dfsph_terms32(pos, p);
-  else if (dfsph_terms_on_)
-    ensure_dfsph_terms(dfsph_terms_, pos, c);
+  ensure_solve_terms(pos, p);
   const float* kap32 = fp32 ? fp32_rows(dfsph_kappa32_, kap, c.n, 1) : nullptr;
   auto correction_of_terms = [&](size_t chunk, uint32_t self) {
     if (fp32) {

@@ -70,18 +70,18 @@ void DfsphTerms32::reset(uint32_t n, size_t chunks) {
   for (Chunk& c : chunks_) c.size = c.end = 0;
 }
 
-void DfsphTerms::grow(Chunk& c, size_t need) {
-  const size_t capacity = grown(c.capacity, need);
-  c.data = moved(c.data, c.size, capacity);
-  c.capacity = capacity;
+void DfsphTerms::Chunk::grow(size_t need) {
+  const size_t to = grown(capacity, need);
+  data = moved(data, size, to);
+  capacity = to;
 }
-void DfsphTerms32::grow(Chunk& c, size_t need) {
-  const size_t capacity = grown(c.capacity, need);
-  c.gx = moved(c.gx, c.size, capacity, kSlack);
-  c.gy = moved(c.gy, c.size, capacity, kSlack);
-  c.gz = moved(c.gz, c.size, capacity, kSlack);
-  c.js = moved(c.js, c.size, capacity, kSlack);
-  c.capacity = capacity;
+void DfsphTerms32::Chunk::grow(size_t need) {
+  const size_t to = grown(capacity, need);
+  gx = moved(gx, size, to, kSlack);
+  gy = moved(gy, size, to, kSlack);
+  gz = moved(gz, size, to, kSlack);
+  js = moved(js, size, to, kSlack);
+  capacity = to;
 }
 
 void dfsph_gradient_sums(const DfsphTerm* t, uint32_t count, uint32_t self, V& sum, double& sum2) {

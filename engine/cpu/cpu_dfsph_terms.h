@@ -43,7 +43,14 @@ class DfsphTermsIndex {
 
  protected:
   void reset_index(uint32_t n);
-  void start(uint32_t i, size_t at) { begin_[i] = at; }
+  // Starts particle i's terms in chunk c (a store's Chunk: size, capacity, end, grow(need)) with
+  // room for `most`.
+  template <class Chunk>
+  void start(Chunk& c, uint32_t i, size_t most) {
+    if (c.size + most > c.capacity) c.grow(c.size + most);
+    c.end = c.size + most;
+    begin_[i] = c.size;
+  }
   void finish(uint32_t i, size_t at, uint32_t neighbors) {
     count_[i] = uint32_t(at - begin_[i]);
     neighbors_[i] = neighbors;
@@ -68,12 +75,7 @@ class DfsphTerms : public DfsphTermsIndex {
  public:
   // Forgets the old terms and sizes for `chunks` chunks of `n` particles.
   void reset(uint32_t n, size_t chunks);
-  void begin(size_t chunk, uint32_t i, size_t most) {
-    Chunk& c = chunks_[chunk];
-    if (c.size + most > c.capacity) grow(c, c.size + most);
-    c.end = c.size + most;
-    start(i, c.size);
-  }
+  void begin(size_t chunk, uint32_t i, size_t most) { start(chunks_[chunk], i, most); }
   void add(size_t chunk, sph::V3<double> g, uint32_t j, uint32_t set) {
     Chunk& c = chunks_[chunk];
     assert(c.size < c.end);
@@ -90,8 +92,8 @@ class DfsphTerms : public DfsphTermsIndex {
   struct Chunk {
     std::unique_ptr<DfsphTerm[]> data;
     size_t size = 0, capacity = 0, end = 0;
+    void grow(size_t need);
   };
-  static void grow(Chunk& c, size_t need);
   std::vector<Chunk> chunks_;
 };
 
@@ -105,12 +107,7 @@ class DfsphTerms32 : public DfsphTermsIndex {
   static constexpr size_t kSlack = 16;
 
   void reset(uint32_t n, size_t chunks);
-  void begin(size_t chunk, uint32_t i, size_t most) {
-    Chunk& c = chunks_[chunk];
-    if (c.size + most > c.capacity) grow(c, c.size + most);
-    c.end = c.size + most;
-    start(i, c.size);
-  }
+  void begin(size_t chunk, uint32_t i, size_t most) { start(chunks_[chunk], i, most); }
   void add(size_t chunk, sph::V3<double> g, uint32_t j, uint32_t set) {
     Chunk& c = chunks_[chunk];
     assert(c.size < c.end);
@@ -148,8 +145,8 @@ class DfsphTerms32 : public DfsphTermsIndex {
     std::unique_ptr<float[]> gx, gy, gz;
     std::unique_ptr<uint32_t[]> js;
     size_t size = 0, capacity = 0, end = 0;
+    void grow(size_t need);
   };
-  static void grow(Chunk& c, size_t need);
   std::vector<Chunk> chunks_;
   std::vector<double> factor_;
 };

@@ -1,0 +1,32 @@
+#pragma once
+// The CPU backend's fp32 path for the tests that compare its instruction sets
+// (test_cpu_sph_simd.cpp, test_cpu_dfsph_terms.cpp): its tuning, and every instruction set by
+// option and kind, those this CPU lacks announced as skipped.
+#include <doctest/doctest.h>
+
+#include <utility>
+
+#include "engine/core/tuning.h"
+#include "engine/cpu/cpu_sph_simd.h"
+
+namespace masav::test {
+
+inline Tuning fp32_tuning(CpuSphSimd simd) {
+  Tuning t;
+  t.cpu.sph_precision = CpuSphPrecision::fp32;
+  t.cpu.sph_simd = simd;
+  return t;
+}
+
+inline constexpr std::pair<CpuSphSimd, cpu::SphSimd> kFp32Sets[] = {
+    {CpuSphSimd::generic, cpu::SphSimd::generic},
+    {CpuSphSimd::avx2, cpu::SphSimd::avx2},
+    {CpuSphSimd::avx512, cpu::SphSimd::avx512}};
+
+inline void announce_missing_sets() {
+  for (const auto& [name, simd] : kFp32Sets)
+    if (!cpu::sph_simd_supported(simd))
+      MESSAGE("skipped: this CPU lacks " << cpu::sph_simd_name(simd));
+}
+
+}  // namespace masav::test
