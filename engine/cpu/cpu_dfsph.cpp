@@ -15,7 +15,6 @@
 #include <algorithm>
 #include <bit>
 #include <cmath>
-#include <type_traits>
 #include <vector>
 
 #include "engine/cpu/cpu_backend.h"
@@ -76,7 +75,6 @@ double factor_of_terms(const DfsphTerms& terms, size_t chunk, uint32_t self) {
   dfsph_gradient_sums(terms.terms(chunk, self), terms.count(self), self, sum, sum2);
   return sph::dfsph_factor_from(sum, sum2);
 }
-
 
 }  // namespace
 
