@@ -7,6 +7,7 @@
 #include <utility>
 
 #include "engine/core/tuning.h"
+#include "engine/cpu/cpu_backend.h"
 #include "engine/cpu/cpu_sph_simd.h"
 
 namespace masav::test {
@@ -22,6 +23,21 @@ inline constexpr std::pair<CpuSphSimd, cpu::SphSimd> kFp32Sets[] = {
     {CpuSphSimd::generic, cpu::SphSimd::generic},
     {CpuSphSimd::avx2, cpu::SphSimd::avx2},
     {CpuSphSimd::avx512, cpu::SphSimd::avx512}};
+
+// Calls f(b) with a CPU backend b of the fp32 path for every instruction set this CPU runs, with
+// 1 and 3 threads (each captured for the checks in f).
+template <class F>
+void for_each_fp32_backend(F&& f) {
+  for (const auto& [name, simd] : kFp32Sets) {
+    if (!cpu::sph_simd_supported(simd)) continue;
+    for (unsigned threads : {1u, 3u}) {
+      CAPTURE(cpu::sph_simd_name(simd));
+      CAPTURE(threads);
+      cpu::CpuBackend b(threads, cpu::CpuRenderPrecision::fp64, fp32_tuning(name));
+      f(b);
+    }
+  }
+}
 
 inline void announce_missing_sets() {
   for (const auto& [name, simd] : kFp32Sets)

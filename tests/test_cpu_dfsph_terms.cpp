@@ -139,15 +139,8 @@ TEST_CASE("cpu dfsph fp32: the same bits for any instruction set and thread coun
     const test::SphCase c = solve_case(walls);
     cpu::CpuBackend one(1, cpu::CpuRenderPrecision::fp64, test::fp32_tuning(CpuSphSimd::generic));
     const Record want = run_solves(one, c, Change::move);
-    for (const auto& [name, simd] : test::kFp32Sets) {
-      if (!cpu::sph_simd_supported(simd)) continue;
-      for (unsigned threads : {1u, 3u}) {
-        CAPTURE(cpu::sph_simd_name(simd));
-        CAPTURE(threads);
-        cpu::CpuBackend b(threads, cpu::CpuRenderPrecision::fp64, test::fp32_tuning(name));
-        CHECK(run_solves(b, c, Change::move) == want);
-      }
-    }
+    test::for_each_fp32_backend(
+        [&](cpu::CpuBackend& b) { CHECK(run_solves(b, c, Change::move) == want); });
     const Record ref = run_solves(true, c, Change::move);
     REQUIRE(ref.reals.size() == want.reals.size());
     CHECK_FALSE(ref == want);

@@ -46,16 +46,10 @@ TEST_CASE("cpu fp32 sph: every instruction set and thread count gives the same b
     const std::vector<double> want = density_and_forces(generic, c);
     cpu::CpuBackend reference(2);
     CHECK_FALSE(same_bits(want, density_and_forces(reference, c)));
-    for (const auto& [name, simd] : test::kFp32Sets) {
-      if (!cpu::sph_simd_supported(simd)) continue;
-      for (unsigned threads : {1u, 3u}) {
-        CAPTURE(cpu::sph_simd_name(simd));
-        CAPTURE(threads);
-        cpu::CpuBackend b(threads, cpu::CpuRenderPrecision::fp64, test::fp32_tuning(name));
-        CHECK(b.caps().sph_pairs_fp32);
-        CHECK(same_bits(density_and_forces(b, c), want));
-      }
-    }
+    test::for_each_fp32_backend([&](cpu::CpuBackend& b) {
+      CHECK(b.caps().sph_pairs_fp32);
+      CHECK(same_bits(density_and_forces(b, c), want));
+    });
   });
 }
 
